@@ -1,0 +1,78 @@
+"""Input checks at the public boundary, so every message reads the same way.
+
+Each check names the field, the offending value and what is valid, e.g.::
+
+    ValueError: shell_wall: upper limit 1.491e-03 m is below lower limit 1.497e-03 m
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+import numpy as np
+
+
+def finite(field, value):
+    """Return ``value`` as a float array; reject NaN and inf."""
+    arr = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        bad = arr[~np.isfinite(arr)].flat[0]
+        raise ValueError(f"{field}: {bad!r} is not a finite number")
+    return arr
+
+
+def positive(field, value, *, allow_zero=False):
+    """Return ``value`` as a finite float array that is > 0 (or >= 0)."""
+    arr = finite(field, value)
+    bad = arr < 0 if allow_zero else arr <= 0
+    if np.any(bad):
+        what = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{field}: {arr[bad].flat[0]!r} is not valid; must be {what}")
+    return arr
+
+
+def in_range(field, value, lo, hi, *, lo_open=False, hi_open=False, unit=""):
+    """Return ``value`` as a finite float array inside [lo, hi] (ends open if asked)."""
+    arr = finite(field, value)
+    below = arr <= lo if lo_open else arr < lo
+    above = arr >= hi if hi_open else arr > hi
+    bad = below | above
+    if np.any(bad):
+        lb = "(" if lo_open else "["
+        rb = ")" if hi_open else "]"
+        raise ValueError(
+            f"{field}: {arr[bad].flat[0]!r}{unit} is outside the valid range {lb}{lo}, {hi}{rb}"
+        )
+    return arr
+
+
+def limits(field, lo, hi, *, unit="m"):
+    """Check a pair of drawing limits and return them as floats."""
+    lo = float(finite(f"{field} lower limit", lo))
+    hi = float(finite(f"{field} upper limit", hi))
+    if hi < lo:
+        raise ValueError(f"{field}: upper limit {hi:.6g} {unit} is below lower limit {lo:.6g} {unit}")
+    return lo, hi
+
+
+def one_of(field, value, options: Iterable[str]):
+    """Check that a string option is one of the legal ones."""
+    options = list(options)
+    if value not in options:
+        listed = ", ".join(repr(o) for o in options)
+        raise ValueError(f"{field}: {value!r} is not one of {listed}")
+    return value
+
+
+def integer(field, value, *, minimum=None):
+    """Return ``value`` as an int, optionally with a lower bound."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        if isinstance(value, float) and math.isfinite(value) and value.is_integer():
+            value = int(value)
+        else:
+            raise ValueError(f"{field}: {value!r} is not an integer")
+    value = int(value)
+    if minimum is not None and value < minimum:
+        raise ValueError(f"{field}: {value} is not valid; must be >= {minimum}")
+    return value

@@ -1,0 +1,56 @@
+"""The ``stackup`` command: thin, it parses arguments and calls what a study script calls."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from . import __version__
+
+
+def _compare(args):
+    from .io import save
+    from .report import clearance_summary, write_report
+    from .study import ISO_SCHEMES, Study
+
+    n = args.n if args.n is not None else (10_000 if args.quick else 100_000)
+    study = Study(engine=args.engine, schemes=tuple(args.schemes or ISO_SCHEMES), n_engines=n, seed=args.seed)
+    t0 = time.perf_counter()
+    ds = study.run()
+    elapsed = time.perf_counter() - t0
+    out = Path(args.out)
+    data = save(ds, out / "compare.nc")
+    report = write_report(ds, out, dataset_file=data.name)
+    summary = clearance_summary(ds)
+    print(f"{n:,} engines x {ds.sizes['bearing']} bearings x {ds.sizes['scheme']} schemes in {elapsed:.1f} s")
+    for name, row in summary.iterrows():
+        print(f"  {name:<14} mean {row.mean_um:6.2f} um  std {row.std_um:5.2f} um  "
+              f"outside stated {row.outside_stated_ppm:9.0f} ppm")
+    print(f"dataset: {data}\nreport:  {report}")
+    return 0
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="stackup", description=__doc__)
+    parser.add_argument("--version", action="version", version=f"stackup {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+    cmp_ = sub.add_parser("compare", help="compare selective-fitting schemes on an engine")
+    cmp_.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file")
+    cmp_.add_argument("--schemes", nargs="+", help="scheme names or files (default: iso13778-1 ... -6)")
+    cmp_.add_argument("--n", type=int, help="engines to sample (default 100000; 10000 with --quick)")
+    cmp_.add_argument("--seed", type=int, default=0)
+    cmp_.add_argument("--out", default="reports/compare", help="output folder for dataset and report")
+    cmp_.add_argument("--quick", action="store_true", help="a small, fast run")
+    cmp_.set_defaults(func=_compare)
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except ValueError as err:
+        print(f"stackup: error: {err}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

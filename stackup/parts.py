@@ -1,0 +1,192 @@
+"""Sampled parts of one production lot: true sizes, readings, scrap.
+
+A lot is ``lot_engines`` engines (blocks and crankshafts) and the shells made
+for them. Each lot draws its random numbers from its own generator (see
+:mod:`stackup._random`) in a fixed order, so a lot's parts do not depend on
+how lots are grouped into chunks. Shells use the same standard normals for
+every scheme and are mapped through each scheme's own shell process, so
+schemes are compared on common random numbers.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from scipy import optimize, special
+
+from .tolerances import Dimension, Gauge, process_from_spec
+
+
+@dataclass(frozen=True)
+class BlockParts:
+    """Housing bores and journals of ``n`` engines with ``B`` main bearings each, in m."""
+
+    housing_bore: np.ndarray  # (n, B) true bore
+    housing_reading: np.ndarray  # (n, B) gauge reading
+    journal_d: np.ndarray  # (n, B) true journal diameter
+    journal_reading: np.ndarray  # (n, B)
+    block_scrapped: np.ndarray  # (n,) a bore read outside its drawing limits
+    crank_scrapped: np.ndarray  # (n,) a journal read outside its drawing limits
+
+
+@dataclass(frozen=True)
+class ShellNormals:
+    """Standard normals of the shells made in one lot: size and gauge."""
+
+    size: np.ndarray
+    gauge: np.ndarray
+
+
+@dataclass(frozen=True)
+class Shells:
+    """Shells of one lot made for one scheme, in production order."""
+
+    wall: np.ndarray  # true crown wall thickness [m]
+    reading: np.ndarray  # measured wall [m]
+    grade: np.ndarray  # grade index in the scheme, -1 = scrapped (read outside every grade)
+
+
+def draw_lot(engine, rng, n_engines):
+    """Draw the blocks, crankshafts and shell normals of one lot of ``n_engines`` engines.
+
+    The order of draws is fixed: block normals, bore normals, bore gauge,
+    crankshaft normals, journal normals, journal gauge, shell normals, shell gauge.
+    """
+    b = engine.main_bearings
+    hb, jd = engine.housing_bore, engine.journal_d
+    z_block = rng.standard_normal(n_engines)
+    z_bore = rng.standard_normal((n_engines, b))
+    g_bore = rng.standard_normal((n_engines, b))
+    z_crank = rng.standard_normal(n_engines)
+    z_journal = rng.standard_normal((n_engines, b))
+    g_journal = rng.standard_normal((n_engines, b))
+    n_shells = engine.shell_wall.shells_per_lot(n_engines * b)
+    shells = ShellNormals(rng.standard_normal(n_shells), rng.standard_normal(n_shells))
+
+    bore = hb.true_sizes(z_block, z_bore)
+    bore_reading = hb.gauge.read(bore, g_bore)
+    journal = jd.true_sizes(z_crank, z_journal)
+    journal_reading = jd.gauge.read(journal, g_journal)
+    parts = BlockParts(
+        housing_bore=bore,
+        housing_reading=bore_reading,
+        journal_d=journal,
+        journal_reading=journal_reading,
+        block_scrapped=hb.outside(bore_reading).any(axis=1),
+        crank_scrapped=jd.outside(journal_reading).any(axis=1),
+    )
+    return parts, shells
+
+
+@dataclass(frozen=True)
+class ShellSupply:
+    """How the shells of a lot are made for a scheme and sorted into its grades.
+
+    Two modes:
+
+    ``"to-order"``
+        Each grade is made in a planned quantity (the expected share of the
+        grade in the scheme's demand, times the lot's shells) by the wall
+        process aimed at the grade centre (plus ``target_offset``) with
+        standard deviation ``sigma``. Shells are read and sorted by their
+        reading, so a shell aimed at one grade may land in its neighbour's bin.
+    ``"sorted"``
+        One process, stated over the scheme's whole shell range (``process``,
+        e.g. ``cpk = 1.33``), sorted into grades by the reading: grade
+        quantities follow the process, not the demand.
+
+    In both, a shell read outside every grade is scrapped, and a lot makes
+    ``ceil(2 * bearings * (1 + surplus))`` shells.
+
+    Parameters
+    ----------
+    mode : {"to-order", "sorted"}
+    process : dict
+        Process table (TOML form, file units) for ``"sorted"``.
+    sigma : float or None
+        Wall process standard deviation [m] for ``"to-order"``.
+    target_offset : float
+        Offset of the process aim from the grade centre [m] (``"to-order"``).
+    gauge : Gauge
+        Wall-thickness gauge.
+    lot_engines : int
+        Engines per production lot of shells.
+    surplus : float
+        Share of shells made on top of two per bearing [-].
+    scale : float
+        File length unit [m].
+    """
+
+    mode: str
+    process: dict
+    sigma: float | None
+    target_offset: float
+    gauge: Gauge
+    lot_engines: int
+    surplus: float
+    scale: float
+
+    def dimension(self, scheme):
+        """The ``"sorted"`` shell wall :class:`Dimension` for ``scheme``: limits = its shell range."""
+        lo, hi = scheme.shell.limits
+        process = process_from_spec(self.process, lo=lo, hi=hi, scale=self.scale, field="shell_wall.process")
+        return Dimension("shell_wall", lo, hi, process, self.gauge)
+
+    def shells_per_lot(self, bearings):
+        """Shells made for a lot of ``bearings`` bearings."""
+        return math.ceil(2 * bearings * (1.0 + self.surplus))
+
+    def _aim(self, scheme):
+        return 0.5 * (scheme.shell.lo + scheme.shell.hi) + self.target_offset
+
+    def spill(self, scheme):
+        r"""Probability that a shell aimed at grade g is read into grade g' (g', g).
+
+        The reading of a shell aimed at centre :math:`m_g` is normal with
+        :math:`s = \sqrt{\sigma^2 + \sigma_{gauge}^2}` (resolution ignored),
+        so :math:`P_{g'g} = \Phi((b_{g'} - m_g)/s) - \Phi((a_{g'} - m_g)/s)`
+        over the reading range :math:`[a_{g'}, b_{g'})` of grade g'.
+        """
+        s = np.hypot(self.sigma, self.gauge.repeatability)
+        lo, hi = scheme.shell.bins()
+        m = self._aim(scheme)
+        return special.ndtr((hi[:, None] - m[None, :]) / s) - special.ndtr((lo[:, None] - m[None, :]) / s)
+
+    def aim_share(self, scheme, demand_share):
+        """Share of the lot aimed at each grade so the bins hold the demanded mix (``"to-order"``).
+
+        Non-negative least squares on the spill matrix, ``min ||P q - d||`` with
+        ``q >= 0`` (the planner's compensation for shells landing in a
+        neighbour's bin), normalised to sum 1.
+        """
+        d = np.asarray(demand_share, dtype=float)
+        q, _ = optimize.nnls(self.spill(scheme), d / d.sum())
+        return q / q.sum()
+
+    def make(self, scheme, normals, aim_share=None):
+        """The shells of one lot for ``scheme`` from the lot's shell normals.
+
+        ``aim_share`` (grades,) is the share of the lot aimed at each grade
+        (from :meth:`aim_share`); ``"to-order"`` needs it.
+        """
+        if self.mode == "sorted":
+            wall = self.dimension(scheme).process.from_normal(normals.size)
+        else:
+            centre = self._aim(scheme)
+            quantity = apportion(aim_share, normals.size.size)
+            wall = np.repeat(centre, quantity) + self.sigma * normals.size
+        reading = self.gauge.read(wall, normals.gauge)
+        return Shells(wall, reading, scheme.shell.classify(reading))
+
+
+def apportion(share, total):
+    """Whole quantities summing to ``total`` in proportion to ``share`` (largest remainder)."""
+    share = np.asarray(share, dtype=float)
+    exact = share / share.sum() * total
+    quantity = np.floor(exact).astype(np.int64)
+    short = total - quantity.sum()
+    quantity[np.argsort(-(exact - quantity), kind="stable")[:short]] += 1
+    return quantity

@@ -1,0 +1,215 @@
+"""Scheme-comparison tables and report, from a saved study dataset alone."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+
+from .assembly import ASSEMBLED, STATUS  # noqa: E402
+from .stats import proportion_ci, quantile_ci  # noqa: E402
+
+#: Tail quantiles reported: the +-3 sigma points of a normal distribution.
+TAIL_LOW, TAIL_HIGH = 0.00135, 0.99865
+UM = 1e6
+
+
+def clearance_summary(ds):
+    """One row per scheme: nominal clearance statistics [um], shares outside the stated range, stock.
+
+    Quantiles and shares come with 95 % intervals (order statistics and
+    Clopper-Pearson).
+    """
+    rows = []
+    for name in ds.scheme.values:
+        d = ds.sel(scheme=name)
+        status = d.status.values
+        c = d.clearance_nominal.values[status == ASSEMBLED]
+        n_bearings = status.size
+        lo_stated, hi_stated = d.clearance_stated.values
+        outside = int(np.count_nonzero((c < lo_stated) | (c > hi_stated)))
+        share, share_lo, share_hi = proportion_ci(outside, c.size)
+        p_lo = quantile_ci(c, TAIL_LOW)
+        p50 = quantile_ci(c, 0.5)
+        p_hi = quantile_ci(c, TAIL_HIGH)
+        made = int(d.shells_made.sum()) + int(d.shells_scrapped)
+        row = {
+            "scheme": str(name),
+            "bearings": n_bearings,
+            "assembled": c.size,
+            "stated_min_um": lo_stated * UM,
+            "stated_max_um": hi_stated * UM,
+            "worst_case_min_um": float(d.clearance_limit.values[0]) * UM,
+            "worst_case_max_um": float(d.clearance_limit.values[1]) * UM,
+            "mean_um": float(c.mean()) * UM if c.size else np.nan,
+            "std_um": float(c.std(ddof=1)) * UM if c.size > 1 else np.nan,
+            "p00135_um": p_lo[0] * UM,
+            "p00135_ci_um": (p_lo[1] * UM, p_lo[2] * UM),
+            "median_um": p50[0] * UM,
+            "p99865_um": p_hi[0] * UM,
+            "p99865_ci_um": (p_hi[1] * UM, p_hi[2] * UM),
+            "min_um": float(c.min()) * UM if c.size else np.nan,
+            "max_um": float(c.max()) * UM if c.size else np.nan,
+            "outside_stated_ppm": share * 1e6,
+            "outside_stated_ci_ppm": (share_lo * 1e6, share_hi * 1e6),
+            "shells_made": made,
+            "shells_scrapped_pct": 100.0 * int(d.shells_scrapped) / made if made else np.nan,
+            "substituted": int(np.count_nonzero(d.shell_option.values > 0)),
+        }
+        for code, reason in enumerate(STATUS):
+            if code != ASSEMBLED:
+                row[reason] = int(np.count_nonzero(status == code))
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("scheme")
+
+
+def grade_usage(ds):
+    """Shells made, fitted and left per scheme and grade (grades the scheme has)."""
+    frame = ds[["shells_made", "shells_used", "shells_left"]].to_dataframe()
+    frame = frame[ds.grade_in_scheme.to_series()]
+    used = frame["shells_used"]
+    frame["used_share_pct"] = 100.0 * used / used.groupby(level="scheme").transform("sum")
+    return frame
+
+
+def _fmt_ci(value, ci, digits=1):
+    return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
+
+
+def _markdown_table(frame):
+    head = "| " + " | ".join(frame.columns) + " |"
+    rule = "|" + "|".join("---" for _ in frame.columns) + "|"
+    body = ["| " + " | ".join(str(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    return "\n".join([head, rule, *body])
+
+
+def clearance_histogram(ds, path):
+    """Histogram of nominal clearance per scheme with its stated range shaded; saved as PNG."""
+    names = list(ds.scheme.values)
+    fig, axes = plt.subplots(len(names), 1, figsize=(7.5, 1.6 * len(names) + 0.8), sharex=True)
+    axes = np.atleast_1d(axes)
+    c_all = ds.clearance_nominal.values[ds.status.values == ASSEMBLED] * UM
+    bins = np.arange(np.floor(c_all.min()) - 1, np.ceil(c_all.max()) + 2, 0.5)
+    for ax, name in zip(axes, names):
+        d = ds.sel(scheme=name)
+        c = d.clearance_nominal.values[d.status.values == ASSEMBLED] * UM
+        lo, hi = d.clearance_stated.values * UM
+        ax.axvspan(lo, hi, color="tab:green", alpha=0.12, label="stated range")
+        ax.hist(c, bins=bins, color="tab:blue", alpha=0.85)
+        ax.set_yscale("log")
+        ax.set_ylabel("bearings")
+        ax.set_title(str(name), fontsize=9, loc="left")
+    axes[-1].set_xlabel("nominal diametral clearance [µm]")
+    axes[0].legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def grade_usage_chart(ds, path):
+    """Shells fitted per grade and scheme as shares of the scheme's fitted shells; saved as PNG."""
+    usage = grade_usage(ds)
+    names = list(ds.scheme.values)
+    fig, axes = plt.subplots(1, len(names), figsize=(2.0 * len(names) + 1, 2.8), sharey=True)
+    axes = np.atleast_1d(axes)
+    for ax, name in zip(axes, names):
+        u = usage.loc[name]
+        made_share = 100.0 * u["shells_made"] / u["shells_used"].sum()
+        x = np.arange(len(u))
+        ax.bar(x - 0.2, u["used_share_pct"], width=0.4, label="fitted")
+        ax.bar(x + 0.2, made_share, width=0.4, label="made (sorted)", alpha=0.6)
+        ax.set_xticks(x, u.index)
+        ax.set_title(str(name), fontsize=9)
+        ax.set_xlabel("shell grade")
+    axes[0].set_ylabel("share of fitted shells [%]")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_report(ds, out_dir, *, dataset_file=None):
+    """Write ``report.md`` and its figures into ``out_dir``; return the report path."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    summary = clearance_summary(ds)
+    usage = grade_usage(ds)
+    clearance_histogram(ds, out / "clearance_histogram.png")
+    grade_usage_chart(ds, out / "grade_usage.png")
+
+    table = pd.DataFrame({
+        "scheme": summary.index,
+        "stated [µm]": [f"{a:.0f}–{b:.0f}" for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
+        "worst case [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(summary.worst_case_min_um, summary.worst_case_max_um)],
+        "mean [µm]": summary.mean_um.map("{:.2f}".format),
+        "std [µm]": summary.std_um.map("{:.2f}".format),
+        "P0.135 % [µm]": [_fmt_ci(v, ci) for v, ci in zip(summary.p00135_um, summary.p00135_ci_um)],
+        "median [µm]": summary.median_um.map("{:.1f}".format),
+        "P99.865 % [µm]": [_fmt_ci(v, ci) for v, ci in zip(summary.p99865_um, summary.p99865_ci_um)],
+        "outside stated [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(summary.outside_stated_ppm, summary.outside_stated_ci_ppm)],
+    })
+    not_built = pd.DataFrame({
+        "scheme": summary.index,
+        "bearings": summary.bearings,
+        "assembled": summary.assembled,
+        **{reason: summary[reason] for reason in STATUS if reason != "assembled"},
+        "substituted pairs": summary.substituted,
+        "shells made": summary.shells_made,
+        "shells scrapped [%]": summary.shells_scrapped_pct.map("{:.2f}".format),
+    })
+    usage_table = usage.reset_index()[["scheme", "shell_grade", "shells_made", "shells_used", "shells_left", "used_share_pct"]]
+    usage_table["used_share_pct"] = usage_table["used_share_pct"].map("{:.2f}".format)
+    usage_table.columns = ["scheme", "grade", "made", "fitted", "left in stock", "share of fitted [%]"]
+
+    study = json.loads(ds.attrs["study"])
+    lines = [
+        f"# Scheme comparison: {ds.attrs['engine']}",
+        "",
+        f"{ds.attrs['title']}. stackup {ds.attrs['stackup_version']}, seed {ds.attrs['seed']}, "
+        f"{ds.sizes['engine']:,} engines × {ds.sizes['bearing']} main bearings per scheme.",
+        "",
+        "Nominal diametral clearance C = D_H − (s_upper + s_lower + D_J) of every assembled bearing, "
+        "from true sizes; grading used gauge readings. No housing swell or temperature (as the "
+        "standard's stated ranges). Intervals are 95 % (order statistics for quantiles, "
+        "Clopper–Pearson for shares).",
+        "",
+        "## Clearance per scheme",
+        "",
+        _markdown_table(table),
+        "",
+        "![Clearance histogram per scheme](clearance_histogram.png)",
+        "",
+        "## Assembly, scrap and stock",
+        "",
+        "Bearings not assembled are kept in the dataset with their reason (`status`); none are dropped.",
+        "",
+        _markdown_table(not_built),
+        "",
+        "## Shell grade usage",
+        "",
+        "![Shell grades fitted and made per scheme](grade_usage.png)",
+        "",
+        _markdown_table(usage_table),
+        "",
+        "## Parameters",
+        "",
+        f"- study: `{json.dumps(study)}`",
+        f"- engine source: {' '.join(ds.attrs['engine_source'].split())}",
+        f"- shells: supply `{ds.attrs['shell_supply']}`, lots of {ds.attrs['lot_engines']} engines, "
+        f"{100 * ds.attrs['shell_surplus']:.0f} % surplus, grade quantities planned from a pilot of "
+        f"{ds.attrs['pilot_engines']:,} engines",
+        *(f"- {k}: {v}" for k, v in json.loads(ds.attrs["scheme_sources"]).items()),
+    ]
+    if dataset_file:
+        lines.append(f"- dataset: `{dataset_file}`")
+    path = out / "report.md"
+    path.write_text("\n".join(lines) + "\n")
+    return path

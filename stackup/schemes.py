@@ -1,0 +1,460 @@
+"""ISO 13778 selective-fitting schemes as data: grading and pairing.
+
+A scheme file (TOML, lengths in mm as the standard writes them) gives the
+grades of the housing bore, the journal and the shell wall, and the rule that
+pairs a housing grade and a journal grade with an upper and a lower shell
+grade. Six files ship with the package, ``iso13778-1`` ... ``iso13778-6``; a
+user's own file works the same way, by path or from a folder named in the
+``STACKUP_SCHEME_PATH`` environment variable.
+
+File layout::
+
+    name = "my-scheme"
+    units = "mm"                        # or "m"
+    source = "where the numbers come from"
+    stated_clearance = [0.026, 0.044]   # optional, as the standard states it
+
+    [housing]                           # and [journal]
+    limits = [50.000, 50.018]           # ungraded: one class "-"
+    grades = { A = [50.000, 50.006], B = [50.006, 50.012] }   # or graded
+    classes = { start = 50.000, stop = 50.018, step = 0.001 } # or fine classes "0".."18"
+    resolution = 0.001                  # optional read-out step for this scheme
+    overlap = false                     # true where grades overlap on purpose
+
+    [shell]
+    grades = { A = [...], B = [...] }
+
+    [pairing]                           # one of:
+    all = "B+B"                         # every cell the same pair ("upper+lower")
+    table = { A = { A = "C+C", B = "D+D" } }    # journal grade -> housing grade -> pair
+    matrix = ["dd...", ...]             # rows: journal classes, columns: housing classes
+    letters = { d = "B+C" }             # with the meaning of each matrix letter
+
+    [pairing.alternatives]
+    "B+B" = ["A+C"]                     # allowed replacements, used when stock runs out
+
+Grade ``[lo, hi]`` holds readings ``lo <= x < hi``; the last grade also holds
+``x == hi``. Fine classes hold ``[x, x + step)``. Readings are compared in whole
+nanometres, so a reading such as 50.018e-3 m lands in its own class although
+its binary floating-point value is slightly below 50.018 mm.
+"""
+
+from __future__ import annotations
+
+import os
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from . import _validate as check
+
+_UNITS = {"mm": 1e-3, "m": 1.0}
+#: Readings are snapped to this grid before comparison with grade limits [m].
+_SNAP = 1e-9
+UNGRADED = "-"
+_OUT_OF_RANGE = ("raise", "mark")
+
+
+def _snap(value):
+    return np.rint(np.asarray(value, dtype=float) / _SNAP).astype(np.int64)
+
+
+@dataclass(frozen=True, eq=False)
+class GradeSet:
+    """The grades of one dimension within a scheme.
+
+    Attributes
+    ----------
+    labels : tuple of str
+        Grade labels in file order ("-" for an ungraded dimension).
+    lo, hi : numpy.ndarray
+        Limits of each grade [m] (fine classes: clipped to ``limits``).
+    limits : tuple of float
+        Range of sizes the scheme accepts for this dimension [m].
+    resolution : float
+        Step the scheme reads this dimension to [m]; 0 for continuous.
+    fine : bool
+        True for fine classes ``[x, x + step)``.
+    """
+
+    labels: tuple
+    lo: np.ndarray
+    hi: np.ndarray
+    limits: tuple
+    resolution: float
+    fine: bool
+    _edges: np.ndarray  # lower edges of the sorted, non-overlapping classes [nm]
+    _order: np.ndarray  # label index of each sorted class
+    _top: int  # upper end of the accepted range [nm]
+    _top_closed: bool
+
+    @property
+    def graded(self):
+        return self.labels != (UNGRADED,)
+
+    def as_dict(self):
+        return {lab: (float(a), float(b)) for lab, a, b in zip(self.labels, self.lo, self.hi)}
+
+    def bins(self):
+        """Range of readings [m] sorted into each grade, (lo, hi) per label: overlaps split."""
+        ends = np.append(self._edges[1:], self._top) * _SNAP
+        lo = np.empty(len(self.labels))
+        hi = np.empty(len(self.labels))
+        lo[self._order] = self._edges * _SNAP
+        hi[self._order] = ends
+        return lo, hi
+
+    def classify(self, reading):
+        """Grade index of each reading [m]; -1 where the scheme has no grade for it."""
+        v = _snap(reading)
+        pos = np.searchsorted(self._edges, v, side="right") - 1
+        inside = (v >= self._edges[0]) & ((v <= self._top) if self._top_closed else (v < self._top))
+        return np.where(inside, self._order[np.clip(pos, 0, len(self._order) - 1)], -1)
+
+
+def _grade_set(table, *, scale, where, dim):
+    known = {"limits", "grades", "classes", "resolution", "overlap"}
+    unknown = set(table) - known
+    if unknown:
+        raise ValueError(f"{where}, key {dim}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    forms = [k for k in ("grades", "classes") if k in table]
+    if len(forms) > 1:
+        raise ValueError(f"{where}, key {dim}: give either 'grades' or 'classes', not both")
+    resolution = float(check.positive(f"{where}, key {dim}.resolution", table.get("resolution", 0.0), allow_zero=True)) * scale
+    overlap = bool(table.get("overlap", False))
+
+    def pair_of(key, value):
+        if not (isinstance(value, (list, tuple)) and len(value) == 2):
+            raise ValueError(f"{where}, key {key}: {value!r} is not a [lower, upper] pair")
+        lo, hi = (float(check.finite(f"{where}, key {key}", v)) for v in value)
+        if hi < lo:
+            raise ValueError(f"{where}, key {key}: upper limit {hi!r} is below lower limit {lo!r}")
+        if hi == lo:
+            raise ValueError(f"{where}, key {key}: upper limit {hi!r} equals lower limit; a grade needs a width")
+        return lo * scale, hi * scale
+
+    limits = pair_of(f"{dim}.limits", table["limits"]) if "limits" in table else None
+
+    if "classes" in table:
+        spec = table["classes"]
+        try:
+            start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
+        except (KeyError, TypeError, ValueError):
+            raise ValueError(f"{where}, key {dim}.classes: {spec!r} needs numbers start, stop and step") from None
+        if step <= 0 or stop < start:
+            raise ValueError(f"{where}, key {dim}.classes: {spec!r} needs step > 0 and stop >= start")
+        count = int(round((stop - start) / step)) + 1
+        if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
+            raise ValueError(f"{where}, key {dim}.classes: stop {stop!r} is not start plus a whole number of steps")
+        start_nm = int(_snap(start * scale))
+        step_nm = int(_snap(step * scale))
+        edges = start_nm + step_nm * np.arange(count, dtype=np.int64)
+        if limits is None:
+            limits = (start * scale, stop * scale)
+        lo = np.maximum(edges * _SNAP, limits[0])
+        hi = np.minimum((edges + step_nm) * _SNAP, limits[1])
+        labels = tuple(str(k) for k in range(count))
+        return GradeSet(labels, lo, hi, limits, resolution, True, edges, np.arange(count), int(edges[-1] + step_nm), False)
+
+    if "grades" in table:
+        grades = table["grades"]
+        if not isinstance(grades, dict) or not grades:
+            raise ValueError(f"{where}, key {dim}.grades: needs at least one grade as label = [lower, upper]")
+        labels = tuple(grades)
+        for lab in labels:
+            if not lab or len(lab) > 2:
+                raise ValueError(f"{where}, key {dim}.grades.{lab}: grade labels are one or two characters")
+        bounds = [pair_of(f"{dim}.grades.{lab}", grades[lab]) for lab in labels]
+        lo = np.array([b[0] for b in bounds])
+        hi = np.array([b[1] for b in bounds])
+        order = np.argsort(lo, kind="stable")
+        lo_nm, hi_nm = _snap(lo[order]), _snap(hi[order])
+        edges = lo_nm.copy()
+        for a, b in zip(range(len(order) - 1), range(1, len(order))):
+            la, lb = labels[order[a]], labels[order[b]]
+            if lo_nm[b] > hi_nm[a]:
+                raise ValueError(
+                    f"{where}, key {dim}.grades: gap between grade {la} (up to {hi[order[a]] / scale:.6g}) "
+                    f"and grade {lb} (from {lo[order[b]] / scale:.6g})"
+                )
+            if lo_nm[b] < hi_nm[a]:
+                if not overlap:
+                    raise ValueError(
+                        f"{where}, key {dim}.grades: grades {la} and {lb} overlap "
+                        f"({lo[order[b]] / scale:.6g} < {hi[order[a]] / scale:.6g}); "
+                        f"set {dim}.overlap = true if that is intended"
+                    )
+                if hi_nm[b] <= hi_nm[a] or lo_nm[b] <= lo_nm[a]:
+                    raise ValueError(f"{where}, key {dim}.grades: grade {lb} lies inside grade {la}")
+                # A reading in the overlap goes to the grade whose centre is nearest.
+                edges[b] = (lo_nm[b] + hi_nm[a]) // 2
+        span = (float(lo.min()), float(hi.max()))
+        if limits is not None and (limits[0] > span[0] or limits[1] < span[1]):
+            raise ValueError(f"{where}, key {dim}.limits: grades reach outside the limits {limits}")
+        limits = span if limits is None else limits
+        return GradeSet(labels, lo, hi, limits, resolution, False, edges, order, int(hi_nm.max()), True)
+
+    if limits is None:
+        raise ValueError(f"{where}, key {dim}: give 'limits', 'grades' or 'classes'")
+    lo_nm = _snap(limits[0])
+    return GradeSet((UNGRADED,), np.array([limits[0]]), np.array([limits[1]]), limits, resolution, False,
+                    np.array([lo_nm]), np.array([0]), int(_snap(limits[1])), True)
+
+
+@dataclass(frozen=True, eq=False)
+class Scheme:
+    """A selective-fitting scheme: grades of housing, journal and shell, and the pairing rule.
+
+    Use :func:`load` to build one. ``upper``/``lower`` shells of a pair are
+    written ``"upper+lower"`` in the file.
+    """
+
+    name: str
+    title: str
+    source: str
+    path: str
+    stated_clearance: tuple | None
+    housing: GradeSet
+    journal: GradeSet
+    shell: GradeSet
+    cell_pairs: np.ndarray  # (journal grades, housing grades, 2): preferred (upper, lower) shell indices
+    alternatives: dict  # (upper, lower) -> tuple of (upper, lower), in order of preference
+
+    def __repr__(self):
+        return f"Scheme({self.name!r}, {self.title!r})"
+
+    @property
+    def grades(self):
+        """Grade limits [m] of each dimension: ``{"housing": {"A": (lo, hi), ...}, "journal": ..., "shell": ...}``."""
+        return {"housing": self.housing.as_dict(), "journal": self.journal.as_dict(), "shell": self.shell.as_dict()}
+
+    def options(self, upper, lower):
+        """Allowed shell pairs for a preferred pair, preferred first: list of (upper, lower) labels."""
+        lab = self.shell.labels
+        key = (lab.index(upper), lab.index(lower))
+        return [(lab[u], lab[l]) for u, l in (key, *self.alternatives.get(key, ()))]
+
+    def option_table(self):
+        """Options per preferred pair code ``u * n + l``: int array (n*n, k, 2), -1 padded."""
+        n = len(self.shell.labels)
+        width = 1 + max((len(v) for v in self.alternatives.values()), default=0)
+        table = np.full((n * n, width, 2), -1, dtype=np.int64)
+        for u in range(n):
+            for l in range(n):
+                for k, pair in enumerate(((u, l), *self.alternatives.get((u, l), ()))):
+                    table[u * n + l, k] = pair
+        return table
+
+    def read(self, housing_reading, journal_reading):
+        """Readings rounded to the scheme's read-out steps (scheme 6: the nearest micrometre) [m]."""
+        from .tolerances import quantize
+
+        return quantize(housing_reading, self.housing.resolution), quantize(journal_reading, self.journal.resolution)
+
+    def classify(self, housing_d, journal_d):
+        """Housing and journal grade indices of readings [m]; -1 where out of the scheme's range."""
+        return self.housing.classify(housing_d), self.journal.classify(journal_d)
+
+    def pair_indices(self, housing_index, journal_index):
+        """Preferred (upper, lower) shell grade indices of graded parts; -1 where either index is -1."""
+        ok = (housing_index >= 0) & (journal_index >= 0)
+        cell = self.cell_pairs[np.where(ok, journal_index, 0), np.where(ok, housing_index, 0)]
+        return np.where(ok, cell[..., 0], -1), np.where(ok, cell[..., 1], -1)
+
+    def pair(self, housing_d, journal_d, *, out_of_range="raise"):
+        """Shell grades for measured housing bores and journals.
+
+        Parameters
+        ----------
+        housing_d, journal_d : array_like
+            Measured housing bore and journal diameters [m], broadcast together.
+        out_of_range : {"raise", "mark"}
+            What to do with a reading outside the scheme's range: raise
+            ValueError, or return ``""`` as its grades.
+
+        Returns
+        -------
+        upper, lower : numpy.ndarray of str
+            Preferred upper and lower shell grade of each bearing ("-" for
+            ungraded shells). Allowed alternatives: :meth:`options`.
+        """
+        check.one_of("out_of_range", out_of_range, _OUT_OF_RANGE)
+        h = check.finite("housing_d", housing_d)
+        j = check.finite("journal_d", journal_d)
+        h, j = np.broadcast_arrays(h, j)
+        hi, ji = self.classify(h, j)
+        if out_of_range == "raise":
+            for field, idx, val, gs in (("housing_d", hi, h, self.housing), ("journal_d", ji, j, self.journal)):
+                if np.any(idx < 0):
+                    bad = val[idx < 0].flat[0]
+                    raise ValueError(
+                        f"{field}: {bad!r} m is outside scheme {self.name}'s range "
+                        f"[{gs.limits[0]!r}, {gs.limits[1]!r}] m; pass out_of_range='mark' to mark it"
+                    )
+        u, l = self.pair_indices(hi, ji)
+        labels = np.array((*self.shell.labels, ""))
+        return labels[u], labels[l]
+
+    def clearance_limits(self):
+        """Worst-case nominal diametral clearance (c_min, c_max) [m], without housing swell.
+
+        :math:`C = D_H - (s_{upper} + s_{lower} + D_J)` over every housing and
+        journal grade and every shell pair the scheme allows there, with
+        class limits clipped to the scheme's range of each dimension.
+        """
+        c_min, c_max = np.inf, -np.inf
+        s_lo, s_hi = self.shell.lo, self.shell.hi
+        for j in range(len(self.journal.labels)):
+            for h in range(len(self.housing.labels)):
+                u, l = self.cell_pairs[j, h]
+                for pu, pl in ((u, l), *self.alternatives.get((u, l), ())):
+                    c_min = min(c_min, self.housing.lo[h] - self.journal.hi[j] - s_hi[pu] - s_hi[pl])
+                    c_max = max(c_max, self.housing.hi[h] - self.journal.lo[j] - s_lo[pu] - s_lo[pl])
+        return float(c_min), float(c_max)
+
+
+def _parse_pair(text, shells, where, key):
+    if not isinstance(text, str) or text.count("+") != 1:
+        raise ValueError(f"{where}, key {key}: {text!r} is not a shell pair written 'upper+lower'")
+    out = []
+    for label in text.split("+"):
+        label = label.strip()
+        if label not in shells:
+            raise ValueError(
+                f"{where}, key {key}: unknown shell grade {label!r} (grades: {', '.join(shells)})"
+            )
+        out.append(shells.index(label))
+    return tuple(out)
+
+
+def _pairing(table, housing, journal, shells, where):
+    forms = [k for k in ("all", "table", "matrix") if k in table]
+    if len(forms) != 1:
+        raise ValueError(f"{where}, key pairing: give exactly one of 'all', 'table' or 'matrix' (found {forms or 'none'})")
+    unknown = set(table) - {"all", "table", "matrix", "letters", "alternatives"}
+    if unknown:
+        raise ValueError(f"{where}, key pairing: unknown key(s) {sorted(unknown)}")
+    nj, nh = len(journal.labels), len(housing.labels)
+    cells = np.full((nj, nh, 2), -1, dtype=np.int64)
+    if "all" in table:
+        cells[:, :] = _parse_pair(table["all"], shells, where, "pairing.all")
+    elif "table" in table:
+        rows = table["table"]
+        for jl in rows:
+            if jl not in journal.labels:
+                raise ValueError(f"{where}, key pairing.table.{jl}: unknown journal grade {jl!r} (grades: {', '.join(journal.labels)})")
+            for hl in rows[jl]:
+                if hl not in housing.labels:
+                    raise ValueError(f"{where}, key pairing.table.{jl}.{hl}: unknown housing grade {hl!r} (grades: {', '.join(housing.labels)})")
+                key = f"pairing.table.{jl}.{hl}"
+                cells[journal.labels.index(jl), housing.labels.index(hl)] = _parse_pair(rows[jl][hl], shells, where, key)
+    else:
+        letters = table.get("letters")
+        if not isinstance(letters, dict) or not letters:
+            raise ValueError(f"{where}, key pairing.letters: a matrix needs its letters, e.g. letters = {{ a = 'A+A' }}")
+        meaning = {k: _parse_pair(v, shells, where, f"pairing.letters.{k}") for k, v in letters.items()}
+        rows = table["matrix"]
+        if len(rows) != nj:
+            raise ValueError(f"{where}, key pairing.matrix: {len(rows)} rows for {nj} journal classes")
+        for j, row in enumerate(rows):
+            if len(row) != nh:
+                raise ValueError(f"{where}, key pairing.matrix[{j}]: {len(row)} letters for {nh} housing classes")
+            for h, letter in enumerate(row):
+                if letter not in meaning:
+                    raise ValueError(f"{where}, key pairing.matrix[{j}][{h}]: letter {letter!r} is not in pairing.letters")
+                cells[j, h] = meaning[letter]
+    missing = np.argwhere(cells[..., 0] < 0)
+    if len(missing):
+        j, h = missing[0]
+        raise ValueError(
+            f"{where}, key pairing: no pairing for journal grade {journal.labels[j]!r} "
+            f"with housing grade {housing.labels[h]!r}"
+        )
+    alternatives = {}
+    for pref, alts in table.get("alternatives", {}).items():
+        key = _parse_pair(pref, shells, where, f"pairing.alternatives.{pref}")
+        if not isinstance(alts, list):
+            raise ValueError(f"{where}, key pairing.alternatives.{pref}: {alts!r} is not a list of pairs")
+        alternatives[key] = tuple(_parse_pair(a, shells, where, f"pairing.alternatives.{pref}") for a in alts)
+    return cells, alternatives
+
+
+def _builtin_dir():
+    packaged = resources.files("stackup") / "_scheme_files"
+    if packaged.is_dir():
+        return Path(str(packaged))
+    # Running from a source checkout: the files at the top of the repository.
+    return Path(__file__).resolve().parent.parent / "schemes"
+
+
+def _search_dirs():
+    dirs = [Path(p) for p in os.environ.get("STACKUP_SCHEME_PATH", "").split(os.pathsep) if p]
+    return [*dirs, _builtin_dir()]
+
+
+def available():
+    """Names of the schemes that :func:`load` finds by name, shipped ones and the user's."""
+    names = set()
+    for d in _search_dirs():
+        if d.is_dir():
+            names.update(p.stem for p in d.glob("*.toml"))
+    return sorted(names)
+
+
+def load(name_or_path):
+    """Load a scheme by name (``"iso13778-4"``) or from a TOML file path."""
+    if isinstance(name_or_path, Scheme):
+        return name_or_path
+    text = os.fspath(name_or_path)
+    path = Path(text)
+    if not (path.suffix == ".toml" or os.sep in text or path.is_file()):
+        found = [d / f"{text}.toml" for d in _search_dirs() if (d / f"{text}.toml").is_file()]
+        if not found:
+            raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file")
+        path = found[0]
+    if not path.is_file():
+        raise ValueError(f"scheme: file {text!r} does not exist")
+    where = f"scheme file {path.name!r}"
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except tomllib.TOMLDecodeError as err:
+        raise ValueError(f"{where}: not valid TOML ({err})") from None
+    return _from_dict(data, where=where, path=str(path))
+
+
+def _from_dict(data, *, where, path):
+    known = {"name", "title", "source", "units", "stated_clearance", "housing", "journal", "shell", "pairing"}
+    unknown = set(data) - known
+    if unknown:
+        raise ValueError(f"{where}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    for key in ("units", "housing", "journal", "shell", "pairing"):
+        if key not in data:
+            raise ValueError(f"{where}: missing key '{key}'")
+    units = data["units"]
+    if units not in _UNITS:
+        raise ValueError(f"{where}, key units: {units!r} is not one of {', '.join(map(repr, _UNITS))}")
+    scale = _UNITS[units]
+    housing = _grade_set(data["housing"], scale=scale, where=where, dim="housing")
+    journal = _grade_set(data["journal"], scale=scale, where=where, dim="journal")
+    shell = _grade_set(data["shell"], scale=scale, where=where, dim="shell")
+    cells, alternatives = _pairing(data["pairing"], housing, journal, shell.labels, where)
+    stated = data.get("stated_clearance")
+    if stated is not None:
+        lo, hi = check.limits(f"{where}, key stated_clearance", *stated, unit=units)
+        stated = (lo * scale, hi * scale)
+    return Scheme(
+        name=str(data.get("name", Path(path).stem)),
+        title=str(data.get("title", "")),
+        source=str(data.get("source", "")),
+        path=path,
+        stated_clearance=stated,
+        housing=housing,
+        journal=journal,
+        shell=shell,
+        cell_pairs=cells,
+        alternatives=alternatives,
+    )

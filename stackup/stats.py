@@ -1,0 +1,49 @@
+"""Monte Carlo estimates with their error: proportions and quantiles with intervals."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import stats
+
+
+def proportion_ci(k, n, *, confidence=0.95):
+    """Exact (Clopper-Pearson) interval of a proportion ``k / n``.
+
+    Returns ``(estimate, lower, upper)``; with ``n == 0`` all three are NaN.
+
+    References
+    ----------
+    .. [1] Clopper, C. J., Pearson, E. S., "The use of confidence or fiducial
+       limits illustrated in the case of the binomial", Biometrika 26 (1934) 404-413.
+    """
+    k, n = int(k), int(n)
+    if n == 0:
+        return np.nan, np.nan, np.nan
+    alpha = 1.0 - confidence
+    lower = 0.0 if k == 0 else stats.beta.ppf(alpha / 2, k, n - k + 1)
+    upper = 1.0 if k == n else stats.beta.ppf(1 - alpha / 2, k + 1, n - k)
+    return k / n, float(lower), float(upper)
+
+
+def quantile_ci(values, q, *, confidence=0.95):
+    """Sample quantile ``q`` of ``values`` with a distribution-free interval.
+
+    The interval is spanned by the order statistics whose ranks are the
+    binomial ``(n, q)`` quantiles at ``alpha/2`` and ``1 - alpha/2``.
+    Returns ``(estimate, lower, upper)``; NaN values are ignored.
+
+    References
+    ----------
+    .. [1] Hahn, G. J., Meeker, W. Q., *Statistical Intervals*, Wiley, 1991, sec. 5.2.
+    """
+    x = np.sort(np.asarray(values, dtype=float).ravel())
+    x = x[~np.isnan(x)]
+    n = x.size
+    if n == 0:
+        return np.nan, np.nan, np.nan
+    alpha = 1.0 - confidence
+    lo_rank = int(stats.binom.ppf(alpha / 2, n, q))
+    hi_rank = int(stats.binom.ppf(1 - alpha / 2, n, q)) + 1
+    lower = x[lo_rank - 1] if lo_rank >= 1 else -np.inf
+    upper = x[hi_rank - 1] if hi_rank <= n else np.inf
+    return float(np.quantile(x, q)), float(lower), float(upper)

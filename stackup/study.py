@@ -1,0 +1,229 @@
+"""A study: one scenario (engine, schemes, size, seed) run into one xarray Dataset."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+import xarray as xr
+from tqdm.auto import tqdm
+
+from . import __version__
+from . import _validate as check
+from ._random import PILOT_KEY, lot_generator, seed_sequence
+from .assembly import STATUS, assemble, shell_demand
+from .engines import load_engine
+from .parts import draw_lot
+from .schemes import load as load_scheme
+
+ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
+#: Engines in the pilot sample that plans the shell quantities of each grade.
+PILOT_ENGINES = 20_000
+
+
+@dataclass
+class Study:
+    """A Monte Carlo study of selective assembly.
+
+    Parameters
+    ----------
+    engine : str or path
+        Built-in engine name or engine TOML file.
+    schemes : sequence of str or path
+        Scheme names or scheme TOML files.
+    n_engines : int
+        Engines to sample (each with its block, crankshaft and shells).
+    seed : int
+        Root seed; lot ``k`` uses child ``k`` of ``SeedSequence(seed)``.
+    chunk_lots : int
+        Lots processed together. Execution only: results do not depend on it.
+    progress : bool or None
+        Show a progress bar; None shows one only on a terminal.
+    """
+
+    engine: str = "iso-example"
+    schemes: tuple = ISO_SCHEMES
+    n_engines: int = 100_000
+    seed: int = 0
+    chunk_lots: int = 20
+    progress: bool | None = None
+    _resolved: dict = field(default=None, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        self.n_engines = check.integer("n_engines", self.n_engines, minimum=1)
+        self.chunk_lots = check.integer("chunk_lots", self.chunk_lots, minimum=1)
+        self.schemes = tuple(str(s) for s in self.schemes)
+        if not self.schemes:
+            raise ValueError("schemes: give at least one scheme")
+        if len(set(self.schemes)) != len(self.schemes):
+            raise ValueError(f"schemes: {list(self.schemes)!r} names a scheme twice")
+        seed_sequence(self.seed)
+        self.engine = str(self.engine)
+
+    def parameters(self):
+        """The study's parameters as plain data (stored in the dataset's attrs)."""
+        return {k: v for k, v in asdict(self).items() if not k.startswith("_") and k != "progress"}
+
+    def run(self) -> xr.Dataset:
+        """Sample, measure, grade, pair and assemble; return the dataset."""
+        engine = load_engine(self.engine)
+        schemes = [load_scheme(s) for s in self.schemes]
+        names = [s.name for s in schemes]
+        if len(set(names)) != len(names):
+            raise ValueError(f"schemes: two files carry the same scheme name ({names})")
+        n, b = self.n_engines, engine.main_bearings
+        lot = engine.shell_wall.lot_engines
+        n_lots = math.ceil(n / lot)
+        root = seed_sequence(self.seed)
+        pilot, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), PILOT_ENGINES)
+        shares = []
+        for s in schemes:
+            demand = shell_demand(s, pilot)
+            if demand.sum() == 0:
+                raise ValueError(f"scheme {s.name}: no bearing of the pilot sample could be graded; "
+                                 "do the scheme's ranges match the engine's drawing limits?")
+            shares.append(engine.shell_wall.aim_share(s, demand) if engine.shell_wall.mode == "to-order" else None)
+        grade_labels = _union_labels(schemes)
+
+        out = _Output(len(schemes), n, b, len(grade_labels))
+        with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
+            for first in range(0, n_lots, self.chunk_lots):
+                lots = range(first, min(first + self.chunk_lots, n_lots))
+                e0 = lots[0] * lot
+                e1 = min((lots[-1] + 1) * lot, n)
+                drawn = [draw_lot(engine, lot_generator(root, k), min(lot, n - k * lot)) for k in lots]
+                parts = _concat_parts([p for p, _ in drawn])
+                out.store_parts(slice(e0, e1), parts)
+                for i, (scheme, share) in enumerate(zip(schemes, shares)):
+                    shells = [engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
+                    result = assemble(scheme, parts, shells, lot_engines=lot)
+                    out.store_assembly(i, slice(e0, e1), result, scheme, grade_labels)
+                bar.update(e1 - e0)
+        return out.dataset(self, engine, schemes, grade_labels)
+
+
+def _no_bar(progress):
+    return None if progress is None else not progress
+
+
+def _union_labels(schemes):
+    labels = []
+    for s in schemes:
+        for lab in s.shell.labels:
+            if lab not in labels:
+                labels.append(lab)
+    return sorted(labels, key=lambda x: (x != "-", x))
+
+
+def _concat_parts(parts):
+    from .parts import BlockParts
+
+    return BlockParts(*(np.concatenate([getattr(p, f) for p in parts]) for f in BlockParts.__dataclass_fields__))
+
+
+class _Output:
+    """Preallocated arrays of a study, filled chunk by chunk."""
+
+    def __init__(self, n_schemes, n, b, n_labels):
+        shape = (n_schemes, n, b)
+        self.parts = {k: np.empty((n, b)) for k in ("housing_bore", "housing_reading", "journal_d", "journal_reading")}
+        self.block_scrapped = np.empty(n, bool)
+        self.crank_scrapped = np.empty(n, bool)
+        self.grades = {k: np.empty(shape, "<U2") for k in ("housing_grade", "journal_grade", "shell_upper_grade", "shell_lower_grade")}
+        self.floats = {k: np.empty(shape) for k in ("shell_upper_wall", "shell_lower_wall", "clearance_nominal")}
+        self.status = np.empty(shape, np.int8)
+        self.option = np.empty(shape, np.int8)
+        self.made = np.zeros((n_schemes, n_labels), np.int64)
+        self.used = np.zeros((n_schemes, n_labels), np.int64)
+        self.left = np.zeros((n_schemes, n_labels), np.int64)
+        self.scrapped = np.zeros(n_schemes, np.int64)
+
+    def store_parts(self, engines, parts):
+        self.parts["housing_bore"][engines] = parts.housing_bore
+        self.parts["housing_reading"][engines] = parts.housing_reading
+        self.parts["journal_d"][engines] = parts.journal_d
+        self.parts["journal_reading"][engines] = parts.journal_reading
+        self.block_scrapped[engines] = parts.block_scrapped
+        self.crank_scrapped[engines] = parts.crank_scrapped
+
+    def store_assembly(self, i, engines, a, scheme, grade_labels):
+        def labels(gradeset, index):
+            return np.array((*gradeset.labels, ""))[index]
+
+        self.grades["housing_grade"][i, engines] = labels(scheme.housing, a.housing_grade)
+        self.grades["journal_grade"][i, engines] = labels(scheme.journal, a.journal_grade)
+        self.grades["shell_upper_grade"][i, engines] = labels(scheme.shell, a.upper_grade)
+        self.grades["shell_lower_grade"][i, engines] = labels(scheme.shell, a.lower_grade)
+        self.floats["shell_upper_wall"][i, engines] = a.upper_wall
+        self.floats["shell_lower_wall"][i, engines] = a.lower_wall
+        self.floats["clearance_nominal"][i, engines] = a.clearance
+        self.status[i, engines] = a.status
+        self.option[i, engines] = a.option
+        cols = [grade_labels.index(lab) for lab in scheme.shell.labels]
+        self.made[i, cols] += a.shells_made
+        self.used[i, cols] += a.shells_used
+        self.left[i, cols] += a.shells_left
+        self.scrapped[i] += a.shells_scrapped
+
+    def dataset(self, study, engine, schemes, grade_labels):
+        n, b = self.block_scrapped.size, engine.main_bearings
+        sed = ("scheme", "engine", "bearing")
+        ed = ("engine", "bearing")
+        sg = ("scheme", "shell_grade")
+
+        def var(dims, data, units, long_name, **attrs):
+            return xr.Variable(dims, data, {"units": units, "long_name": long_name, **attrs})
+
+        in_scheme = np.array([[lab in s.shell.labels for lab in grade_labels] for s in schemes])
+        stated = np.array([s.stated_clearance if s.stated_clearance else (np.nan, np.nan) for s in schemes])
+        data = {
+            "housing_bore": var(ed, self.parts["housing_bore"], "m", "housing bore diameter (true)"),
+            "housing_bore_reading": var(ed, self.parts["housing_reading"], "m", "housing bore diameter as read by the gauge"),
+            "journal_d": var(ed, self.parts["journal_d"], "m", "journal diameter (true)"),
+            "journal_d_reading": var(ed, self.parts["journal_reading"], "m", "journal diameter as read by the gauge"),
+            "block_scrapped": var("engine", self.block_scrapped, "1", "block scrapped: a bore read outside its drawing limits"),
+            "crank_scrapped": var("engine", self.crank_scrapped, "1", "crankshaft scrapped: a journal read outside its drawing limits"),
+            "housing_grade": var(sed, self.grades["housing_grade"], "1", "housing bore grade (empty: not graded)"),
+            "journal_grade": var(sed, self.grades["journal_grade"], "1", "journal grade (empty: not graded)"),
+            "shell_upper_grade": var(sed, self.grades["shell_upper_grade"], "1", "upper shell grade fitted (empty: none)"),
+            "shell_lower_grade": var(sed, self.grades["shell_lower_grade"], "1", "lower shell grade fitted (empty: none)"),
+            "shell_upper_wall": var(sed, self.floats["shell_upper_wall"], "m", "upper shell crown wall thickness (true; NaN where status says none fitted)"),
+            "shell_lower_wall": var(sed, self.floats["shell_lower_wall"], "m", "lower shell crown wall thickness (true; NaN where status says none fitted)"),
+            "clearance_nominal": var(sed, self.floats["clearance_nominal"], "m",
+                                     "nominal diametral clearance D_H - (s_upper + s_lower + D_J), no swell (NaN where status is not assembled)"),
+            "status": var(sed, self.status, "1", "assembly status of the bearing",
+                          flag_values=np.arange(len(STATUS), dtype=np.int8), flag_meanings=" ".join(STATUS)),
+            "shell_option": var(sed, self.option, "1", "shell pair used: 0 preferred, k > 0 the scheme's k-th alternative, -1 none"),
+            "shells_made": var(sg, self.made, "1", "shells made and sorted into the grade"),
+            "shells_used": var(sg, self.used, "1", "shells of the grade fitted to bearings"),
+            "shells_left": var(sg, self.left, "1", "shells of the grade left in stock at the ends of the lots"),
+            "shells_scrapped": var("scheme", self.scrapped, "1", "shells read outside every grade of the scheme (scrapped)"),
+            "grade_in_scheme": var(sg, in_scheme, "1", "the scheme has this shell grade"),
+            "clearance_stated": var(("scheme", "bound"), stated, "m", "clearance range stated by the scheme's source"),
+            "clearance_limit": var(("scheme", "bound"), np.array([s.clearance_limits() for s in schemes]), "m",
+                                   "worst-case nominal clearance over the scheme's allowed combinations"),
+        }
+        coords = {
+            "scheme": ("scheme", [s.name for s in schemes], {"long_name": "selective-fitting scheme"}),
+            "engine": ("engine", np.arange(n), {"long_name": "sampled engine (block, crankshaft and its shells)"}),
+            "bearing": ("bearing", np.arange(1, b + 1), {"long_name": "main bearing position"}),
+            "shell_grade": ("shell_grade", grade_labels, {"long_name": "shell grade label"}),
+            "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
+        }
+        attrs = {
+            "title": f"Selective assembly of {engine.title or engine.name}",
+            "stackup_version": __version__,
+            "study": json.dumps(study.parameters()),
+            "seed": study.seed,
+            "engine": engine.name,
+            "engine_source": engine.source,
+            "lot_engines": engine.shell_wall.lot_engines,
+            "shell_surplus": engine.shell_wall.surplus,
+            "shell_supply": engine.shell_wall.mode,
+            "pilot_engines": PILOT_ENGINES,
+            "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
+            "Conventions": "CF-1.10",
+        }
+        return xr.Dataset(data, coords=coords, attrs=attrs)
