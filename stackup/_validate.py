@@ -17,7 +17,7 @@ def finite(field, value):
     """Return ``value`` as a float array; reject NaN and inf."""
     arr = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(arr)):
-        bad = arr[~np.isfinite(arr)].flat[0]
+        bad = float(arr[~np.isfinite(arr)].flat[0])
         raise ValueError(f"{field}: {bad!r} is not a finite number")
     return arr
 
@@ -28,7 +28,7 @@ def positive(field, value, *, allow_zero=False):
     bad = arr < 0 if allow_zero else arr <= 0
     if np.any(bad):
         what = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{field}: {arr[bad].flat[0]!r} is not valid; must be {what}")
+        raise ValueError(f"{field}: {float(arr[bad].flat[0])!r} is not valid; must be {what}")
     return arr
 
 
@@ -42,7 +42,7 @@ def in_range(field, value, lo, hi, *, lo_open=False, hi_open=False, unit=""):
         lb = "(" if lo_open else "["
         rb = ")" if hi_open else "]"
         raise ValueError(
-            f"{field}: {arr[bad].flat[0]!r}{unit} is outside the valid range {lb}{lo}, {hi}{rb}"
+            f"{field}: {float(arr[bad].flat[0])!r}{unit} is outside the valid range {lb}{lo}, {hi}{rb}"
         )
     return arr
 

@@ -98,6 +98,21 @@ class GradeSet:
     def as_dict(self):
         return {lab: (float(a), float(b)) for lab, a, b in zip(self.labels, self.lo, self.hi)}
 
+    def true_bounds(self):
+        """True sizes read into each grade, (lo, hi) per label in whole nanometres.
+
+        Rounding the reading to the nearest ``resolution`` moves a class's
+        true sizes down by half a step; both ends are clipped to ``limits``.
+        """
+        half = int(_snap(self.resolution)) // 2
+        lo_limit, hi_limit = _snap(self.limits[0]), _snap(self.limits[1])
+        if self.fine:  # class k is [edge_k, edge_k + step) before clipping
+            lo = self._edges
+            hi = np.append(self._edges[1:], self._top)
+        else:
+            lo, hi = _snap(self.lo), _snap(self.hi)
+        return np.clip(lo - half, lo_limit, hi_limit), np.clip(hi - half, lo_limit, hi_limit)
+
     def bins(self):
         """Range of readings [m] sorted into each grade, (lo, hi) per label: overlaps split."""
         ends = np.append(self._edges[1:], self._top) * _SNAP
@@ -291,7 +306,7 @@ class Scheme:
                 if np.any(idx < 0):
                     bad = val[idx < 0].flat[0]
                     raise ValueError(
-                        f"{field}: {bad!r} m is outside scheme {self.name}'s range "
+                        f"{field}: {float(bad)!r} m is outside scheme {self.name}'s range "
                         f"[{gs.limits[0]!r}, {gs.limits[1]!r}] m; pass out_of_range='mark' to mark it"
                     )
         u, l = self.pair_indices(hi, ji)
@@ -299,21 +314,28 @@ class Scheme:
         return labels[u], labels[l]
 
     def clearance_limits(self):
-        """Worst-case nominal diametral clearance (c_min, c_max) [m], without housing swell.
+        r"""Worst-case nominal diametral clearance (c_min, c_max) [m], without housing swell.
 
         :math:`C = D_H - (s_{upper} + s_{lower} + D_J)` over every housing and
-        journal grade and every shell pair the scheme allows there, with
-        class limits clipped to the scheme's range of each dimension.
+        journal grade and every shell pair the scheme allows there. A class
+        holds the true sizes the scheme reads into it: with a read-out step
+        :math:`r` (scheme 6: 1 um, rounded to the nearest) the class
+        :math:`[x, x + 1\,\mu m)` holds true sizes :math:`[x - r/2, x + 1\,\mu m - r/2)`,
+        clipped to the scheme's range. Computed in whole nanometres.
         """
-        c_min, c_max = np.inf, -np.inf
-        s_lo, s_hi = self.shell.lo, self.shell.hi
+        h_lo, h_hi = self.housing.true_bounds()
+        j_lo, j_hi = self.journal.true_bounds()
+        s_lo, s_hi = _snap(self.shell.lo), _snap(self.shell.hi)
+        c_min, c_max = None, None
         for j in range(len(self.journal.labels)):
             for h in range(len(self.housing.labels)):
                 u, l = self.cell_pairs[j, h]
                 for pu, pl in ((u, l), *self.alternatives.get((u, l), ())):
-                    c_min = min(c_min, self.housing.lo[h] - self.journal.hi[j] - s_hi[pu] - s_hi[pl])
-                    c_max = max(c_max, self.housing.hi[h] - self.journal.lo[j] - s_lo[pu] - s_lo[pl])
-        return float(c_min), float(c_max)
+                    lo = int(h_lo[h] - j_hi[j] - s_hi[pu] - s_hi[pl])
+                    hi = int(h_hi[h] - j_lo[j] - s_lo[pu] - s_lo[pl])
+                    c_min = lo if c_min is None else min(c_min, lo)
+                    c_max = hi if c_max is None else max(c_max, hi)
+        return c_min * _SNAP, c_max * _SNAP
 
 
 def _parse_pair(text, shells, where, key):

@@ -19,8 +19,6 @@ from .parts import draw_lot
 from .schemes import load as load_scheme
 
 ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
-#: Engines in the pilot sample that plans the shell quantities of each grade.
-PILOT_ENGINES = 20_000
 
 
 @dataclass
@@ -39,6 +37,9 @@ class Study:
         Root seed; lot ``k`` uses child ``k`` of ``SeedSequence(seed)``.
     chunk_lots : int
         Lots processed together. Execution only: results do not depend on it.
+    pilot_engines : int
+        Engines of the pilot sample (own random stream) from which the shell
+        quantity of each grade is planned.
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
     """
@@ -48,12 +49,14 @@ class Study:
     n_engines: int = 100_000
     seed: int = 0
     chunk_lots: int = 20
+    pilot_engines: int = 20_000
     progress: bool | None = None
     _resolved: dict = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         self.n_engines = check.integer("n_engines", self.n_engines, minimum=1)
         self.chunk_lots = check.integer("chunk_lots", self.chunk_lots, minimum=1)
+        self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
         self.schemes = tuple(str(s) for s in self.schemes)
         if not self.schemes:
             raise ValueError("schemes: give at least one scheme")
@@ -77,7 +80,7 @@ class Study:
         lot = engine.shell_wall.lot_engines
         n_lots = math.ceil(n / lot)
         root = seed_sequence(self.seed)
-        pilot, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), PILOT_ENGINES)
+        pilot, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), self.pilot_engines)
         shares = []
         for s in schemes:
             demand = shell_demand(s, pilot)
@@ -222,7 +225,7 @@ class _Output:
             "lot_engines": engine.shell_wall.lot_engines,
             "shell_surplus": engine.shell_wall.surplus,
             "shell_supply": engine.shell_wall.mode,
-            "pilot_engines": PILOT_ENGINES,
+            "pilot_engines": study.pilot_engines,
             "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
             "Conventions": "CF-1.10",
         }

@@ -97,7 +97,8 @@ class TruncatedNormal:
         return self._dist.cdf(x)
 
     def ppf(self, u):
-        return self._dist.ppf(u)
+        # scipy's quantile can round a hair outside the truncation bounds
+        return np.clip(self._dist.ppf(u), self.lo, self.hi)
 
     def shifted(self, delta):
         return replace(self, mean=self.mean + delta, lo=self.lo + delta, hi=self.hi + delta)
@@ -167,7 +168,7 @@ class Mixture(_TabulatedQuantile):
                 f"mixture weights: {len(w)} weights for {len(self.components)} components; give one weight each"
             )
         if abs(w.sum() - 1.0) > 1e-9:
-            raise ValueError(f"mixture weights: they sum to {w.sum()!r}; they must sum to 1")
+            raise ValueError(f"mixture weights: they sum to {float(w.sum())!r}; they must sum to 1")
 
     @property
     def mean(self):

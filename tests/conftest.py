@@ -1,0 +1,64 @@
+import textwrap
+
+import pytest
+from hypothesis import settings
+
+settings.register_profile("default", deadline=None, max_examples=25)
+settings.load_profile("default")
+
+
+@pytest.fixture
+def write_toml(tmp_path):
+    """Write a TOML text into tmp_path/name and return its path."""
+
+    def write(name, text):
+        path = tmp_path / name
+        path.write_text(textwrap.dedent(text))
+        return path
+
+    return write
+
+
+ENGINE_TEMPLATE = """
+name = "test-engine"
+units = "mm"
+main_bearings = {bearings}
+
+[housing_bore]
+limits = [50.000, 50.018]
+process = {{ distribution = "normal", cpk = {cpk} }}
+shared = 0.3
+gauge = {{ repeatability = {gauge} }}
+
+[journal_d]
+limits = [46.000, 46.018]
+process = {{ distribution = "normal", cpk = {cpk} }}
+shared = 0.2
+gauge = {{ repeatability = {gauge} }}
+
+[shell_wall]
+supply = "{supply}"
+sigma = 0.001
+process = {{ distribution = "normal", cpk = 1.0 }}
+gauge = {{ repeatability = {gauge} }}
+lot_engines = {lot}
+surplus = {surplus}
+"""
+
+
+@pytest.fixture(scope="session")
+def engine_file(tmp_path_factory):
+    """An engine TOML with chosen gauge repeatability [mm], lot size, surplus and supply.
+
+    Session-scoped (files are named by their parameters and never change), so
+    hypothesis tests can use it.
+    """
+    folder = tmp_path_factory.mktemp("engines")
+
+    def make(*, gauge=0.0005, lot=50, surplus=0.1, supply="to-order", cpk=1.33, bearings=5):
+        text = ENGINE_TEMPLATE.format(gauge=gauge, lot=lot, surplus=surplus, supply=supply, cpk=cpk, bearings=bearings)
+        path = folder / f"engine-{gauge}-{lot}-{surplus}-{supply}-{cpk}-{bearings}.toml"
+        path.write_text(text)
+        return path
+
+    return make

@@ -1,0 +1,159 @@
+"""The study end to end: reproducibility, chunking, conservation, the clearance property."""
+
+import json
+
+import numpy as np
+import pytest
+import xarray as xr
+from hypothesis import given
+from hypothesis import strategies as st
+
+import stackup.schemes as schemes
+from stackup.assembly import ASSEMBLED, BLOCK_SCRAPPED, CRANK_SCRAPPED, SHELL_STOCKOUT, STATUS
+from stackup.cli import main
+from stackup.io import open_dataset, save
+from stackup.study import ISO_SCHEMES, Study
+
+
+def small(engine, **kw):
+    return Study(**{"engine": str(engine), "n_engines": 120, "seed": 5, "pilot_engines": 2000, "progress": False, **kw})
+
+
+def test_same_seed_gives_identical_dataset(engine_file):
+    engine = engine_file()
+    xr.testing.assert_identical(small(engine).run(), small(engine).run())
+
+
+def test_different_seed_gives_different_parts(engine_file):
+    engine = engine_file()
+    a, b = small(engine).run(), small(engine, seed=6).run()
+    assert not np.array_equal(a.housing_bore.values, b.housing_bore.values)
+
+
+@given(chunk=st.integers(1, 4))
+def test_chunking_does_not_change_the_numbers(engine_file, chunk):
+    engine = engine_file(lot=30)
+    reference = small(engine, chunk_lots=5).run()
+    chunked = small(engine, chunk_lots=chunk).run()
+    xr.testing.assert_equal(reference, chunked)
+
+
+@given(seed=st.integers(0, 2**32), scheme=st.sampled_from(ISO_SCHEMES))
+def test_zero_gauge_error_keeps_every_bearing_within_clearance_limits(engine_file, seed, scheme):
+    ds = small(engine_file(gauge=0.0), seed=seed, schemes=(scheme,)).run()
+    c = ds.clearance_nominal.values[ds.status.values == ASSEMBLED]
+    lo, hi = schemes.load(scheme).clearance_limits()
+    assert c.size > 0
+    assert c.min() >= lo - 1e-12 and c.max() <= hi + 1e-12
+
+
+@given(seed=st.integers(0, 2**32), surplus=st.sampled_from([0.0, 0.02, 0.1]), supply=st.sampled_from(["to-order", "sorted"]))
+def test_parts_are_conserved(engine_file, seed, surplus, supply):
+    ds = small(engine_file(surplus=surplus, supply=supply, cpk=0.8), seed=seed).run()
+    made = ds.shells_made.sum("shell_grade") + ds.shells_scrapped
+    used = ds.shells_used.sum("shell_grade")
+    left = ds.shells_left.sum("shell_grade")
+    expected = int(np.ceil(2 * 50 * 5 * (1 + surplus))) * 2 + int(np.ceil(2 * 20 * 5 * (1 + surplus)))  # lots 50, 50, 20
+    assert np.all(made == expected)
+    np.testing.assert_array_equal(made, used + ds.shells_scrapped + left)
+    # every fitted shell belongs to an assembled bearing, two each
+    assert np.all(used == 2 * (ds.status == ASSEMBLED).sum(("engine", "bearing")))
+    # every bearing is accounted for, by exactly one status
+    counts = [(ds.status == k).sum(("engine", "bearing")) for k in range(len(STATUS))]
+    assert np.all(sum(counts) == ds.sizes["engine"] * ds.sizes["bearing"])
+
+
+def test_scrapped_block_marks_all_its_bearings(engine_file):
+    ds = small(engine_file(cpk=0.5), n_engines=300).run()
+    scrapped = ds.block_scrapped.values
+    assert scrapped.any()
+    assert np.all(ds.status.values[:, scrapped, :] == BLOCK_SCRAPPED)
+    crank_only = ds.crank_scrapped.values & ~scrapped
+    assert np.all(ds.status.values[:, crank_only, :] == CRANK_SCRAPPED)
+    assert np.all(np.isnan(ds.clearance_nominal.values[ds.status.values != ASSEMBLED]))
+
+
+def test_stockout_is_marked_not_dropped(engine_file):
+    # No surplus and shells sorted from one process: some bins run dry.
+    ds = small(engine_file(surplus=0.0, supply="sorted"), n_engines=200, schemes=("iso13778-4",)).run()
+    stockout = ds.status.values == SHELL_STOCKOUT
+    assert stockout.any()
+    assert np.all(ds.shell_upper_grade.values[stockout] == "")
+
+
+def test_gauge_error_widens_the_clearance_spread(engine_file):
+    kw = {"n_engines": 3000, "schemes": ("iso13778-6",)}
+    exact = small(engine_file(gauge=0.0), **kw).run()
+    noisy = small(engine_file(gauge=0.002), **kw).run()
+    assert float(noisy.clearance_nominal.std()) > 1.2 * float(exact.clearance_nominal.std())
+
+
+def test_every_variable_has_units_and_long_name_and_attrs_reproduce_the_study(engine_file):
+    ds = small(engine_file()).run()
+    for name, var in ds.data_vars.items():
+        assert "units" in var.attrs and "long_name" in var.attrs, name
+    params = json.loads(ds.attrs["study"])
+    assert params["seed"] == 5 and params["n_engines"] == 120
+    xr.testing.assert_identical(Study(**params, progress=False).run(), ds)
+
+
+def test_netcdf_round_trip_is_identical(engine_file, tmp_path):
+    ds = small(engine_file()).run()
+    xr.testing.assert_identical(open_dataset(save(ds, tmp_path / "x.nc")), ds)
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        ({"n_engines": 0}, "n_engines: 0 is not valid; must be >= 1"),
+        ({"n_engines": 2.5}, "n_engines: 2.5 is not an integer"),
+        ({"seed": -1}, "seed: -1 is not valid"),
+        ({"schemes": ()}, "schemes: give at least one scheme"),
+        ({"schemes": ("iso13778-4", "iso13778-4")}, "names a scheme twice"),
+    ],
+)
+def test_bad_study_input(kw, message):
+    with pytest.raises(ValueError, match=message):
+        Study(**kw)
+
+
+def test_unknown_scheme_and_engine():
+    with pytest.raises(ValueError, match="scheme: 'nope' is not a known scheme"):
+        Study(schemes=("nope",), n_engines=10).run()
+    with pytest.raises(ValueError, match="engine: 'nope' is not a built-in engine"):
+        Study(engine="nope", n_engines=10).run()
+
+
+@pytest.mark.parametrize(
+    "old, new, message",
+    [
+        ('process = { distribution = "normal", cpk = 1.33 }\nshared = 0.3',
+         'process = { distribution = "normal", cpk = -1 }\nshared = 0.3', r"housing_bore.process.cpk: -1 is not valid; must be > 0"),
+        ("gauge = { repeatability = 0.0005 }\n\n[journal_d]", "gauge = { repeatability = -0.0005 }\n\n[journal_d]",
+         r"housing_bore.gauge: gauge repeatability: -5e-07 is not valid; must be >= 0"),
+        ("limits = [46.000, 46.018]", "limits = [46.018, 46.000]", r"journal_d.limits: upper limit 46 mm is below lower limit 46.018 mm"),
+        ("shared = 0.2", "shared = nan", r"journal_d.shared: nan is not a finite number"),
+        ('supply = "to-order"', 'supply = "to-stock"', r"shell_wall.supply: 'to-stock' is not one of 'to-order', 'sorted'"),
+    ],
+)
+def test_bad_engine_file(engine_file, write_toml, old, new, message):
+    text = engine_file().read_text()
+    assert old in text
+    bad = write_toml("bad-engine.toml", text.replace(old, new, 1))
+    with pytest.raises(ValueError, match=message):
+        Study(engine=str(bad), n_engines=10).run()
+
+
+def test_cli_compare_writes_dataset_and_report(tmp_path, capsys):
+    assert main(["compare", "--n", "300", "--schemes", "iso13778-4", "iso13778-6", "--out", str(tmp_path)]) == 0
+    for name in ("compare.nc", "report.md", "clearance_histogram.png", "grade_usage.png"):
+        assert (tmp_path / name).is_file()
+    text = (tmp_path / "report.md").read_text()
+    assert "iso13778-6" in text and "outside stated [ppm]" in text
+    ds = open_dataset(tmp_path / "compare.nc")
+    assert list(ds.scheme.values) == ["iso13778-4", "iso13778-6"]
+
+
+def test_cli_reports_bad_input_as_an_error(capsys):
+    assert main(["compare", "--n", "10", "--schemes", "iso13778-9"]) == 2
+    assert "is not a known scheme" in capsys.readouterr().err
