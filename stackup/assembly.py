@@ -68,7 +68,7 @@ def assemble(scheme, parts, shells, *, lot_engines):
     n, b = parts.housing_bore.shape
     h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
     h_idx, j_idx = scheme.classify(h_read, j_read)
-    up_pref, lo_pref = scheme.pair_indices(h_idx, j_idx)
+    preferred = scheme.pair_code(h_idx, j_idx)
 
     status = np.full((n, b), ASSEMBLED, dtype=np.int8)
     status[(h_idx < 0) | (j_idx < 0)] = NOT_GRADED
@@ -76,13 +76,13 @@ def assemble(scheme, parts, shells, *, lot_engines):
     status[parts.block_scrapped] = BLOCK_SCRAPPED
 
     n_grades = len(scheme.shell.labels)
-    code = np.where(status == ASSEMBLED, up_pref * n_grades + lo_pref, -1).ravel()
+    code = np.where(status == ASSEMBLED, preferred, -1).ravel()
     lot_starts = np.append(np.arange(0, n, lot_engines), n) * b
     shell_starts = np.cumsum([0, *(s.grade.size for s in shells)])
     wall = np.concatenate([s.wall for s in shells])
     grade = np.concatenate([s.grade for s in shells]).astype(np.int64)
     up_i, lo_i, option, left = take_shells(
-        code.astype(np.int64), lot_starts.astype(np.int64), scheme.option_table(), grade,
+        code, lot_starts.astype(np.int64), scheme.option_table, grade,
         shell_starts.astype(np.int64), n_grades,
     )
     taken = up_i >= 0

@@ -129,8 +129,9 @@ def grade_usage_chart(ds, path):
         ax.set_title(str(name), fontsize=9)
         ax.set_xlabel("shell grade")
     axes[0].set_ylabel("share of fitted shells [%]")
-    axes[0].legend(fontsize=7)
-    fig.tight_layout()
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper right", ncols=2, fontsize=8)
+    fig.tight_layout(rect=(0, 0, 1, 0.9))
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path

@@ -44,6 +44,7 @@ from __future__ import annotations
 import os
 import tomllib
 from dataclasses import dataclass
+from functools import cached_property
 from importlib import resources
 from pathlib import Path
 
@@ -122,12 +123,18 @@ class GradeSet:
         hi[self._order] = ends
         return lo, hi
 
+    @cached_property
+    def _lookup(self):
+        # Sorted class edges with the end of the range appended; position p of
+        # searchsorted(..., "right") - 1 maps to lut[p + 1]: -1 below, -1 above.
+        edges = np.append(self._edges, self._top + (1 if self._top_closed else 0))
+        lut = np.concatenate(([-1], self._order, [-1])).astype(np.int64)
+        return edges, lut
+
     def classify(self, reading):
         """Grade index of each reading [m]; -1 where the scheme has no grade for it."""
-        v = _snap(reading)
-        pos = np.searchsorted(self._edges, v, side="right") - 1
-        inside = (v >= self._edges[0]) & ((v <= self._top) if self._top_closed else (v < self._top))
-        return np.where(inside, self._order[np.clip(pos, 0, len(self._order) - 1)], -1)
+        edges, lut = self._lookup
+        return lut[np.searchsorted(edges, _snap(reading), side="right")]
 
 
 def _grade_set(table, *, scale, where, dim):
@@ -252,6 +259,7 @@ class Scheme:
         key = (lab.index(upper), lab.index(lower))
         return [(lab[u], lab[l]) for u, l in (key, *self.alternatives.get(key, ()))]
 
+    @cached_property
     def option_table(self):
         """Options per preferred pair code ``u * n + l``: int array (n*n, k, 2), -1 padded."""
         n = len(self.shell.labels)
@@ -263,6 +271,12 @@ class Scheme:
                     table[u * n + l, k] = pair
         return table
 
+    @cached_property
+    def _cell_code(self):
+        n = len(self.shell.labels)
+        code = (self.cell_pairs[..., 0] * n + self.cell_pairs[..., 1]).ravel()
+        return np.append(code, -1).astype(np.int64)
+
     def read(self, housing_reading, journal_reading):
         """Readings rounded to the scheme's read-out steps (scheme 6: the nearest micrometre) [m]."""
         from .tolerances import quantize
@@ -273,11 +287,17 @@ class Scheme:
         """Housing and journal grade indices of readings [m]; -1 where out of the scheme's range."""
         return self.housing.classify(housing_d), self.journal.classify(journal_d)
 
+    def pair_code(self, housing_index, journal_index):
+        """Preferred pair code ``upper * n_shell_grades + lower`` of graded parts; -1 where either index is -1."""
+        nj, nh = self.cell_pairs.shape[:2]
+        cell = np.where((housing_index >= 0) & (journal_index >= 0), journal_index * nh + housing_index, nj * nh)
+        return self._cell_code[cell]
+
     def pair_indices(self, housing_index, journal_index):
         """Preferred (upper, lower) shell grade indices of graded parts; -1 where either index is -1."""
-        ok = (housing_index >= 0) & (journal_index >= 0)
-        cell = self.cell_pairs[np.where(ok, journal_index, 0), np.where(ok, housing_index, 0)]
-        return np.where(ok, cell[..., 0], -1), np.where(ok, cell[..., 1], -1)
+        code = self.pair_code(housing_index, journal_index)
+        n = len(self.shell.labels)
+        return np.where(code >= 0, code // n, -1), np.where(code >= 0, code % n, -1)
 
     def pair(self, housing_d, journal_d, *, out_of_range="raise"):
         """Shell grades for measured housing bores and journals.
