@@ -34,6 +34,8 @@ class Assembly:
     lower_grade: np.ndarray
     upper_wall: np.ndarray  # true wall [m], NaN where no shell (see status)
     lower_wall: np.ndarray
+    upper_crush: np.ndarray  # crush height [m], NaN where no shell
+    lower_crush: np.ndarray
     clearance: np.ndarray  # nominal diametral clearance [m], NaN where not assembled (see status)
     option: np.ndarray  # allowed pair used: 0 preferred, k > 0 alternative, -1 none
     status: np.ndarray  # int8 code into STATUS
@@ -80,6 +82,7 @@ def assemble(scheme, parts, shells, *, lot_engines):
     lot_starts = np.append(np.arange(0, n, lot_engines), n) * b
     shell_starts = np.cumsum([0, *(s.grade.size for s in shells)])
     wall = np.concatenate([s.wall for s in shells])
+    crush = np.concatenate([s.crush for s in shells])
     grade = np.concatenate([s.grade for s in shells]).astype(np.int64)
     up_i, lo_i, option, left = take_shells(
         code, lot_starts.astype(np.int64), scheme.option_table, grade,
@@ -105,6 +108,8 @@ def assemble(scheme, parts, shells, *, lot_engines):
         lower_grade=pick(lo_i, grade, -1),
         upper_wall=upper_wall,
         lower_wall=lower_wall,
+        upper_crush=pick(up_i, crush, np.nan),
+        lower_crush=pick(lo_i, crush, np.nan),
         clearance=clearance,
         option=option.reshape(n, b),
         status=status,

@@ -15,10 +15,29 @@ from importlib import resources
 from pathlib import Path
 
 from . import _validate as check
+from . import materials
 from .parts import ShellSupply
 from .tolerances import Dimension, gauge_from_spec, process_from_spec
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
+
+
+@dataclass(frozen=True)
+class PressFitSpec:
+    """How the shells sit in the housing: keyword arguments of :func:`stackup.fit.press_fit` [SI]."""
+
+    housing_outer: float
+    housing_material: str
+    shell_material: str
+    journal_material: str
+    length: float
+    check_bore: float
+    check_stress: float
+    assembly_temperature: float
+    temperature: float
+
+    def kwargs(self):
+        return dict(self.__dict__)
 
 
 @dataclass(frozen=True)
@@ -32,6 +51,7 @@ class Engine:
     housing_bore: Dimension
     journal_d: Dimension
     shell_wall: ShellSupply
+    press_fit: PressFitSpec
 
 
 def _builtin_dir():
@@ -90,16 +110,50 @@ def load_engine(name_or_path):
         gauge=gauge_from_spec(shell.pop("gauge", None), scale=scale, field=f"{key}.gauge"),
         lot_engines=check.integer(f"{key}.lot_engines", shell.pop("lot_engines", 1000), minimum=1),
         surplus=float(check.in_range(f"{key}.surplus", shell.pop("surplus", 0.1), 0.0, 10.0)),
+        crush=dimension("crush_height"),
         scale=scale,
     )
     if shell:
         raise ValueError(f"{key}: unknown key(s) {sorted(shell)}")
+    bore = dimension("housing_bore")
+    fit_table = dict(data.get("press_fit", {}))
+    key = f"{where}, key press_fit"
+
+    def length(name, default=None):
+        if name not in fit_table and default is None:
+            raise ValueError(f"{key}: missing '{name}'")
+        value = fit_table.pop(name, None)
+        return default if value is None else float(check.positive(f"{key}.{name}", value)) * scale
+
+    def temperature(name):
+        return float(check.in_range(f"{key}.{name}", fit_table.pop(name, 20.0), -60.0, 300.0, unit=" degC"))
+
+    def material(name):
+        return materials.get(fit_table.pop(name, "steel")).name
+
+    spec = PressFitSpec(
+        housing_outer=length("housing_outer"),
+        housing_material=material("housing_material"),
+        shell_material=material("shell_material"),
+        journal_material=material("journal_material"),
+        length=length("length"),
+        check_bore=length("check_bore", bore.lo),
+        check_stress=float(check.in_range(f"{key}.check_stress", fit_table.pop("check_stress", 100e6), 0.0, 2e9,
+                                          lo_open=True, unit=" Pa")),
+        assembly_temperature=temperature("assembly_temperature"),
+        temperature=temperature("temperature"),
+    )
+    if fit_table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(fit_table)}")
+    if spec.housing_outer <= bore.hi:
+        raise ValueError(f"{key}.housing_outer: {spec.housing_outer / scale!r} {units} is not above the housing bore")
     return Engine(
         name=str(data.get("name", path.stem)),
         title=str(data.get("title", "")),
         source=str(data.get("source", "")),
         main_bearings=bearings,
-        housing_bore=dimension("housing_bore"),
+        housing_bore=bore,
         journal_d=dimension("journal_d"),
         shell_wall=supply,
+        press_fit=spec,
     )

@@ -34,10 +34,11 @@ class BlockParts:
 
 @dataclass(frozen=True)
 class ShellNormals:
-    """Standard normals of the shells made in one lot: size and gauge."""
+    """Standard normals of the shells made in one lot: wall, wall gauge and crush height."""
 
     size: np.ndarray
     gauge: np.ndarray
+    crush: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -46,14 +47,16 @@ class Shells:
 
     wall: np.ndarray  # true crown wall thickness [m]
     reading: np.ndarray  # measured wall [m]
-    grade: np.ndarray  # grade index in the scheme, -1 = scrapped (read outside every grade)
+    crush: np.ndarray  # crush height [m]
+    grade: np.ndarray  # grade index in the scheme, -1 = scrapped (wall read outside every grade, or crush out of limits)
 
 
 def draw_lot(engine, rng, n_engines):
     """Draw the blocks, crankshafts and shell normals of one lot of ``n_engines`` engines.
 
     The order of draws is fixed: block normals, bore normals, bore gauge,
-    crankshaft normals, journal normals, journal gauge, shell normals, shell gauge.
+    crankshaft normals, journal normals, journal gauge, shell normals, shell
+    gauge, shell crush.
     """
     b = engine.main_bearings
     hb, jd = engine.housing_bore, engine.journal_d
@@ -64,7 +67,7 @@ def draw_lot(engine, rng, n_engines):
     z_journal = rng.standard_normal((n_engines, b))
     g_journal = rng.standard_normal((n_engines, b))
     n_shells = engine.shell_wall.shells_per_lot(n_engines * b)
-    shells = ShellNormals(rng.standard_normal(n_shells), rng.standard_normal(n_shells))
+    shells = ShellNormals(rng.standard_normal(n_shells), rng.standard_normal(n_shells), rng.standard_normal(n_shells))
 
     bore = hb.true_sizes(z_block, z_bore)
     bore_reading = hb.gauge.read(bore, g_bore)
@@ -98,7 +101,8 @@ class ShellSupply:
         e.g. ``cpk = 1.33``), sorted into grades by the reading: grade
         quantities follow the process, not the demand.
 
-    In both, a shell read outside every grade is scrapped, and a lot makes
+    In both, a shell read outside every grade, or with its crush height
+    outside the crush limits, is scrapped, and a lot makes
     ``ceil(2 * bearings * (1 + surplus))`` shells.
 
     Parameters
@@ -118,6 +122,8 @@ class ShellSupply:
         Share of shells made on top of two per bearing [-].
     scale : float
         File length unit [m].
+    crush : Dimension
+        Crush height per half shell: limits and process [m].
     """
 
     mode: str
@@ -128,6 +134,7 @@ class ShellSupply:
     lot_engines: int
     surplus: float
     scale: float
+    crush: Dimension
 
     def dimension(self, scheme):
         """The ``"sorted"`` shell wall :class:`Dimension` for ``scheme``: limits = its shell range."""
@@ -179,7 +186,9 @@ class ShellSupply:
             quantity = apportion(aim_share, normals.size.size)
             wall = np.repeat(centre, quantity) + self.sigma * normals.size
         reading = self.gauge.read(wall, normals.gauge)
-        return Shells(wall, reading, scheme.shell.classify(reading))
+        crush = self.crush.process.from_normal(normals.crush)
+        grade = np.where(self.crush.outside(crush), -1, scheme.shell.classify(reading))
+        return Shells(wall, reading, crush, grade)
 
 
 def apportion(share, total):

@@ -18,6 +18,44 @@ from .stats import proportion_ci, quantile_ci  # noqa: E402
 #: Tail quantiles reported: the +-3 sigma points of a normal distribution.
 TAIL_LOW, TAIL_HIGH = 0.00135, 0.99865
 UM = 1e6
+#: Press-fit design limits (physics.md sec. 3): the bearing must not spin or
+#: fret below this contact pressure [Pa]; joint faces protrude above this
+#: shell compression [Pa].
+CONTACT_PRESSURE_MIN = 8e6
+SHELL_STRESS_MAX = 450e6
+
+
+def fit_summary(ds, *, contact_pressure_min=CONTACT_PRESSURE_MIN, shell_stress_max=SHELL_STRESS_MAX):
+    """One row per scheme: nominal against operating clearance [um], press-fit limits as shares with 95 % intervals."""
+    rows = []
+    for name in ds.scheme.values:
+        d = ds.sel(scheme=name)
+        ok = d.status.values == ASSEMBLED
+        nominal = d.clearance_nominal.values[ok]
+        operating = d.clearance_operating.values[ok]
+        p = d.contact_pressure.values[ok]
+        sigma = d.shell_stress.values[ok]
+        low_p = proportion_ci(np.count_nonzero(p < contact_pressure_min), p.size)
+        high_s = proportion_ci(np.count_nonzero(sigma > shell_stress_max), sigma.size)
+        lost = proportion_ci(np.count_nonzero(d.loss_of_fit.values[ok]), p.size)
+        rows.append({
+            "scheme": str(name),
+            "nominal_mean_um": nominal.mean() * UM,
+            "nominal_std_um": nominal.std(ddof=1) * UM,
+            "operating_mean_um": operating.mean() * UM,
+            "operating_std_um": operating.std(ddof=1) * UM,
+            "operating_p00135_um": quantile_ci(operating, TAIL_LOW)[0] * UM,
+            "operating_p99865_um": quantile_ci(operating, TAIL_HIGH)[0] * UM,
+            "swell_mean_um": d.housing_swell.values[ok].mean() * UM,
+            "contact_pressure_min_mpa": p.min() / 1e6,
+            "shell_stress_max_mpa": sigma.max() / 1e6,
+            "low_pressure_ppm": low_p[0] * 1e6,
+            "low_pressure_ci_ppm": (low_p[1] * 1e6, low_p[2] * 1e6),
+            "high_stress_ppm": high_s[0] * 1e6,
+            "high_stress_ci_ppm": (high_s[1] * 1e6, high_s[2] * 1e6),
+            "loss_of_fit_ppm": lost[0] * 1e6,
+        })
+    return pd.DataFrame(rows).set_index("scheme")
 
 
 def clearance_summary(ds):
@@ -90,23 +128,25 @@ def _markdown_table(frame):
 
 
 def clearance_histogram(ds, path):
-    """Histogram of nominal clearance per scheme with its stated range shaded; saved as PNG."""
+    """Histograms of nominal and operating clearance per scheme, stated range shaded; saved as PNG."""
     names = list(ds.scheme.values)
     fig, axes = plt.subplots(len(names), 1, figsize=(7.5, 1.6 * len(names) + 0.8), sharex=True)
     axes = np.atleast_1d(axes)
-    c_all = ds.clearance_nominal.values[ds.status.values == ASSEMBLED] * UM
+    ok = ds.status.values == ASSEMBLED
+    c_all = np.concatenate([ds.clearance_nominal.values[ok], ds.clearance_operating.values[ok]]) * UM
     bins = np.arange(np.floor(c_all.min()) - 1, np.ceil(c_all.max()) + 2, 0.5)
     for ax, name in zip(axes, names):
         d = ds.sel(scheme=name)
-        c = d.clearance_nominal.values[d.status.values == ASSEMBLED] * UM
+        ok = d.status.values == ASSEMBLED
         lo, hi = d.clearance_stated.values * UM
         ax.axvspan(lo, hi, color="tab:green", alpha=0.12, label="stated range")
-        ax.hist(c, bins=bins, color="tab:blue", alpha=0.85)
+        ax.hist(d.clearance_nominal.values[ok] * UM, bins=bins, color="tab:blue", alpha=0.75, label="nominal")
+        ax.hist(d.clearance_operating.values[ok] * UM, bins=bins, color="tab:red", alpha=0.55, label="operating")
         ax.set_yscale("log")
         ax.set_ylabel("bearings")
         ax.set_title(str(name), fontsize=9, loc="left")
-    axes[-1].set_xlabel("nominal diametral clearance [µm]")
-    axes[0].legend(loc="upper right", fontsize=8)
+    axes[-1].set_xlabel("diametral clearance [µm]")
+    axes[0].legend(loc="upper right", fontsize=8, ncols=3)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -166,6 +206,20 @@ def write_report(ds, out_dir, *, dataset_file=None):
         "shells made": summary.shells_made,
         "shells scrapped [%]": summary.shells_scrapped_pct.map("{:.2f}".format),
     })
+    fit = fit_summary(ds)
+    fit_table = pd.DataFrame({
+        "scheme": fit.index,
+        "nominal mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.nominal_mean_um, fit.nominal_std_um)],
+        "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
+        "operating P0.135–P99.865 % [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(fit.operating_p00135_um, fit.operating_p99865_um)],
+        "swell [µm]": fit.swell_mean_um.map("{:.2f}".format),
+        "min p [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
+        "max σ [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
+        f"p < {CONTACT_PRESSURE_MIN / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.low_pressure_ppm, fit.low_pressure_ci_ppm)],
+        f"σ > {SHELL_STRESS_MAX / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.high_stress_ppm, fit.high_stress_ci_ppm)],
+        "loss of fit [ppm]": fit.loss_of_fit_ppm.map("{:.0f}".format),
+    })
+    press = json.loads(ds.attrs["press_fit"])
     usage_table = usage.reset_index()[["scheme", "shell_grade", "shells_made", "shells_used", "shells_left", "used_share_pct"]]
     usage_table["used_share_pct"] = usage_table["used_share_pct"].map("{:.2f}".format)
     usage_table.columns = ["scheme", "grade", "made", "fitted", "left in stock", "share of fitted [%]"]
@@ -186,7 +240,20 @@ def write_report(ds, out_dir, *, dataset_file=None):
         "",
         _markdown_table(table),
         "",
-        "![Clearance histogram per scheme](clearance_histogram.png)",
+        "![Nominal and operating clearance per scheme](clearance_histogram.png)",
+        "",
+        "## Operating clearance: press fit, housing swell and temperature",
+        "",
+        f"The shells are an interference fit (crush height {1e3 * ds.attrs['crush_height_limits'][0]:.3f}–"
+        f"{1e3 * ds.attrs['crush_height_limits'][1]:.3f} mm per half shell, checked in a "
+        f"{press['check_bore'] * 1e3:.3f} mm block at {press['check_stress'] / 1e6:.0f} MPa) in a "
+        f"{press['housing_material']} housing ring of outer diameter {press['housing_outer'] * 1e3:.0f} mm; "
+        f"assembled at {press['assembly_temperature']:.0f} °C, running at {press['temperature']:.0f} °C "
+        f"({press['shell_material']} shells, {press['journal_material']} journal). Thick-ring (Lamé) tier. "
+        f"Design limits: contact pressure at least {CONTACT_PRESSURE_MIN / 1e6:.0f} MPa, shell compression at most "
+        f"{SHELL_STRESS_MAX / 1e6:.0f} MPa.",
+        "",
+        _markdown_table(fit_table),
         "",
         "## Assembly, scrap and stock",
         "",

@@ -13,7 +13,8 @@ from tqdm.auto import tqdm
 from . import __version__
 from . import _validate as check
 from ._random import PILOT_KEY, lot_generator, seed_sequence
-from .assembly import STATUS, assemble, shell_demand
+from .assembly import ASSEMBLED, STATUS, assemble, shell_demand
+from .fit import press_fit
 from .engines import load_engine
 from .parts import draw_lot
 from .schemes import load as load_scheme
@@ -103,8 +104,40 @@ class Study:
                     shells = [engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
                     result = assemble(scheme, parts, shells, lot_engines=lot)
                     out.store_assembly(i, slice(e0, e1), result, scheme, grade_labels)
+                    out.store_fit(i, slice(e0, e1), _operating(engine, parts, result))
                 bar.update(e1 - e0)
         return out.dataset(self, engine, schemes, grade_labels)
+
+
+#: Press-fit results stored per bearing: dataset name -> PressFit field.
+FIT_FIELDS = {
+    "contact_pressure": "contact_pressure",
+    "shell_stress": "shell_stress",
+    "housing_swell": "housing_swell",
+    "bore_in_service": "bore_in_service",
+    "clearance_operating": "clearance",
+}
+
+
+def _operating(engine, parts, assembly):
+    """Press fit of the assembled bearings; NaN elsewhere (the status says why)."""
+    ok = assembly.status == ASSEMBLED
+    fit = press_fit(
+        housing_bore=parts.housing_bore[ok],
+        shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
+        crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]),
+        journal_d=parts.journal_d[ok],
+        **engine.press_fit.kwargs(),
+    )
+    out = {}
+    for name, field in FIT_FIELDS.items():
+        full = np.full(ok.shape, np.nan)
+        full[ok] = getattr(fit, field)
+        out[name] = full
+    loss = np.zeros(ok.shape, bool)
+    loss[ok] = fit.loss_of_fit
+    out["loss_of_fit"] = loss
+    return out
 
 
 def _no_bar(progress):
@@ -135,7 +168,9 @@ class _Output:
         self.block_scrapped = np.empty(n, bool)
         self.crank_scrapped = np.empty(n, bool)
         self.grades = {k: np.empty(shape, "<U2") for k in ("housing_grade", "journal_grade", "shell_upper_grade", "shell_lower_grade")}
-        self.floats = {k: np.empty(shape) for k in ("shell_upper_wall", "shell_lower_wall", "clearance_nominal")}
+        self.floats = {k: np.empty(shape) for k in ("shell_upper_wall", "shell_lower_wall", "shell_upper_crush",
+                                                    "shell_lower_crush", "clearance_nominal", *FIT_FIELDS)}
+        self.loss_of_fit = np.empty(shape, bool)
         self.status = np.empty(shape, np.int8)
         self.option = np.empty(shape, np.int8)
         self.made = np.zeros((n_schemes, n_labels), np.int64)
@@ -161,6 +196,8 @@ class _Output:
         self.grades["shell_lower_grade"][i, engines] = labels(scheme.shell, a.lower_grade)
         self.floats["shell_upper_wall"][i, engines] = a.upper_wall
         self.floats["shell_lower_wall"][i, engines] = a.lower_wall
+        self.floats["shell_upper_crush"][i, engines] = a.upper_crush
+        self.floats["shell_lower_crush"][i, engines] = a.lower_crush
         self.floats["clearance_nominal"][i, engines] = a.clearance
         self.status[i, engines] = a.status
         self.option[i, engines] = a.option
@@ -169,6 +206,11 @@ class _Output:
         self.used[i, cols] += a.shells_used
         self.left[i, cols] += a.shells_left
         self.scrapped[i] += a.shells_scrapped
+
+    def store_fit(self, i, engines, fit):
+        for name in FIT_FIELDS:
+            self.floats[name][i, engines] = fit[name]
+        self.loss_of_fit[i, engines] = fit["loss_of_fit"]
 
     def dataset(self, study, engine, schemes, grade_labels):
         n, b = self.block_scrapped.size, engine.main_bearings
@@ -194,8 +236,17 @@ class _Output:
             "shell_lower_grade": var(sed, self.grades["shell_lower_grade"], "1", "lower shell grade fitted (empty: none)"),
             "shell_upper_wall": var(sed, self.floats["shell_upper_wall"], "m", "upper shell crown wall thickness (true; NaN where status says none fitted)"),
             "shell_lower_wall": var(sed, self.floats["shell_lower_wall"], "m", "lower shell crown wall thickness (true; NaN where status says none fitted)"),
+            "shell_upper_crush": var(sed, self.floats["shell_upper_crush"], "m", "crush height of the upper shell (NaN where none fitted)"),
+            "shell_lower_crush": var(sed, self.floats["shell_lower_crush"], "m", "crush height of the lower shell (NaN where none fitted)"),
             "clearance_nominal": var(sed, self.floats["clearance_nominal"], "m",
                                      "nominal diametral clearance D_H - (s_upper + s_lower + D_J), no swell (NaN where status is not assembled)"),
+            "contact_pressure": var(sed, self.floats["contact_pressure"], "Pa", "contact pressure between shell backs and housing bore in service"),
+            "shell_stress": var(sed, self.floats["shell_stress"], "Pa", "mean compressive hoop stress of the shell wall in service (positive in compression)"),
+            "housing_swell": var(sed, self.floats["housing_swell"], "m", "elastic growth of the housing bore diameter from the shell press fit"),
+            "bore_in_service": var(sed, self.floats["bore_in_service"], "m", "housing bore diameter at operating temperature, swell included"),
+            "clearance_operating": var(sed, self.floats["clearance_operating"], "m",
+                                       "diametral operating clearance: press fit, swell and temperature (NaN where status is not assembled)"),
+            "loss_of_fit": var(sed, self.loss_of_fit, "1", "the shells have no interference left at operating temperature"),
             "status": var(sed, self.status, "1", "assembly status of the bearing",
                           flag_values=np.arange(len(STATUS), dtype=np.int8), flag_meanings=" ".join(STATUS)),
             "shell_option": var(sed, self.option, "1", "shell pair used: 0 preferred, k > 0 the scheme's k-th alternative, -1 none"),
@@ -227,6 +278,8 @@ class _Output:
             "shell_supply": engine.shell_wall.mode,
             "pilot_engines": study.pilot_engines,
             "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
+            "press_fit": json.dumps(engine.press_fit.kwargs()),
+            "crush_height_limits": [engine.shell_wall.crush.lo, engine.shell_wall.crush.hi],
             "Conventions": "CF-1.10",
         }
         return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -36,6 +36,17 @@ process = {{ distribution = "normal", cpk = {cpk} }}
 shared = 0.2
 gauge = {{ repeatability = {gauge} }}
 
+[crush_height]
+limits = [0.100, 0.137]
+process = {{ distribution = "normal", cpk = 1.33 }}
+
+[press_fit]
+housing_outer = 90.0
+housing_material = "nodular-cast-iron"
+shell_material = "steel-back"
+length = 22.0
+temperature = 100.0
+
 [shell_wall]
 supply = "{supply}"
 sigma = 0.001

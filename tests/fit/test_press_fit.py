@@ -1,0 +1,176 @@
+"""Press fit: limits, monotonicity, continuity, the FE reference, kernel twin and bad input."""
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from stackup import materials
+from stackup._kernels import press_fit as kernel
+from stackup.fit import press_fit, tiers
+
+BASE = dict(housing_bore=50.009e-3, housing_outer=80e-3, shell_wall=1.98e-3, crush_height=0.08e-3, length=22e-3,
+            check_bore=50.000e-3, journal_d=46.009e-3, shell_material="steel-back")
+
+
+def fit(**kw):
+    return press_fit(**{**BASE, **kw})
+
+
+def test_zero_crush_at_the_check_state_gives_the_check_stress():
+    # A rigid housing (steel, enormous outer diameter is not rigid enough: use a material 1e6 times stiffer)
+    rigid = materials.Material("rigid", 210e15, 0.3, 0.0)
+    r = fit(housing_bore=50.0e-3, check_bore=50.0e-3, crush_height=0.0, housing_material=rigid)
+    assert r.shell_stress == pytest.approx(100e6, rel=1e-6)
+    r = fit(housing_bore=50.0e-3, check_bore=50.0e-3, crush_height=0.0, housing_material=rigid, check_stress=80e6)
+    assert r.shell_stress == pytest.approx(80e6, rel=1e-6)
+
+
+def test_infinitely_stiff_housing_takes_no_interference():
+    rigid = materials.Material("rigid", 210e15, 0.3, 0.0)
+    r = fit(housing_material=rigid)
+    assert r.housing_swell < 1e-10  # 0.1 nm
+    # all interference in the shell: its extra compression over the check state is E * crush / (pi * R) (thin limit)
+    stiff = fit(housing_material=rigid, housing_bore=50.0e-3)
+    extra = (stiff.shell_stress - 100e6)
+    thin_estimate = 205e9 * 0.08e-3 / (np.pi * 25e-3)
+    assert extra == pytest.approx(thin_estimate, rel=0.08)
+
+
+def test_more_crush_gives_more_pressure_stress_and_swell():
+    crush = np.linspace(0.0, 0.15e-3, 16)
+    r = fit(crush_height=crush)
+    for field in (r.contact_pressure, r.shell_stress, r.housing_swell, r.clearance):
+        assert np.all(np.diff(field) > 0)
+
+
+def test_heating_an_aluminium_housing_loosens_the_fit():
+    t = np.linspace(20.0, 150.0, 14)
+    r = fit(housing_material="aluminium", temperature=t, crush_height=0.05e-3)
+    assert np.all(np.diff(r.contact_pressure) <= 0)
+    assert np.all(np.diff(r.clearance) > 0)
+    assert r.loss_of_fit[-1] and not r.loss_of_fit[0]
+
+
+def test_steel_housing_is_almost_insensitive_to_temperature():
+    al = fit(housing_material="aluminium", temperature=[20.0, 120.0])
+    steel = fit(housing_material="steel", temperature=[20.0, 120.0])
+    change_steel = abs(steel.contact_pressure[1] - steel.contact_pressure[0]) / steel.contact_pressure[0]
+    change_al = abs(al.contact_pressure[1] - al.contact_pressure[0]) / al.contact_pressure[0]
+    assert change_steel < 0.1 and change_al > 0.5
+    assert abs(steel.clearance[1] - steel.clearance[0]) < 2e-6 < abs(al.clearance[1] - al.clearance[0])
+
+
+def test_aluminium_housing_gives_less_stress_and_more_swell_than_steel():
+    al, steel = fit(housing_material="aluminium"), fit(housing_material="steel")
+    assert al.shell_stress < steel.shell_stress
+    assert al.housing_swell > 1.5 * steel.housing_swell
+
+
+def test_thicker_housing_wall_gives_less_swell():
+    r = fit(housing_outer=np.array([1.25, 1.5, 2.0, 3.0]) * 50.009e-3)
+    assert np.all(np.diff(r.housing_swell) < 0)
+    assert np.all(np.diff(r.contact_pressure) > 0)
+
+
+def test_loss_of_fit_is_continuous_and_never_negative():
+    # sweep the crush through the point where the fit is lost in a hot aluminium housing
+    crush = np.linspace(0.0, 0.06e-3, 601)
+    r = fit(housing_material="aluminium", temperature=120.0, crush_height=crush)
+    assert r.loss_of_fit.any() and not r.loss_of_fit.all()
+    assert np.all(r.contact_pressure >= 0) and np.all(r.contact_pressure[r.loss_of_fit] == 0)
+    step = np.max(np.abs(np.diff(r.clearance)))
+    typical = np.median(np.abs(np.diff(r.clearance[~r.loss_of_fit])))
+    assert step < 3 * typical  # no jump at the loss of fit
+
+
+@pytest.mark.parametrize("housing", ["steel", "aluminium", "grey-cast-iron"])
+@pytest.mark.parametrize("ratio", [1.25, 2.0])
+@pytest.mark.parametrize("temperature", [20.0, 150.0])
+def test_lame_tier_agrees_with_fe_reference(housing, ratio, temperature):
+    kw = dict(housing_material=housing, housing_outer=ratio * 50.009e-3, temperature=temperature,
+              crush_height=np.array([0.0, 0.05e-3, 0.15e-3]), shell_wall=np.array([1.6e-3, 1.98e-3, 3.0e-3]))
+    fast, ref = fit(**kw), fit(**kw, method="fe")
+    np.testing.assert_array_equal(fast.loss_of_fit, ref.loss_of_fit)
+    # the FE with 24 quadratic elements per ring is converged to ~1e-8 (test below)
+    np.testing.assert_allclose(fast.contact_pressure, ref.contact_pressure, rtol=1e-7, atol=1.0)
+    np.testing.assert_allclose(fast.shell_stress, ref.shell_stress, rtol=1e-7, atol=1.0)
+    np.testing.assert_allclose(fast.clearance, ref.clearance, rtol=0, atol=1e-11)
+    np.testing.assert_allclose(fast.housing_swell, ref.housing_swell, rtol=1e-7, atol=1e-13)
+
+
+def test_fe_reference_is_grid_converged():
+    from stackup.fit import reference
+
+    args = (50.009e-3, 60e-3, 3.0e-3, 0.1e-3, 50e-3, 100e6, 80.0, (71e9, 0.33, 21e-6), (205e9, 0.29, 12.2e-6), 11.5e-6, 46e-3)
+    coarse = reference.press_fit_one(*args, elements=12)
+    fine = reference.press_fit_one(*args, elements=48)
+    assert coarse["contact_pressure"] == pytest.approx(fine["contact_pressure"], rel=1e-7)
+
+
+def test_thin_ring_tier_error_is_a_few_percent_for_thick_walls():
+    thick = fit(shell_wall=3.0e-3, crush_height=0.1e-3)
+    thin = fit(shell_wall=3.0e-3, crush_height=0.1e-3, method="thin-ring")
+    err = abs(thin.contact_pressure / thick.contact_pressure - 1)
+    assert 0.001 < err < 0.1
+
+
+def test_shell_stress_balances_contact_pressure():
+    # equilibrium of a half ring: hoop force t * sigma = p * bore radius
+    r = fit(temperature=20.0)
+    assert r.shell_stress * 1.98e-3 == pytest.approx(r.contact_pressure * 50.009e-3 / 2, rel=1e-12)
+
+
+def test_broadcasts_over_all_array_inputs():
+    r = fit(housing_bore=np.full((4, 1), 50.009e-3), crush_height=np.linspace(0.05e-3, 0.1e-3, 3), temperature=[[[20.0]], [[90.0]]])
+    assert r.contact_pressure.shape == (2, 4, 3)
+    assert r.clearance.shape == (2, 4, 3)
+    assert fit(journal_d=None).clearance is None
+
+
+case = st.fixed_dictionaries({
+    "bore": st.floats(40e-3, 120e-3), "ratio": st.floats(1.1, 3.0), "wall": st.floats(1.0e-3, 4.0e-3),
+    "crush": st.floats(0.0, 0.2e-3), "block": st.floats(-20e-6, 20e-6), "stress": st.floats(20e6, 200e6),
+    "dt": st.floats(-40.0, 200.0), "thin": st.booleans(),
+})
+
+
+@given(st.lists(case, min_size=1, max_size=8))
+def test_kernel_matches_numpy_twin(cases):
+    cols = {k: np.array([c[k] for c in cases]) for k in cases[0]}
+    for thin in (False, True):
+        housing, shell = (71e9, 0.33, 21e-6), (205e9, 0.29, 12.2e-6)
+        bore = cols["bore"]
+        want = tiers.press_fit(bore, bore * cols["ratio"], cols["wall"], cols["crush"], bore + cols["block"],
+                               cols["stress"], cols["dt"], housing, shell, 11.5e-6, bore - 2 * cols["wall"] - 40e-6, thin)
+        got = kernel.press_fit(bore.size, bore, bore * cols["ratio"], cols["wall"], cols["crush"], bore + cols["block"],
+                               cols["stress"], bore - 2 * cols["wall"] - 40e-6, cols["dt"], *housing, *shell, 11.5e-6,
+                               thin, True)
+        names = ["contact_pressure", "shell_stress", "housing_swell", "bore_in_service", "shell_bore", "clearance", "loss_of_fit"]
+        for name, g in zip(names, got):
+            np.testing.assert_allclose(g, want[name], rtol=1e-12, atol=1e-18, err_msg=name)
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        ({"shell_wall": -1e-3}, r"shell_wall: -0.001 is not valid; must be > 0"),
+        ({"housing_outer": 50.0e-3}, r"housing_outer: 0.05 m is not above housing_bore 0.050009 m"),
+        ({"housing_material": "unobtainium"}, r"material: 'unobtainium' is not a known material"),
+        ({"crush_height": np.nan}, r"crush_height: nan is not a finite number"),
+        ({"crush_height": -0.01e-3}, r"crush_height: -1e-05 is not valid; must be >= 0"),
+        ({"temperature": 400.0}, r"temperature: 400.0 degC is outside the valid range \[-60.0, 300.0\]"),
+        ({"method": "reynold"}, r"method: 'reynold' is not one of 'lame', 'thin-ring', 'fe'"),
+        ({"shell_wall": 30e-3}, r"shell_wall: 0.03 m is not below half the housing bore"),
+    ],
+)
+def test_bad_input_is_named(kw, message):
+    with pytest.raises(ValueError, match=message):
+        fit(**kw)
+
+
+def test_user_material_file_adds_entries(tmp_path):
+    path = tmp_path / "mine.toml"
+    path.write_text('[magnesium]\nmodulus = 45e9\npoisson = 0.35\nexpansion = 26e-6\nsource = "test"\n')
+    assert materials.load(path) == ["magnesium"]
+    assert fit(housing_material="magnesium").housing_swell > fit(housing_material="aluminium").housing_swell
