@@ -157,3 +157,35 @@ def test_cli_compare_writes_dataset_and_report(tmp_path, capsys):
 def test_cli_reports_bad_input_as_an_error(capsys):
     assert main(["compare", "--n", "10", "--schemes", "iso13778-9"]) == 2
     assert "is not a known scheme" in capsys.readouterr().err
+
+
+def test_operating_clearance_is_the_press_fit_of_the_stored_parts(engine_file):
+    from stackup.engines import load_engine
+    from stackup.fit import press_fit
+
+    engine = engine_file()
+    ds = small(engine, schemes=("iso13778-5",)).run().sel(scheme="iso13778-5")
+    ok = ds.status.values == ASSEMBLED
+    bore = np.broadcast_to(ds.housing_bore.values, ok.shape)[ok]
+    fit = press_fit(housing_bore=bore, shell_wall=0.5 * (ds.shell_upper_wall.values[ok] + ds.shell_lower_wall.values[ok]),
+                    crush_height=0.5 * (ds.shell_upper_crush.values[ok] + ds.shell_lower_crush.values[ok]),
+                    journal_d=ds.journal_d.values[ok], **load_engine(engine).press_fit.kwargs())
+    np.testing.assert_array_equal(ds.clearance_operating.values[ok], fit.clearance)
+    np.testing.assert_array_equal(ds.contact_pressure.values[ok], fit.contact_pressure)
+    assert np.all(np.isnan(ds.clearance_operating.values[~ok]))
+    lo, hi = ds.attrs["crush_height_limits"]
+    crush = ds.shell_upper_crush.values[ok]
+    assert crush.min() >= lo and crush.max() <= hi
+
+
+def test_report_has_press_fit_section_with_intervals(engine_file, tmp_path):
+    from stackup.report import fit_summary, write_report
+
+    ds = small(engine_file()).run()
+    summary = fit_summary(ds, contact_pressure_min=40e6)  # a limit most bearings miss
+    assert np.all(summary.low_pressure_ppm > 5e5)
+    for lo, hi in summary.low_pressure_ci_ppm:
+        assert lo < hi
+    text = write_report(ds, tmp_path).read_text()
+    assert "## Operating clearance: press fit, housing swell and temperature" in text
+    assert "σ > 450 MPa [ppm]" in text
