@@ -1,0 +1,265 @@
+"""Newton solution of the crankshaft beam on nonlinear bearings, batched and warm-started.
+
+The numpy twin of the residual and Jacobian is :func:`stackup.crank.law.force`
+with :func:`stackup.crank.beam.condensed`; the tests compare both.
+"""
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+CONVERGED, MAX_ITERATIONS, NOT_FINITE = 0, 1, 2
+
+
+@njit(cache=True, inline="always")
+def _softplus(x):
+    return x + math.log1p(math.exp(-x)) if x > 0.0 else math.log1p(math.exp(x))
+
+
+@njit(cache=True, inline="always")
+def _expit(x):
+    if x >= 0.0:
+        return 1.0 / (1.0 + math.exp(-x))
+    e = math.exp(x)
+    return e / (1.0 + e)
+
+
+@njit(cache=True, inline="always")
+def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
+    """Force and Jacobian of one bearing; see stackup.crank.law.
+
+    ``e = exp(-J/dx)`` and ``sp0 = softplus(-J/dx)`` are the bearing's constants.
+    Returns (f0, f1, j00, j01, j10, j11).
+    """
+    mag = math.hypot(u0, u1)
+    if mag < 1e-300:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    c = u0 / mag
+    s_abs = abs(u1) / mag
+    sign = 1.0 if u1 >= 0.0 else -1.0
+    theta = math.atan2(s_abs, c)
+    if dx == 0.0:
+        g = max(mag - clearance, 0.0)
+        dg = 1.0 if mag > clearance else 0.0
+    else:
+        z = (mag - clearance) / dx
+        g = dx * (1.0 + e) * (_softplus(z) - sp0) - mag * e
+        dg = 1.0 - (1.0 + e) * _expit(-z)
+    sg = _expit((theta - theta0) / dtheta)
+    kd = k_lv + (k_hv - k_lv) * sg
+    dkd = (k_hv - k_lv) * sg * (1.0 - sg) / dtheta
+    ux, uy = c, sign * s_abs
+    tx, ty = -s_abs, sign * c
+    a = kd * dg
+    h = kd * g / mag
+    t = g * dkd / mag
+    return (kd * g * ux, kd * g * uy,
+            a * ux * ux + h * tx * tx + t * ux * tx, a * ux * uy + h * tx * ty + t * ux * ty,
+            a * uy * ux + h * ty * tx + t * uy * tx, a * uy * uy + h * ty * ty + t * uy * ty)
+
+
+@njit(cache=True, inline="always")
+def _residual(x, kb, f_ext, off, law, consts, r, fb, jb):
+    """Residual K_b w - T P + F(w - d) into r; bearing forces into fb (n, 2); Jacobian blocks into jb (n, 4)."""
+    n = kb.shape[1]
+    for p in range(n):
+        for c in range(2):
+            acc = -f_ext[p, c]
+            for q in range(n):
+                acc += kb[c, p, q] * x[2 * q + c]
+            r[2 * p + c] = acc
+    for p in range(n):
+        f0, f1, j00, j01, j10, j11 = _bearing(x[2 * p] - off[p, 0], x[2 * p + 1] - off[p, 1], law[0, p], law[1, p],
+                                              consts[0, p], consts[1, p], law[2, p], law[3, p], law[4, p], law[5, p])
+        fb[p, 0] = f0
+        fb[p, 1] = f1
+        jb[p, 0] = j00
+        jb[p, 1] = j01
+        jb[p, 2] = j10
+        jb[p, 3] = j11
+        r[2 * p] += f0
+        r[2 * p + 1] += f1
+
+
+@njit(cache=True)
+def _solve_dense(a, b):
+    """Solve a x = b in place (Gaussian elimination, partial pivoting); returns False if singular."""
+    m = b.shape[0]
+    for col in range(m):
+        piv = col
+        big = abs(a[col, col])
+        for row in range(col + 1, m):
+            if abs(a[row, col]) > big:
+                big = abs(a[row, col])
+                piv = row
+        if big == 0.0:
+            return False
+        if piv != col:
+            for k in range(m):
+                a[col, k], a[piv, k] = a[piv, k], a[col, k]
+            b[col], b[piv] = b[piv], b[col]
+        inv = 1.0 / a[col, col]
+        for row in range(col + 1, m):
+            factor = a[row, col] * inv
+            if factor != 0.0:
+                for k in range(col, m):
+                    a[row, k] -= factor * a[col, k]
+                b[row] -= factor * b[col]
+    for row in range(m - 1, -1, -1):
+        acc = b[row]
+        for k in range(row + 1, m):
+            acc -= a[row, k] * b[k]
+        b[row] = acc / a[row, row]
+    return True
+
+
+@njit(cache=True)
+def _norm(r):
+    acc = 0.0
+    for v in r:
+        acc += v * v
+    return math.sqrt(acc)
+
+
+@njit(cache=True, parallel=True)
+def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
+    """Bearing forces and support deflections over sequences of load cases.
+
+    kb (2, n, n), transfer (2, n, m); loads (B, A, m, 2); offsets (B, A, n, 2);
+    law (B, A, 6, n). Each of the B sequences is solved along A in order,
+    each step warm-started from the previous ones.
+    Returns reactions (B, A, n, 2), deflections (B, A, n, 2), status (B, A), iterations (B, A).
+    """
+    n_b, n_a, m = loads.shape[0], loads.shape[1], loads.shape[2]
+    n = kb.shape[1]
+    size = 2 * n
+    reactions = np.zeros((n_b, n_a, n, 2))
+    deflections = np.zeros((n_b, n_a, n, 2))
+    status = np.zeros((n_b, n_a), np.int8)
+    iterations = np.zeros((n_b, n_a), np.int32)
+    for b in prange(n_b):
+        x = np.zeros(size)
+        x_prev = np.zeros(size)
+        x_prev2 = np.zeros(size)
+        x_prev3 = np.zeros(size)
+        trial = np.zeros(size)
+        r = np.zeros(size)
+        r_trial = np.zeros(size)
+        step = np.zeros(size)
+        jac = np.zeros((size, size))
+        fb = np.zeros((n, 2))
+        jb = np.zeros((n, 4))
+        fb_t = np.zeros((n, 2))
+        jb_t = np.zeros((n, 4))
+        f_ext = np.zeros((n, 2))
+        consts = np.zeros((2, n))
+        for a in range(n_a):
+            off = offsets[b, a]
+            lw = law[b, a]
+            scale = 0.0
+            for p in range(n):
+                for c in range(2):
+                    acc = 0.0
+                    for i in range(m):
+                        acc += transfer[c, p, i] * loads[b, a, i, c]
+                    f_ext[p, c] = acc
+            for i in range(m):
+                scale += abs(loads[b, a, i, 0]) + abs(loads[b, a, i, 1])
+            for p in range(n):
+                if lw[1, p] > 0.0:
+                    consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
+                    consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
+            k_ref = 0.0
+            for p in range(n):
+                k_ref = max(k_ref, lw[2, p])
+            # residual floor: the loads' scale, or the force of a nanometre on the stiffest bearing
+            tol = rtol * max(scale, k_ref * 1e-9)
+            if a == 0:
+                # start: journals pushed from the offsets along the rigid-support reactions
+                for p in range(n):
+                    rx = f_ext[p, 0]
+                    ry = f_ext[p, 1]
+                    for q in range(n):
+                        rx -= kb[0, p, q] * off[q, 0]
+                        ry -= kb[1, p, q] * off[q, 1]
+                    mag = math.hypot(rx, ry)
+                    push = 0.0 if mag == 0.0 else (lw[0, p] + mag / lw[2, p]) / mag
+                    x[2 * p] = off[p, 0] + push * rx
+                    x[2 * p + 1] = off[p, 1] + push * ry
+            elif a == 1:
+                for k in range(size):
+                    x[k] = x_prev[k]
+            elif a == 2:
+                for k in range(size):
+                    x[k] = 2.0 * x_prev[k] - x_prev2[k]
+            else:  # quadratic extrapolation along the sequence
+                for k in range(size):
+                    x[k] = 3.0 * (x_prev[k] - x_prev2[k]) + x_prev3[k]
+            mu = 0.0
+            code = MAX_ITERATIONS
+            it = 0
+            _residual(x, kb, f_ext, off, lw, consts, r, fb, jb)
+            res = _norm(r)
+            while it < max_iterations:
+                if not math.isfinite(res):
+                    code = NOT_FINITE
+                    break
+                if res <= tol:
+                    code = CONVERGED
+                    break
+                it += 1
+                for i in range(size):
+                    for k in range(size):
+                        jac[i, k] = 0.0
+                for c in range(2):
+                    for p in range(n):
+                        for q in range(n):
+                            jac[2 * p + c, 2 * q + c] = kb[c, p, q]
+                for p in range(n):
+                    jac[2 * p, 2 * p] += jb[p, 0]
+                    jac[2 * p, 2 * p + 1] += jb[p, 1]
+                    jac[2 * p + 1, 2 * p] += jb[p, 2]
+                    jac[2 * p + 1, 2 * p + 1] += jb[p, 3]
+                for i in range(size):
+                    jac[i, i] += mu
+                    step[i] = -r[i]
+                if not _solve_dense(jac, step):
+                    # singular: the rest state of the law; stiffen the Newton matrix only
+                    mu = max(10.0 * mu, 1e-9 * k_ref)
+                    continue
+                t = 1.0
+                accepted = False
+                while t > 1e-10:
+                    for k in range(size):
+                        trial[k] = x[k] + t * step[k]
+                    _residual(trial, kb, f_ext, off, lw, consts, r_trial, fb_t, jb_t)
+                    res_t = _norm(r_trial)
+                    if res_t < (1.0 - 1e-4 * t) * res:
+                        accepted = True
+                        break
+                    t *= 0.5
+                if accepted:
+                    for k in range(size):
+                        x[k] = trial[k]
+                        r[k] = r_trial[k]
+                    for p in range(n):
+                        fb[p, 0], fb[p, 1] = fb_t[p, 0], fb_t[p, 1]
+                        for k in range(4):
+                            jb[p, k] = jb_t[p, k]
+                    res = res_t
+                    mu = 0.0 if t == 1.0 else mu
+                else:
+                    mu = max(10.0 * mu, 1e-9 * k_ref)
+            for k in range(size):
+                x_prev3[k] = x_prev2[k]
+                x_prev2[k] = x_prev[k]
+                x_prev[k] = x[k]
+            for p in range(n):
+                reactions[b, a, p, 0] = fb[p, 0]
+                reactions[b, a, p, 1] = fb[p, 1]
+                deflections[b, a, p, 0] = x[2 * p]
+                deflections[b, a, p, 1] = x[2 * p + 1]
+            status[b, a] = code
+            iterations[b, a] = it
+    return reactions, deflections, status, iterations

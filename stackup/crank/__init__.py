@@ -1,0 +1,170 @@
+"""The crankshaft as a continuous beam on its main bearings: support reactions.
+
+Tiers (the ``law`` argument of :func:`reactions`):
+
+- ``None``: rigid supports at the bearing offsets (three-moment equation);
+- a number or array [N/m]: linear springs;
+- a :class:`BellakhdharLaw`: the nonlinear law with clearance, oil film
+  stiffening and anisotropic deformation stiffness, solved by Newton.
+
+See :mod:`stackup.crank.beam` and :mod:`stackup.crank.law` for the equations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from .. import _validate as check
+from .._kernels import crank as _kernel
+from .beam import condensed
+from .law import BellakhdharLaw
+
+#: Status codes of a solve, stored with CF flag attributes.
+STATUS = ("converged", "max_iterations", "not_finite")
+#: Newton stops when the residual is below this share of the load scale.
+RTOL = 1e-10
+MAX_ITERATIONS = 60
+
+
+@dataclass(frozen=True)
+class CrankReactions:
+    """Result of :func:`reactions`.
+
+    Attributes
+    ----------
+    reactions : numpy.ndarray (..., N+1, 2)
+        Load each main bearing carries [N] (force of the journal on the bearing).
+    displacements : numpy.ndarray (..., N+1, 2)
+        Journal centre at each bearing off the straight reference line [m].
+    converged : numpy.ndarray of bool (...)
+    iterations : numpy.ndarray of int (...)
+        Newton iterations (0 for rigid or linear supports).
+    status : numpy.ndarray of int8 (...)
+        Index into :data:`STATUS`.
+    """
+
+    reactions: np.ndarray
+    displacements: np.ndarray
+    converged: np.ndarray
+    iterations: np.ndarray
+    status: np.ndarray
+
+
+def _geometry(spans, ei, load_positions):
+    """Validated, cached beam matrices K_b (2, N+1, N+1) and T (2, N+1, N) per load component."""
+    spans = check.positive("spans", spans)
+    if spans.ndim != 1:
+        raise ValueError(f"spans: shape {spans.shape} is not valid; give one length per span (N,)")
+    n = spans.size
+    ei = check.positive("EI", ei)
+    if ei.shape == (n,):
+        ei = np.stack([ei, ei], axis=-1)
+    if ei.shape != (n, 2):
+        raise ValueError(f"EI: shape {ei.shape} is not valid; give (N,) or (N, 2) with N = {n} spans")
+    if load_positions is None:
+        load_positions = np.full(n, 0.5)
+    load_positions = check.in_range("load_positions", np.broadcast_to(load_positions, (n,)), 0.0, 1.0,
+                                    lo_open=True, hi_open=True)
+    return _condensed_planes(tuple(spans), tuple(map(tuple, ei)), tuple(load_positions))
+
+
+@lru_cache(maxsize=64)
+def _condensed_planes(spans, ei, load_positions):
+    ei = np.array(ei)
+    planes = [condensed(np.array(spans), ei[:, c], np.array(load_positions)) for c in range(2)]
+    kb = np.stack([p[0] for p in planes])
+    transfer = np.stack([p[1] for p in planes])
+    kb.flags.writeable = transfer.flags.writeable = False
+    return kb, transfer
+
+
+def reactions(pin_loads, *, spans, EI, load_positions=None, offsets=None, law=None):  # noqa: N803 (EI is the domain's name)
+    """Support reactions of a crankshaft beam on N+1 main bearings.
+
+    Parameters
+    ----------
+    pin_loads : array_like (..., N, 2)
+        Load on each span (crank pin) [N]: component 0 towards the bearing
+        caps, component 1 transverse (engine-fixed frame).
+    spans : array_like (N,)
+        Span lengths between bearing centres [m].
+    EI : array_like (N,) or (N, 2)
+        Bending stiffness of each span [N m^2], per load component if (N, 2).
+    load_positions : array_like (N,), optional
+        Position of each load as a fraction of its span, in (0, 1); default 0.5.
+    offsets : array_like (..., N+1, 2), optional
+        Bearing centres off the straight reference line [m] (misalignment),
+        same axes as the loads; default 0.
+    law : None, float or array_like, or BellakhdharLaw
+        Rigid supports, linear springs [N/m] (per bearing if an array), or the
+        nonlinear bearing law (parameters may be arrays per bearing, broadcast
+        against ``(..., N+1)``).
+
+    Returns
+    -------
+    CrankReactions
+
+    Notes
+    -----
+    With the law, each sequence along the axis before ``N`` (e.g. crank
+    angle) is solved in order, each step warm-started from the previous two;
+    Newton uses the analytic Jacobian, a backtracking line search and, where
+    the law has no stiffness (journals at rest in their clearance), a
+    stiffness floor on the Newton matrix only, so the solution is unchanged.
+    A case that does not converge is marked in ``status``, never silently.
+    """
+    loads = check.finite("pin_loads", pin_loads)
+    kb, transfer = _geometry(spans, EI, load_positions)
+    n_spans = kb.shape[1] - 1
+    if loads.ndim < 2 or loads.shape[-2:] != (n_spans, 2):
+        raise ValueError(f"pin_loads: shape {loads.shape} is not valid; expected (..., {n_spans}, 2)")
+    if offsets is None:
+        offsets = np.zeros((n_spans + 1, 2))
+    offsets = check.finite("offsets", offsets)
+    if offsets.ndim < 2 or offsets.shape[-2:] != (n_spans + 1, 2):
+        raise ValueError(f"offsets: shape {offsets.shape} is not valid; expected (..., {n_spans + 1}, 2)")
+    try:
+        lead = np.broadcast_shapes(loads.shape[:-2], offsets.shape[:-2])
+    except ValueError:
+        raise ValueError(f"offsets: leading shape {offsets.shape[:-2]} does not broadcast with pin_loads "
+                         f"{loads.shape[:-2]}") from None
+    loads = np.broadcast_to(loads, (*lead, n_spans, 2))
+    offsets = np.broadcast_to(offsets, (*lead, n_spans + 1, 2))
+
+    if law is None or not isinstance(law, BellakhdharLaw):
+        f_ext = np.einsum("cpi,...ic->...pc", transfer, loads)
+        if law is None:
+            w = offsets
+            support = np.einsum("cpq,...qc->...pc", kb, w) - f_ext
+            result = -support
+        else:
+            k = check.positive("law", law)
+            k = np.broadcast_to(k, (*lead, n_spans + 1))
+            eye = np.eye(n_spans + 1)
+            w = np.empty(offsets.shape)
+            for c in range(2):
+                matrix = kb[c] + k[..., :, None] * eye
+                rhs = f_ext[..., c] + k * offsets[..., c]
+                w[..., c] = np.linalg.solve(matrix, rhs[..., None])[..., 0]
+            result = k[..., None] * (w - offsets)
+        ok = np.ones(lead, bool)
+        return CrankReactions(result, np.array(w), ok, np.zeros(lead, np.int32), np.zeros(lead, np.int8))
+
+    params = np.stack(law.arrays((*lead, n_spans + 1)), axis=-2)  # (..., 6, N+1)
+    seq = lead[-1] if lead else 1
+    batch = int(np.prod(lead[:-1])) if len(lead) > 1 else 1
+    r, w, status, iterations = _kernel.solve(
+        kb, transfer,
+        np.ascontiguousarray(loads).reshape(batch, seq, n_spans, 2),
+        np.ascontiguousarray(offsets).reshape(batch, seq, n_spans + 1, 2),
+        np.ascontiguousarray(params).reshape(batch, seq, 6, n_spans + 1),
+        RTOL, MAX_ITERATIONS,
+    )
+    return CrankReactions(r.reshape(*lead, n_spans + 1, 2), w.reshape(*lead, n_spans + 1, 2),
+                          (status == 0).reshape(lead), iterations.reshape(lead), status.reshape(lead))
+
+
+__all__ = ["BellakhdharLaw", "CrankReactions", "STATUS", "reactions"]

@@ -1,0 +1,117 @@
+r"""Main-bearing behaviour law of Bellakhdhar et al. (2013), in overflow-free form.
+
+The force a journal displaced by :math:`\mathbf U` from its bearing centre
+exerts on the bearing acts along :math:`\mathbf U` with magnitude
+
+.. math:: R(U, \theta) = K_d(\theta)\, g(U), \qquad
+          K_d(\theta) = k_{lv} + \frac{k_{hv} - k_{lv}}{1 + \exp\frac{\theta_0 - \theta}{\Delta\theta}}
+
+.. math:: g(U) = dx\,(1 + e^{-J/dx}) \ln\frac{1 + e^{(U - J)/dx}}{1 + e^{-J/dx}} - U e^{-J/dx}
+
+(their eqs. 4-7): clearance parameter :math:`J`, transition width :math:`dx`,
+deformation stiffness :math:`K_d` between :math:`k_{lv}` (load towards the cap,
+:math:`\theta = 0`) and :math:`k_{hv}` (:math:`\theta = 180°`). The logarithm
+is written with the softplus :math:`\ln(1 + e^x)` and the stiffness
+:math:`g'(U) = 1 - (1 + e^{-J/dx})/(1 + e^{(U-J)/dx})` with the logistic
+function, so neither overflows for :math:`U \gg dx`; :math:`dx = 0` is the
+bilinear limit :math:`g = \max(U - J, 0)`. :math:`g'(0) = 0`: the law has no
+stiffness at rest, which the solver must handle.
+
+Frame: component 0 points from the crank axis towards the bearing cap (the
+direction gas loads push the journal), component 1 is transverse; :math:`\theta`
+is the angle of :math:`\mathbf U` from component 0, in :math:`[0, \pi]`
+(the law is taken symmetric left/right).
+
+References
+----------
+.. [1] Bellakhdhar, B., Dogui, A., Ligier, J.-L., "A simplified coupled
+   crankshaft-engine block model", C. R. Mecanique 341 (2013) 743-754.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from math import radians
+
+import numpy as np
+from scipy import special
+
+from .. import _validate as check
+
+
+@dataclass(frozen=True)
+class BellakhdharLaw:
+    """Parameters of the bearing law; each may be an array per bearing (broadcast).
+
+    Parameters
+    ----------
+    clearance : array_like
+        Clearance parameter :math:`J` [m] (37 um identified for 30 um radial clearance).
+    dx : array_like
+        Transition width [m] (9.65 um); 0 gives the bilinear limit.
+    k_lv, k_hv : array_like
+        Deformation stiffness towards the cap and towards the block [N/m].
+    theta0, dtheta : array_like
+        Centre and width of the stiffness transition [rad].
+    """
+
+    clearance: object = 37e-6
+    dx: object = 9.65e-6
+    k_lv: object = 0.98e9
+    k_hv: object = 1.72e9
+    theta0: object = radians(97.0)
+    dtheta: object = radians(15.0)
+
+    def __post_init__(self):
+        check.positive("law clearance", self.clearance, allow_zero=True)
+        check.positive("law dx", self.dx, allow_zero=True)
+        check.positive("law k_lv", self.k_lv)
+        check.positive("law k_hv", self.k_hv)
+        check.finite("law theta0", self.theta0)
+        check.positive("law dtheta", self.dtheta)
+
+    def arrays(self, shape):
+        """The six parameters broadcast to ``shape`` (float arrays)."""
+        return [np.broadcast_to(np.asarray(getattr(self, k), dtype=float), shape)
+                for k in ("clearance", "dx", "k_lv", "k_hv", "theta0", "dtheta")]
+
+
+def gap_function(u, clearance, dx):
+    """:math:`g(U)` [m] and :math:`g'(U)` [-] of the law, overflow-free."""
+    u = np.asarray(u, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bilinear = dx == 0
+        safe_dx = np.where(bilinear, 1.0, dx)
+        e = np.where(bilinear, 0.0, np.exp(-clearance / safe_dx))
+        sp = np.logaddexp(0.0, (u - clearance) / safe_dx) - np.logaddexp(0.0, -clearance / safe_dx)
+        g = np.where(bilinear, np.maximum(u - clearance, 0.0), safe_dx * (1.0 + e) * sp - u * e)
+        dg = np.where(bilinear, (u > clearance).astype(float), 1.0 - (1.0 + e) * special.expit(-(u - clearance) / safe_dx))
+    return g, dg
+
+
+def stiffness(theta, k_lv, k_hv, theta0, dtheta):
+    """:math:`K_d(\\theta)` [N/m] and :math:`dK_d/d\\theta` [N/m/rad]."""
+    s = special.expit((theta - theta0) / dtheta)
+    return k_lv + (k_hv - k_lv) * s, (k_hv - k_lv) * s * (1.0 - s) / dtheta
+
+
+def force(u_vec, law_arrays):
+    """Bearing force (..., 2) [N] and its Jacobian d F / d U (..., 2, 2) [N/m] for displacements (..., 2) [m]."""
+    clearance, dx, k_lv, k_hv, theta0, dtheta = law_arrays
+    u0, u1 = u_vec[..., 0], u_vec[..., 1]
+    mag = np.hypot(u0, u1)
+    tiny = mag < 1e-300
+    safe = np.where(tiny, 1.0, mag)
+    c = np.where(tiny, 1.0, u0 / safe)
+    s_abs = np.where(tiny, 0.0, np.abs(u1) / safe)
+    sign = np.where(u1 >= 0, 1.0, -1.0)
+    theta = np.arctan2(s_abs, c)
+    g, dg = gap_function(mag, clearance, dx)
+    kd, dkd = stiffness(theta, k_lv, k_hv, theta0, dtheta)
+    unit = np.stack([c, sign * s_abs], axis=-1)
+    tangent = np.stack([-s_abs, sign * c], axis=-1)
+    f = (kd * g)[..., None] * unit
+    radial = (kd * dg)[..., None, None] * unit[..., :, None] * unit[..., None, :]
+    hoop = np.where(tiny, 0.0, kd * g / safe)[..., None, None] * tangent[..., :, None] * tangent[..., None, :]
+    turn = np.where(tiny, 0.0, g * dkd / safe)[..., None, None] * unit[..., :, None] * tangent[..., None, :]
+    return f, radial + hoop + turn
