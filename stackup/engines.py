@@ -10,12 +10,16 @@ from __future__ import annotations
 
 import os
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+
+import numpy as np
 from importlib import resources
 from pathlib import Path
 
 from . import _validate as check
 from . import materials
+from .crank import BellakhdharLaw
+from .loads import Combustion, Kinematics, firing_offsets, pin_loads
 from .parts import ShellSupply
 from .tolerances import Dimension, gauge_from_spec, process_from_spec
 
@@ -41,6 +45,51 @@ class PressFitSpec:
 
 
 @dataclass(frozen=True)
+class CrankSpec:
+    """Crank train, loads and bearing law of an engine (SI; angles in degrees where named so).
+
+    ``crank_angle`` grids are in degrees, 0 = firing TDC of the first cylinder fired.
+    """
+
+    kinematics: Kinematics
+    combustion: Combustion
+    throw_angles: tuple
+    firing_order: tuple
+    speed: float  # [rad/s]
+    spans: np.ndarray  # [m]
+    ei: np.ndarray  # (N, 2) [N m^2]
+    bearing_width: float  # [m]
+    coaxiality: float  # diameter of the bore coaxiality zone [m]
+    journal_runout: float  # total run-out of the main journals [m]
+    clearance_ratio: float  # law clearance J per radial operating clearance [-]
+    law_parameters: dict  # dx, k_lv, k_hv, theta0, dtheta in SI
+
+    def pin_loads(self, crank_angle):
+        """Crank-pin loads (angles, cylinders, 2) [N] at crank angles [deg]."""
+        return pin_loads(crank_angle, kinematics=self.kinematics, combustion=self.combustion,
+                         throw_angles=self.throw_angles, firing_order=self.firing_order, speed=self.speed)
+
+    def law(self, clearance):
+        """Bearing law with J from each bearing's diametral operating clearance [m] (array per bearing)."""
+        return BellakhdharLaw(clearance=self.clearance_ratio * np.asarray(clearance) / 2, **self.law_parameters)
+
+    def offsets(self, bore_offset, journal_eccentricity, crank_angle):
+        """Bearing offsets seen by the journals (..., angles, N+1, 2) [m].
+
+        ``bore_offset`` (..., N+1, 2): bore centres off the line; ``journal_eccentricity``
+        (..., N+1, 2): journal centres off the crankshaft axis at crank angle 0,
+        turning with the crankshaft. The journal surface sits at beam line +
+        eccentricity, so the bearing sees the bore offset minus the eccentricity.
+        """
+        phi = np.radians(np.asarray(crank_angle, dtype=float))
+        c, s = np.cos(phi)[:, None], np.sin(phi)[:, None]
+        e0 = journal_eccentricity[..., None, :, 0]
+        e1 = journal_eccentricity[..., None, :, 1]
+        turned = np.stack([c * e0 - s * e1, s * e0 + c * e1], axis=-1)
+        return bore_offset[..., None, :, :] - turned
+
+
+@dataclass(frozen=True)
 class Engine:
     """An engine's main bearings: how many, and how their parts are made."""
 
@@ -52,6 +101,7 @@ class Engine:
     journal_d: Dimension
     shell_wall: ShellSupply
     press_fit: PressFitSpec
+    crank: CrankSpec | None = None
 
 
 def _builtin_dir():
@@ -156,4 +206,68 @@ def load_engine(name_or_path):
         journal_d=dimension("journal_d"),
         shell_wall=supply,
         press_fit=spec,
+        crank=_crank(data, where, scale, bearings) if "crank" in data else None,
     )
+
+
+def _crank(data, where, scale, bearings):
+    table = dict(data["crank"])
+    key = f"{where}, key crank"
+
+    def pop(name, default=None):
+        if name not in table:
+            if default is None:
+                raise ValueError(f"{key}: missing '{name}'")
+            return default
+        return table.pop(name)
+
+    def length(name, default=None):
+        return float(check.positive(f"{key}.{name}", pop(name, default))) * scale
+
+    cylinders = check.integer(f"{key}.cylinders", pop("cylinders"), minimum=1)
+    if cylinders != bearings - 1:
+        raise ValueError(f"{key}.cylinders: {cylinders} cylinders need {cylinders + 1} main bearings, "
+                         f"the engine has {bearings} (inline engines only)")
+    stroke = length("stroke")
+    unbalance = float(check.in_range(f"{key}.counterweight_share", pop("counterweight_share", 0.0), 0.0, 2.0))
+    rotating = float(check.positive(f"{key}.rotating_mass", pop("rotating_mass"), allow_zero=True))
+    kinematics = Kinematics(
+        cylinder_bore=length("cylinder_bore"), stroke=stroke, conrod=length("conrod"),
+        reciprocating_mass=float(check.positive(f"{key}.reciprocating_mass", pop("reciprocating_mass"), allow_zero=True)),
+        rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
+    combustion = Combustion(compression_ratio=float(pop("compression_ratio", 16.0)),
+                            peak_pressure=float(pop("peak_pressure")))
+    throws = tuple(float(a) for a in pop("throw_angles"))
+    order = tuple(int(c) for c in pop("firing_order"))
+    if len(throws) != cylinders or len(order) != cylinders:
+        raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
+    spans = check.positive(f"{key}.spans", pop("spans")) * scale
+    inertia = check.positive(f"{key}.section_inertia", pop("section_inertia")) * scale**4
+    if spans.shape != (cylinders,) or inertia.shape not in ((cylinders,), (cylinders, 2)):
+        raise ValueError(f"{key}: spans need shape ({cylinders},), section_inertia ({cylinders},) or ({cylinders}, 2)")
+    modulus = materials.get(pop("crank_material", "steel")).modulus
+    spec = CrankSpec(
+        kinematics=kinematics, combustion=combustion, throw_angles=throws, firing_order=order,
+        speed=float(check.positive(f"{key}.speed", pop("speed"))) * 2 * np.pi / 60,
+        spans=spans, ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
+        bearing_width=length("bearing_width"),
+        coaxiality=float(check.positive(f"{key}.coaxiality", pop("coaxiality", 0.0), allow_zero=True)) * scale,
+        journal_runout=float(check.positive(f"{key}.journal_runout", pop("journal_runout", 0.0), allow_zero=True)) * scale,
+        clearance_ratio=1.0, law_parameters={},
+    )
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    firing_offsets(throws, order)
+    law = dict(data.get("bearing_law", {}))
+    lkey = f"{where}, key bearing_law"
+    params = {
+        "dx": float(check.positive(f"{lkey}.dx", law.pop("dx", 0.00965e-3 / scale), allow_zero=True)) * scale,
+        "k_lv": float(check.positive(f"{lkey}.k_lv", law.pop("k_lv", 0.98e9))),
+        "k_hv": float(check.positive(f"{lkey}.k_hv", law.pop("k_hv", 1.72e9))),
+        "theta0": np.radians(float(check.finite(f"{lkey}.theta0", law.pop("theta0", 97.0)))),
+        "dtheta": np.radians(float(check.positive(f"{lkey}.dtheta", law.pop("dtheta", 15.0)))),
+    }
+    ratio = float(check.positive(f"{lkey}.clearance_ratio", law.pop("clearance_ratio", 37.0 / 30.0)))
+    if law:
+        raise ValueError(f"{lkey}: unknown key(s) {sorted(law)}")
+    return replace(spec, clearance_ratio=ratio, law_parameters=params)

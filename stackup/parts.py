@@ -30,6 +30,8 @@ class BlockParts:
     journal_reading: np.ndarray  # (n, B)
     block_scrapped: np.ndarray  # (n,) a bore read outside its drawing limits
     crank_scrapped: np.ndarray  # (n,) a journal read outside its drawing limits
+    bore_offset: np.ndarray  # (n, B, 2) bore centre off the straight line (coaxiality)
+    journal_eccentricity: np.ndarray  # (n, B, 2) journal centre off the crankshaft axis at crank angle 0 (run-out)
 
 
 @dataclass(frozen=True)
@@ -56,7 +58,13 @@ def draw_lot(engine, rng, n_engines):
 
     The order of draws is fixed: block normals, bore normals, bore gauge,
     crankshaft normals, journal normals, journal gauge, shell normals, shell
-    gauge, shell crush.
+    gauge, shell crush, bore offsets, journal eccentricities.
+
+    Misalignment: each component of a bore offset is normal with standard
+    deviation coaxiality / 8 (the centre stays inside the coaxiality zone of
+    diameter t with probability 1 - exp(-8) = 0.9997), each component of a
+    journal eccentricity likewise with run-out / 8 (run-out reads twice the
+    eccentricity).
     """
     b = engine.main_bearings
     hb, jd = engine.housing_bore, engine.journal_d
@@ -68,6 +76,10 @@ def draw_lot(engine, rng, n_engines):
     g_journal = rng.standard_normal((n_engines, b))
     n_shells = engine.shell_wall.shells_per_lot(n_engines * b)
     shells = ShellNormals(rng.standard_normal(n_shells), rng.standard_normal(n_shells), rng.standard_normal(n_shells))
+    coaxiality = engine.crank.coaxiality if engine.crank else 0.0
+    runout = engine.crank.journal_runout if engine.crank else 0.0
+    bore_offset = coaxiality / 8 * rng.standard_normal((n_engines, b, 2))
+    eccentricity = runout / 8 * rng.standard_normal((n_engines, b, 2))
 
     bore = hb.true_sizes(z_block, z_bore)
     bore_reading = hb.gauge.read(bore, g_bore)
@@ -80,6 +92,8 @@ def draw_lot(engine, rng, n_engines):
         journal_reading=journal_reading,
         block_scrapped=hb.outside(bore_reading).any(axis=1),
         crank_scrapped=jd.outside(journal_reading).any(axis=1),
+        bore_offset=bore_offset,
+        journal_eccentricity=eccentricity,
     )
     return parts, shells
 

@@ -14,6 +14,7 @@ from . import __version__
 from . import _validate as check
 from ._random import PILOT_KEY, lot_generator, seed_sequence
 from .assembly import ASSEMBLED, STATUS, assemble, shell_demand
+from .crank.cycle import CYCLE_STATUS, NOT_COMPUTED, engine_cycles, worst_status
 from .fit import press_fit
 from .engines import load_engine
 from .parts import draw_lot
@@ -41,6 +42,13 @@ class Study:
     pilot_engines : int
         Engines of the pilot sample (own random stream) from which the shell
         quantity of each grade is planned.
+    mechanics_engines : int
+        Engines (the first ones sampled; lots are independent, so they are a
+        random sample) on which the crankshaft beam runs over the cycle; 0
+        skips the stage. Engines with a bearing not assembled are skipped and
+        marked.
+    crank_angle_step : float
+        Step of the crank-angle grid over 720 deg [deg].
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
     """
@@ -51,6 +59,8 @@ class Study:
     seed: int = 0
     chunk_lots: int = 20
     pilot_engines: int = 20_000
+    mechanics_engines: int = 200
+    crank_angle_step: float = 1.0
     progress: bool | None = None
     _resolved: dict = field(default=None, init=False, repr=False, compare=False)
 
@@ -58,6 +68,10 @@ class Study:
         self.n_engines = check.integer("n_engines", self.n_engines, minimum=1)
         self.chunk_lots = check.integer("chunk_lots", self.chunk_lots, minimum=1)
         self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
+        self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
+        self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
+        if (720.0 / self.crank_angle_step) % 1:
+            raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
         self.schemes = tuple(str(s) for s in self.schemes)
         if not self.schemes:
             raise ValueError("schemes: give at least one scheme")
@@ -91,6 +105,8 @@ class Study:
             shares.append(engine.shell_wall.aim_share(s, demand) if engine.shell_wall.mode == "to-order" else None)
         grade_labels = _union_labels(schemes)
 
+        mechanics = min(self.mechanics_engines, n) if engine.crank is not None else 0
+        crank_angle = np.arange(0.0, 720.0, self.crank_angle_step)
         out = _Output(len(schemes), n, b, len(grade_labels))
         with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
             for first in range(0, n_lots, self.chunk_lots):
@@ -104,7 +120,10 @@ class Study:
                     shells = [engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
                     result = assemble(scheme, parts, shells, lot_engines=lot)
                     out.store_assembly(i, slice(e0, e1), result, scheme, grade_labels)
-                    out.store_fit(i, slice(e0, e1), _operating(engine, parts, result))
+                    fit = _operating(engine, parts, result)
+                    out.store_fit(i, slice(e0, e1), fit)
+                    if e0 < mechanics:
+                        out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle))
                 bar.update(e1 - e0)
         return out.dataset(self, engine, schemes, grade_labels)
 
@@ -140,6 +159,21 @@ def _operating(engine, parts, assembly):
     return out
 
 
+def _cycles(engine, parts, assembly, fit, count, crank_angle):
+    """Maximum bearing reaction over the cycle of the first ``count`` engines of a chunk, and their status."""
+    count = min(count, assembly.status.shape[0])
+    built = np.all(assembly.status[:count] == ASSEMBLED, axis=1)
+    reaction_max = np.full((count, engine.main_bearings), np.nan)
+    status = np.full(count, NOT_COMPUTED, np.int8)
+    if built.any():
+        r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[:count][built],
+                          journal_eccentricity=parts.journal_eccentricity[:count][built],
+                          clearance=fit["clearance_operating"][:count][built], crank_angle=crank_angle)
+        reaction_max[built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
+        status[built] = worst_status(r.status)
+    return reaction_max, status
+
+
 def _no_bar(progress):
     return None if progress is None else not progress
 
@@ -171,6 +205,9 @@ class _Output:
         self.floats = {k: np.empty(shape) for k in ("shell_upper_wall", "shell_lower_wall", "shell_upper_crush",
                                                     "shell_lower_crush", "clearance_nominal", *FIT_FIELDS)}
         self.loss_of_fit = np.empty(shape, bool)
+        self.reaction_max = np.full(shape, np.nan)
+        self.crank_status = np.full((n_schemes, n), NOT_COMPUTED, np.int8)
+        self.offsets = {k: np.empty((n, b, 2)) for k in ("bore_offset", "journal_eccentricity")}
         self.status = np.empty(shape, np.int8)
         self.option = np.empty(shape, np.int8)
         self.made = np.zeros((n_schemes, n_labels), np.int64)
@@ -183,6 +220,8 @@ class _Output:
         self.parts["housing_reading"][engines] = parts.housing_reading
         self.parts["journal_d"][engines] = parts.journal_d
         self.parts["journal_reading"][engines] = parts.journal_reading
+        self.offsets["bore_offset"][engines] = parts.bore_offset
+        self.offsets["journal_eccentricity"][engines] = parts.journal_eccentricity
         self.block_scrapped[engines] = parts.block_scrapped
         self.crank_scrapped[engines] = parts.crank_scrapped
 
@@ -211,6 +250,11 @@ class _Output:
         for name in FIT_FIELDS:
             self.floats[name][i, engines] = fit[name]
         self.loss_of_fit[i, engines] = fit["loss_of_fit"]
+
+    def store_crank(self, i, first, crank):
+        reaction_max, status = crank
+        self.reaction_max[i, first:first + status.size] = reaction_max
+        self.crank_status[i, first:first + status.size] = status
 
     def dataset(self, study, engine, schemes, grade_labels):
         n, b = self.block_scrapped.size, engine.main_bearings
@@ -247,6 +291,14 @@ class _Output:
             "clearance_operating": var(sed, self.floats["clearance_operating"], "m",
                                        "diametral operating clearance: press fit, swell and temperature (NaN where status is not assembled)"),
             "loss_of_fit": var(sed, self.loss_of_fit, "1", "the shells have no interference left at operating temperature"),
+            "bore_offset": var(("engine", "bearing", "axis"), self.offsets["bore_offset"], "m",
+                               "housing bore centre off the straight bearing line (coaxiality)"),
+            "journal_eccentricity": var(("engine", "bearing", "axis"), self.offsets["journal_eccentricity"], "m",
+                                        "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
+            "reaction_max": var(sed, self.reaction_max, "N",
+                                "maximum bearing load over the engine cycle (NaN where crank_status is not converged)"),
+            "crank_status": var(("scheme", "engine"), self.crank_status, "1", "status of the crankshaft beam stage",
+                                flag_values=np.arange(len(CYCLE_STATUS), dtype=np.int8), flag_meanings=" ".join(CYCLE_STATUS)),
             "status": var(sed, self.status, "1", "assembly status of the bearing",
                           flag_values=np.arange(len(STATUS), dtype=np.int8), flag_meanings=" ".join(STATUS)),
             "shell_option": var(sed, self.option, "1", "shell pair used: 0 preferred, k > 0 the scheme's k-th alternative, -1 none"),
@@ -265,6 +317,7 @@ class _Output:
             "bearing": ("bearing", np.arange(1, b + 1), {"long_name": "main bearing position"}),
             "shell_grade": ("shell_grade", grade_labels, {"long_name": "shell grade label"}),
             "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
+            "axis": ("axis", ["cap", "transverse"], {"long_name": "engine-fixed axis: towards the bearing cap, transverse"}),
         }
         attrs = {
             "title": f"Selective assembly of {engine.title or engine.name}",

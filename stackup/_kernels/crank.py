@@ -127,7 +127,7 @@ def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
     """Bearing forces and support deflections over sequences of load cases.
 
     kb (2, n, n), transfer (2, n, m); loads (B, A, m, 2); offsets (B, A, n, 2);
-    law (B, A, 6, n). Each of the B sequences is solved along A in order,
+    law (B, 6, n), constant along each sequence. Each of the B sequences is solved along A in order,
     each step warm-started from the previous ones.
     Returns reactions (B, A, n, 2), deflections (B, A, n, 2), status (B, A), iterations (B, A).
     """
@@ -156,7 +156,7 @@ def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
         consts = np.zeros((2, n))
         for a in range(n_a):
             off = offsets[b, a]
-            lw = law[b, a]
+            lw = law[b]
             scale = 0.0
             for p in range(n):
                 for c in range(2):

@@ -60,6 +60,8 @@ def _geometry(spans, ei, load_positions):
         raise ValueError(f"spans: shape {spans.shape} is not valid; give one length per span (N,)")
     n = spans.size
     ei = check.positive("EI", ei)
+    if ei.ndim == 0:
+        ei = np.full(n, float(ei))
     if ei.shape == (n,):
         ei = np.stack([ei, ei], axis=-1)
     if ei.shape != (n, 2):
@@ -101,7 +103,8 @@ def reactions(pin_loads, *, spans, EI, load_positions=None, offsets=None, law=No
     law : None, float or array_like, or BellakhdharLaw
         Rigid supports, linear springs [N/m] (per bearing if an array), or the
         nonlinear bearing law (parameters may be arrays per bearing, broadcast
-        against ``(..., N+1)``).
+        against ``(..., N+1)`` but constant along the sequence axis, e.g.
+        shape ``(engines, 1, N+1)`` for loads ``(engines, angles, N, 2)``).
 
     Returns
     -------
@@ -153,14 +156,19 @@ def reactions(pin_loads, *, spans, EI, load_positions=None, offsets=None, law=No
         ok = np.ones(lead, bool)
         return CrankReactions(result, np.array(w), ok, np.zeros(lead, np.int32), np.zeros(lead, np.int8))
 
-    params = np.stack(law.arrays((*lead, n_spans + 1)), axis=-2)  # (..., 6, N+1)
     seq = lead[-1] if lead else 1
     batch = int(np.prod(lead[:-1])) if len(lead) > 1 else 1
+    per_sequence = (*lead[:-1], 1, n_spans + 1) if lead else (1, n_spans + 1)
+    try:
+        params = np.stack(law.arrays(per_sequence), axis=-2)  # (..., 1, 6, N+1)
+    except ValueError:
+        raise ValueError(f"law: parameters must broadcast to {per_sequence}, constant along the sequence "
+                         f"axis of pin_loads {loads.shape}") from None
     r, w, status, iterations = _kernel.solve(
         kb, transfer,
         np.ascontiguousarray(loads).reshape(batch, seq, n_spans, 2),
         np.ascontiguousarray(offsets).reshape(batch, seq, n_spans + 1, 2),
-        np.ascontiguousarray(params).reshape(batch, seq, 6, n_spans + 1),
+        np.ascontiguousarray(params).reshape(batch, 6, n_spans + 1),
         RTOL, MAX_ITERATIONS,
     )
     return CrankReactions(r.reshape(*lead, n_spans + 1, 2), w.reshape(*lead, n_spans + 1, 2),

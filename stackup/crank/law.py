@@ -110,8 +110,8 @@ def force(u_vec, law_arrays):
     kd, dkd = stiffness(theta, k_lv, k_hv, theta0, dtheta)
     unit = np.stack([c, sign * s_abs], axis=-1)
     tangent = np.stack([-s_abs, sign * c], axis=-1)
-    f = (kd * g)[..., None] * unit
-    radial = (kd * dg)[..., None, None] * unit[..., :, None] * unit[..., None, :]
+    f = np.where(tiny, 0.0, kd * g)[..., None] * unit  # at rest: no force, no stiffness
+    radial = np.where(tiny, 0.0, kd * dg)[..., None, None] * unit[..., :, None] * unit[..., None, :]
     hoop = np.where(tiny, 0.0, kd * g / safe)[..., None, None] * tangent[..., :, None] * tangent[..., None, :]
     turn = np.where(tiny, 0.0, g * dkd / safe)[..., None, None] * unit[..., :, None] * tangent[..., None, :]
     return f, radial + hoop + turn

@@ -1,0 +1,40 @@
+"""One stage of a study: each sampled engine's bearing loads over the engine cycle."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import STATUS, reactions
+
+#: Crank status in a dataset: the solver's codes, then engines the stage did not run on.
+CYCLE_STATUS = (*STATUS, "not_computed")
+NOT_COMPUTED = len(STATUS)
+
+
+def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_angle):
+    """Bearing reactions of engines over a crank-angle grid.
+
+    Parameters
+    ----------
+    spec : CrankSpec
+        The engine's crank train, loads and bearing law.
+    bore_offset, journal_eccentricity : array_like (engines, N+1, 2)
+        Misalignment of the bores and the journals [m] (see :meth:`CrankSpec.offsets`).
+    clearance : array_like (engines, N+1)
+        Diametral operating clearance of each bearing [m] (the law's J scales with it).
+    crank_angle : array_like (angles,)
+        Crank angles [deg].
+
+    Returns
+    -------
+    CrankReactions with leading shape (engines, angles).
+    """
+    loads = spec.pin_loads(crank_angle)[None]  # (1, angles, N, 2), shared by all engines
+    offsets = spec.offsets(np.asarray(bore_offset), np.asarray(journal_eccentricity), crank_angle)
+    law = spec.law(np.asarray(clearance)[:, None, :])
+    return reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets, law=law)
+
+
+def worst_status(status):
+    """Worst solver status over the angle axis (the last), per engine."""
+    return np.max(status, axis=-1).astype(np.int8)
