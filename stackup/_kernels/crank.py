@@ -10,6 +10,8 @@ import numpy as np
 from numba import njit, prange
 
 CONVERGED, MAX_ITERATIONS, NOT_FINITE = 0, 1, 2
+#: Floating-point licences that keep NaN/inf checks meaningful (no 'nnan', 'ninf').
+FAST = {"contract", "arcp", "reassoc", "nsz"}
 
 
 @njit(cache=True, inline="always")
@@ -25,7 +27,7 @@ def _expit(x):
     return e / (1.0 + e)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
     """Force and Jacobian of one bearing; see stackup.crank.law.
 
@@ -59,7 +61,7 @@ def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
             a * uy * ux + h * ty * tx + t * uy * tx, a * uy * uy + h * ty * ty + t * uy * ty)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def _residual(x, kb, f_ext, off, law, consts, r, fb, jb):
     """Residual K_b w - T P + F(w - d) into r; bearing forces into fb (n, 2); Jacobian blocks into jb (n, 4)."""
     n = kb.shape[1]
@@ -82,7 +84,7 @@ def _residual(x, kb, f_ext, off, law, consts, r, fb, jb):
         r[2 * p + 1] += f1
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=FAST)
 def _solve_dense(a, b):
     """Solve a x = b in place (Gaussian elimination, partial pivoting); returns False if singular."""
     m = b.shape[0]
@@ -122,7 +124,7 @@ def _norm(r):
     return math.sqrt(acc)
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, fastmath=FAST)
 def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
     """Bearing forces and support deflections over sequences of load cases.
 
@@ -154,9 +156,18 @@ def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
         jb_t = np.zeros((n, 4))
         f_ext = np.zeros((n, 2))
         consts = np.zeros((2, n))
+        template = np.zeros((size, size))  # the beam's part of the Newton matrix
+        for c in range(2):
+            for p in range(n):
+                for q in range(n):
+                    template[2 * p + c, 2 * q + c] = kb[c, p, q]
+        lw = law[b]
+        for p in range(n):
+            if lw[1, p] > 0.0:
+                consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
+                consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
         for a in range(n_a):
             off = offsets[b, a]
-            lw = law[b]
             scale = 0.0
             for p in range(n):
                 for c in range(2):
@@ -166,10 +177,7 @@ def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
                     f_ext[p, c] = acc
             for i in range(m):
                 scale += abs(loads[b, a, i, 0]) + abs(loads[b, a, i, 1])
-            for p in range(n):
-                if lw[1, p] > 0.0:
-                    consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
-                    consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
+
             k_ref = 0.0
             for p in range(n):
                 k_ref = max(k_ref, lw[2, p])
@@ -209,13 +217,7 @@ def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
                     code = CONVERGED
                     break
                 it += 1
-                for i in range(size):
-                    for k in range(size):
-                        jac[i, k] = 0.0
-                for c in range(2):
-                    for p in range(n):
-                        for q in range(n):
-                            jac[2 * p + c, 2 * q + c] = kb[c, p, q]
+                jac[:, :] = template
                 for p in range(n):
                     jac[2 * p, 2 * p] += jb[p, 0]
                     jac[2 * p, 2 * p + 1] += jb[p, 1]
