@@ -189,3 +189,22 @@ def test_report_has_press_fit_section_with_intervals(engine_file, tmp_path):
     text = write_report(ds, tmp_path).read_text()
     assert "## Operating clearance: press fit, housing swell and temperature" in text
     assert "σ > 450 MPa [ppm]" in text
+
+
+def test_crank_stage_runs_on_the_subsample_and_marks_the_rest():
+    from stackup.crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+
+    ds = Study(n_engines=40, mechanics_engines=6, crank_angle_step=4.0, schemes=("iso13778-4",), seed=2,
+               pilot_engines=2000, progress=False).run()
+    status = ds.crank_status.values[0]
+    assert np.all(status[6:] == NOT_COMPUTED)
+    assert np.all(status[:6] == 0)
+    assert ds.crank_status.attrs["flag_meanings"] == " ".join(CYCLE_STATUS)
+    r = ds.reaction_max.values[0]
+    assert np.all(np.isfinite(r[:6])) and np.all(np.isnan(r[6:]))
+    assert np.all((r[:6] > 5e3) & (r[:6] < 1e5))  # a 13 MPa, 76 mm bore four: kN to tens of kN
+
+
+def test_crank_angle_step_must_divide_the_cycle():
+    with pytest.raises(ValueError, match="crank_angle_step: 7.0 deg does not divide 720 deg"):
+        Study(crank_angle_step=7.0)
