@@ -241,10 +241,10 @@ def write_report(ds, out_dir, *, dataset_file=None):
     if (crank.engines > 0).any():
         wide = crank.reset_index()
         cells = wide.assign(text=[f"{m:.2f} ± {c:.2f} (max {x:.1f})" for m, c, x in zip(wide.mean_kn, wide.ci_kn, wide.max_kn)])
-        table = cells.pivot(index="scheme", columns="bearing", values="text")
-        table.columns = [f"bearing {b} [kN]" for b in table.columns]
+        crank_table = cells.pivot(index="scheme", columns="bearing", values="text")
+        crank_table.columns = [f"bearing {b} [kN]" for b in crank_table.columns]
         first = crank.groupby(level="scheme").first()
-        table.insert(0, "engines (failed)", [f"{e} ({f})" for e, f in zip(first.engines, first.failed)])
+        crank_table.insert(0, "engines (failed)", [f"{e} ({f})" for e, f in zip(first.engines, first.failed)])
         crank_lines = [
             "## Bearing loads over the engine cycle",
             "",
@@ -254,7 +254,7 @@ def write_report(ds, out_dir, *, dataset_file=None):
             f"({int(json.loads(ds.attrs['study'])['mechanics_engines'])} per scheme); engines with a bearing not "
             "assembled are skipped and marked in `crank_status`.",
             "",
-            _markdown_table(table.reset_index()),
+            _markdown_table(crank_table.reset_index()),
             "",
         ]
     usage_table = usage.reset_index()[["scheme", "shell_grade", "shells_made", "shells_used", "shells_left", "used_share_pct"]]
