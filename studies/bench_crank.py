@@ -16,14 +16,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import platform
 import time
-from pathlib import Path
 
 import numba
 import numpy as np
+from _common import best_time, environment, write_report
 
-import stackup
 from stackup.crank import reactions
 from stackup.crank.cycle import engine_cycles
 from stackup.engines import load_engine
@@ -31,16 +29,6 @@ from stackup.study import Study
 
 PAPER_SECONDS = 20.0  # Bellakhdhar et al. 2013, sec. 6.1: one full cycle
 TARGET_SECONDS = 2e-3
-
-
-def best(fn, repeat):
-    fn()
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def main(argv=None):
@@ -71,18 +59,18 @@ def main(argv=None):
         return reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets, law=law_one)
 
     numba.set_num_threads(1)
-    t_law = best(one, args.repeat)
-    t_rigid = best(lambda: reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets), args.repeat)
-    t_linear = best(lambda: reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets, law=0.98e9), args.repeat)
+    t_law = best_time(one, args.repeat)
+    t_rigid = best_time(lambda: reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets), args.repeat)
+    t_linear = best_time(lambda: reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets, law=0.98e9), args.repeat)
     iterations = one().iterations.mean()
 
     def batch():
         return engine_cycles(spec, bore_offset=bore, journal_eccentricity=ecc, clearance=clearance, crank_angle=angle)
 
-    t_batch_1 = best(batch, 3)
+    t_batch_1 = best_time(batch, 3)
     cores = numba.config.NUMBA_NUM_THREADS
     numba.set_num_threads(cores)
-    t_batch_all = best(batch, 3)
+    t_batch_all = best_time(batch, 3)
 
     law = batch()
     assert law.converged.all()
@@ -98,8 +86,7 @@ def main(argv=None):
     lines = [
         "# Benchmark: crankshaft beam on nonlinear main bearings",
         "",
-        f"stackup {stackup.__version__}, Python {platform.python_version()}, numpy {np.__version__}, numba "
-        f"{numba.__version__}, {platform.machine()}, {os.cpu_count()} cores. Engine `iso-example` (inline four, "
+        f"{environment()}, {os.cpu_count()} cores. Engine `iso-example` (inline four, "
         f"4000 rpm), 720 crank angles, Bellakhdhar bearing law with each bearing's operating clearance and "
         f"sampled misalignment (coaxiality {spec.coaxiality * 1e6:.0f} µm, run-out {spec.journal_runout * 1e6:.0f} µm) "
         f"of {n} engines assembled with iso13778-4. Best of {args.repeat}.",
@@ -138,9 +125,7 @@ def main(argv=None):
         "",
         "Reproduce: `python studies/bench_crank.py`.",
     ]
-    out = Path(args.out)
-    out.write_text("\n".join(lines) + "\n")
-    print(out.read_text())
+    print(write_report(args.out, lines).read_text())
 
 
 if __name__ == "__main__":

@@ -14,13 +14,10 @@ Writes reports/bench_sampling.md.
 from __future__ import annotations
 
 import argparse
-import platform
 import time
-from pathlib import Path
 
-import numpy as np
+from _common import best_time, environment, write_report
 
-import stackup
 from stackup._random import PILOT_KEY, lot_generator, seed_sequence
 from stackup.assembly import assemble, shell_demand
 from stackup.engines import load_engine
@@ -43,7 +40,9 @@ def chain(engine, scheme, aim, n_engines, seed):
         shells = engine.shell_wall.make(scheme, shell_normals, aim)
         result = assemble(scheme, parts, [shells], lot_engines=lot)
         bearings += result.clearance.size
-        normals += 2 * m + 4 * parts.housing_bore.size + 2 * shell_normals.size.size
+        # blocks and cranks (2 per engine); bores and journals, true and gauge (4 per bearing);
+        # shells: wall, gauge, crush (3 each); bore offset and journal eccentricity (4 per bearing)
+        normals += 2 * m + 8 * parts.housing_bore.size + 3 * shell_normals.size.size
     return bearings, normals
 
 
@@ -53,15 +52,6 @@ def raw_draw(normals, lot_count, seed):
     per_lot = -(-normals // lot_count)
     for k in range(lot_count):
         lot_generator(root, k).standard_normal(per_lot)
-
-
-def best_of(repeat, fn, *args):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn(*args)
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def main(argv=None):
@@ -81,12 +71,12 @@ def main(argv=None):
         scheme = load(name)
         aim = engine.shell_wall.aim_share(scheme, shell_demand(scheme, pilot))
         bearings, normals = chain(engine, scheme, aim, args.engines, 0)
-        t_chain = best_of(args.repeat, chain, engine, scheme, aim, args.engines, 0)
-        t_raw = best_of(args.repeat, raw_draw, normals, lots, 1)
+        t_chain = best_time(lambda: chain(engine, scheme, aim, args.engines, 0), args.repeat)
+        t_raw = best_time(lambda: raw_draw(normals, lots, 1), args.repeat)
         rows.append((name, bearings, normals / bearings, bearings / t_chain, bearings / t_raw, t_chain / t_raw, TARGET[name]))
         print(f"{name}: {bearings / t_chain / 1e6:.2f} M bearings/s, {t_chain / t_raw:.2f} x raw draw")
 
-    study = Study(n_engines=args.engines // 4, progress=False)
+    study = Study(n_engines=args.engines // 4, mechanics_engines=0, progress=False)
     t0 = time.perf_counter()
     ds = study.run()
     t_study = time.perf_counter() - t0
@@ -95,8 +85,7 @@ def main(argv=None):
     lines = [
         "# Benchmark: sampling, grading, pairing and clearance",
         "",
-        f"stackup {stackup.__version__}, Python {platform.python_version()}, numpy {np.__version__}, "
-        f"{platform.machine()}, one core (numpy and the numba kernel are single-threaded). "
+        f"{environment()}, one core (numpy and the numba kernel are single-threaded). "
         f"{args.engines:,} engines × {engine.main_bearings} bearings per scheme, best of {args.repeat}.",
         "",
         "The chain is what a study runs per scheme: draw the lot's blocks, crankshafts and shells, read them "
@@ -109,15 +98,13 @@ def main(argv=None):
         *(f"| {n} | {b:,} | {v:.2f} | {c / 1e6:.2f} | {r / 1e6:.2f} | {x:.2f} | ≤ {t:.0f} | {'yes' if x <= t else 'no'} |"
           for n, b, v, c, r, x, t in rows),
         "",
-        f"Whole study (`Study.run()`, all six schemes, dataset assembly with grade labels included, "
+        f"Whole study (`Study.run()` with the clearance stages: all six schemes, press fit, dataset assembly "
+        f"with grade labels included, no crankshaft stage, "
         f"{study.n_engines:,} engines): {study_rate / 1e6:.2f} M bearing-scheme pairs/s.",
         "",
         "Reproduce: `python studies/bench_sampling.py`.",
     ]
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines) + "\n")
-    print(f"wrote {out}")
+    write_report(args.out, lines)
 
 
 if __name__ == "__main__":

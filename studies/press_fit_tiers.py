@@ -14,14 +14,12 @@ from __future__ import annotations
 
 import argparse
 import itertools
-import platform
 import time
-from pathlib import Path
 
 import numba
 import numpy as np
+from _common import best_time, environment, write_report
 
-import stackup
 from stackup import materials
 from stackup.fit import press_fit, tiers
 
@@ -65,15 +63,7 @@ def errors(cases):
 
 
 def best_rate(fn, n, repeat):
-    fn()
-    best = min(_time(fn) for _ in range(repeat))
-    return n / best
-
-
-def _time(fn):
-    t0 = time.perf_counter()
-    fn()
-    return time.perf_counter() - t0
+    return n / best_time(fn, repeat)
 
 
 def speeds(n, repeat):
@@ -122,8 +112,7 @@ def main(argv=None):
     lines = [
         "# Press-fit tiers: speed against error",
         "",
-        f"stackup {stackup.__version__}, Python {platform.python_version()}, numpy {np.__version__}, numba "
-        f"{numba.__version__}, {platform.machine()}, one thread.",
+        f"{environment()}, one thread.",
         "",
         "## Error against the finite-element reference",
         "",
@@ -159,10 +148,7 @@ def main(argv=None):
         "",
         "Reproduce: `python studies/press_fit_tiers.py`.",
     ]
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines) + "\n")
-    print(f"wrote {out}")
+    write_report(args.out, lines)
 
 
 if __name__ == "__main__":

@@ -124,144 +124,163 @@ def _norm(r):
     return math.sqrt(acc)
 
 
-@njit(cache=True, parallel=True, fastmath=FAST)
-def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
-    """Bearing forces and support deflections over sequences of load cases.
-
-    kb (2, n, n), transfer (2, n, m); loads (B, A, m, 2); offsets (B, A, n, 2);
-    law (B, 6, n), constant along each sequence. Each of the B sequences is solved along A in order,
-    each step warm-started from the previous ones.
-    Returns reactions (B, A, n, 2), deflections (B, A, n, 2), status (B, A), iterations (B, A).
-    """
-    n_b, n_a, m = loads.shape[0], loads.shape[1], loads.shape[2]
+@njit(cache=True, fastmath=FAST)
+def _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, reactions, deflections, status, iterations):
+    """Solve sequence ``b`` along its load cases, warm-starting each from the previous ones."""
+    n_a, m = loads.shape[1], loads.shape[2]
     n = kb.shape[1]
     size = 2 * n
-    reactions = np.zeros((n_b, n_a, n, 2))
-    deflections = np.zeros((n_b, n_a, n, 2))
-    status = np.zeros((n_b, n_a), np.int8)
-    iterations = np.zeros((n_b, n_a), np.int32)
-    for b in prange(n_b):
-        x = np.zeros(size)
-        x_prev = np.zeros(size)
-        x_prev2 = np.zeros(size)
-        x_prev3 = np.zeros(size)
-        trial = np.zeros(size)
-        r = np.zeros(size)
-        r_trial = np.zeros(size)
-        step = np.zeros(size)
-        jac = np.zeros((size, size))
-        fb = np.zeros((n, 2))
-        jb = np.zeros((n, 4))
-        fb_t = np.zeros((n, 2))
-        jb_t = np.zeros((n, 4))
-        f_ext = np.zeros((n, 2))
-        consts = np.zeros((2, n))
-        template = np.zeros((size, size))  # the beam's part of the Newton matrix
-        for c in range(2):
-            for p in range(n):
-                for q in range(n):
-                    template[2 * p + c, 2 * q + c] = kb[c, p, q]
-        lw = law[b]
+    x = np.zeros(size)
+    x_prev = np.zeros(size)
+    x_prev2 = np.zeros(size)
+    x_prev3 = np.zeros(size)
+    trial = np.zeros(size)
+    r = np.zeros(size)
+    r_trial = np.zeros(size)
+    step = np.zeros(size)
+    jac = np.zeros((size, size))
+    fb = np.zeros((n, 2))
+    jb = np.zeros((n, 4))
+    fb_t = np.zeros((n, 2))
+    jb_t = np.zeros((n, 4))
+    f_ext = np.zeros((n, 2))
+    consts = np.zeros((2, n))
+    template = np.zeros((size, size))  # the beam's part of the Newton matrix
+    for c in range(2):
         for p in range(n):
-            if lw[1, p] > 0.0:
-                consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
-                consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
-        for a in range(n_a):
-            off = offsets[b, a]
-            scale = 0.0
-            for p in range(n):
-                for c in range(2):
-                    acc = 0.0
-                    for i in range(m):
-                        acc += transfer[c, p, i] * loads[b, a, i, c]
-                    f_ext[p, c] = acc
-            for i in range(m):
-                scale += abs(loads[b, a, i, 0]) + abs(loads[b, a, i, 1])
+            for q in range(n):
+                template[2 * p + c, 2 * q + c] = kb[c, p, q]
+    lw = law[b]
+    for p in range(n):
+        if lw[1, p] > 0.0:
+            consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
+            consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
+    for a in range(n_a):
+        off = offsets[b, a]
+        scale = 0.0
+        for p in range(n):
+            for c in range(2):
+                acc = 0.0
+                for i in range(m):
+                    acc += transfer[c, p, i] * loads[b, a, i, c]
+                f_ext[p, c] = acc
+        for i in range(m):
+            scale += abs(loads[b, a, i, 0]) + abs(loads[b, a, i, 1])
 
-            k_ref = 0.0
+        k_ref = 0.0
+        for p in range(n):
+            k_ref = max(k_ref, lw[2, p])
+        # residual floor: the loads' scale, or the force of a nanometre on the stiffest bearing
+        tol = rtol * max(scale, k_ref * 1e-9)
+        if a == 0:
+            # start: journals pushed from the offsets along the rigid-support reactions
             for p in range(n):
-                k_ref = max(k_ref, lw[2, p])
-            # residual floor: the loads' scale, or the force of a nanometre on the stiffest bearing
-            tol = rtol * max(scale, k_ref * 1e-9)
-            if a == 0:
-                # start: journals pushed from the offsets along the rigid-support reactions
-                for p in range(n):
-                    rx = f_ext[p, 0]
-                    ry = f_ext[p, 1]
-                    for q in range(n):
-                        rx -= kb[0, p, q] * off[q, 0]
-                        ry -= kb[1, p, q] * off[q, 1]
-                    mag = math.hypot(rx, ry)
-                    push = 0.0 if mag == 0.0 else (lw[0, p] + mag / lw[2, p]) / mag
-                    x[2 * p] = off[p, 0] + push * rx
-                    x[2 * p + 1] = off[p, 1] + push * ry
-            elif a == 1:
-                for k in range(size):
-                    x[k] = x_prev[k]
-            elif a == 2:
-                for k in range(size):
-                    x[k] = 2.0 * x_prev[k] - x_prev2[k]
-            else:  # quadratic extrapolation along the sequence
-                for k in range(size):
-                    x[k] = 3.0 * (x_prev[k] - x_prev2[k]) + x_prev3[k]
-            mu = 0.0
-            code = MAX_ITERATIONS
-            it = 0
-            _residual(x, kb, f_ext, off, lw, consts, r, fb, jb)
-            res = _norm(r)
-            while it < max_iterations:
-                if not math.isfinite(res):
-                    code = NOT_FINITE
-                    break
-                if res <= tol:
-                    code = CONVERGED
-                    break
-                it += 1
-                jac[:, :] = template
-                for p in range(n):
-                    jac[2 * p, 2 * p] += jb[p, 0]
-                    jac[2 * p, 2 * p + 1] += jb[p, 1]
-                    jac[2 * p + 1, 2 * p] += jb[p, 2]
-                    jac[2 * p + 1, 2 * p + 1] += jb[p, 3]
-                for i in range(size):
-                    jac[i, i] += mu
-                    step[i] = -r[i]
-                if not _solve_dense(jac, step):
-                    # singular: the rest state of the law; stiffen the Newton matrix only
-                    mu = max(10.0 * mu, 1e-9 * k_ref)
-                    continue
-                t = 1.0
-                accepted = False
-                while t > 1e-10:
-                    for k in range(size):
-                        trial[k] = x[k] + t * step[k]
-                    _residual(trial, kb, f_ext, off, lw, consts, r_trial, fb_t, jb_t)
-                    res_t = _norm(r_trial)
-                    if res_t < (1.0 - 1e-4 * t) * res:
-                        accepted = True
-                        break
-                    t *= 0.5
-                if accepted:
-                    for k in range(size):
-                        x[k] = trial[k]
-                        r[k] = r_trial[k]
-                    for p in range(n):
-                        fb[p, 0], fb[p, 1] = fb_t[p, 0], fb_t[p, 1]
-                        for k in range(4):
-                            jb[p, k] = jb_t[p, k]
-                    res = res_t
-                    mu = 0.0 if t == 1.0 else mu
-                else:
-                    mu = max(10.0 * mu, 1e-9 * k_ref)
+                rx = f_ext[p, 0]
+                ry = f_ext[p, 1]
+                for q in range(n):
+                    rx -= kb[0, p, q] * off[q, 0]
+                    ry -= kb[1, p, q] * off[q, 1]
+                mag = math.hypot(rx, ry)
+                push = 0.0 if mag == 0.0 else (lw[0, p] + mag / lw[2, p]) / mag
+                x[2 * p] = off[p, 0] + push * rx
+                x[2 * p + 1] = off[p, 1] + push * ry
+        elif a == 1:
             for k in range(size):
-                x_prev3[k] = x_prev2[k]
-                x_prev2[k] = x_prev[k]
-                x_prev[k] = x[k]
+                x[k] = x_prev[k]
+        elif a == 2:
+            for k in range(size):
+                x[k] = 2.0 * x_prev[k] - x_prev2[k]
+        else:  # quadratic extrapolation along the sequence
+            for k in range(size):
+                x[k] = 3.0 * (x_prev[k] - x_prev2[k]) + x_prev3[k]
+        mu = 0.0
+        code = MAX_ITERATIONS
+        it = 0
+        _residual(x, kb, f_ext, off, lw, consts, r, fb, jb)
+        res = _norm(r)
+        while it < max_iterations:
+            if not math.isfinite(res):
+                code = NOT_FINITE
+                break
+            if res <= tol:
+                code = CONVERGED
+                break
+            it += 1
+            jac[:, :] = template
             for p in range(n):
-                reactions[b, a, p, 0] = fb[p, 0]
-                reactions[b, a, p, 1] = fb[p, 1]
-                deflections[b, a, p, 0] = x[2 * p]
-                deflections[b, a, p, 1] = x[2 * p + 1]
-            status[b, a] = code
-            iterations[b, a] = it
-    return reactions, deflections, status, iterations
+                jac[2 * p, 2 * p] += jb[p, 0]
+                jac[2 * p, 2 * p + 1] += jb[p, 1]
+                jac[2 * p + 1, 2 * p] += jb[p, 2]
+                jac[2 * p + 1, 2 * p + 1] += jb[p, 3]
+            for i in range(size):
+                jac[i, i] += mu
+                step[i] = -r[i]
+            if not _solve_dense(jac, step):
+                # singular: the rest state of the law; stiffen the Newton matrix only
+                mu = max(10.0 * mu, 1e-9 * k_ref)
+                continue
+            t = 1.0
+            accepted = False
+            while t > 1e-10:
+                for k in range(size):
+                    trial[k] = x[k] + t * step[k]
+                _residual(trial, kb, f_ext, off, lw, consts, r_trial, fb_t, jb_t)
+                res_t = _norm(r_trial)
+                if res_t < (1.0 - 1e-4 * t) * res:
+                    accepted = True
+                    break
+                t *= 0.5
+            if accepted:
+                for k in range(size):
+                    x[k] = trial[k]
+                    r[k] = r_trial[k]
+                for p in range(n):
+                    fb[p, 0], fb[p, 1] = fb_t[p, 0], fb_t[p, 1]
+                    for k in range(4):
+                        jb[p, k] = jb_t[p, k]
+                res = res_t
+                mu = 0.0 if t == 1.0 else mu
+            else:
+                mu = max(10.0 * mu, 1e-9 * k_ref)
+        for k in range(size):
+            x_prev3[k] = x_prev2[k]
+            x_prev2[k] = x_prev[k]
+            x_prev[k] = x[k]
+        for p in range(n):
+            reactions[b, a, p, 0] = fb[p, 0]
+            reactions[b, a, p, 1] = fb[p, 1]
+            deflections[b, a, p, 0] = x[2 * p]
+            deflections[b, a, p, 1] = x[2 * p + 1]
+        status[b, a] = code
+        iterations[b, a] = it
+
+
+@njit(cache=True)
+def _outputs(loads, n):
+    n_b, n_a = loads.shape[0], loads.shape[1]
+    return (np.zeros((n_b, n_a, n, 2)), np.zeros((n_b, n_a, n, 2)), np.zeros((n_b, n_a), np.int8),
+            np.zeros((n_b, n_a), np.int32))
+
+
+@njit(cache=True, parallel=True)
+def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
+    """Bearing forces and support deflections over sequences of load cases, sequences in parallel.
+
+    kb (2, n, n), transfer (2, n, m); loads (B, A, m, 2); offsets (B, A, n, 2);
+    law (B, 6, n), constant along each sequence. Each of the B sequences is
+    solved along A in order, each step warm-started from the previous ones.
+    Returns reactions (B, A, n, 2), deflections (B, A, n, 2), status (B, A), iterations (B, A).
+    """
+    out = _outputs(loads, kb.shape[1])
+    for b in prange(loads.shape[0]):
+        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, *out)
+    return out
+
+
+@njit(cache=True)
+def solve_serial(kb, transfer, loads, offsets, law, rtol, max_iterations):
+    """:func:`solve` on the calling thread (no thread-pool dispatch: for one or few sequences)."""
+    out = _outputs(loads, kb.shape[1])
+    for b in range(loads.shape[0]):
+        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, *out)
+    return out

@@ -29,42 +29,42 @@ ELEMENTS = 24
 _GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(3)
 
 
-def _ring(r_in, r_out, modulus, poisson, eigenstrain, elements):
-    """Stiffness (per radian, per unit length) and eigenstrain load of a ring; nodes r_in..r_out."""
-    nodes = np.linspace(r_in, r_out, 2 * elements + 1)
-    n = nodes.size
-    k = np.zeros((n, n))
-    f = np.zeros(n)
-    d = modulus / (1.0 - poisson**2) * np.array([[1.0, poisson], [poisson, 1.0]])
+def _quadrature(nodes, elements):
+    """Gauss points of the quadratic elements: (element dofs, N, dN/dr, r, weight r dr)."""
     for e in range(elements):
         idx = np.arange(2 * e, 2 * e + 3)
-        r1, r3 = nodes[idx[0]], nodes[idx[2]]
-        half = 0.5 * (r3 - r1)
+        half = 0.5 * (nodes[idx[2]] - nodes[idx[0]])
         for xi, w in zip(_GAUSS_X, _GAUSS_W):
             shape = np.array([0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)])
             dshape = np.array([xi - 0.5, -2.0 * xi, xi + 0.5]) / half
             r = shape @ nodes[idx]
-            b = np.vstack([dshape, shape / r])
-            weight = w * half * r
-            k[np.ix_(idx, idx)] += weight * b.T @ d @ b
-            f[idx] += weight * b.T @ d @ np.array([eigenstrain, eigenstrain])
+            yield idx, shape, dshape, r, w * half * r
+
+
+def _plane_stress(modulus, poisson):
+    return modulus / (1.0 - poisson**2) * np.array([[1.0, poisson], [poisson, 1.0]])
+
+
+def _ring(r_in, r_out, modulus, poisson, eigenstrain, elements):
+    """Stiffness (per radian, per unit length) and eigenstrain load of a ring; nodes r_in..r_out."""
+    nodes = np.linspace(r_in, r_out, 2 * elements + 1)
+    k = np.zeros((nodes.size, nodes.size))
+    f = np.zeros(nodes.size)
+    d = _plane_stress(modulus, poisson)
+    for idx, shape, dshape, r, weight in _quadrature(nodes, elements):
+        b = np.vstack([dshape, shape / r])
+        k[np.ix_(idx, idx)] += weight * b.T @ d @ b
+        f[idx] += weight * b.T @ d @ np.array([eigenstrain, eigenstrain])
     return nodes, k, f
 
 
 def _stresses(nodes, u, modulus, poisson, eigenstrain, elements):
     """Integral of hoop stress over the wall [N/m per unit length] from the nodal displacements."""
-    d = modulus / (1.0 - poisson**2) * np.array([[1.0, poisson], [poisson, 1.0]])
+    d = _plane_stress(modulus, poisson)
     total = 0.0
-    for e in range(elements):
-        idx = np.arange(2 * e, 2 * e + 3)
-        r1, r3 = nodes[idx[0]], nodes[idx[2]]
-        half = 0.5 * (r3 - r1)
-        for xi, w in zip(_GAUSS_X, _GAUSS_W):
-            shape = np.array([0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)])
-            dshape = np.array([xi - 0.5, -2.0 * xi, xi + 0.5]) / half
-            r = shape @ nodes[idx]
-            strain = np.array([dshape @ u[idx], shape @ u[idx] / r]) - eigenstrain
-            total += w * half * (d @ strain)[1]
+    for idx, shape, dshape, r, weight in _quadrature(nodes, elements):
+        strain = np.array([dshape @ u[idx], shape @ u[idx] / r]) - eigenstrain
+        total += weight / r * (d @ strain)[1]
     return total
 
 
