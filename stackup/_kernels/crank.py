@@ -9,6 +9,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from ..crank.law import REST
+
 CONVERGED, MAX_ITERATIONS, NOT_FINITE = 0, 1, 2
 #: Floating-point licences that keep NaN/inf checks meaningful (no 'nnan', 'ninf').
 FAST = {"contract", "arcp", "reassoc", "nsz"}
@@ -34,8 +36,10 @@ def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
     ``e = exp(-J/dx)`` and ``sp0 = softplus(-J/dx)`` are the bearing's constants.
     Returns (f0, f1, j00, j01, j10, j11).
     """
-    mag = math.hypot(u0, u1)
-    if mag < 1e-300:
+    # displacements are micrometres: the squares cannot overflow; below REST (1e-150 m,
+    # where they would start to underflow) the journal is at rest: no force, no stiffness
+    mag = math.sqrt(u0 * u0 + u1 * u1)
+    if mag < REST:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     c = u0 / mag
     s_abs = abs(u1) / mag
@@ -46,8 +50,11 @@ def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
         dg = 1.0 if mag > clearance else 0.0
     else:
         z = (mag - clearance) / dx
-        g = dx * (1.0 + e) * (_softplus(z) - sp0) - mag * e
-        dg = 1.0 - (1.0 + e) * _expit(-z)
+        ez = math.exp(-abs(z))  # shared by softplus(z) and expit(-z)
+        softplus = max(z, 0.0) + math.log1p(ez)
+        expit_minus = ez / (1.0 + ez) if z >= 0.0 else 1.0 / (1.0 + ez)
+        g = dx * (1.0 + e) * (softplus - sp0) - mag * e
+        dg = 1.0 - (1.0 + e) * expit_minus
     sg = _expit((theta - theta0) / dtheta)
     kd = k_lv + (k_hv - k_lv) * sg
     dkd = (k_hv - k_lv) * sg * (1.0 - sg) / dtheta

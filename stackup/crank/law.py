@@ -38,6 +38,9 @@ from scipy import special
 
 from .. import _validate as check
 
+#: Displacement below which a journal is at rest: no force, no stiffness [m].
+REST = 1e-150
+
 
 @dataclass(frozen=True)
 class BellakhdharLaw:
@@ -100,7 +103,7 @@ def force(u_vec, law_arrays):
     clearance, dx, k_lv, k_hv, theta0, dtheta = law_arrays
     u0, u1 = u_vec[..., 0], u_vec[..., 1]
     mag = np.hypot(u0, u1)
-    tiny = mag < 1e-300
+    tiny = mag < REST
     safe = np.where(tiny, 1.0, mag)
     c = np.where(tiny, 1.0, u0 / safe)
     s_abs = np.where(tiny, 0.0, np.abs(u1) / safe)
