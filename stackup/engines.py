@@ -19,7 +19,7 @@ from pathlib import Path
 from . import _validate as check
 from . import materials
 from .crank import BellakhdharLaw
-from .loads import Combustion, Kinematics, firing_offsets, pin_loads
+from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
 from .tolerances import Dimension, gauge_from_spec, process_from_spec
 
@@ -63,11 +63,13 @@ class CrankSpec:
     journal_runout: float  # total run-out of the main journals [m]
     clearance_ratio: float  # law clearance J per radial operating clearance [-]
     law_parameters: dict  # dx, k_lv, k_hv, theta0, dtheta in SI
+    pressure_trace: tuple | None = None  # measured (cycle angles [deg], pressures [Pa]) replacing the model
 
     def pin_loads(self, crank_angle):
         """Crank-pin loads (angles, cylinders, 2) [N] at crank angles [deg]."""
         return pin_loads(crank_angle, kinematics=self.kinematics, combustion=self.combustion,
-                         throw_angles=self.throw_angles, firing_order=self.firing_order, speed=self.speed)
+                         throw_angles=self.throw_angles, firing_order=self.firing_order, speed=self.speed,
+                         pressure_trace=self.pressure_trace)
 
     def law(self, clearance):
         """Bearing law with J from each bearing's diametral operating clearance [m] (array per bearing)."""
@@ -206,11 +208,11 @@ def load_engine(name_or_path):
         journal_d=dimension("journal_d"),
         shell_wall=supply,
         press_fit=spec,
-        crank=_crank(data, where, scale, bearings) if "crank" in data else None,
+        crank=_crank(data, where, scale, bearings, path.parent) if "crank" in data else None,
     )
 
 
-def _crank(data, where, scale, bearings):
+def _crank(data, where, scale, bearings, folder):
     table = dict(data["crank"])
     key = f"{where}, key crank"
 
@@ -235,8 +237,10 @@ def _crank(data, where, scale, bearings):
         cylinder_bore=length("cylinder_bore"), stroke=stroke, conrod=length("conrod"),
         reciprocating_mass=float(check.positive(f"{key}.reciprocating_mass", pop("reciprocating_mass"), allow_zero=True)),
         rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
+    trace_file = table.pop("pressure_trace", None)
+    trace = read_pressure_trace(folder / trace_file) if trace_file else None
     combustion = Combustion(compression_ratio=float(pop("compression_ratio", 16.0)),
-                            peak_pressure=float(pop("peak_pressure")))
+                            peak_pressure=float(pop("peak_pressure", 13e6)))
     throws = tuple(float(a) for a in pop("throw_angles"))
     order = tuple(int(c) for c in pop("firing_order"))
     if len(throws) != cylinders or len(order) != cylinders:
@@ -253,7 +257,7 @@ def _crank(data, where, scale, bearings):
         bearing_width=length("bearing_width"),
         coaxiality=float(check.positive(f"{key}.coaxiality", pop("coaxiality", 0.0), allow_zero=True)) * scale,
         journal_runout=float(check.positive(f"{key}.journal_runout", pop("journal_runout", 0.0), allow_zero=True)) * scale,
-        clearance_ratio=1.0, law_parameters={},
+        clearance_ratio=1.0, law_parameters={}, pressure_trace=trace,
     )
     if table:
         raise ValueError(f"{key}: unknown key(s) {sorted(table)}")

@@ -185,6 +185,27 @@ def firing_offsets(throw_angles, firing_order):
     return np.mod(fire - fire[order[0]], 720.0)
 
 
+def read_pressure_trace(path):
+    """A measured cylinder pressure trace from CSV: columns ``crank_angle_deg`` and ``pressure_pa``.
+
+    Angles are cycle angles [deg] from firing TDC over 720 deg (one row per
+    angle, any spacing, in increasing order); pressures absolute [Pa].
+    Returns (angles, pressures) for :func:`pin_loads`.
+    """
+    import pandas as pd
+
+    frame = pd.read_csv(path)
+    missing = {"crank_angle_deg", "pressure_pa"} - set(frame.columns)
+    if missing:
+        raise ValueError(f"pressure trace {str(path)!r}: missing column(s) {sorted(missing)}; "
+                         "needs crank_angle_deg and pressure_pa")
+    angle = check.finite(f"pressure trace {str(path)!r} crank_angle_deg", frame["crank_angle_deg"].to_numpy(float))
+    pressure = check.positive(f"pressure trace {str(path)!r} pressure_pa", frame["pressure_pa"].to_numpy(float))
+    if angle.size < 2 or np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
+        raise ValueError(f"pressure trace {str(path)!r}: crank_angle_deg must increase and span less than 720 deg")
+    return angle, pressure
+
+
 def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order, speed, pressure_trace=None):
     """Crank-pin loads (angles, cylinders, 2) [N] over crank angles [deg] (0 = firing TDC of the first cylinder fired).
 

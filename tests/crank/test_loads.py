@@ -86,3 +86,26 @@ def test_bad_kinematics():
         Kinematics(0.076, 0.08, 0.03, 0.5, 0.5, 0.0)
     with pytest.raises(ValueError, match="peak_pressure: .* is below the motored peak"):
         cylinder_pressure(0.0, K, Combustion(peak_pressure=2e6))
+
+
+def test_engine_with_a_csv_pressure_trace(tmp_path):
+    from importlib import resources
+
+    from stackup.engines import load_engine
+
+    angle = np.arange(0.0, 720.0, 2.0)
+    pressure = 1e5 + 9e6 * np.exp(-(((angle + 360) % 720 - 360 - 12) / 20) ** 2)
+    (tmp_path / "trace.csv").write_text("crank_angle_deg,pressure_pa\n" + "\n".join(f"{a},{p}" for a, p in zip(angle, pressure)))
+    text = (resources.files("stackup") / "data" / "engines" / "iso-example.toml").read_text()
+    engine_file = tmp_path / "traced.toml"
+    engine_file.write_text(text.replace("peak_pressure = 13.0e6            # [Pa]", 'pressure_trace = "trace.csv"'))
+    crank = load_engine(engine_file).crank
+    loads = crank.pin_loads(np.arange(720.0))
+    modelled = load_engine("iso-example").crank.pin_loads(np.arange(720.0))
+    assert crank.pressure_trace is not None
+    # the trace peaks at 9.1 MPa, the model at 13 MPa: gas loads scale accordingly
+    assert 0.6 < loads[:, 0, 0].max() / modelled[:, 0, 0].max() < 0.8
+    (tmp_path / "bad.csv").write_text("angle,p\n0,1\n")
+    engine_file.write_text(text.replace("peak_pressure = 13.0e6            # [Pa]", 'pressure_trace = "bad.csv"'))
+    with pytest.raises(ValueError, match="missing column"):
+        load_engine(engine_file)
