@@ -17,7 +17,8 @@ def psor(h, rhs, dtheta, dz, pressure, omega, tolerance, max_sweeps):
     """Solve d/dth(h^3 dp/dth) + d/dz(h^3 dp/dz) = rhs with p >= 0 (projected SOR), in place.
 
     h (n_theta,) film at the nodes; rhs (n_theta,) source per node (same for every z);
-    pressure (n_theta, n_z) with n_z including the two boundary rows (kept 0).
+    pressure (n_theta, n_z) with n_z including the two boundary rows (kept 0), and
+    the column theta = 0 (the oil inlet at the thickest film) kept 0.
     Returns the number of sweeps; -1 if not converged.
     """
     n_t, n_z = pressure.shape
@@ -29,7 +30,7 @@ def psor(h, rhs, dtheta, dz, pressure, omega, tolerance, max_sweeps):
     for sweep in range(max_sweeps):
         change = 0.0
         peak = 0.0
-        for i in range(n_t):
+        for i in range(1, n_t):
             im = (i - 1) % n_t
             ip = (i + 1) % n_t
             a_e = east[i]

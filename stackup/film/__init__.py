@@ -72,11 +72,11 @@ def _finite(load, *, radius, length, radial_clearance, viscosity, speed):
 
     def load_function(eps):
         pts = np.stack(np.broadcast_arrays(log_ld, eps), axis=-1)
-        return tiers.short_load_function(eps) * np.exp(ratio(pts))
+        return tiers.short_load_function(eps) * np.exp(ratio(pts).reshape(np.shape(eps)))
 
     scale = viscosity * speed * radius * length**3 / (4 * radial_clearance**2)
     eps = tiers.invert_monotone(load_function, load / scale)
-    phi = attitude(np.stack(np.broadcast_arrays(log_ld, eps), axis=-1))
+    phi = attitude(np.stack(np.broadcast_arrays(log_ld, eps), axis=-1)).reshape(np.shape(eps))
     return eps, phi
 
 

@@ -8,7 +8,8 @@ Dimensionless on the unwrapped film, :math:`\theta` from the thickest film,
           + \frac{\partial}{\partial\bar z}\left(\bar h^3\frac{\partial\bar p}{\partial\bar z}\right)
           = 6\frac{\partial\bar h}{\partial\theta}, \qquad \bar p \ge 0
 
-with ambient pressure at both ends and periodic in :math:`\theta`. The
+with ambient pressure at both ends and at the oil inlet, the thickest film
+(:math:`\theta = 0`), as Raimondi and Boyd set it; periodic in :math:`\theta`. The
 Swift-Stieber (Reynolds) condition is the complementarity :math:`\bar p \ge 0`,
 enforced by projected successive over-relaxation (Christopherson's method).
 Conservative finite differences (film cubed at mid-nodes), nodes on both ends.

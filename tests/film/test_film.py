@@ -1,0 +1,172 @@
+"""Film tiers: Raimondi & Boyd, closed forms, limits, mass conservation, hard cases, oils."""
+
+import numpy as np
+import pytest
+
+from stackup.film import min_film_thickness, oil, reynolds, tiers
+
+# Raimondi & Boyd (1958), full journal bearing with Swift-Stieber film ends, as tabulated in
+# Shigley's Mechanical Engineering Design: Sommerfeld number S at eccentricity eps.
+RAIMONDI_BOYD = {
+    1.0: {0.1: 1.33, 0.2: 0.631, 0.4: 0.264, 0.6: 0.121, 0.8: 0.0446, 0.9: 0.0188},
+    0.5: {0.1: 4.31, 0.2: 2.03, 0.4: 0.779, 0.6: 0.319, 0.8: 0.0923, 0.9: 0.0313},
+    0.25: {0.1: 16.2, 0.2: 7.57, 0.4: 2.83, 0.6: 1.07, 0.8: 0.261, 0.9: 0.0736},
+}
+
+
+def sommerfeld(field, ld):
+    # S = mu N L D / W (R/c)^2 with W = mu w R^4 F / c^2 and N = w / 2 pi
+    return (2 * ld) * 2 / (2 * np.pi * field.force)
+
+
+@pytest.mark.parametrize("ld", [1.0, 0.5, 0.25])
+def test_reynolds_tier_reproduces_raimondi_and_boyd_within_3_percent(ld):
+    for eps, s in RAIMONDI_BOYD[ld].items():
+        field = reynolds.solve_field(eps, 2 * ld)
+        assert sommerfeld(field, ld) == pytest.approx(s, rel=0.03), (ld, eps)
+
+
+def test_reynolds_grid_convergence():
+    for eps in (0.3, 0.8, 0.95):
+        coarse = reynolds.solve_field(eps, 1.0)
+        fine = reynolds.solve_field(eps, 1.0, n_theta=2 * reynolds.N_THETA, n_z=2 * reynolds.N_Z - 1)
+        assert coarse.force == pytest.approx(fine.force, rel=0.01), eps
+
+
+def test_short_tier_equals_ocvirk_closed_form():
+    f = min_film_thickness(2e4, diameter=0.05, length=0.02, clearance=60e-6, viscosity=0.01, speed=400.0)
+    eps = float(f.eccentricity)
+    load = 0.01 * 400.0 * 0.025 * 0.02**3 / (4 * 30e-6**2) * eps * np.sqrt(np.pi**2 * (1 - eps**2) + 16 * eps**2) / (1 - eps**2) ** 2
+    assert load == pytest.approx(2e4, rel=1e-10)
+    assert np.tan(float(f.attitude_angle)) == pytest.approx(np.pi * np.sqrt(1 - eps**2) / (4 * eps), rel=1e-10)
+    assert float(f.h_min) == pytest.approx(30e-6 * (1 - eps))
+
+
+def test_reynolds_approaches_the_short_bearing_for_small_l_over_d():
+    eps = 0.5
+    field = reynolds.solve_field(eps, 2 * 0.1)
+    short_force = (2 * 0.1) ** 3 / 4 * tiers.short_load_function(eps)
+    assert field.force == pytest.approx(short_force, rel=0.05)
+
+
+def long_bearing(eps, n=720):
+    """Independent 1-D reference: infinitely long bearing, p = 0 at the inlet (thickest film), p >= 0 (numpy PSOR)."""
+    theta = 2 * np.pi * np.arange(n) / n
+    d = theta[1]
+    h_half = 1 + eps * np.cos(theta + d / 2)
+    rhs = 6 * (h_half - np.roll(h_half, 1)) / d
+    a_e = h_half**3 / d**2
+    a_w = np.roll(a_e, 1)
+    p = np.zeros(n)
+    for _ in range(100_000):
+        old = p.copy()
+        for i in range(1, n):
+            gauss_seidel = (a_e[i] * p[(i + 1) % n] + a_w[i] * p[i - 1] - rhs[i]) / (a_e[i] + a_w[i])
+            p[i] = max(0.0, -0.9 * p[i] + 1.9 * gauss_seidel)
+        if np.abs(p - old).max() < 1e-10 * p.max():
+            break
+    f_r, f_t = -np.sum(p * np.cos(theta)) * d, np.sum(p * np.sin(theta)) * d
+    return np.hypot(f_r, f_t), np.arctan2(f_t, f_r)
+
+
+@pytest.mark.slow
+def test_reynolds_approaches_the_long_bearing_for_large_l_over_d():
+    force, attitude = long_bearing(0.5)
+    # axial grid fine enough for the end zones (about one radius wide) of a long bearing
+    per_length = [reynolds.solve_field(0.5, 2 * ld, n_z=97).force / (2 * ld) for ld in (8.0, 16.0, 32.0)]
+    assert per_length[0] < per_length[1] < per_length[2] < force
+    assert per_length[2] == pytest.approx(force, rel=0.04)
+    assert np.degrees(reynolds.solve_field(0.5, 64.0, n_z=97).attitude) == pytest.approx(np.degrees(attitude), abs=1.0)
+
+
+def test_side_flow_conserves_mass():
+    # side leakage = net circumferential inflow into the pressurised zone
+    field = reynolds.solve_field(0.6, 1.0)
+    _, side = reynolds.friction_and_flow(field)
+    dtheta, dz = field.theta[1], field.z[1]
+    p = field.pressure
+    dp = (np.roll(p, -1, axis=0) - p) / dtheta
+    h_half = 1 + 0.6 * np.cos(field.theta + dtheta / 2)
+    weights = np.ones(field.z.size)
+    weights[[0, -1]] = 0.5
+    # circumferential flow through each cell face (dimensionless, x12): 6 h - h^3 dp/dtheta, integrated over z
+    q = np.sum((6 * h_half[:, None] - h_half[:, None] ** 3 * dp) * weights, axis=1) * dz
+    pressurised = p[:, field.z.size // 2] > 0
+    start = np.argmax(pressurised & ~np.roll(pressurised, 1))
+    end = np.argmax(pressurised & ~np.roll(pressurised, -1))
+    inflow, outflow = q[start - 1], q[end]
+    assert side == pytest.approx(inflow - outflow, rel=0.03)
+
+
+@pytest.mark.parametrize("method", ["short", "finite", "reynolds"])
+def test_hard_cases(method):
+    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
+    near_zero = min_film_thickness(1e-3, **kw)
+    assert float(near_zero.eccentricity) < 1e-3
+    heavy = min_film_thickness(2e5 if method != "reynolds" else 6e4, **kw)
+    assert 0.9 < float(heavy.eccentricity) < 1 and float(heavy.h_min) > 0
+
+
+def test_eccentricity_0_99_and_monotone_load():
+    eps = np.array([0.5, 0.9, 0.97, 0.99])
+    forces = [reynolds.solve_field(e, 1.0).force for e in eps[:3]]
+    assert np.all(np.diff(forces) > 0)
+    assert np.all(np.diff(tiers.short_load_function(eps)) > 0)
+    assert np.isfinite(tiers.short_load_function(np.array([0.99, 0.999999])).all())
+
+
+def test_tiers_agree_where_they_should():
+    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0)
+    load = np.array([2e3, 1e4, 3e4])
+    ref = min_film_thickness(load, **kw, method="reynolds")
+    fin = min_film_thickness(load, **kw, method="finite")
+    np.testing.assert_allclose(fin.h_min, ref.h_min, rtol=0.02)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(load=-1.0), "load: -1.0 is not valid; must be > 0"),
+    (dict(speed=0.0), "speed: 0.0 is not valid; must be > 0"),
+    (dict(clearance=np.nan), "clearance: nan is not a finite number"),
+    (dict(method="reynold"), "method: 'reynold' is not one of 'short', 'finite', 'reynolds'"),
+    (dict(length=0.2), "L/D .* is outside the finite tier's table"),
+])
+def test_bad_input(kw, message):
+    args = dict(load=1e4, diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method="finite")
+    args.update(kw)
+    with pytest.raises(ValueError, match=message):
+        min_film_thickness(args.pop("load"), **args)
+
+
+def test_vogel_fit_passes_through_its_points():
+    o = oil.get("SAE-10W-40")
+    rho40, rho100 = (o.density(t) for t in (40.0, 100.0))
+    assert float(o.viscosity(40.0)) == pytest.approx(95e-6 * rho40, rel=1e-9)
+    assert float(o.viscosity(100.0)) == pytest.approx(14.5e-6 * rho100, rel=1e-9)
+    assert float(o.viscosity(150.0)) == pytest.approx(3.7e-3, rel=1e-9)
+    assert float(o.viscosity(60.0, pressure=0.0)) > float(o.viscosity(80.0))
+
+
+def test_pressure_term_raises_viscosity():
+    from dataclasses import replace
+
+    o = replace(oil.get("SAE-5W-30"), pressure_coefficient=2e-8)
+    assert float(o.viscosity(100.0, pressure=50e6)) == pytest.approx(float(o.viscosity(100.0)) * np.exp(1.0))
+
+
+def test_heat_balance_converges_and_heats_the_film():
+    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, speed=419.0)
+
+    def film(mu):
+        f = min_film_thickness(2e4, viscosity=mu, **kw)
+        return f.friction_torque * 419.0, f.side_flow
+
+    t, mu = oil.effective_temperature("SAE-5W-30", 90.0, film)
+    assert 90.0 < float(t) < 200.0
+    power, flow = film(mu)
+    rise = 0.5 * power / (oil.get("SAE-5W-30").density(t) * oil.SPECIFIC_HEAT * flow)
+    assert float(t) == pytest.approx(90.0 + float(rise), abs=2e-3)
+
+
+def test_unknown_oil():
+    with pytest.raises(ValueError, match="oil: 'SAE-99' is not a known oil"):
+        oil.get("SAE-99")
