@@ -19,6 +19,7 @@ from pathlib import Path
 from . import _validate as check
 from . import materials
 from .crank import BellakhdharLaw
+from .film import oil as film_oil
 from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
 from .tolerances import Dimension, gauge_from_spec, process_from_spec
@@ -64,6 +65,8 @@ class CrankSpec:
     clearance_ratio: float  # law clearance J per radial operating clearance [-]
     law_parameters: dict  # dx, k_lv, k_hv, theta0, dtheta in SI
     pressure_trace: tuple | None = None  # measured (cycle angles [deg], pressures [Pa]) replacing the model
+    oil: str = "SAE-5W-30"  # stackup.film.oil grade
+    oil_supply_temperature: float = 90.0  # [degC]
 
     def pin_loads(self, crank_angle):
         """Crank-pin loads (angles, cylinders, 2) [N] at crank angles [deg]."""
@@ -274,4 +277,11 @@ def _crank(data, where, scale, bearings, folder):
     ratio = float(check.positive(f"{lkey}.clearance_ratio", law.pop("clearance_ratio", 37.0 / 30.0)))
     if law:
         raise ValueError(f"{lkey}: unknown key(s) {sorted(law)}")
-    return replace(spec, clearance_ratio=ratio, law_parameters=params)
+    oil_table = dict(data.get("oil", {}))
+    okey = f"{where}, key oil"
+    grade = film_oil.get(oil_table.pop("grade", "SAE-5W-30")).name
+    supply = float(check.in_range(f"{okey}.supply_temperature", oil_table.pop("supply_temperature", 90.0), -30.0, 200.0,
+                                  unit=" degC"))
+    if oil_table:
+        raise ValueError(f"{okey}: unknown key(s) {sorted(oil_table)}")
+    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply)

@@ -132,6 +132,56 @@ def crank_summary(ds):
     return pd.DataFrame(rows).set_index(["scheme", "bearing"])
 
 
+#: Life target of the report [h] (Levanov et al. set 10 000 h for their diesel bearing; this is a design choice).
+LIFE_TARGET_HOURS = 1000.0
+
+
+def film_summary(ds, *, life_target_hours=LIFE_TARGET_HOURS):
+    """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals."""
+    from .life import ALPHA_SCUFFING
+
+    rows = []
+    for i, name in enumerate(ds.scheme.values):
+        done = ds.crank_status.values[i] == 0
+        h = ds.h_min.values[i, done].ravel() * UM
+        a = ds.alpha.values[i, done].ravel()
+        life = ds.life.values[i, done].ravel() / 3600
+        engine_life = ds.life.values[i, done].min(axis=1) / 3600 if done.any() else np.array([])
+        if h.size == 0:
+            continue
+        scuff = proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size)
+        short = proportion_ci(np.count_nonzero(engine_life < life_target_hours), engine_life.size)
+        rows.append({
+            "scheme": str(name), "engines": int(done.sum()),
+            "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
+            "alpha_mean": a.mean(), "alpha_over_20_pct": tuple(100 * v for v in scuff),
+            "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5),
+            "engines_below_target_pct": tuple(100 * v for v in short),
+        })
+    return pd.DataFrame(rows).set_index("scheme") if rows else pd.DataFrame()
+
+
+def film_histogram(ds, path):
+    """Histograms of the cycle-minimum film and of the life per scheme; saved as PNG."""
+    fig, (ax_h, ax_l) = plt.subplots(1, 2, figsize=(11, 3.6))
+    for i, name in enumerate(ds.scheme.values):
+        done = ds.crank_status.values[i] == 0
+        h = ds.h_min.values[i, done].ravel() * UM
+        life = ds.life.values[i, done].ravel() / 3600
+        if h.size:
+            ax_h.hist(h, bins=40, histtype="step", label=str(name))
+            ax_l.hist(np.log10(life), bins=40, histtype="step", label=str(name))
+    ax_h.set_xlabel("cycle-minimum film thickness h_min [µm]")
+    ax_l.set_xlabel("log10 bearing life (Levanov method 1) [log10 h]")
+    for ax in (ax_h, ax_l):
+        ax.set_ylabel("bearings")
+    ax_h.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
 def _fmt_ci(value, ci, digits=1):
     return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
 
@@ -257,6 +307,37 @@ def write_report(ds, out_dir, *, dataset_file=None):
             _markdown_table(crank_table.reset_index()),
             "",
         ]
+    film = film_summary(ds)
+    film_lines = []
+    if len(film):
+        film_histogram(ds, out / "film_life.png")
+        study = json.loads(ds.attrs["study"])
+        film_table = pd.DataFrame({
+            "scheme": film.index, "engines": film.engines,
+            "h_min P5 [µm]": [f"{q[0]:.2f} [{q[1]:.2f}, {q[2]:.2f}]" for q in film.h_min_p05_um],
+            "h_min median [µm]": [f"{q[0]:.2f}" for q in film.h_min_median_um],
+            "α mean [%]": (100 * film.alpha_mean).map("{:.1f}".format),
+            "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
+            "life B10 [h]": [f"{q[0]:.3g} [{q[1]:.3g}, {q[2]:.3g}]" for q in film.life_b10_h],
+            "life median [h]": [f"{q[0]:.3g}" for q in film.life_median_h],
+            f"engines < {LIFE_TARGET_HOURS:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
+        })
+        film_lines = [
+            "## Oil film and bearing life",
+            "",
+            f"Minimum film thickness over the cycle from each bearing's load history (quasi-static orbit on the "
+            f"`{study.get('film_method', 'finite')}` tier; no squeeze film, so films are conservative), oil "
+            "viscosity at the effective temperature of an isothermal heat balance; α is the share of the cycle "
+            "with the film below h_lim,cr = 1.9 µm (above 20 % the risk of scuffing rises sharply); life by "
+            "Levanov et al. (2015) method 1 with the cycle-minimum film and the paper's constants (n = −2, "
+            "Δh_lim = 30 µm, γ = 1e-13 m/s), whose absolute values are calibrated to another engine: compare "
+            "schemes, not hours. An engine's life is that of its weakest bearing.",
+            "",
+            _markdown_table(film_table),
+            "",
+            "![Film thickness and life per scheme](film_life.png)",
+            "",
+        ]
     usage_table = usage.reset_index()[["scheme", "shell_grade", "shells_made", "shells_used", "shells_left", "used_share_pct"]]
     usage_table["used_share_pct"] = usage_table["used_share_pct"].map("{:.2f}".format)
     usage_table.columns = ["scheme", "grade", "made", "fitted", "left in stock", "share of fitted [%]"]
@@ -293,6 +374,7 @@ def write_report(ds, out_dir, *, dataset_file=None):
         _markdown_table(fit_table),
         "",
         *crank_lines,
+        *film_lines,
         "## Assembly, scrap and stock",
         "",
         "Bearings not assembled are kept in the dataset with their reason (`status`); none are dropped.",

@@ -15,6 +15,7 @@ from . import _validate as check
 from ._random import PILOT_KEY, lot_generator, seed_sequence
 from .assembly import ASSEMBLED, STATUS, assemble, shell_demand
 from .crank.cycle import CYCLE_STATUS, NOT_COMPUTED, engine_cycles, worst_status
+from .film.cycle import bearing_films
 from .fit import press_fit
 from .engines import load_engine
 from .parts import draw_lot
@@ -49,6 +50,9 @@ class Study:
         marked.
     crank_angle_step : float
         Step of the crank-angle grid over 720 deg [deg].
+    film_method : str
+        Steady film tier of the quasi-static orbit on the engines of the
+        crankshaft stage: "short", "finite" (default) or "reynolds".
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
     """
@@ -61,6 +65,7 @@ class Study:
     pilot_engines: int = 20_000
     mechanics_engines: int = 200
     crank_angle_step: float = 1.0
+    film_method: str = "finite"
     progress: bool | None = None
     _resolved: dict = field(default=None, init=False, repr=False, compare=False)
 
@@ -70,6 +75,7 @@ class Study:
         self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
         self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
         self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
+        check.one_of("film_method", self.film_method, ("short", "finite", "reynolds"))
         if (720.0 / self.crank_angle_step) % 1:
             raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
         self.schemes = tuple(str(s) for s in self.schemes)
@@ -123,7 +129,8 @@ class Study:
                     fit = _operating(engine, parts, result)
                     out.store_fit(i, slice(e0, e1), fit)
                     if e0 < mechanics:
-                        out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle))
+                        out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle,
+                                                       self.film_method))
                 bar.update(e1 - e0)
         return out.dataset(self, engine, schemes, grade_labels)
 
@@ -159,19 +166,28 @@ def _operating(engine, parts, assembly):
     return out
 
 
-def _cycles(engine, parts, assembly, fit, count, crank_angle):
-    """Maximum bearing reaction over the cycle of the first ``count`` engines of a chunk, and their status."""
+def _cycles(engine, parts, assembly, fit, count, crank_angle, film_method):
+    """Bearing loads, film and life over the cycle of the first ``count`` engines of a chunk."""
     count = min(count, assembly.status.shape[0])
     built = np.all(assembly.status[:count] == ASSEMBLED, axis=1)
-    reaction_max = np.full((count, engine.main_bearings), np.nan)
+    out = {k: np.full((count, engine.main_bearings), np.nan) for k in MECHANICS_FIELDS}
     status = np.full(count, NOT_COMPUTED, np.int8)
     if built.any():
+        clearance = fit["clearance_operating"][:count][built]
         r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[:count][built],
                           journal_eccentricity=parts.journal_eccentricity[:count][built],
-                          clearance=fit["clearance_operating"][:count][built], crank_angle=crank_angle)
-        reaction_max[built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
+                          clearance=clearance, crank_angle=crank_angle)
+        out["reaction_max"][built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
         status[built] = worst_status(r.status)
-    return reaction_max, status
+        films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance,
+                              journal_d=parts.journal_d[:count][built], steady_method=film_method)
+        for name in ("h_min", "h_min_mean", "alpha", "life", "temperature"):
+            out["film_temperature" if name == "temperature" else name][built] = getattr(films, name)
+    return out, status
+
+
+#: Per-bearing results of the mechanical chain stored in a dataset.
+MECHANICS_FIELDS = ("reaction_max", "h_min", "h_min_mean", "alpha", "life", "film_temperature")
 
 
 def _no_bar(progress):
@@ -205,7 +221,7 @@ class _Output:
         self.floats = {k: np.empty(shape) for k in ("shell_upper_wall", "shell_lower_wall", "shell_upper_crush",
                                                     "shell_lower_crush", "clearance_nominal", *FIT_FIELDS)}
         self.loss_of_fit = np.empty(shape, bool)
-        self.reaction_max = np.full(shape, np.nan)
+        self.mechanics = {k: np.full(shape, np.nan) for k in MECHANICS_FIELDS}
         self.crank_status = np.full((n_schemes, n), NOT_COMPUTED, np.int8)
         self.offsets = {k: np.empty((n, b, 2)) for k in ("bore_offset", "journal_eccentricity")}
         self.status = np.empty(shape, np.int8)
@@ -252,8 +268,9 @@ class _Output:
         self.loss_of_fit[i, engines] = fit["loss_of_fit"]
 
     def store_crank(self, i, first, crank):
-        reaction_max, status = crank
-        self.reaction_max[i, first:first + status.size] = reaction_max
+        values, status = crank
+        for name, v in values.items():
+            self.mechanics[name][i, first:first + status.size] = v
         self.crank_status[i, first:first + status.size] = status
 
     def dataset(self, study, engine, schemes, grade_labels):
@@ -295,8 +312,14 @@ class _Output:
                                "housing bore centre off the straight bearing line (coaxiality)"),
             "journal_eccentricity": var(("engine", "bearing", "axis"), self.offsets["journal_eccentricity"], "m",
                                         "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
-            "reaction_max": var(sed, self.reaction_max, "N",
-                                "maximum bearing load over the engine cycle (NaN where crank_status is not converged)"),
+            "reaction_max": var(sed, self.mechanics["reaction_max"], "N",
+                                "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
+            "h_min": var(sed, self.mechanics["h_min"], "m", "minimum oil film thickness over the engine cycle (quasi-static)"),
+            "h_min_mean": var(sed, self.mechanics["h_min_mean"], "m", "cycle mean of the minimum oil film thickness"),
+            "alpha": var(sed, self.mechanics["alpha"], "1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
+            "life": var(sed, self.mechanics["life"], "s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
+            "film_temperature": var(sed, self.mechanics["film_temperature"], "degC",
+                                    "effective oil film temperature (isothermal heat balance)"),
             "crank_status": var(("scheme", "engine"), self.crank_status, "1", "status of the crankshaft beam stage",
                                 flag_values=np.arange(len(CYCLE_STATUS), dtype=np.int8), flag_meanings=" ".join(CYCLE_STATUS)),
             "status": var(sed, self.status, "1", "assembly status of the bearing",
