@@ -15,6 +15,7 @@ from . import _validate as check
 from ._random import PILOT_KEY, lot_generator, seed_sequence
 from .assembly import ASSEMBLED, STATUS, assemble, shell_demand
 from .crank.cycle import CYCLE_STATUS, NOT_COMPUTED, engine_cycles, worst_status
+from .film import cheapest_tier
 from .film.cycle import bearing_films
 from .fit import press_fit
 from .engines import load_engine
@@ -52,7 +53,10 @@ class Study:
         Step of the crank-angle grid over 720 deg [deg].
     film_method : str
         Steady film tier of the quasi-static orbit on the engines of the
-        crankshaft stage: "short", "finite" (default) or "reynolds".
+        crankshaft stage: "short", "finite" (default), "reynolds", or "auto"
+        for the cheapest tier whose h_min error is within ``film_error``.
+    film_error : float
+        Largest h_min error against the Reynolds tier that "auto" accepts [-].
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
     """
@@ -66,6 +70,7 @@ class Study:
     mechanics_engines: int = 200
     crank_angle_step: float = 1.0
     film_method: str = "finite"
+    film_error: float = 0.05
     progress: bool | None = None
     _resolved: dict = field(default=None, init=False, repr=False, compare=False)
 
@@ -75,7 +80,8 @@ class Study:
         self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
         self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
         self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
-        check.one_of("film_method", self.film_method, ("short", "finite", "reynolds"))
+        check.one_of("film_method", self.film_method, ("short", "finite", "reynolds", "auto"))
+        self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
             raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
         self.schemes = tuple(str(s) for s in self.schemes)
@@ -112,6 +118,7 @@ class Study:
         grade_labels = _union_labels(schemes)
 
         mechanics = min(self.mechanics_engines, n) if engine.crank is not None else 0
+        film_method = cheapest_tier(self.film_error) if self.film_method == "auto" else self.film_method
         crank_angle = np.arange(0.0, 720.0, self.crank_angle_step)
         out = _Output(len(schemes), n, b, len(grade_labels))
         with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
@@ -130,9 +137,9 @@ class Study:
                     out.store_fit(i, slice(e0, e1), fit)
                     if e0 < mechanics:
                         out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle,
-                                                       self.film_method))
+                                                       film_method))
                 bar.update(e1 - e0)
-        return out.dataset(self, engine, schemes, grade_labels)
+        return out.dataset(self, engine, schemes, grade_labels, film_method)
 
 
 #: Press-fit results stored per bearing: dataset name -> PressFit field.
@@ -273,7 +280,7 @@ class _Output:
             self.mechanics[name][i, first:first + status.size] = v
         self.crank_status[i, first:first + status.size] = status
 
-    def dataset(self, study, engine, schemes, grade_labels):
+    def dataset(self, study, engine, schemes, grade_labels, film_method):
         n, b = self.block_scrapped.size, engine.main_bearings
         sed = ("scheme", "engine", "bearing")
         ed = ("engine", "bearing")
@@ -353,6 +360,7 @@ class _Output:
             "shell_surplus": engine.shell_wall.surplus,
             "shell_supply": engine.shell_wall.mode,
             "pilot_engines": study.pilot_engines,
+            "film_method_used": film_method,
             "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
             "press_fit": json.dumps(engine.press_fit.kwargs()),
             "crush_height_limits": [engine.shell_wall.crush.lo, engine.shell_wall.crush.hi],

@@ -133,4 +133,41 @@ def _reynolds(load, *, radius, length, radial_clearance, viscosity, speed):
     return Film(out["eps"], radial_clearance * (1 - out["eps"]), out["phi"], out["torque"], out["flow"])
 
 
-__all__ = ["METHODS", "Film", "min_film_thickness", "oil", "reynolds", "tiers"]
+#: Steady tiers from cheapest to dearest.
+BY_COST = ("short", "finite", "reynolds")
+#: Grid on which :func:`tier_errors` measures the cheaper tiers against the reference; it lies
+#: between the nodes of the finite tier's table, where its interpolation error is largest.
+ERROR_GRID = {"length_over_diameter": (0.33, 0.55, 0.85, 1.6), "eccentricity": (0.33, 0.55, 0.77, 0.87, 0.935)}
+
+
+@lru_cache(maxsize=1)
+def tier_errors():
+    """Largest relative h_min error of each steady tier against ``reynolds`` over :data:`ERROR_GRID`.
+
+    For each L/D and reference eccentricity, the load the Reynolds tier
+    carries there is handed to each tier (R = 1, c = 1e-3, mu = omega = 1).
+    """
+    errors = {"reynolds": 0.0}
+    cases = []
+    for ld in ERROR_GRID["length_over_diameter"]:
+        for eps in ERROR_GRID["eccentricity"]:
+            field = reynolds.solve_field(eps, 2 * ld)
+            cases.append((ld, field.force * 1e6, 1e-3 * (1 - eps)))  # load of unit viscosity and speed, h_min
+    for method in ("short", "finite"):
+        worst = 0.0
+        for ld, load, h_ref in cases:
+            f = min_film_thickness(load, diameter=2.0, length=2.0 * ld, clearance=2e-3, viscosity=1.0, speed=1.0,
+                                   method=method)
+            worst = max(worst, abs(float(f.h_min) / h_ref - 1))
+        errors[method] = worst
+    return errors
+
+
+def cheapest_tier(max_error):
+    """The cheapest steady tier whose h_min error against ``reynolds`` is at most ``max_error`` [-]."""
+    max_error = float(check.positive("max_error", max_error, allow_zero=True))
+    errors = tier_errors()
+    return next(m for m in BY_COST if errors[m] <= max_error)
+
+
+__all__ = ["BY_COST", "ERROR_GRID", "cheapest_tier", "tier_errors", "METHODS", "Film", "min_film_thickness", "oil", "reynolds", "tiers"]

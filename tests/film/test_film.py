@@ -170,3 +170,13 @@ def test_heat_balance_converges_and_heats_the_film():
 def test_unknown_oil():
     with pytest.raises(ValueError, match="oil: 'SAE-99' is not a known oil"):
         oil.get("SAE-99")
+
+
+def test_cheapest_tier_within_error():
+    from stackup.film import cheapest_tier, tier_errors
+
+    errors = tier_errors()
+    assert errors["finite"] < 0.02 < errors["short"]
+    assert cheapest_tier(0.05) == "finite"
+    assert cheapest_tier(errors["short"] + 1e-9) == "short"
+    assert cheapest_tier(0.0) == "reynolds"
