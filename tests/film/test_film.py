@@ -180,3 +180,12 @@ def test_cheapest_tier_within_error():
     assert cheapest_tier(0.05) == "finite"
     assert cheapest_tier(errors["short"] + 1e-9) == "short"
     assert cheapest_tier(0.0) == "reynolds"
+
+
+def test_reynolds_at_eccentricity_0_99():
+    field = reynolds.solve_field(0.99, 1.0)
+    assert np.isfinite(field.force) and field.force > reynolds.solve_field(0.97, 1.0).force
+    assert field.pressure.min() >= 0 and np.degrees(field.attitude) < 15
+    film = min_film_thickness(field.force * 1e6, diameter=2.0, length=1.0, clearance=2e-3, viscosity=1.0, speed=1.0,
+                              method="reynolds")
+    assert float(film.eccentricity) == pytest.approx(0.99, abs=1e-6)
