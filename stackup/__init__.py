@@ -1,3 +1,8 @@
 """stackup: Monte Carlo tolerance stack-up and selective assembly of engine main bearings."""
 
 __version__ = "0.1.0"
+
+from .rank import rank  # noqa: E402
+from .study import Study  # noqa: E402
+
+__all__ = ["Study", "rank", "__version__"]

@@ -107,6 +107,8 @@ class Engine:
     shell_wall: ShellSupply
     press_fit: PressFitSpec
     crank: CrankSpec | None = None
+    clearance_window: tuple = (0.0, np.inf)  # design window of the operating clearance [m]
+    life_target: float = 1000.0 * 3600.0  # [s]
 
 
 def _builtin_dir():
@@ -212,7 +214,22 @@ def load_engine(name_or_path):
         shell_wall=supply,
         press_fit=spec,
         crank=_crank(data, where, scale, bearings, path.parent) if "crank" in data else None,
+        **_targets(data, where, scale, units),
     )
+
+
+def _targets(data, where, scale, units):
+    table = dict(data.get("targets", {}))
+    key = f"{where}, key targets"
+    out = {}
+    if "operating_clearance" in table:
+        lo, hi = check.limits(f"{key}.operating_clearance", *table.pop("operating_clearance"), unit=units)
+        out["clearance_window"] = (lo * scale, hi * scale)
+    if "life_hours" in table:
+        out["life_target"] = float(check.positive(f"{key}.life_hours", table.pop("life_hours"))) * 3600.0
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    return out
 
 
 def _crank(data, where, scale, bearings, folder):

@@ -363,6 +363,8 @@ class _Output:
             "film_method_used": film_method,
             "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
             "press_fit": json.dumps(engine.press_fit.kwargs()),
+            "clearance_window": list(engine.clearance_window),
+            "life_target": engine.life_target,
             "crush_height_limits": [engine.shell_wall.crush.lo, engine.shell_wall.crush.hi],
             "Conventions": "CF-1.10",
         }

@@ -1,0 +1,80 @@
+"""Ranking and sensitivity."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import stackup
+from stackup.sensitivity import contributions
+
+
+@pytest.fixture(scope="module")
+def study():
+    return stackup.Study(n_engines=3000, mechanics_engines=30, crank_angle_step=4.0, seed=11, pilot_engines=4000,
+                         progress=False).run()
+
+
+def test_ranking_does_not_depend_on_scheme_order(study):
+    a = stackup.rank(study)["rank"]
+    b = stackup.rank(study.isel(scheme=[5, 2, 0, 4, 1, 3]))["rank"]
+    assert a.sort_index().equals(b.sort_index())
+
+
+def test_ranking_is_reproducible_with_a_seed(study):
+    again = stackup.Study(n_engines=3000, mechanics_engines=30, crank_angle_step=4.0, seed=11, pilot_engines=4000,
+                          progress=False).run()
+    assert stackup.rank(study).equals(stackup.rank(again))
+
+
+def test_a_strictly_better_scheme_ranks_first(study):
+    best = study.copy(deep=True)
+    i = list(best.scheme.values).index("iso13778-1")  # the worst for this window, made the best
+    centre = np.mean(best.attrs["clearance_window"])
+    ok = best.status.values[i] == 0
+    best["clearance_operating"].values[i][ok] = centre
+    best["alpha"].values[i] = np.where(np.isfinite(best.alpha.values[i]), 0.0, np.nan)
+    best["life"].values[i] = best.life.values[i] * 100
+    ranking = stackup.rank(best)
+    assert ranking.index[0] == "iso13778-1" and ranking.loc["iso13778-1", "rank"] == 1
+    assert (ranking["rank"] == 1).sum() == 1
+
+
+def test_identical_schemes_tie(study):
+    twin = xr.concat([study.sel(scheme=["iso13778-4"]), study.sel(scheme=["iso13778-4"]).assign_coords(scheme=["twin"])],
+                     dim="scheme", data_vars="all", coords="different", compat="equals", join="outer")
+    ranking = stackup.rank(twin)
+    assert list(ranking["rank"]) == [1, 1]
+
+
+def test_scenarios_give_the_worst_degradation(study):
+    shifted = study.copy(deep=True)
+    shifted["clearance_operating"] = shifted.clearance_operating + 8e-6
+    ranking = stackup.rank(study, scenarios={"bore +8 um": shifted, "same": study})
+    assert set(ranking["worst_outside_window_ppm_scenario"]) <= {"bore +8 um", "same"}
+    assert ranking.loc["iso13778-1", "worst_outside_window_ppm"] > 0
+
+
+def test_bad_window(study):
+    with pytest.raises(ValueError, match="window: .* is not a"):
+        stackup.rank(study, window=(70e-6, 40e-6))
+
+
+def test_sensitivity_recovers_known_variance_shares():
+    # a synthetic one-scheme dataset whose clearance is a known linear function of the inputs
+    from stackup.sensitivity import INPUTS
+
+    rng = np.random.default_rng(0)
+    n, b = 4000, 5
+    ds = stackup.Study(n_engines=n, mechanics_engines=0, schemes=("iso13778-1",), seed=1, pilot_engines=2000,
+                       progress=False).run()
+    d = ds.sel(scheme="iso13778-1")
+    bore = np.broadcast_to(d.housing_bore.values, d.status.shape)
+    journal = np.broadcast_to(d.journal_d.values, d.status.shape)
+    y = 2.0 * (bore - bore.mean()) / bore.std() + 1.0 * (journal - journal.mean()) / journal.std()
+    y = y + 0.0 * rng.standard_normal(y.shape)
+    ds["clearance_operating"].values[0] = np.where(d.status.values == 0, y, np.nan)
+    frame = contributions(ds, "iso13778-1", within_bearing=False, bootstrap=50)
+    assert frame.attrs["r2"] == pytest.approx(1.0, abs=1e-9)
+    assert frame.loc["housing bore", "share"] == pytest.approx(0.8, abs=0.02)
+    assert frame.loc["journal", "share"] == pytest.approx(0.2, abs=0.02)
+    assert set(frame.index) <= set(INPUTS)
