@@ -379,15 +379,20 @@ def write_report(ds, out_dir, *, dataset_file=None):
     from .rank import rank as rank_schemes
 
     ranking = rank_schemes(ds)
+
+    def column(name):
+        """A ranking column, or '—' cells where the study has no film stage."""
+        return ranking[name] if name in ranking else pd.Series(np.nan, index=ranking.index, dtype=object)
+
     rank_table = pd.DataFrame({
         "rank": ranking["rank"],
         "scheme": ranking.index,
         "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(ranking.clearance_mean_um, ranking.clearance_std_um)],
         "outside window [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci)],
         "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
-                         for v, ci in zip(ranking.get("alpha_over_limit_pct", np.nan), ranking.get("alpha_over_limit_pct_ci", np.nan))],
+                         for v, ci in zip(column("alpha_over_limit_pct"), column("alpha_over_limit_pct_ci"))],
         "life median [h]": [f"{v:.3g} [{ci[0]:.3g}, {ci[1]:.3g}]" if isinstance(ci, tuple) else "—"
-                            for v, ci in zip(ranking.get("life_median_h", np.nan), ranking.get("life_median_h_ci", np.nan))],
+                            for v, ci in zip(column("life_median_h"), column("life_median_h_ci"))],
         "shell grades": ranking.shell_grades,
         "stock-outs [ppm]": ranking.stockout_ppm.map("{:.0f}".format),
         "surplus [%]": ranking.surplus_pct.map("{:.1f}".format),
