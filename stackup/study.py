@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict, dataclass, field
+import os
+from dataclasses import asdict, dataclass
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -59,6 +61,11 @@ class Study:
         Largest h_min error against the Reynolds tier that "auto" accepts [-].
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
+    checkpoint : str or None
+        Folder where each finished chunk is written (``chunk-NNNNNN.npz``); a
+        rerun of the same study with the same folder loads the finished chunks
+        instead of computing them, so an interrupted study resumes without
+        losing or repeating work. Execution only: results do not depend on it.
     """
 
     engine: str = "iso-example"
@@ -72,7 +79,7 @@ class Study:
     film_method: str = "finite"
     film_error: float = 0.05
     progress: bool | None = None
-    _resolved: dict = field(default=None, init=False, repr=False, compare=False)
+    checkpoint: str | None = None
 
     def __post_init__(self):
         self.n_engines = check.integer("n_engines", self.n_engines, minimum=1)
@@ -94,7 +101,22 @@ class Study:
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
-        return {k: v for k, v in asdict(self).items() if not k.startswith("_") and k != "progress"}
+        return {k: v for k, v in asdict(self).items() if k not in ("progress", "checkpoint")}
+
+    def _checkpoint_folder(self):
+        """The checkpoint folder, created and stamped with this study's fingerprint; None without one."""
+        if self.checkpoint is None:
+            return None
+        folder = Path(self.checkpoint)
+        folder.mkdir(parents=True, exist_ok=True)
+        stamp = folder / "study.json"
+        if stamp.is_file():
+            if stamp.read_text() != _fingerprint(self):
+                raise ValueError(f"checkpoint: folder {str(folder)!r} holds chunks of another study "
+                                 "(parameters or stackup version differ); use another folder or empty it")
+        else:
+            stamp.write_text(_fingerprint(self))
+        return folder
 
     def run(self) -> xr.Dataset:
         """Sample, measure, grade, pair and assemble; return the dataset."""
@@ -121,11 +143,19 @@ class Study:
         film_method = cheapest_tier(self.film_error) if self.film_method == "auto" else self.film_method
         crank_angle = np.arange(0.0, 720.0, self.crank_angle_step)
         out = _Output(len(schemes), n, b, len(grade_labels))
+        folder = self._checkpoint_folder()
         with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
             for first in range(0, n_lots, self.chunk_lots):
                 lots = range(first, min(first + self.chunk_lots, n_lots))
                 e0 = lots[0] * lot
                 e1 = min((lots[-1] + 1) * lot, n)
+                saved = folder / f"chunk-{first:06d}.npz" if folder else None
+                if saved is not None and saved.is_file():
+                    with np.load(saved) as state:
+                        out.load_chunk(slice(e0, e1), state)
+                    bar.update(e1 - e0)
+                    continue
+                before = out.counters()
                 drawn = [draw_lot(engine, lot_generator(root, k), min(lot, n - k * lot)) for k in lots]
                 parts = _concat_parts([p for p, _ in drawn])
                 out.store_parts(slice(e0, e1), parts)
@@ -138,6 +168,10 @@ class Study:
                     if e0 < mechanics:
                         out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle,
                                                        film_method))
+                if saved is not None:
+                    tmp = saved.with_suffix(".tmp.npz")
+                    np.savez(tmp, **out.chunk_state(slice(e0, e1), before))
+                    os.replace(tmp, saved)  # a chunk file is whole or absent
                 bar.update(e1 - e0)
         return out.dataset(self, engine, schemes, grade_labels, film_method)
 
@@ -171,6 +205,10 @@ def _operating(engine, parts, assembly):
     loss[ok] = fit.loss_of_fit
     out["loss_of_fit"] = loss
     return out
+
+
+def _fingerprint(study):
+    return json.dumps({"study": study.parameters(), "version": __version__}, sort_keys=True)
 
 
 def _cycles(engine, parts, assembly, fit, count, crank_angle, film_method):
@@ -237,6 +275,35 @@ class _Output:
         self.used = np.zeros((n_schemes, n_labels), np.int64)
         self.left = np.zeros((n_schemes, n_labels), np.int64)
         self.scrapped = np.zeros(n_schemes, np.int64)
+
+    def _per_engine(self):
+        """Every per-engine array, by name, with its engine axis."""
+        arrays = {f"parts.{k}": (v, 0) for k, v in self.parts.items()}
+        arrays.update({f"offsets.{k}": (v, 0) for k, v in self.offsets.items()})
+        arrays.update({"block_scrapped": (self.block_scrapped, 0), "crank_scrapped": (self.crank_scrapped, 0)})
+        arrays.update({f"grades.{k}": (v, 1) for k, v in self.grades.items()})
+        arrays.update({f"floats.{k}": (v, 1) for k, v in self.floats.items()})
+        arrays.update({f"mechanics.{k}": (v, 1) for k, v in self.mechanics.items()})
+        arrays.update({"status": (self.status, 1), "option": (self.option, 1), "loss_of_fit": (self.loss_of_fit, 1),
+                       "crank_status": (self.crank_status, 1)})
+        return arrays
+
+    def counters(self):
+        return {k: getattr(self, k).copy() for k in ("made", "used", "left", "scrapped")}
+
+    def chunk_state(self, engines, before):
+        """The chunk's slice of every array and its additions to the shell counters."""
+        state = {name: np.take(a, np.arange(engines.start, engines.stop), axis=axis)
+                 for name, (a, axis) in self._per_engine().items()}
+        state.update({f"count.{k}": getattr(self, k) - v for k, v in before.items()})
+        return state
+
+    def load_chunk(self, engines, state):
+        for name, (a, axis) in self._per_engine().items():
+            index = (slice(None),) * axis + (engines,)
+            a[index] = state[name]
+        for k in ("made", "used", "left", "scrapped"):
+            getattr(self, k)[...] += state[f"count.{k}"]
 
     def store_parts(self, engines, parts):
         self.parts["housing_bore"][engines] = parts.housing_bore
