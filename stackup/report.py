@@ -277,8 +277,67 @@ def grade_usage_chart(ds, path):
     return path
 
 
+_HTML_STYLE = """body{font-family:system-ui,sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;color:#222}
+table{border-collapse:collapse;font-size:.85em;margin:1em 0}th,td{border:1px solid #ccc;padding:.25em .5em;text-align:right}
+th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}"""
+
+
+def _inline(text):
+    """Escape and render the inline markdown the report uses: `code` and **bold**."""
+    import html
+    import re
+
+    text = html.escape(text)
+    text = re.sub(r"`([^`]+)`", r"<code>\1</code>", text)
+    return re.sub(r"\*\*([^*]+)\*\*", r"<strong>\1</strong>", text)
+
+
+def markdown_to_html(text, folder):
+    """The report's markdown as one self-contained HTML page (figures embedded as base64 PNG).
+
+    Handles exactly what :func:`write_report` writes: headings, paragraphs,
+    pipe tables, bullet lists and images.
+    """
+    import base64
+    import re
+
+    body, table, items = [], [], []
+
+    def flush():
+        if table:
+            head, *rows = [[_inline(c.strip()) for c in r.strip().strip("|").split("|")] for r in table if not set(r) <= set("|-: ")]
+            body.append("<table><tr>" + "".join(f"<th>{c}</th>" for c in head) + "</tr>"
+                        + "".join("<tr>" + "".join(f"<td>{c}</td>" for c in r) + "</tr>" for r in rows) + "</table>")
+            table.clear()
+        if items:
+            body.append("<ul>" + "".join(f"<li>{_inline(i)}</li>" for i in items) + "</ul>")
+            items.clear()
+
+    for line in text.splitlines():
+        if line.startswith("|"):
+            table.append(line)
+            continue
+        if line.startswith("- "):
+            items.append(line[2:])
+            continue
+        flush()
+        image = re.fullmatch(r"!\[([^\]]*)\]\(([^)]+)\)", line.strip())
+        if image:
+            data = base64.b64encode((Path(folder) / image.group(2)).read_bytes()).decode()
+            body.append(f'<p><img alt="{_inline(image.group(1))}" src="data:image/png;base64,{data}"></p>')
+        elif line.startswith("#"):
+            level = len(line) - len(line.lstrip("#"))
+            body.append(f"<h{level}>{_inline(line[level:].strip())}</h{level}>")
+        elif line.strip():
+            body.append(f"<p>{_inline(line)}</p>")
+    flush()
+    title = _inline(text.splitlines()[0].lstrip("# ")) if text else "stackup report"
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title><style>{_HTML_STYLE}</style>"
+            f"</head><body>{''.join(body)}</body></html>")
+
+
 def write_report(ds, out_dir, *, dataset_file=None):
-    """Write ``report.md`` and its figures into ``out_dir``; return the report path."""
+    """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``; return the markdown path."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     summary = clearance_summary(ds)
@@ -473,5 +532,7 @@ def write_report(ds, out_dir, *, dataset_file=None):
     if dataset_file:
         lines.append(f"- dataset: `{dataset_file}`")
     path = out / "report.md"
-    path.write_text("\n".join(lines) + "\n")
+    text = "\n".join(lines) + "\n"
+    path.write_text(text)
+    (out / "report.html").write_text(markdown_to_html(text, out))
     return path

@@ -146,8 +146,13 @@ def test_bad_engine_file(engine_file, write_toml, old, new, message):
 
 def test_cli_compare_writes_dataset_and_report(tmp_path, capsys):
     assert main(["compare", "--n", "300", "--schemes", "iso13778-4", "iso13778-6", "--out", str(tmp_path)]) == 0
-    for name in ("compare.nc", "report.md", "clearance_histogram.png", "grade_usage.png"):
+    for name in ("compare.nc", "report.md", "report.html", "clearance_histogram.png", "grade_usage.png", "sensitivity.png"):
         assert (tmp_path / name).is_file()
+    page = (tmp_path / "report.html").read_text()
+    assert page.count("<table>") >= 5 and "## " not in page
+    import re
+    sources = re.findall(r'src="([^"]+)"', page)
+    assert sources and all(src.startswith("data:image/png;base64,") for src in sources)  # self-contained
     text = (tmp_path / "report.md").read_text()
     assert "iso13778-6" in text and "outside stated [ppm]" in text
     ds = open_dataset(tmp_path / "compare.nc")
