@@ -15,14 +15,21 @@ def _compare(args):
     from .report import clearance_summary, write_report
     from .study import ISO_SCHEMES, Study
 
+    from dataclasses import replace
+
+    from .scenarios import DECLARED
+
     n = args.n if args.n is not None else (10_000 if args.quick else 100_000)
     study = Study(engine=args.engine, schemes=tuple(args.schemes or ISO_SCHEMES), n_engines=n, seed=args.seed)
     t0 = time.perf_counter()
     ds = study.run()
+    # robustness: the declared scenarios on the clearance stages (the same seed: common random numbers)
+    scenarios = {} if args.no_scenarios else {
+        name: replace(study, scenario=change, mechanics_engines=0).run() for name, change in DECLARED.items()}
     elapsed = time.perf_counter() - t0
     out = Path(args.out)
     data = save(ds, out / "compare.nc")
-    report = write_report(ds, out, dataset_file=data.name)
+    report = write_report(ds, out, dataset_file=data.name, scenarios=scenarios)
     summary = clearance_summary(ds)
     print(f"{n:,} engines x {ds.sizes['bearing']} bearings x {ds.sizes['scheme']} schemes in {elapsed:.1f} s")
     for name, row in summary.iterrows():
@@ -43,6 +50,7 @@ def main(argv=None):
     cmp_.add_argument("--seed", type=int, default=0)
     cmp_.add_argument("--out", default="reports/compare", help="output folder for dataset and report")
     cmp_.add_argument("--quick", action="store_true", help="a small, fast run")
+    cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
     cmp_.set_defaults(func=_compare)
     args = parser.parse_args(argv)
     try:

@@ -117,7 +117,9 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
             for label, other in scenarios.items():
                 alt = {str(s): _scheme_metrics(other.sel(scheme=s), window, h_lim_cr) for s in other.scheme.values}
                 changes[label] = pd.Series({s: alt[s].get(column, np.nan) - rows[s][column] for s in names})
-            table = pd.DataFrame(changes)
+            table = pd.DataFrame(changes).dropna(axis=1, how="all")  # scenarios without this metric
+            if table.empty:
+                continue
             worse = table if dict(RULE)[column] == "lower" else -table
             frame[f"worst_{column}"] = table.to_numpy()[np.arange(len(names)), worse.to_numpy().argmax(axis=1)]
             frame[f"worst_{column}_scenario"] = worse.idxmax(axis=1)

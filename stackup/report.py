@@ -336,7 +336,7 @@ def markdown_to_html(text, folder):
             f"</head><body>{''.join(body)}</body></html>")
 
 
-def write_report(ds, out_dir, *, dataset_file=None):
+def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
     """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``; return the markdown path."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -437,7 +437,7 @@ def write_report(ds, out_dir, *, dataset_file=None):
 
     from .rank import rank as rank_schemes
 
-    ranking = rank_schemes(ds)
+    ranking = rank_schemes(ds, scenarios=scenarios or None)
 
     def column(name):
         """A ranking column, or '—' cells where the study has no film stage."""
@@ -456,6 +456,9 @@ def write_report(ds, out_dir, *, dataset_file=None):
         "stock-outs [ppm]": ranking.stockout_ppm.map("{:.0f}".format),
         "surplus [%]": ranking.surplus_pct.map("{:.1f}".format),
     })
+    if scenarios:
+        rank_table["worst scenario: Δ outside window [ppm]"] = [
+            f"{v:+.0f} ({name})" for v, name in zip(ranking.worst_outside_window_ppm, ranking.worst_outside_window_ppm_scenario)]
     fits = sensitivity_chart(ds, out / "sensitivity.png")
     r2_text = "; ".join(f"{scheme} {output} R² {frame.attrs['r2']:.2f}" for (output, scheme), frame in fits.items())
     window = ranking.attrs["window_m"]
@@ -474,7 +477,9 @@ def write_report(ds, out_dir, *, dataset_file=None):
         "## Ranking",
         "",
         f"Operating-clearance design window {window[0] * 1e6:.0f}–{window[1] * 1e6:.0f} µm (the engine's). "
-        f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.",
+        f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank."
+        + (f" Robustness: the worst change of the share outside the window over the declared scenarios "
+           f"({', '.join(scenarios)}), each run with the same seed on the clearance stages." if scenarios else ""),
         "",
         _markdown_table(rank_table),
         "",

@@ -22,6 +22,7 @@ from .film.cycle import bearing_films
 from .fit import press_fit
 from .engines import load_engine
 from .parts import draw_lot
+from .scenarios import apply as apply_scenario
 from .schemes import load as load_scheme
 
 ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
@@ -61,6 +62,9 @@ class Study:
         Largest h_min error against the Reynolds tier that "auto" accepts [-].
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
+    scenario : dict or None
+        Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
+        ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
     checkpoint : str or None
         Folder where each finished chunk is written (``chunk-NNNNNN.npz``); a
         rerun of the same study with the same folder loads the finished chunks
@@ -79,6 +83,7 @@ class Study:
     film_method: str = "finite"
     film_error: float = 0.05
     progress: bool | None = None
+    scenario: dict | None = None
     checkpoint: str | None = None
 
     def __post_init__(self):
@@ -120,7 +125,7 @@ class Study:
 
     def run(self) -> xr.Dataset:
         """Sample, measure, grade, pair and assemble; return the dataset."""
-        engine = load_engine(self.engine)
+        engine = apply_scenario(load_engine(self.engine), self.scenario)
         schemes = [load_scheme(s) for s in self.schemes]
         names = [s.name for s in schemes]
         if len(set(names)) != len(names):
