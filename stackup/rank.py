@@ -21,7 +21,7 @@ import json
 import numpy as np
 import pandas as pd
 
-from .assembly import ASSEMBLED
+from .assembly import ASSEMBLED, SHELL_STOCKOUT
 from .life import ALPHA_SCUFFING
 from .stats import proportion_ci, quantile_ci
 
@@ -40,7 +40,7 @@ def _scheme_metrics(d, window, h_lim_cr):
         "clearance_std_um": float(c.std(ddof=1)) * 1e6,
         "outside_window_ppm": outside[0] * 1e6,
         "outside_window_ppm_ci": (outside[1] * 1e6, outside[2] * 1e6),
-        "stockout_ppm": 1e6 * float(np.count_nonzero(d.status.values == 4)) / ok.size,
+        "stockout_ppm": 1e6 * float(np.count_nonzero(d.status.values == SHELL_STOCKOUT)) / ok.size,
         "shell_grades": int(d.grade_in_scheme.values.sum()),
         "surplus_pct": 100.0 * float(d.shells_left.sum()) / max(float(d.shells_made.sum()), 1.0),
     }
