@@ -11,11 +11,13 @@ schemes are compared on common random numbers.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from scipy import optimize, special
+from scipy.stats import qmc
 
 from .tolerances import Dimension, Gauge, process_from_spec
 
@@ -53,7 +55,30 @@ class Shells:
     grade: np.ndarray  # grade index in the scheme, -1 = scrapped (wall read outside every grade, or crush out of limits)
 
 
-def draw_lot(engine, rng, n_engines):
+SAMPLERS = ("mc", "qmc")
+
+
+def _engine_normals(engine, rng, n_engines, sampler):
+    """Standard normals of each engine's parts, (engines, 2 + 8 B) in a fixed column layout.
+
+    Columns: block, crankshaft, bores (B), bore gauge (B), journals (B),
+    journal gauge (B), bore offsets (2B), journal eccentricities (2B).
+    ``"qmc"``: each engine is a point of a scrambled Sobol sequence (scrambled
+    by the lot's generator, so lots are independent randomised-QMC
+    replicates and the estimate stays unbiased).
+    """
+    b = engine.main_bearings
+    d = 2 + 8 * b
+    if sampler == "mc":
+        return None
+    sobol = qmc.Sobol(d, scramble=True, seed=rng)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # balance needs 2^m points; lots need not be
+        u = sobol.random(n_engines)
+    return special.ndtri(np.clip(u, 1e-16, 1 - 1e-16))
+
+
+def draw_lot(engine, rng, n_engines, sampler="mc"):
     """Draw the blocks, crankshafts and shell normals of one lot of ``n_engines`` engines.
 
     The order of draws is fixed: block normals, bore normals, bore gauge,
@@ -68,18 +93,29 @@ def draw_lot(engine, rng, n_engines):
     """
     b = engine.main_bearings
     hb, jd = engine.housing_bore, engine.journal_d
-    z_block = rng.standard_normal(n_engines)
-    z_bore = rng.standard_normal((n_engines, b))
-    g_bore = rng.standard_normal((n_engines, b))
-    z_crank = rng.standard_normal(n_engines)
-    z_journal = rng.standard_normal((n_engines, b))
-    g_journal = rng.standard_normal((n_engines, b))
+    z = _engine_normals(engine, rng, n_engines, sampler)
+    if z is None:
+        z_block = rng.standard_normal(n_engines)
+        z_bore = rng.standard_normal((n_engines, b))
+        g_bore = rng.standard_normal((n_engines, b))
+        z_crank = rng.standard_normal(n_engines)
+        z_journal = rng.standard_normal((n_engines, b))
+        g_journal = rng.standard_normal((n_engines, b))
+    else:
+        z_block, z_crank = z[:, 0], z[:, 1]
+        z_bore, g_bore, z_journal, g_journal = (z[:, 2 + k * b:2 + (k + 1) * b] for k in range(4))
     n_shells = engine.shell_wall.shells_per_lot(n_engines * b)
     shells = ShellNormals(rng.standard_normal(n_shells), rng.standard_normal(n_shells), rng.standard_normal(n_shells))
     coaxiality = engine.crank.coaxiality if engine.crank else 0.0
     runout = engine.crank.journal_runout if engine.crank else 0.0
-    bore_offset = coaxiality / 8 * rng.standard_normal((n_engines, b, 2))
-    eccentricity = runout / 8 * rng.standard_normal((n_engines, b, 2))
+    if z is None:
+        z_offset = rng.standard_normal((n_engines, b, 2))
+        z_ecc = rng.standard_normal((n_engines, b, 2))
+    else:
+        z_offset = z[:, 2 + 4 * b:2 + 6 * b].reshape(n_engines, b, 2)
+        z_ecc = z[:, 2 + 6 * b:].reshape(n_engines, b, 2)
+    bore_offset = coaxiality / 8 * z_offset
+    eccentricity = runout / 8 * z_ecc
 
     bore = hb.true_sizes(z_block, z_bore)
     bore_reading = hb.gauge.read(bore, g_bore)

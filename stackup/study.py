@@ -21,7 +21,7 @@ from .film import cheapest_tier
 from .film.cycle import bearing_films
 from .fit import press_fit
 from .engines import load_engine
-from .parts import draw_lot
+from .parts import SAMPLERS, draw_lot
 from .scenarios import apply as apply_scenario
 from .schemes import load as load_scheme
 
@@ -62,6 +62,9 @@ class Study:
         Largest h_min error against the Reynolds tier that "auto" accepts [-].
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
+    sampler : {"mc", "qmc"}
+        Pseudo-random Monte Carlo, or scrambled Sobol points for each
+        engine's parts (randomised QMC, one scramble per lot).
     scenario : dict or None
         Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
         ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
@@ -83,6 +86,7 @@ class Study:
     film_method: str = "finite"
     film_error: float = 0.05
     progress: bool | None = None
+    sampler: str = "mc"
     scenario: dict | None = None
     checkpoint: str | None = None
 
@@ -92,6 +96,7 @@ class Study:
         self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
         self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
         self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
+        check.one_of("sampler", self.sampler, SAMPLERS)
         check.one_of("film_method", self.film_method, ("short", "finite", "reynolds", "auto"))
         self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
@@ -161,7 +166,7 @@ class Study:
                     bar.update(e1 - e0)
                     continue
                 before = out.counters()
-                drawn = [draw_lot(engine, lot_generator(root, k), min(lot, n - k * lot)) for k in lots]
+                drawn = [draw_lot(engine, lot_generator(root, k), min(lot, n - k * lot), self.sampler) for k in lots]
                 parts = _concat_parts([p for p, _ in drawn])
                 out.store_parts(slice(e0, e1), parts)
                 for i, (scheme, share) in enumerate(zip(schemes, shares)):
