@@ -69,7 +69,7 @@ class Study:
         Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
         ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
     checkpoint : str or None
-        Folder where each finished chunk is written (``chunk-NNNNNN.npz``); a
+        Folder where each finished chunk is written as netCDF (``chunk-NNNNNN.nc``); a
         rerun of the same study with the same folder loads the finished chunks
         instead of computing them, so an interrupted study resumes without
         losing or repeating work. Execution only: results do not depend on it.
@@ -159,10 +159,9 @@ class Study:
                 lots = range(first, min(first + self.chunk_lots, n_lots))
                 e0 = lots[0] * lot
                 e1 = min((lots[-1] + 1) * lot, n)
-                saved = folder / f"chunk-{first:06d}.npz" if folder else None
+                saved = folder / f"chunk-{first:06d}.nc" if folder else None
                 if saved is not None and saved.is_file():
-                    with np.load(saved) as state:
-                        out.load_chunk(slice(e0, e1), state)
+                    out.load_chunk(slice(e0, e1), _read_chunk(saved))
                     bar.update(e1 - e0)
                     continue
                 before = out.counters()
@@ -179,9 +178,7 @@ class Study:
                         out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle,
                                                        film_method))
                 if saved is not None:
-                    tmp = saved.with_suffix(".tmp.npz")
-                    np.savez(tmp, **out.chunk_state(slice(e0, e1), before))
-                    os.replace(tmp, saved)  # a chunk file is whole or absent
+                    _write_chunk(saved, out.chunk_state(slice(e0, e1), before))
                 bar.update(e1 - e0)
         return out.dataset(self, engine, schemes, grade_labels, film_method)
 
@@ -215,6 +212,21 @@ def _operating(engine, parts, assembly):
     loss[ok] = fit.loss_of_fit
     out["loss_of_fit"] = loss
     return out
+
+
+def _write_chunk(path, state):
+    """One finished chunk as netCDF, written to a temporary name and renamed: whole or absent."""
+    variables = {name.replace(".", "__"): (tuple(f"{name}_{k}" for k in range(np.ndim(v))), np.asarray(v))
+                 for name, v in state.items()}
+    tmp = path.with_suffix(".tmp")
+    xr.Dataset(variables).to_netcdf(tmp, engine="netcdf4")
+    os.replace(tmp, path)
+
+
+def _read_chunk(path):
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return {name.replace("__", "."): (var.values.astype(str) if var.dtype == object else var.values)
+                for name, var in ds.load().data_vars.items()}
 
 
 def _fingerprint(study):

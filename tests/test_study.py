@@ -235,7 +235,7 @@ def test_interrupted_study_resumes_without_losing_or_repeating_chunks(engine_fil
     interrupted = small(engine, n_engines=200, chunk_lots=1, checkpoint=str(tmp_path / "ckpt"))
     with pytest.raises(KeyboardInterrupt):
         interrupted.run()
-    assert sorted(p.name for p in (tmp_path / "ckpt").glob("chunk-*.npz")) == ["chunk-000000.npz", "chunk-000001.npz"]
+    assert sorted(p.name for p in (tmp_path / "ckpt").glob("chunk-*")) == ["chunk-000000.nc", "chunk-000001.nc"]
 
     calls["n"] = -10**9  # no more failures; count the chunks computed on resume
     resumed = pickle.loads(pickle.dumps(interrupted)).run()
