@@ -17,8 +17,10 @@ from . import _validate as check
 from ._random import PILOT_KEY, lot_generator, seed_sequence
 from .assembly import ASSEMBLED, STATUS, assemble, shell_demand
 from .crank.cycle import CYCLE_STATUS, NOT_COMPUTED, engine_cycles, worst_status
+from .crank.cycle import METHODS as CRANK_METHODS
 from .film import cheapest_tier
 from .film.cycle import bearing_films
+from .fit import METHODS as FIT_METHODS
 from .fit import press_fit
 from .engines import load_engine
 from .parts import SAMPLERS, draw_lot
@@ -54,6 +56,10 @@ class Study:
         marked.
     crank_angle_step : float
         Step of the crank-angle grid over 720 deg [deg].
+    fit_method : str
+        Press-fit tier: "lame" (default), "thin-ring" or "fe" (slow reference).
+    crank_method : str
+        Crankshaft support tier: "bearing-law" (default), "linear" or "rigid".
     film_method : str
         Steady film tier of the quasi-static orbit on the engines of the
         crankshaft stage: "short", "finite" (default), "reynolds", or "auto"
@@ -83,6 +89,8 @@ class Study:
     pilot_engines: int = 20_000
     mechanics_engines: int = 200
     crank_angle_step: float = 1.0
+    fit_method: str = "lame"
+    crank_method: str = "bearing-law"
     film_method: str = "finite"
     film_error: float = 0.05
     progress: bool | None = None
@@ -97,6 +105,8 @@ class Study:
         self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
         self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
         check.one_of("sampler", self.sampler, SAMPLERS)
+        check.one_of("fit_method", self.fit_method, FIT_METHODS)
+        check.one_of("crank_method", self.crank_method, CRANK_METHODS)
         check.one_of("film_method", self.film_method, ("short", "finite", "reynolds", "auto"))
         self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
@@ -172,11 +182,11 @@ class Study:
                     shells = [engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
                     result = assemble(scheme, parts, shells, lot_engines=lot)
                     out.store_assembly(i, slice(e0, e1), result, scheme, grade_labels)
-                    fit = _operating(engine, parts, result)
+                    fit = _operating(engine, parts, result, self.fit_method)
                     out.store_fit(i, slice(e0, e1), fit)
                     if e0 < mechanics:
                         out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle,
-                                                       film_method))
+                                                       self.crank_method, film_method))
                 if saved is not None:
                     _write_chunk(saved, out.chunk_state(slice(e0, e1), before))
                 bar.update(e1 - e0)
@@ -193,7 +203,7 @@ FIT_FIELDS = {
 }
 
 
-def _operating(engine, parts, assembly):
+def _operating(engine, parts, assembly, method):
     """Press fit of the assembled bearings; NaN elsewhere (the status says why)."""
     ok = assembly.status == ASSEMBLED
     fit = press_fit(
@@ -201,6 +211,7 @@ def _operating(engine, parts, assembly):
         shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
         crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]),
         journal_d=parts.journal_d[ok],
+        method=method,
         **engine.press_fit.kwargs(),
     )
     out = {}
@@ -233,7 +244,7 @@ def _fingerprint(study):
     return json.dumps({"study": study.parameters(), "version": __version__}, sort_keys=True)
 
 
-def _cycles(engine, parts, assembly, fit, count, crank_angle, film_method):
+def _cycles(engine, parts, assembly, fit, count, crank_angle, crank_method, film_method):
     """Bearing loads, film and life over the cycle of the first ``count`` engines of a chunk."""
     count = min(count, assembly.status.shape[0])
     built = np.all(assembly.status[:count] == ASSEMBLED, axis=1)
@@ -243,7 +254,7 @@ def _cycles(engine, parts, assembly, fit, count, crank_angle, film_method):
         clearance = fit["clearance_operating"][:count][built]
         r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[:count][built],
                           journal_eccentricity=parts.journal_eccentricity[:count][built],
-                          clearance=clearance, crank_angle=crank_angle)
+                          clearance=clearance, crank_angle=crank_angle, method=crank_method)
         out["reaction_max"][built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
         status[built] = worst_status(r.status)
         films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance,

@@ -264,3 +264,16 @@ def test_qmc_sampler_is_reproducible_unbiased_and_conserves_parts(engine_file):
     np.testing.assert_array_equal(made, q1.shells_used.sum("shell_grade") + q1.shells_scrapped + q1.shells_left.sum("shell_grade"))
     with pytest.raises(ValueError, match="sampler: 'sobol' is not one of 'mc', 'qmc'"):
         Study(sampler="sobol")
+
+
+def test_fidelity_tier_per_stage():
+    kw = dict(n_engines=60, mechanics_engines=3, schemes=("iso13778-4",), crank_angle_step=8.0, pilot_engines=2000,
+              progress=False)
+    law = Study(**kw).run()
+    rigid = Study(**kw, crank_method="rigid", fit_method="thin-ring").run()
+    assert not np.allclose(law.reaction_max.values[0, :3], rigid.reaction_max.values[0, :3])
+    assert not np.allclose(law.clearance_operating.values, rigid.clearance_operating.values, equal_nan=True)
+    with pytest.raises(ValueError, match="crank_method: 'beam' is not one of"):
+        Study(crank_method="beam")
+    with pytest.raises(ValueError, match="fit_method: 'exact' is not one of"):
+        Study(fit_method="exact")

@@ -11,7 +11,10 @@ CYCLE_STATUS = (*STATUS, "not_computed")
 NOT_COMPUTED = len(STATUS)
 
 
-def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_angle):
+METHODS = ("bearing-law", "linear", "rigid")
+
+
+def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_angle, method="bearing-law"):
     """Bearing reactions of engines over a crank-angle grid.
 
     Parameters
@@ -24,6 +27,9 @@ def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_a
         Diametral operating clearance of each bearing [m] (the law's J scales with it).
     crank_angle : array_like (angles,)
         Crank angles [deg].
+    method : {"bearing-law", "linear", "rigid"}
+        Support tier: the engine's nonlinear bearing law, linear springs of
+        its low stiffness k_lv, or rigid supports.
 
     Returns
     -------
@@ -31,7 +37,12 @@ def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_a
     """
     loads = spec.pin_loads(crank_angle)[None]  # (1, angles, N, 2), shared by all engines
     offsets = spec.offsets(np.asarray(bore_offset), np.asarray(journal_eccentricity), crank_angle)
-    law = spec.law(np.asarray(clearance)[:, None, :])
+    if method == "bearing-law":
+        law = spec.law(np.asarray(clearance)[:, None, :])
+    elif method == "linear":
+        law = spec.law_parameters["k_lv"]
+    else:
+        law = None
     return reactions(loads, spans=spec.spans, EI=spec.ei, offsets=offsets, law=law)
 
 
