@@ -216,6 +216,11 @@ def sensitivity_chart(ds, path, *, outputs=("clearance_operating", "h_min")):
     return fits
 
 
+def _target_text(ds):
+    target = json.loads(ds.attrs["study"]).get("target_error")
+    return f", as many as a ±{100 * target:g} % interval of the mean film needs" if target else ""
+
+
 def _fmt_ci(value, ci, digits=1):
     return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
 
@@ -394,7 +399,8 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
             "Cycle-maximum load of each main bearing (mean ± 95 % interval of the mean, and the largest), from the "
             "crankshaft as a continuous beam on the Bellakhdhar et al. bearing law, with each engine's operating "
             "clearances and sampled bore and journal misalignment. The beam runs on the first engines sampled "
-            f"({int(json.loads(ds.attrs['study'])['mechanics_engines'])} per scheme); engines with a bearing not "
+            f"({int(ds.attrs.get('mechanics_engines_used', json.loads(ds.attrs['study'])['mechanics_engines']))} per "
+            f"scheme{_target_text(ds)}); engines with a bearing not "
             "assembled are skipped and marked in `crank_status`.",
             "",
             _markdown_table(crank_table.reset_index()),

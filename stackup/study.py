@@ -51,9 +51,14 @@ class Study:
         quantity of each grade is planned.
     mechanics_engines : int
         Engines (the first ones sampled; lots are independent, so they are a
-        random sample) on which the crankshaft beam runs over the cycle; 0
-        skips the stage. Engines with a bearing not assembled are skipped and
-        marked.
+        random sample) on which the crankshaft beam, film and life run over
+        the cycle; 0 skips the stage; with ``target_error`` it is the cap.
+        Engines with a bearing not assembled are skipped and marked.
+    target_error : float or None
+        Run the mechanical chain only until the 95 % interval of each
+        scheme's mean cycle-minimum film (engine means) is within this share
+        of the mean, checked every 25 engines [-]; None runs
+        ``mechanics_engines`` engines.
     crank_angle_step : float
         Step of the crank-angle grid over 720 deg [deg].
     fit_method : str
@@ -88,6 +93,7 @@ class Study:
     chunk_lots: int = 20
     pilot_engines: int = 20_000
     mechanics_engines: int = 200
+    target_error: float | None = None
     crank_angle_step: float = 1.0
     fit_method: str = "lame"
     crank_method: str = "bearing-law"
@@ -103,6 +109,8 @@ class Study:
         self.chunk_lots = check.integer("chunk_lots", self.chunk_lots, minimum=1)
         self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
         self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
+        if self.target_error is not None:
+            self.target_error = float(check.in_range("target_error", self.target_error, 0.0, 1.0, lo_open=True))
         self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
         check.one_of("sampler", self.sampler, SAMPLERS)
         check.one_of("fit_method", self.fit_method, FIT_METHODS)
@@ -178,15 +186,26 @@ class Study:
                 drawn = [draw_lot(engine, lot_generator(root, k), min(lot, n - k * lot), self.sampler) for k in lots]
                 parts = _concat_parts([p for p, _ in drawn])
                 out.store_parts(slice(e0, e1), parts)
+                stages = []
                 for i, (scheme, share) in enumerate(zip(schemes, shares)):
                     shells = [engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
                     result = assemble(scheme, parts, shells, lot_engines=lot)
                     out.store_assembly(i, slice(e0, e1), result, scheme, grade_labels)
                     fit = _operating(engine, parts, result, self.fit_method)
                     out.store_fit(i, slice(e0, e1), fit)
-                    if e0 < mechanics:
-                        out.store_crank(i, e0, _cycles(engine, parts, result, fit, mechanics - e0, crank_angle,
-                                                       self.crank_method, film_method))
+                    stages.append((result, fit))
+                # mechanical chain: engines in order, in batches at fixed engine numbers, until the
+                # target error is met (decisions do not depend on the chunking)
+                a = max(e0, out.mechanics_next)
+                while not out.mechanics_done and a < min(e1, mechanics):
+                    b = min(e1, mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
+                    for i, (result, fit) in enumerate(stages):
+                        out.store_crank(i, a, _cycles(engine, parts, result, fit, slice(a - e0, b - e0), crank_angle,
+                                                      self.crank_method, film_method))
+                    a = out.mechanics_next = b
+                    if a == mechanics or (self.target_error and a % MECHANICS_BATCH == 0
+                                          and out.film_error(a) <= self.target_error):
+                        out.mechanics_done = True
                 if saved is not None:
                     _write_chunk(saved, out.chunk_state(slice(e0, e1), before))
                 bar.update(e1 - e0)
@@ -244,21 +263,25 @@ def _fingerprint(study):
     return json.dumps({"study": study.parameters(), "version": __version__}, sort_keys=True)
 
 
-def _cycles(engine, parts, assembly, fit, count, crank_angle, crank_method, film_method):
-    """Bearing loads, film and life over the cycle of the first ``count`` engines of a chunk."""
-    count = min(count, assembly.status.shape[0])
-    built = np.all(assembly.status[:count] == ASSEMBLED, axis=1)
+#: Engines per step of the mechanical chain when it runs to a target error.
+MECHANICS_BATCH = 25
+
+
+def _cycles(engine, parts, assembly, fit, rows, crank_angle, crank_method, film_method):
+    """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk."""
+    count = rows.stop - rows.start
+    built = np.all(assembly.status[rows] == ASSEMBLED, axis=1)
     out = {k: np.full((count, engine.main_bearings), np.nan) for k in MECHANICS_FIELDS}
     status = np.full(count, NOT_COMPUTED, np.int8)
     if built.any():
-        clearance = fit["clearance_operating"][:count][built]
-        r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[:count][built],
-                          journal_eccentricity=parts.journal_eccentricity[:count][built],
+        clearance = fit["clearance_operating"][rows][built]
+        r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[rows][built],
+                          journal_eccentricity=parts.journal_eccentricity[rows][built],
                           clearance=clearance, crank_angle=crank_angle, method=crank_method)
         out["reaction_max"][built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
         status[built] = worst_status(r.status)
         films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance,
-                              journal_d=parts.journal_d[:count][built], steady_method=film_method)
+                              journal_d=parts.journal_d[rows][built], steady_method=film_method)
         for name in ("h_min", "h_min_mean", "alpha", "life", "temperature"):
             out["film_temperature" if name == "temperature" else name][built] = getattr(films, name)
     return out, status
@@ -302,6 +325,8 @@ class _Output:
         self.mechanics = {k: np.full(shape, np.nan) for k in MECHANICS_FIELDS}
         self.crank_status = np.full((n_schemes, n), NOT_COMPUTED, np.int8)
         self.offsets = {k: np.empty((n, b, 2)) for k in ("bore_offset", "journal_eccentricity")}
+        self.mechanics_next = 0  # first engine the mechanical chain has not run on
+        self.mechanics_done = False
         self.status = np.empty(shape, np.int8)
         self.option = np.empty(shape, np.int8)
         self.made = np.zeros((n_schemes, n_labels), np.int64)
@@ -321,6 +346,17 @@ class _Output:
                        "crank_status": (self.crank_status, 1)})
         return arrays
 
+    def film_error(self, engines):
+        """Largest relative 95 % half-width over schemes of the mean cycle-minimum film of the first engines."""
+        worst = 0.0
+        for h in self.mechanics["h_min"][:, :engines]:
+            computed = np.isfinite(h).any(axis=1)  # engines the chain ran on
+            values = np.nanmean(h[computed], axis=1)
+            if values.size < 2:
+                return np.inf
+            worst = max(worst, 1.96 * values.std(ddof=1) / np.sqrt(values.size) / values.mean())
+        return worst
+
     def counters(self):
         return {k: getattr(self, k).copy() for k in ("made", "used", "left", "scrapped")}
 
@@ -329,6 +365,7 @@ class _Output:
         state = {name: np.take(a, np.arange(engines.start, engines.stop), axis=axis)
                  for name, (a, axis) in self._per_engine().items()}
         state.update({f"count.{k}": getattr(self, k) - v for k, v in before.items()})
+        state["mechanics.progress"] = np.array([self.mechanics_next, int(self.mechanics_done)])
         return state
 
     def load_chunk(self, engines, state):
@@ -337,6 +374,8 @@ class _Output:
             a[index] = state[name]
         for k in ("made", "used", "left", "scrapped"):
             getattr(self, k)[...] += state[f"count.{k}"]
+        self.mechanics_next, done = (int(v) for v in state["mechanics.progress"])
+        self.mechanics_done = bool(done)
 
     def store_parts(self, engines, parts):
         self.parts["housing_bore"][engines] = parts.housing_bore
@@ -461,6 +500,7 @@ class _Output:
             "shell_supply": engine.shell_wall.mode,
             "pilot_engines": study.pilot_engines,
             "film_method_used": film_method,
+            "mechanics_engines_used": self.mechanics_next,
             "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
             "press_fit": json.dumps(engine.press_fit.kwargs()),
             "clearance_window": list(engine.clearance_window),

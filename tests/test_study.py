@@ -277,3 +277,16 @@ def test_fidelity_tier_per_stage():
         Study(crank_method="beam")
     with pytest.raises(ValueError, match="fit_method: 'exact' is not one of"):
         Study(fit_method="exact")
+
+
+def test_target_error_sizes_the_mechanical_chain_independently_of_chunking():
+    kw = dict(n_engines=2000, schemes=("iso13778-4",), crank_angle_step=8.0, mechanics_engines=300, pilot_engines=2000,
+              progress=False)
+    loose = Study(**kw, target_error=0.02).run()
+    tight = Study(**kw, target_error=0.001).run()
+    assert loose.attrs["mechanics_engines_used"] < tight.attrs["mechanics_engines_used"] <= 300
+    assert loose.attrs["mechanics_engines_used"] % 25 == 0
+    rechunked = Study(**kw, target_error=0.02, chunk_lots=1).run()
+    xr.testing.assert_equal(loose, rechunked)
+    used = loose.attrs["mechanics_engines_used"]
+    assert np.all(loose.crank_status.values[:, used:] == 3)  # not_computed beyond the sample
