@@ -54,6 +54,10 @@ class Study:
         random sample) on which the crankshaft beam, film and life run over
         the cycle; 0 skips the stage; with ``target_error`` it is the cap.
         Engines with a bearing not assembled are skipped and marked.
+    history : bool
+        Keep each mechanically computed engine's bearing loads and minimum
+        film at every crank angle, on dimensions ``sampled_engine`` and
+        ``crank_angle`` (large: 720 angles per bearing and scheme).
     target_error : float or None
         Run the mechanical chain only until the 95 % interval of each
         scheme's mean cycle-minimum film (engine means) is within this share
@@ -94,6 +98,7 @@ class Study:
     pilot_engines: int = 20_000
     mechanics_engines: int = 200
     target_error: float | None = None
+    history: bool = False
     crank_angle_step: float = 1.0
     fit_method: str = "lame"
     crank_method: str = "bearing-law"
@@ -170,7 +175,7 @@ class Study:
         mechanics = min(self.mechanics_engines, n) if engine.crank is not None else 0
         film_method = cheapest_tier(self.film_error) if self.film_method == "auto" else self.film_method
         crank_angle = np.arange(0.0, 720.0, self.crank_angle_step)
-        out = _Output(len(schemes), n, b, len(grade_labels))
+        out = _Output(len(schemes), n, b, len(grade_labels), mechanics if self.history else 0, crank_angle.size)
         folder = self._checkpoint_folder()
         with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
             for first in range(0, n_lots, self.chunk_lots):
@@ -209,7 +214,7 @@ class Study:
                 if saved is not None:
                     _write_chunk(saved, out.chunk_state(slice(e0, e1), before))
                 bar.update(e1 - e0)
-        return out.dataset(self, engine, schemes, grade_labels, film_method)
+        return out.dataset(self, engine, schemes, grade_labels, film_method, crank_angle)
 
 
 #: Press-fit results stored per bearing: dataset name -> PressFit field.
@@ -272,6 +277,8 @@ def _cycles(engine, parts, assembly, fit, rows, crank_angle, crank_method, film_
     count = rows.stop - rows.start
     built = np.all(assembly.status[rows] == ASSEMBLED, axis=1)
     out = {k: np.full((count, engine.main_bearings), np.nan) for k in MECHANICS_FIELDS}
+    out["load_history"] = np.full((count, engine.main_bearings, crank_angle.size, 2), np.nan)
+    out["h_min_history"] = np.full((count, engine.main_bearings, crank_angle.size), np.nan)
     status = np.full(count, NOT_COMPUTED, np.int8)
     if built.any():
         clearance = fit["clearance_operating"][rows][built]
@@ -284,6 +291,8 @@ def _cycles(engine, parts, assembly, fit, rows, crank_angle, crank_method, film_
                               journal_d=parts.journal_d[rows][built], steady_method=film_method)
         for name in ("h_min", "h_min_mean", "alpha", "life", "temperature"):
             out["film_temperature" if name == "temperature" else name][built] = getattr(films, name)
+        out["load_history"][built] = np.moveaxis(r.reactions, 1, 2)
+        out["h_min_history"][built] = films.history
     return out, status
 
 
@@ -313,8 +322,10 @@ def _concat_parts(parts):
 class _Output:
     """Preallocated arrays of a study, filled chunk by chunk."""
 
-    def __init__(self, n_schemes, n, b, n_labels):
+    def __init__(self, n_schemes, n, b, n_labels, history_engines, n_angles):
         shape = (n_schemes, n, b)
+        hist = (n_schemes, history_engines, b, n_angles)
+        self.history = {"load_history": np.full((*hist, 2), np.nan), "h_min_history": np.full(hist, np.nan)}
         self.parts = {k: np.empty((n, b)) for k in ("housing_bore", "housing_reading", "journal_d", "journal_reading")}
         self.block_scrapped = np.empty(n, bool)
         self.crank_scrapped = np.empty(n, bool)
@@ -342,6 +353,7 @@ class _Output:
         arrays.update({f"grades.{k}": (v, 1) for k, v in self.grades.items()})
         arrays.update({f"floats.{k}": (v, 1) for k, v in self.floats.items()})
         arrays.update({f"mechanics.{k}": (v, 1) for k, v in self.mechanics.items()})
+        arrays.update({f"history.{k}": (v, 1) for k, v in self.history.items()})
         arrays.update({"status": (self.status, 1), "option": (self.option, 1), "loss_of_fit": (self.loss_of_fit, 1),
                        "crank_status": (self.crank_status, 1)})
         return arrays
@@ -362,8 +374,8 @@ class _Output:
 
     def chunk_state(self, engines, before):
         """The chunk's slice of every array and its additions to the shell counters."""
-        state = {name: np.take(a, np.arange(engines.start, engines.stop), axis=axis)
-                 for name, (a, axis) in self._per_engine().items()}
+        # plain slices: the history arrays hold only the first engines, so their slice may be shorter or empty
+        state = {name: a[(slice(None),) * axis + (engines,)] for name, (a, axis) in self._per_engine().items()}
         state.update({f"count.{k}": getattr(self, k) - v for k, v in before.items()})
         state["mechanics.progress"] = np.array([self.mechanics_next, int(self.mechanics_done)])
         return state
@@ -416,10 +428,15 @@ class _Output:
     def store_crank(self, i, first, crank):
         values, status = crank
         for name, v in values.items():
-            self.mechanics[name][i, first:first + status.size] = v
+            if name in self.history:
+                kept = self.history[name].shape[1]
+                if first < kept:
+                    self.history[name][i, first:min(first + status.size, kept)] = v[:kept - first]
+            else:
+                self.mechanics[name][i, first:first + status.size] = v
         self.crank_status[i, first:first + status.size] = status
 
-    def dataset(self, study, engine, schemes, grade_labels, film_method):
+    def dataset(self, study, engine, schemes, grade_labels, film_method, crank_angle):
         n, b = self.block_scrapped.size, engine.main_bearings
         sed = ("scheme", "engine", "bearing")
         ed = ("engine", "bearing")
@@ -488,6 +505,16 @@ class _Output:
             "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
             "axis": ("axis", ["cap", "transverse"], {"long_name": "engine-fixed axis: towards the bearing cap, transverse"}),
         }
+        kept = self.history["h_min_history"].shape[1]
+        if kept:
+            hist = ("scheme", "sampled_engine", "bearing", "crank_angle")
+            data["load_history"] = var((*hist, "axis"), self.history["load_history"], "N",
+                                       "bearing load over the cycle (force of the journal on the bearing)")
+            data["h_min_history"] = var(hist, self.history["h_min_history"], "m", "minimum oil film thickness over the cycle")
+            coords["sampled_engine"] = ("sampled_engine", np.arange(kept),
+                                        {"long_name": "engine of the mechanical chain (its number in the engine dimension)"})
+            coords["crank_angle"] = ("crank_angle", crank_angle,
+                                     {"units": "degree", "long_name": "crank angle from firing TDC of the first cylinder fired"})
         attrs = {
             "title": f"Selective assembly of {engine.title or engine.name}",
             "stackup_version": __version__,

@@ -290,3 +290,16 @@ def test_target_error_sizes_the_mechanical_chain_independently_of_chunking():
     xr.testing.assert_equal(loose, rechunked)
     used = loose.attrs["mechanics_engines_used"]
     assert np.all(loose.crank_status.values[:, used:] == 3)  # not_computed beyond the sample
+
+
+def test_history_on_a_crank_angle_dimension_only_when_asked():
+    kw = dict(n_engines=100, schemes=("iso13778-5",), crank_angle_step=6.0, mechanics_engines=4, pilot_engines=2000,
+              progress=False)
+    plain = Study(**kw).run()
+    assert "crank_angle" not in plain.dims
+    ds = Study(**kw, history=True).run()
+    assert ds.h_min_history.dims == ("scheme", "sampled_engine", "bearing", "crank_angle")
+    assert ds.sizes["crank_angle"] == 120 and ds.sizes["sampled_engine"] == 4
+    np.testing.assert_allclose(ds.h_min_history.min("crank_angle").values, ds.h_min.values[:, :4])
+    np.testing.assert_allclose(np.linalg.norm(ds.load_history.values, axis=-1).max(axis=-1), ds.reaction_max.values[:, :4])
+    assert ds.crank_angle.attrs["units"] == "degree"

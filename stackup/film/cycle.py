@@ -22,6 +22,7 @@ class BearingFilms:
     alpha: np.ndarray  # share of the cycle below h_lim_cr [-]
     life: np.ndarray  # Levanov method 1 with the cycle-minimum film [s]
     temperature: np.ndarray  # effective film temperature [degC]
+    history: np.ndarray  # minimum film at each crank angle (engines, bearings, angles) [m]
 
 
 def bearing_films(spec, reactions, crank_angle, *, clearance, journal_d, method="quasi-static",
@@ -66,4 +67,4 @@ def bearing_films(spec, reactions, crank_angle, *, clearance, journal_d, method=
     h_min = film.h_min.min(axis=-1)
     life = levanov_method1(np.maximum(h_min, 1e-12), h_lim_cr=h_lim_cr, n=n, wear_limit=wear_limit, wear_rate=wear_rate)
     return BearingFilms(h_min, film.h_min.mean(axis=-1), boundary_share(film.h_min, h_lim_cr=h_lim_cr), life.life,
-                        temperature)
+                        temperature, film.h_min)
