@@ -2,7 +2,8 @@
 
 __version__ = "0.1.0"
 
+from .plan import plan  # noqa: E402
 from .rank import rank  # noqa: E402
 from .study import Study  # noqa: E402
 
-__all__ = ["Study", "rank", "__version__"]
+__all__ = ["Study", "plan", "rank", "__version__"]

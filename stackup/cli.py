@@ -42,6 +42,23 @@ def _compare(args):
     return 0
 
 
+def _plan(args):
+    from .plan import plan
+
+    frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
+                 lot_engines=args.lot, sample_engines=args.sample, seed=args.seed)
+    a = frame.attrs
+    print(f"scheme {a['scheme']} on {a['engine']}: {a['volume']:,} engines, shells made {a['shells_made']:,} "
+          f"({a['supply']}), lots of {a['lot_engines']} engines, service level {a['service_level']:.3g}")
+    table = frame[["demand_per_1000", "demand_per_1000_lo", "demand_per_1000_hi", "production_share", "made",
+                   "demanded", "surplus", "safety_stock", "order_up_to"]].round(1)
+    table["production_share"] = frame["production_share"].round(4)
+    print(table.to_string())
+    print("(per grade: demand per 1000 engines with its 95 % interval; made, demanded and surplus for the volume; "
+          "safety stock and order-up-to level per lot)")
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="stackup", description=__doc__)
     parser.add_argument("--version", action="version", version=f"stackup {__version__}")
@@ -55,6 +72,15 @@ def main(argv=None):
     cmp_.add_argument("--quick", action="store_true", help="a small, fast run")
     cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
     cmp_.set_defaults(func=_compare)
+    pln = sub.add_parser("plan", help="shell quantities per grade for a scheme")
+    pln.add_argument("--scheme", required=True, help="scheme name or file")
+    pln.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file")
+    pln.add_argument("--volume", type=int, required=True, help="engines to build")
+    pln.add_argument("--service-level", type=float, default=0.99)
+    pln.add_argument("--lot", type=int, help="engines per production lot (default: the engine's)")
+    pln.add_argument("--sample", type=int, default=20_000, help="engines sampled to estimate the demand")
+    pln.add_argument("--seed", type=int, default=0)
+    pln.set_defaults(func=_plan)
     args = parser.parse_args(argv)
     try:
         return args.func(args)
