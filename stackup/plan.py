@@ -131,3 +131,88 @@ def simulate_lot_coverage(scheme, processes="iso-example", *, order_up_to, lot_e
         parts, _ = draw_lot(engine, lot_generator(root, k), lot_engines)
         covered += _per_engine_demand(scheme, parts).sum(axis=0) <= np.asarray(order_up_to)
     return covered / lots
+
+
+def _preferred_pair_demand(scheme, parts):
+    """Bearings per preferred pair code (n_grades**2,), over gradable built bearings."""
+    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
+    code = scheme.pair_code(*scheme.classify(h_read, j_read))
+    built = ~(parts.block_scrapped | parts.crank_scrapped)[:, None] & (code >= 0)
+    return np.bincount(code[built], minlength=len(scheme.shell.labels) ** 2)
+
+
+def allocate(scheme, pair_demand, supply, *, shortage_cost=10.0):
+    """Least-cost use of the scheme's allowed pairs for given demand and shell supply (LP, HiGHS).
+
+    Variables: bearings of each preferred pair served by each allowed option
+    (``scheme.option_table``), and surplus and shortfall of each grade.
+    Minimises ``sum(surplus) + shortage_cost * sum(shortfall)`` subject to
+    every bearing being served and shells used = supply - surplus + shortfall.
+    Returns (objective, allocation {(preferred, option): bearings}, surplus (grades,), shortfall (grades,)).
+    """
+    from scipy.optimize import linprog
+
+    labels = scheme.shell.labels
+    n = len(labels)
+    options = scheme.option_table
+    columns = [(p, k) for p in np.flatnonzero(pair_demand) for k in range(options.shape[1]) if options[p, k, 0] >= 0]
+    n_y = len(columns)
+    cost = np.concatenate([np.zeros(n_y), np.ones(n), np.full(n, shortage_cost)])
+    a_eq, b_eq = [], []
+    for p in np.flatnonzero(pair_demand):
+        a_eq.append([1.0 if c[0] == p else 0.0 for c in columns] + [0.0] * 2 * n)
+        b_eq.append(pair_demand[p])
+    for g in range(n):
+        row = [float(np.sum(options[p, k] == g)) for p, k in columns]
+        row += [1.0 if j == g else 0.0 for j in range(n)] + [-1.0 if j == g else 0.0 for j in range(n)]
+        a_eq.append(row)
+        b_eq.append(supply[g])
+    result = linprog(cost, A_eq=np.array(a_eq), b_eq=np.array(b_eq), bounds=(0, None), method="highs")
+    if not result.success:
+        raise ValueError(f"allocate: the LP failed ({result.message})")
+    y = result.x[:n_y]
+    allocation = {(labels[options[p, k, 0]] + "+" + labels[options[p, k, 1]] if k else "preferred",
+                   labels[p // n] + "+" + labels[p % n]): v for (p, k), v in zip(columns, y) if v > 1e-9}
+    return float(result.fun), allocation, result.x[n_y:n_y + n], result.x[n_y + n:]
+
+
+def optimise_supply(scheme, processes="iso-example", *, volume, shortage_cost=10.0, sample_engines=20_000, seed=0):
+    """Process mean of one shell process sorted into grades, and use of alternatives, that minimise surplus and shortfall.
+
+    The shell process is the engine's sorted process (``shell_wall.process``,
+    stated over the scheme's shell range) with its mean moved; shells made are
+    two per bearing plus the engine's surplus. For each mean the allocation is
+    the LP of :func:`allocate` on expected supply; the mean is found by a
+    bounded scalar search over the scheme's shell range.
+
+    Returns a dict: ``mean`` [m], ``objective``, ``centred_objective`` (the
+    process centred on the shell range), ``allocation``, ``surplus`` and
+    ``shortfall`` per grade.
+    """
+    from scipy.optimize import minimize_scalar
+
+    engine = load_engine(processes)
+    scheme = load_scheme(scheme)
+    volume = check.integer("volume", volume, minimum=1)
+    check.positive("shortage_cost", shortage_cost)
+    root = seed_sequence(seed)
+    parts, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), check.integer("sample_engines", sample_engines, minimum=100))
+    demand = _preferred_pair_demand(scheme, parts) * volume / parts.housing_bore.shape[0]
+    supply_spec = engine.shell_wall
+    dim = supply_spec.dimension(scheme)
+    made = supply_spec.shells_per_lot(volume * engine.main_bearings)
+    lo_bins, hi_bins = scheme.shell.bins()
+    spread = np.hypot(dim.process.std, supply_spec.gauge.repeatability)
+
+    def supply(mean):
+        return made * (stats.norm.cdf(hi_bins, mean, spread) - stats.norm.cdf(lo_bins, mean, spread))
+
+    def objective(mean):
+        return allocate(scheme, demand, supply(mean), shortage_cost=shortage_cost)[0]
+
+    lo, hi = scheme.shell.limits
+    best = minimize_scalar(objective, bounds=(lo, hi), method="bounded", options={"xatol": 1e-9})
+    value, allocation, surplus, shortfall = allocate(scheme, demand, supply(best.x), shortage_cost=shortage_cost)
+    return {"mean": float(best.x), "objective": value, "centred_objective": objective(0.5 * (lo + hi)),
+            "allocation": allocation, "surplus": dict(zip(scheme.shell.labels, surplus)),
+            "shortfall": dict(zip(scheme.shell.labels, shortfall)), "demand": demand, "supply": supply}
