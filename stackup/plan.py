@@ -51,8 +51,8 @@ def _per_engine_demand(scheme, parts):
 
 
 def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_engines=None, sample_engines=20_000,
-         seed=0):
-    """Shell quantities per grade for a scheme: demand, production share, surplus and safety stock.
+         seed=0, part="shell"):
+    """Quantities per grade for a scheme: shells (demand, production share, surplus, safety stock), or graded parts.
 
     Parameters
     ----------
@@ -68,11 +68,15 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     sample_engines : int
         Engines sampled to estimate the demand.
     seed : int
+    part : {"shell", "housing", "journal"}
+        Shells, or the housing bores or journals the scheme grades: their
+        share per grade (read by the gauge) and count per 1000 engines and
+        for ``volume`` engines, with 95 % intervals.
 
     Returns
     -------
     pandas.DataFrame
-        One row per shell grade.
+        One row per grade.
     """
     volume = check.integer("volume", volume, minimum=1)
     service_level = float(check.in_range("service_level", service_level, 0.0, 1.0, lo_open=True, hi_open=True))
@@ -80,8 +84,11 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     scheme = load_scheme(scheme)
     lot = engine.shell_wall.lot_engines if lot_engines is None else check.integer("lot_engines", lot_engines, minimum=1)
     n = check.integer("sample_engines", sample_engines, minimum=100)
+    check.one_of("part", part, ("shell", "housing", "journal"))
     root = seed_sequence(seed)
     parts, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), n)
+    if part != "shell":
+        return _graded_parts(scheme, engine, parts, part, volume)
     per_engine = _per_engine_demand(scheme, parts)
     mean = per_engine.mean(axis=0)
     sd = per_engine.std(axis=0, ddof=1)
@@ -118,6 +125,30 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     frame.attrs.update({"scheme": scheme.name, "engine": engine.name, "volume": volume, "service_level": service_level,
                         "lot_engines": lot, "sample_engines": n, "seed": seed, "supply": supply.mode,
                         "shells_made": made, "scrap_share": float(1 - landing.sum())})
+    return frame
+
+
+def _graded_parts(scheme, engine, parts, part, volume):
+    """Share and counts of housing bores or journals read into each of the scheme's grades."""
+    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
+    index = scheme.classify(h_read, j_read)[0 if part == "housing" else 1]
+    grades = scheme.housing if part == "housing" else scheme.journal
+    if not grades.graded:
+        raise ValueError(f"part: scheme {scheme.name} does not grade the {part}")
+    per_engine = np.stack([np.sum(index == g, axis=1) for g in range(len(grades.labels))], axis=1).astype(float)
+    n, b = index.shape
+    mean = per_engine.mean(axis=0)
+    half = 1.96 * per_engine.std(axis=0, ddof=1) / np.sqrt(n)
+    frame = pd.DataFrame({
+        "grade": list(grades.labels),
+        "share": mean / b,
+        "per_1000": 1000 * mean,
+        "per_1000_lo": 1000 * (mean - half),
+        "per_1000_hi": 1000 * (mean + half),
+        "for_volume": volume * mean,
+    }).set_index("grade")
+    frame.attrs.update({"scheme": scheme.name, "engine": engine.name, "volume": volume, "part": part,
+                        "ungradable_share": float(np.mean(index < 0))})
     return frame
 
 

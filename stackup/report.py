@@ -437,6 +437,37 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
             "![Film thickness and life per scheme](film_life.png)",
             "",
         ]
+    from .plan import plan as plan_grades
+
+    study_params = json.loads(ds.attrs["study"])
+    plan_rows = []
+    for name in ds.scheme.values:
+        try:
+            frame = plan_grades(str(name), study_params["engine"], volume=10_000, service_level=0.99,
+                                sample_engines=20_000, seed=study_params["seed"])
+        except ValueError:
+            continue
+        for grade, r in frame.iterrows():
+            plan_rows.append({"scheme": str(name), "grade": grade,
+                              "demand per 1000 engines": f"{r.demand_per_1000:.0f} [{r.demand_per_1000_lo:.0f}, {r.demand_per_1000_hi:.0f}]",
+                              "production share [%]": f"{100 * r.production_share:.2f}",
+                              "surplus for 10 000 engines": f"{r.surplus:+.0f}",
+                              "safety stock per lot (99 %)": f"{r.safety_stock:.0f}",
+                              "order-up-to per lot": f"{r.order_up_to:.0f}"})
+    plan_lines = []
+    if plan_rows:
+        plan_lines = [
+            "## Planning: shells per grade",
+            "",
+            "From `stackup.plan`: expected demand per grade (95 % interval), the share of the shell production "
+            "that lands in the grade when read and sorted, the surplus over 10 000 engines, and the safety stock "
+            f"per production lot ({ds.attrs['lot_engines']} engines) for a 99 % chance that the lot's demand is "
+            "covered (checked by simulated lots in the tests). `stackup plan --scheme NAME --volume N` prints "
+            "the same for any volume and service level.",
+            "",
+            _markdown_table(pd.DataFrame(plan_rows)),
+            "",
+        ]
     usage_table = usage.reset_index()[["scheme", "shell_grade", "shells_made", "shells_used", "shells_left", "used_share_pct"]]
     usage_table["used_share_pct"] = usage_table["used_share_pct"].map("{:.2f}".format)
     usage_table.columns = ["scheme", "grade", "made", "fitted", "left in stock", "share of fitted [%]"]
@@ -530,6 +561,7 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
         "",
         _markdown_table(not_built),
         "",
+        *plan_lines,
         "## Shell grade usage",
         "",
         "![Shell grades fitted and made per scheme](grade_usage.png)",

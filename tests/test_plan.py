@@ -96,3 +96,15 @@ def test_optimised_mean_beats_the_centred_process_when_demand_is_off_centre():
     assert r["objective"] < r["centred_objective"]
     lo, hi = 1.972e-3, 1.990e-3
     assert r["mean"] < 0.5 * (lo + hi)
+
+
+def test_housing_and_journal_grades_where_the_scheme_grades_them():
+    h = plan("iso13778-4", volume=1000, part="housing", sample_engines=5000)
+    j = plan("iso13778-4", volume=1000, part="journal", sample_engines=5000)
+    for frame in (h, j):
+        assert list(frame.index) == ["A", "B", "C"]
+        assert frame.share.sum() + frame.attrs["ungradable_share"] == pytest.approx(1.0)
+        assert frame.share["B"] > frame.share["A"]  # centred processes: the middle grade is the most common
+        assert abs(frame.per_1000["A"] - frame.per_1000["C"]) < 2 * (frame.per_1000_hi["A"] - frame.per_1000_lo["A"])
+    with pytest.raises(ValueError, match="part: scheme iso13778-3 does not grade the housing"):
+        plan("iso13778-3", volume=10, part="housing", sample_engines=500)
