@@ -46,8 +46,13 @@ def _plan(args):
     from .plan import plan
 
     frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
-                 lot_engines=args.lot, sample_engines=args.sample, seed=args.seed)
+                 lot_engines=args.lot, sample_engines=args.sample, seed=args.seed, part=args.part)
     a = frame.attrs
+    if args.part != "shell":
+        print(f"scheme {a['scheme']} on {a['engine']}: {args.part} grades for {a['volume']:,} engines "
+              f"(ungradable share {a['ungradable_share']:.2e})")
+        print(frame.round(4).to_string())
+        return 0
     print(f"scheme {a['scheme']} on {a['engine']}: {a['volume']:,} engines, shells made {a['shells_made']:,} "
           f"({a['supply']}), lots of {a['lot_engines']} engines, service level {a['service_level']:.3g}")
     table = frame[["demand_per_1000", "demand_per_1000_lo", "demand_per_1000_hi", "production_share", "made",
@@ -80,6 +85,7 @@ def main(argv=None):
     pln.add_argument("--lot", type=int, help="engines per production lot (default: the engine's)")
     pln.add_argument("--sample", type=int, default=20_000, help="engines sampled to estimate the demand")
     pln.add_argument("--seed", type=int, default=0)
+    pln.add_argument("--part", choices=("shell", "housing", "journal"), default="shell")
     pln.set_defaults(func=_plan)
     args = parser.parse_args(argv)
     try:
