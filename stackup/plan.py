@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import xarray as xr
 from scipy import stats
 
 from . import _validate as check
@@ -53,6 +54,10 @@ def _per_engine_demand(scheme, parts):
 def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_engines=None, sample_engines=20_000,
          seed=0, part="shell"):
     """Quantities per grade for a scheme: shells (demand, production share, surplus, safety stock), or graded parts.
+
+    ``scheme`` may also be a study dataset (:class:`stackup.Study` result):
+    then every scheme of it is planned from the study's own engines and shell
+    lots (rows indexed by scheme and grade).
 
     Parameters
     ----------
@@ -80,6 +85,8 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     """
     volume = check.integer("volume", volume, minimum=1)
     service_level = float(check.in_range("service_level", service_level, 0.0, 1.0, lo_open=True, hi_open=True))
+    if isinstance(scheme, xr.Dataset):
+        return _from_dataset(scheme, volume=volume, service_level=service_level, lot_engines=lot_engines)
     engine = load_engine(processes)
     scheme = load_scheme(scheme)
     lot = engine.shell_wall.lot_engines if lot_engines is None else check.integer("lot_engines", lot_engines, minimum=1)
@@ -125,6 +132,34 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     frame.attrs.update({"scheme": scheme.name, "engine": engine.name, "volume": volume, "service_level": service_level,
                         "lot_engines": lot, "sample_engines": n, "seed": seed, "supply": supply.mode,
                         "shells_made": made, "scrap_share": float(1 - landing.sum())})
+    return frame
+
+
+def _from_dataset(ds, *, volume, service_level, lot_engines):
+    """Shell plan per scheme and grade from a study's assembled engines and shell lots."""
+    lot = int(ds.attrs["lot_engines"]) if lot_engines is None else check.integer("lot_engines", lot_engines, minimum=1)
+    z = stats.norm.ppf(service_level)
+    rows = []
+    for name in ds.scheme.values:
+        d = ds.sel(scheme=name)
+        built = np.all(d.status.values == 0, axis=1)
+        labels = [g for g, has in zip(d.shell_grade.values, d.grade_in_scheme.values) if has]
+        made_total = float(d.shells_made.sum() + d.shells_scrapped)
+        for g in labels:
+            per_engine = (np.sum(d.shell_upper_grade.values[built] == g, axis=1)
+                          + np.sum(d.shell_lower_grade.values[built] == g, axis=1))
+            mean, sd = per_engine.mean(), per_engine.std(ddof=1)
+            half = 1.96 * sd / np.sqrt(per_engine.size)
+            share = float(d.shells_made.sel(shell_grade=g)) / made_total
+            made = made_total / d.sizes["engine"] * volume * share
+            rows.append({"scheme": str(name), "grade": str(g), "demand_per_1000": 1000 * mean,
+                         "demand_per_1000_lo": 1000 * (mean - half), "demand_per_1000_hi": 1000 * (mean + half),
+                         "production_share": share, "made": made, "demanded": volume * mean,
+                         "surplus": made - volume * mean, "lot_demand_mean": lot * mean,
+                         "safety_stock": z * sd * np.sqrt(lot), "order_up_to": lot * mean + z * sd * np.sqrt(lot)})
+    frame = pd.DataFrame(rows).set_index(["scheme", "grade"])
+    frame.attrs.update({"volume": volume, "service_level": service_level, "lot_engines": lot,
+                        "source": "study dataset", "engines": int(ds.sizes["engine"])})
     return frame
 
 

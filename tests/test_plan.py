@@ -108,3 +108,16 @@ def test_housing_and_journal_grades_where_the_scheme_grades_them():
         assert abs(frame.per_1000["A"] - frame.per_1000["C"]) < 2 * (frame.per_1000_hi["A"] - frame.per_1000_lo["A"])
     with pytest.raises(ValueError, match="part: scheme iso13778-3 does not grade the housing"):
         plan("iso13778-3", volume=10, part="housing", sample_engines=500)
+
+
+def test_plan_from_a_study_dataset_agrees_with_the_process_plan():
+    import stackup
+
+    ds = stackup.Study(n_engines=8000, schemes=("iso13778-4", "iso13778-5"), mechanics_engines=0, pilot_engines=20_000,
+                       progress=False).run()
+    from_ds = stackup.plan(ds, volume=10_000)
+    assert list(from_ds.index.get_level_values("scheme").unique()) == ["iso13778-4", "iso13778-5"]
+    direct = plan("iso13778-5", volume=10_000, sample_engines=20_000)
+    for g in ("A", "B", "C"):
+        lo, hi = from_ds.loc[("iso13778-5", g), ["demand_per_1000_lo", "demand_per_1000_hi"]]
+        assert lo - 30 <= direct.demand_per_1000[g] <= hi + 30  # two independent samples of the same demand
