@@ -151,70 +151,130 @@ class Study:
             stamp.write_text(_fingerprint(self))
         return folder
 
-    def run(self) -> xr.Dataset:
-        """Sample, measure, grade, pair and assemble; return the dataset."""
-        engine = apply_scenario(load_engine(self.engine), self.scenario)
-        schemes = [load_scheme(s) for s in self.schemes]
-        names = [s.name for s in schemes]
-        if len(set(names)) != len(names):
-            raise ValueError(f"schemes: two files carry the same scheme name ({names})")
-        n, b = self.n_engines, engine.main_bearings
-        lot = engine.shell_wall.lot_engines
-        n_lots = math.ceil(n / lot)
-        root = seed_sequence(self.seed)
-        pilot, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), self.pilot_engines)
-        shares = []
-        for s in schemes:
-            demand = shell_demand(s, pilot)
-            if demand.sum() == 0:
-                raise ValueError(f"scheme {s.name}: no bearing of the pilot sample could be graded; "
-                                 "do the scheme's ranges match the engine's drawing limits?")
-            shares.append(engine.shell_wall.aim_share(s, demand) if engine.shell_wall.mode == "to-order" else None)
-        grade_labels = _union_labels(schemes)
+    def _context(self):
+        """Everything a chunk needs that follows from the parameters alone (cached per process)."""
+        key = _fingerprint(self)
+        if key not in _CONTEXTS:
+            engine = apply_scenario(load_engine(self.engine), self.scenario)
+            schemes = [load_scheme(s) for s in self.schemes]
+            names = [s.name for s in schemes]
+            if len(set(names)) != len(names):
+                raise ValueError(f"schemes: two files carry the same scheme name ({names})")
+            root = seed_sequence(self.seed)
+            pilot, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), self.pilot_engines)
+            shares = []
+            for s in schemes:
+                demand = shell_demand(s, pilot)
+                if demand.sum() == 0:
+                    raise ValueError(f"scheme {s.name}: no bearing of the pilot sample could be graded; "
+                                     "do the scheme's ranges match the engine's drawing limits?")
+                shares.append(engine.shell_wall.aim_share(s, demand) if engine.shell_wall.mode == "to-order" else None)
+            lot = engine.shell_wall.lot_engines
+            _CONTEXTS.clear()  # one study at a time per process
+            _CONTEXTS[key] = _Context(
+                engine=engine, schemes=schemes, shares=shares, grade_labels=_union_labels(schemes), root=root,
+                lot=lot, n_lots=math.ceil(self.n_engines / lot),
+                mechanics=min(self.mechanics_engines, self.n_engines) if engine.crank is not None else 0,
+                film_method=cheapest_tier(self.film_error) if self.film_method == "auto" else self.film_method,
+                crank_angle=np.arange(0.0, 720.0, self.crank_angle_step))
+        return _CONTEXTS[key]
 
-        mechanics = min(self.mechanics_engines, n) if engine.crank is not None else 0
-        film_method = cheapest_tier(self.film_error) if self.film_method == "auto" else self.film_method
-        crank_angle = np.arange(0.0, 720.0, self.crank_angle_step)
-        out = _Output(len(schemes), n, b, len(grade_labels), mechanics if self.history else 0, crank_angle.size)
+    def _bounds(self, ctx, first):
+        lots = range(first, min(first + self.chunk_lots, ctx.n_lots))
+        return lots, lots[0] * ctx.lot, min((lots[-1] + 1) * ctx.lot, self.n_engines)
+
+    def _output(self, ctx, engines, history_engines):
+        return _Output(len(ctx.schemes), engines, ctx.engine.main_bearings, len(ctx.grade_labels),
+                       history_engines if self.history else 0, ctx.crank_angle.size)
+
+    def _fill(self, ctx, out, origin, first):
+        """Compute chunk ``first`` into ``out``, whose engine 0 is engine ``origin`` of the study."""
+        lots, e0, e1 = self._bounds(ctx, first)
+        rows = slice(e0 - origin, e1 - origin)
+        n = self.n_engines
+        drawn = [draw_lot(ctx.engine, lot_generator(ctx.root, k), min(ctx.lot, n - k * ctx.lot), self.sampler)
+                 for k in lots]
+        parts = _concat_parts([p for p, _ in drawn])
+        out.store_parts(rows, parts)
+        stages = []
+        for i, (scheme, share) in enumerate(zip(ctx.schemes, ctx.shares)):
+            shells = [ctx.engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
+            result = assemble(scheme, parts, shells, lot_engines=ctx.lot)
+            out.store_assembly(i, rows, result, scheme, ctx.grade_labels)
+            fit = _operating(ctx.engine, parts, result, self.fit_method)
+            out.store_fit(i, rows, fit)
+            stages.append((result, fit))
+        # mechanical chain: engines in order, in batches at fixed engine numbers, until the
+        # target error is met (decisions do not depend on the chunking)
+        a = max(e0, out.mechanics_next)
+        while not out.mechanics_done and a < min(e1, ctx.mechanics):
+            stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
+            for i, (result, fit) in enumerate(stages):
+                out.store_crank(i, a - origin, _cycles(ctx.engine, parts, result, fit, slice(a - e0, stop - e0),
+                                                       ctx.crank_angle, self.crank_method, ctx.film_method))
+            a = out.mechanics_next = stop
+            if a == ctx.mechanics or (self.target_error and a % MECHANICS_BATCH == 0
+                                      and out.film_error(a) <= self.target_error):
+                out.mechanics_done = True
+        return e0, e1
+
+    def chunk_state(self, first):
+        """Compute chunk ``first`` on its own (e.g. on a worker) and return its state for merging."""
+        ctx = self._context()
+        _, e0, e1 = self._bounds(ctx, first)
+        local = self._output(ctx, e1 - e0, max(0, min(e1, ctx.mechanics) - e0))
+        local.mechanics_next = min(e0, ctx.mechanics)  # no engine past the mechanical range counts as progress
+        before = local.counters()
+        self._fill(ctx, local, e0, first)
+        return local.chunk_state(slice(0, e1 - e0), before)
+
+    def run(self, scheduler=None) -> xr.Dataset:
+        """Sample, measure, grade, pair, assemble and run the stages; return the dataset.
+
+        Parameters
+        ----------
+        scheduler : None, "processes" or dask.distributed.Client
+            Where the chunks run: in this process, in local processes (dask),
+            or on a dask cluster. Chunks are seeded from one SeedSequence, so
+            the numbers are identical on all three. ``target_error`` decides
+            after each batch of engines in order and needs ``None``.
+        """
+        ctx = self._context()
+        n = self.n_engines
+        out = self._output(ctx, n, ctx.mechanics)
         folder = self._checkpoint_folder()
+        firsts = list(range(0, ctx.n_lots, self.chunk_lots))
+
+        def saved(first):
+            return folder / f"chunk-{first:06d}.nc" if folder else None
+
         with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
-            for first in range(0, n_lots, self.chunk_lots):
-                lots = range(first, min(first + self.chunk_lots, n_lots))
-                e0 = lots[0] * lot
-                e1 = min((lots[-1] + 1) * lot, n)
-                saved = folder / f"chunk-{first:06d}.nc" if folder else None
-                if saved is not None and saved.is_file():
-                    out.load_chunk(slice(e0, e1), _read_chunk(saved))
+            todo = []
+            for first in firsts:
+                _, e0, e1 = self._bounds(ctx, first)
+                if saved(first) is not None and saved(first).is_file():
+                    out.load_chunk(slice(e0, e1), _read_chunk(saved(first)))
                     bar.update(e1 - e0)
-                    continue
-                before = out.counters()
-                drawn = [draw_lot(engine, lot_generator(root, k), min(lot, n - k * lot), self.sampler) for k in lots]
-                parts = _concat_parts([p for p, _ in drawn])
-                out.store_parts(slice(e0, e1), parts)
-                stages = []
-                for i, (scheme, share) in enumerate(zip(schemes, shares)):
-                    shells = [engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
-                    result = assemble(scheme, parts, shells, lot_engines=lot)
-                    out.store_assembly(i, slice(e0, e1), result, scheme, grade_labels)
-                    fit = _operating(engine, parts, result, self.fit_method)
-                    out.store_fit(i, slice(e0, e1), fit)
-                    stages.append((result, fit))
-                # mechanical chain: engines in order, in batches at fixed engine numbers, until the
-                # target error is met (decisions do not depend on the chunking)
-                a = max(e0, out.mechanics_next)
-                while not out.mechanics_done and a < min(e1, mechanics):
-                    b = min(e1, mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
-                    for i, (result, fit) in enumerate(stages):
-                        out.store_crank(i, a, _cycles(engine, parts, result, fit, slice(a - e0, b - e0), crank_angle,
-                                                      self.crank_method, film_method))
-                    a = out.mechanics_next = b
-                    if a == mechanics or (self.target_error and a % MECHANICS_BATCH == 0
-                                          and out.film_error(a) <= self.target_error):
-                        out.mechanics_done = True
-                if saved is not None:
-                    _write_chunk(saved, out.chunk_state(slice(e0, e1), before))
-                bar.update(e1 - e0)
-        return out.dataset(self, engine, schemes, grade_labels, film_method, crank_angle)
+                else:
+                    todo.append(first)
+            if scheduler is None:
+                for first in todo:
+                    before = out.counters()
+                    e0, e1 = self._fill(ctx, out, 0, first)
+                    if saved(first) is not None:
+                        _write_chunk(saved(first), out.chunk_state(slice(e0, e1), before))
+                    bar.update(e1 - e0)
+            else:
+                if self.target_error:
+                    raise ValueError("scheduler: a study with target_error decides engine by engine in order; "
+                                     "run it with scheduler=None")
+                for first, state in _distribute(self, todo, scheduler):
+                    _, e0, e1 = self._bounds(ctx, first)
+                    out.load_chunk(slice(e0, e1), state)
+                    if saved(first) is not None:
+                        _write_chunk(saved(first), state)
+                    bar.update(e1 - e0)
+        return out.dataset(self, ctx.engine, ctx.schemes, ctx.grade_labels, ctx.film_method, ctx.crank_angle)
 
 
 #: Press-fit results stored per bearing: dataset name -> PressFit field.
@@ -247,6 +307,47 @@ def _operating(engine, parts, assembly, method):
     loss[ok] = fit.loss_of_fit
     out["loss_of_fit"] = loss
     return out
+
+
+#: The study context of this process (see Study._context).
+_CONTEXTS = {}
+
+
+@dataclass(frozen=True)
+class _Context:
+    engine: object
+    schemes: list
+    shares: list
+    grade_labels: list
+    root: object
+    lot: int
+    n_lots: int
+    mechanics: int
+    film_method: str
+    crank_angle: np.ndarray
+
+
+def _chunk_task(study, first):
+    """A chunk computed where the scheduler puts it (module level, so it pickles)."""
+    return first, study.chunk_state(first)
+
+
+def _distribute(study, firsts, scheduler):
+    """Yield (first, state) of each chunk as it finishes on ``scheduler``."""
+    if scheduler == "processes":
+        import dask
+
+        tasks = [dask.delayed(_chunk_task)(study, first) for first in firsts]
+        yield from dask.compute(*tasks, scheduler="processes")
+        return
+    if hasattr(scheduler, "submit") and hasattr(scheduler, "gather"):
+        from distributed import as_completed
+
+        futures = [scheduler.submit(_chunk_task, study, first, pure=False) for first in firsts]
+        for _, result in as_completed(futures, with_results=True):
+            yield result
+        return
+    raise ValueError(f"scheduler: {scheduler!r} is not None, 'processes' or a dask.distributed Client")
 
 
 def _write_chunk(path, state):
@@ -386,8 +487,9 @@ class _Output:
             a[index] = state[name]
         for k in ("made", "used", "left", "scrapped"):
             getattr(self, k)[...] += state[f"count.{k}"]
-        self.mechanics_next, done = (int(v) for v in state["mechanics.progress"])
-        self.mechanics_done = bool(done)
+        done_to, done = (int(v) for v in state["mechanics.progress"])
+        self.mechanics_next = max(self.mechanics_next, done_to)  # chunks may arrive in any order
+        self.mechanics_done = self.mechanics_done or bool(done)
 
     def store_parts(self, engines, parts):
         self.parts["housing_bore"][engines] = parts.housing_bore
