@@ -24,6 +24,7 @@ from .fit import METHODS as FIT_METHODS
 from .fit import press_fit
 from .engines import load_engine
 from .parts import SAMPLERS, draw_lot
+from . import summaries as summarise
 from .scenarios import apply as apply_scenario
 from .schemes import load as load_scheme
 
@@ -54,6 +55,11 @@ class Study:
         random sample) on which the crankshaft beam, film and life run over
         the cycle; 0 skips the stage; with ``target_error`` it is the cap.
         Engines with a bearing not assembled are skipped and marked.
+    keep : {"everything", "summaries"}
+        Keep every engine, or only streaming summaries of the clearance
+        stages (:mod:`stackup.summaries`: histograms, counts, moments, shell
+        counters, worst bearings), so memory stays flat as ``n_engines``
+        grows; the mechanical chain is not run with ``"summaries"``.
     history : bool
         Keep each mechanically computed engine's bearing loads and minimum
         film at every crank angle, on dimensions ``sampled_engine`` and
@@ -99,6 +105,7 @@ class Study:
     mechanics_engines: int = 200
     target_error: float | None = None
     history: bool = False
+    keep: str = "everything"
     crank_angle_step: float = 1.0
     fit_method: str = "lame"
     crank_method: str = "bearing-law"
@@ -118,6 +125,7 @@ class Study:
             self.target_error = float(check.in_range("target_error", self.target_error, 0.0, 1.0, lo_open=True))
         self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
         check.one_of("sampler", self.sampler, SAMPLERS)
+        check.one_of("keep", self.keep, ("everything", "summaries"))
         check.one_of("fit_method", self.fit_method, FIT_METHODS)
         check.one_of("crank_method", self.crank_method, CRANK_METHODS)
         check.one_of("film_method", self.film_method, ("short", "finite", "reynolds", "auto"))
@@ -219,14 +227,66 @@ class Study:
         return e0, e1
 
     def chunk_state(self, first):
-        """Compute chunk ``first`` on its own (e.g. on a worker) and return its state for merging."""
+        """Compute chunk ``first`` on its own (e.g. on a worker) and return its state for merging.
+
+        With ``keep="summaries"`` the state is the chunk's summary (:func:`stackup.summaries.reduce_chunk`).
+        """
         ctx = self._context()
         _, e0, e1 = self._bounds(ctx, first)
-        local = self._output(ctx, e1 - e0, max(0, min(e1, ctx.mechanics) - e0))
+        summaries = self.keep == "summaries"
+        local = self._output(ctx, e1 - e0, 0 if summaries else max(0, min(e1, ctx.mechanics) - e0))
         local.mechanics_next = min(e0, ctx.mechanics)  # no engine past the mechanical range counts as progress
+        local.mechanics_done = summaries
         before = local.counters()
         self._fill(ctx, local, e0, first)
-        return local.chunk_state(slice(0, e1 - e0), before)
+        state = local.chunk_state(slice(0, e1 - e0), before)
+        if summaries:
+            # one summary per production lot: lots are fixed units, so the sums do not depend on the chunking
+            lots, _, _ = self._bounds(ctx, first)
+            reduced = [summarise.reduce_chunk(piece, e0=e0 + j * ctx.lot, window=ctx.engine.clearance_window,
+                                              n_schemes=len(ctx.schemes))
+                       for j, piece in enumerate(summarise.split_state(state, lots, ctx.lot))]
+            return {f"lot{j:06d}.{k}": v for j, r in enumerate(reduced) for k, v in r.items()}
+        return state
+
+    def _run_summaries(self, ctx, scheduler, folder):
+        firsts = list(range(0, ctx.n_lots, self.chunk_lots))
+        done = {}
+        todo = []
+        for first in firsts:
+            path = folder / f"chunk-{first:06d}.nc" if folder else None
+            if path is not None and path.is_file():
+                done[first] = _read_chunk(path)
+            else:
+                todo.append(first)
+        total = None
+        queue = list(firsts)
+
+        def drain(total):
+            # add the chunks that are next in order; out-of-order chunks wait in `done`
+            while queue and queue[0] in done:
+                state = done.pop(queue.pop(0))
+                lots = sorted({k.split(".", 1)[0] for k in state})
+                for lot in lots:
+                    prefix = lot + "."
+                    total = summarise.add(total, {k[len(prefix):]: v for k, v in state.items() if k.startswith(prefix)})
+            return total
+
+        with tqdm(total=len(firsts), unit="chunk", disable=_no_bar(self.progress), desc="summaries") as bar:
+            bar.update(len(done))
+            total = drain(total)
+            results = ((f, self.chunk_state(f)) for f in todo) if scheduler is None else _distribute(self, todo, scheduler)
+            for first, state in results:
+                done[first] = state
+                if folder:
+                    _write_chunk(folder / f"chunk-{first:06d}.nc", state)
+                total = drain(total)
+                bar.update(1)
+        attrs = {"stackup_version": __version__, "study": json.dumps(self.parameters()), "seed": self.seed,
+                 "engine": ctx.engine.name, "clearance_window": list(ctx.engine.clearance_window),
+                 "bin_width": summarise.BIN_WIDTH, "Conventions": "CF-1.10",
+                 "title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}"}
+        return summarise.dataset(total, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
 
     def run(self, scheduler=None) -> xr.Dataset:
         """Sample, measure, grade, pair, assemble and run the stages; return the dataset.
@@ -241,8 +301,10 @@ class Study:
         """
         ctx = self._context()
         n = self.n_engines
-        out = self._output(ctx, n, ctx.mechanics)
         folder = self._checkpoint_folder()
+        if self.keep == "summaries":
+            return self._run_summaries(ctx, scheduler, folder)
+        out = self._output(ctx, n, ctx.mechanics)
         firsts = list(range(0, ctx.n_lots, self.chunk_lots))
 
         def saved(first):

@@ -55,3 +55,8 @@ def test_target_error_needs_the_in_process_scheduler():
 def test_unknown_scheduler():
     with pytest.raises(ValueError, match="scheduler: 'threads' is not None, 'processes' or a dask.distributed Client"):
         Study(**KW).run(scheduler="threads")
+
+
+def test_streaming_summaries_are_identical_on_a_cluster(client):
+    kw = dict(KW, mechanics_engines=0, history=False, keep="summaries")
+    xr.testing.assert_identical(Study(**kw).run(scheduler=client), Study(**kw).run())

@@ -1,0 +1,55 @@
+"""Streaming summaries: they agree with the full dataset and memory does not grow with n."""
+
+import tracemalloc
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from stackup import Study
+from stackup.summaries import BIN_WIDTH, quantile
+
+KW = dict(n_engines=4000, mechanics_engines=0, progress=False, pilot_engines=3000, chunk_lots=1)
+
+
+@pytest.fixture(scope="module")
+def pair():
+    return Study(**KW).run(), Study(**KW, keep="summaries").run()
+
+
+def test_summaries_agree_with_the_full_dataset(pair):
+    full, summary = pair
+    for scheme in full.scheme.values:
+        d = full.sel(scheme=scheme)
+        s = summary.sel(scheme=scheme)
+        ok = d.status.values == 0
+        c = d.clearance_operating.values[ok]
+        assert float(s.clearance_operating_mean) == pytest.approx(c.mean(), rel=1e-12)
+        assert float(s.clearance_operating_std) == pytest.approx(c.std(ddof=1), rel=1e-9)
+        assert int(s.clearance_operating_histogram.sum()) == c.size
+        lo, hi = full.attrs["clearance_window"]
+        assert int(s.outside_window_count) == np.count_nonzero((c < lo) | (c > hi))
+        assert np.array_equal(s.status_count.values, np.bincount(d.status.values.ravel(), minlength=5))
+        assert float(s.worst_low.sel(rank=1, field="clearance_operating")) == c.min()
+        assert float(s.worst_high.sel(rank=1, field="clearance_operating")) == c.max()
+        assert abs(float(quantile(summary.sel(scheme=[scheme]), "clearance_operating", 0.5)[0]) - np.median(c)) <= BIN_WIDTH
+        xr.testing.assert_equal(s.shells_made, d.shells_made)
+
+
+def test_summaries_are_identical_whatever_the_chunking(pair):
+    _, summary = pair
+    xr.testing.assert_equal(Study(**{**KW, "chunk_lots": 3}, keep="summaries").run(), summary)
+
+
+def peak_memory(n):
+    tracemalloc.start()
+    Study(**{**KW, "n_engines": n}, keep="summaries").run()
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return peak
+
+
+def test_memory_of_a_streaming_study_does_not_grow_with_n():
+    Study(**{**KW, "n_engines": 1000}, keep="summaries").run()  # warm caches
+    small, large = peak_memory(4000), peak_memory(16000)
+    assert large < 1.2 * small
