@@ -390,7 +390,14 @@ class _Context:
 
 
 def _chunk_task(study, first):
-    """A chunk computed where the scheduler puts it (module level, so it pickles)."""
+    """A chunk computed where the scheduler puts it (module level, so it pickles).
+
+    A worker is one core: the numba kernels run on one thread there, so
+    workers do not oversubscribe the machine.
+    """
+    import numba
+
+    numba.set_num_threads(1)
     return first, study.chunk_state(first)
 
 
