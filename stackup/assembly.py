@@ -45,13 +45,19 @@ class Assembly:
     shells_left: np.ndarray  # (grades,) left in the bins at the ends of the lots
 
 
-def shell_demand(scheme, parts):
-    """Shells of each grade that ``scheme``'s preferred pairs ask for, for ``parts`` (grades,)."""
+def shell_demand_per_engine(scheme, parts):
+    """Shells of each grade each engine's preferred pairs ask for (engines, grades); built, gradable bearings only."""
     h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
     up, lo = scheme.pair_indices(*scheme.classify(h_read, j_read))
     built = ~(parts.block_scrapped | parts.crank_scrapped)[:, None] & (up >= 0)
-    n = len(scheme.shell.labels)
-    return np.bincount(up[built], minlength=n) + np.bincount(lo[built], minlength=n)
+    grades = np.arange(len(scheme.shell.labels))
+    return (np.sum(built[..., None] & (up[..., None] == grades), axis=1)
+            + np.sum(built[..., None] & (lo[..., None] == grades), axis=1))
+
+
+def shell_demand(scheme, parts):
+    """Shells of each grade that ``scheme``'s preferred pairs ask for, for ``parts`` (grades,)."""
+    return shell_demand_per_engine(scheme, parts).sum(axis=0)
 
 
 def assemble(scheme, parts, shells, *, lot_engines):

@@ -34,21 +34,10 @@ from scipy import stats
 
 from . import _validate as check
 from ._random import PILOT_KEY, lot_generator, seed_sequence
+from .assembly import shell_demand_per_engine
 from .engines import load_engine
 from .parts import draw_lot
 from .schemes import load as load_scheme
-
-
-def _per_engine_demand(scheme, parts):
-    """Shells of each grade each engine asks for (engines, grades), preferred pairs of gradable built engines."""
-    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
-    up, lo = scheme.pair_indices(*scheme.classify(h_read, j_read))
-    built = ~(parts.block_scrapped | parts.crank_scrapped)[:, None] & (up >= 0)
-    n_grades = len(scheme.shell.labels)
-    demand = np.zeros((up.shape[0], n_grades))
-    for g in range(n_grades):
-        demand[:, g] = np.sum(built & (up == g), axis=1) + np.sum(built & (lo == g), axis=1)
-    return demand
 
 
 def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_engines=None, sample_engines=20_000,
@@ -96,7 +85,7 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     parts, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), n)
     if part != "shell":
         return _graded_parts(scheme, engine, parts, part, volume)
-    per_engine = _per_engine_demand(scheme, parts)
+    per_engine = shell_demand_per_engine(scheme, parts).astype(float)
     mean = per_engine.mean(axis=0)
     sd = per_engine.std(axis=0, ddof=1)
     half = 1.96 * sd / np.sqrt(n)
@@ -195,7 +184,7 @@ def simulate_lot_coverage(scheme, processes="iso-example", *, order_up_to, lot_e
     covered = np.zeros(len(scheme.shell.labels))
     for k in range(lots):
         parts, _ = draw_lot(engine, lot_generator(root, k), lot_engines)
-        covered += _per_engine_demand(scheme, parts).sum(axis=0) <= np.asarray(order_up_to)
+        covered += shell_demand_per_engine(scheme, parts).astype(float).sum(axis=0) <= np.asarray(order_up_to)
     return covered / lots
 
 
