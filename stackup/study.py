@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
 from dataclasses import asdict, dataclass
-from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -27,6 +27,7 @@ from .parts import SAMPLERS, draw_lot
 from . import summaries as summarise
 from .scenarios import apply as apply_scenario
 from .schemes import load as load_scheme
+from .store import ChunkStore, open_study, to_stored
 
 ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
 
@@ -89,11 +90,14 @@ class Study:
     scenario : dict or None
         Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
         ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
-    checkpoint : str or None
-        Folder where each finished chunk is written as netCDF (``chunk-NNNNNN.nc``); a
-        rerun of the same study with the same folder loads the finished chunks
-        instead of computing them, so an interrupted study resumes without
-        losing or repeating work. Execution only: results do not depend on it.
+    store : str or None
+        Path of a Zarr store the results stream into as chunks finish
+        (:mod:`stackup.store`), so a study larger than memory can keep every
+        engine; ``run`` then returns the dataset opened lazily from the store.
+        It is also the checkpoint: a rerun of the same study with the same
+        store computes only the chunks not yet written, so an interrupted study
+        resumes without losing or repeating work. Execution only: results do
+        not depend on it.
     """
 
     engine: str = "iso-example"
@@ -114,7 +118,7 @@ class Study:
     progress: bool | None = None
     sampler: str = "mc"
     scenario: dict | None = None
-    checkpoint: str | None = None
+    store: str | None = None
 
     def __post_init__(self):
         self.n_engines = check.integer("n_engines", self.n_engines, minimum=1)
@@ -142,22 +146,7 @@ class Study:
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
-        return {k: v for k, v in asdict(self).items() if k not in ("progress", "checkpoint")}
-
-    def _checkpoint_folder(self):
-        """The checkpoint folder, created and stamped with this study's fingerprint; None without one."""
-        if self.checkpoint is None:
-            return None
-        folder = Path(self.checkpoint)
-        folder.mkdir(parents=True, exist_ok=True)
-        stamp = folder / "study.json"
-        if stamp.is_file():
-            if stamp.read_text() != _fingerprint(self):
-                raise ValueError(f"checkpoint: folder {str(folder)!r} holds chunks of another study "
-                                 "(parameters or stackup version differ); use another folder or empty it")
-        else:
-            stamp.write_text(_fingerprint(self))
-        return folder
+        return {k: v for k, v in asdict(self).items() if k not in ("progress", "store")}
 
     def _context(self):
         """Everything a chunk needs that follows from the parameters alone (cached per process)."""
@@ -226,67 +215,36 @@ class Study:
                 out.mechanics_done = True
         return e0, e1
 
-    def chunk_state(self, first):
+    def chunk_state(self, first, progress=None):
         """Compute chunk ``first`` on its own (e.g. on a worker) and return its state for merging.
 
-        With ``keep="summaries"`` the state is the chunk's summary (:func:`stackup.summaries.reduce_chunk`).
+        ``progress`` is the mechanical chain's progress over the chunks before
+        (a :class:`_Progress`); only a study with ``target_error`` needs it, in
+        order. With ``keep="summaries"`` the state is the chunk's summary, one
+        per production lot (:func:`stackup.summaries.reduce_chunk`).
         """
         ctx = self._context()
-        _, e0, e1 = self._bounds(ctx, first)
+        lots, e0, e1 = self._bounds(ctx, first)
         summaries = self.keep == "summaries"
         local = self._output(ctx, e1 - e0, 0 if summaries else max(0, min(e1, ctx.mechanics) - e0))
-        local.mechanics_next = min(e0, ctx.mechanics)  # no engine past the mechanical range counts as progress
-        local.mechanics_done = summaries
+        local.origin = e0
+        if progress is None:
+            local.mechanics_next = min(e0, ctx.mechanics)  # no engine past the mechanical range counts as progress
+        else:
+            local.mechanics_next, local.mechanics_done = progress.next, progress.done
+            local.h_min_before = progress.h_min_before()
+        local.mechanics_done = local.mechanics_done or summaries
         before = local.counters()
         self._fill(ctx, local, e0, first)
         state = local.chunk_state(slice(0, e1 - e0), before)
         if summaries:
             # one summary per production lot: lots are fixed units, so the sums do not depend on the chunking
-            lots, _, _ = self._bounds(ctx, first)
             reduced = [summarise.reduce_chunk(piece, e0=e0 + j * ctx.lot, window=ctx.engine.clearance_window,
                                               n_schemes=len(ctx.schemes))
                        for j, piece in enumerate(summarise.split_state(state, lots, ctx.lot))]
-            return {f"lot{j:06d}.{k}": v for j, r in enumerate(reduced) for k, v in r.items()}
+            return {k: np.stack([r[k] for r in reduced]) for k in reduced[0]}  # lots along the first axis
+        state["mechanics.h_min_head"] = state["mechanics.h_min"][:, :max(0, min(e1, ctx.mechanics) - e0)]
         return state
-
-    def _run_summaries(self, ctx, scheduler, folder):
-        firsts = list(range(0, ctx.n_lots, self.chunk_lots))
-        done = {}
-        todo = []
-        for first in firsts:
-            path = folder / f"chunk-{first:06d}.nc" if folder else None
-            if path is not None and path.is_file():
-                done[first] = _read_chunk(path)
-            else:
-                todo.append(first)
-        total = None
-        queue = list(firsts)
-
-        def drain(total):
-            # add the chunks that are next in order; out-of-order chunks wait in `done`
-            while queue and queue[0] in done:
-                state = done.pop(queue.pop(0))
-                lots = sorted({k.split(".", 1)[0] for k in state})
-                for lot in lots:
-                    prefix = lot + "."
-                    total = summarise.add(total, {k[len(prefix):]: v for k, v in state.items() if k.startswith(prefix)})
-            return total
-
-        with tqdm(total=len(firsts), unit="chunk", disable=_no_bar(self.progress), desc="summaries") as bar:
-            bar.update(len(done))
-            total = drain(total)
-            results = ((f, self.chunk_state(f)) for f in todo) if scheduler is None else _distribute(self, todo, scheduler)
-            for first, state in results:
-                done[first] = state
-                if folder:
-                    _write_chunk(folder / f"chunk-{first:06d}.nc", state)
-                total = drain(total)
-                bar.update(1)
-        attrs = {"stackup_version": __version__, "study": json.dumps(self.parameters()), "seed": self.seed,
-                 "engine": ctx.engine.name, "clearance_window": list(ctx.engine.clearance_window),
-                 "bin_width": summarise.BIN_WIDTH, "Conventions": "CF-1.10",
-                 "title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}"}
-        return summarise.dataset(total, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
 
     def run(self, scheduler=None) -> xr.Dataset:
         """Sample, measure, grade, pair, assemble and run the stages; return the dataset.
@@ -294,49 +252,174 @@ class Study:
         Parameters
         ----------
         scheduler : None, "processes" or dask.distributed.Client
-            Where the chunks run: in this process, in local processes (dask),
-            or on a dask cluster. Chunks are seeded from one SeedSequence, so
-            the numbers are identical on all three. ``target_error`` decides
+            Where the chunks run: in this process, in local worker processes
+            (a ``distributed.LocalCluster`` on loopback, one single-threaded
+            worker per core, closed at the end), or on the dask cluster of the
+            Client. Chunks are seeded from one SeedSequence, so the numbers are
+            identical on all three. Results stream back as chunks finish, at
+            most two chunks per worker in flight. ``target_error`` decides
             after each batch of engines in order and needs ``None``.
+
+        Returns
+        -------
+        xarray.Dataset
+            In memory; with ``store``, the dataset opened lazily from the store
+            (dask-backed, read on use), except the small summary dataset.
         """
         ctx = self._context()
-        n = self.n_engines
-        folder = self._checkpoint_folder()
-        if self.keep == "summaries":
-            return self._run_summaries(ctx, scheduler, folder)
-        out = self._output(ctx, n, ctx.mechanics)
+        if scheduler is not None and self.target_error:
+            raise ValueError("scheduler: a study with target_error decides engine by engine in order; "
+                             "run it with scheduler=None")
+        if scheduler is not None and scheduler != "processes" and not (hasattr(scheduler, "submit")
+                                                                      and hasattr(scheduler, "nthreads")):
+            raise ValueError(f"scheduler: {scheduler!r} is not None, 'processes' or a dask.distributed Client")
+        store = ChunkStore(self.store, _fingerprint(self)) if self.store is not None else None
+        sink = (_SummarySink if self.keep == "summaries" else _DatasetSink)(self, ctx, store)
         firsts = list(range(0, ctx.n_lots, self.chunk_lots))
+        finished = store.finished() if store is not None else set()
+        with tqdm(total=len(firsts), unit="chunk", disable=_no_bar(self.progress), desc="study") as bar:
+            for first in sorted(finished):
+                sink.add(first, store.read_state(first), stored=True)
+                bar.update(1)
+            todo = [first for first in firsts if first not in finished]
+            for first, state in _results(self, todo, scheduler, sink.progress):
+                sink.add(first, state)
+                bar.update(1)
+        return sink.result()
 
-        def saved(first):
-            return folder / f"chunk-{first:06d}.nc" if folder else None
 
-        with tqdm(total=n, unit="engine", disable=_no_bar(self.progress), desc="assembly") as bar:
-            todo = []
-            for first in firsts:
-                _, e0, e1 = self._bounds(ctx, first)
-                if saved(first) is not None and saved(first).is_file():
-                    out.load_chunk(slice(e0, e1), _read_chunk(saved(first)))
-                    bar.update(e1 - e0)
-                else:
-                    todo.append(first)
-            if scheduler is None:
-                for first in todo:
-                    before = out.counters()
-                    e0, e1 = self._fill(ctx, out, 0, first)
-                    if saved(first) is not None:
-                        _write_chunk(saved(first), out.chunk_state(slice(e0, e1), before))
-                    bar.update(e1 - e0)
-            else:
-                if self.target_error:
-                    raise ValueError("scheduler: a study with target_error decides engine by engine in order; "
-                                     "run it with scheduler=None")
-                for first, state in _distribute(self, todo, scheduler):
-                    _, e0, e1 = self._bounds(ctx, first)
-                    out.load_chunk(slice(e0, e1), state)
-                    if saved(first) is not None:
-                        _write_chunk(saved(first), state)
-                    bar.update(e1 - e0)
-        return out.dataset(self, ctx.engine, ctx.schemes, ctx.grade_labels, ctx.film_method, ctx.crank_angle)
+class _Progress:
+    """The mechanical chain's progress over the chunks added so far, in engine order."""
+
+    def __init__(self):
+        self.next = 0
+        self.done = False
+        self._h_min = []
+
+    def add(self, state):
+        done_to, done = (int(v) for v in state["mechanics.progress"])
+        self.next = max(self.next, done_to)  # chunks may arrive in any order
+        self.done = self.done or bool(done)
+        if state["mechanics.h_min_head"].shape[1]:
+            self._h_min.append(state["mechanics.h_min_head"])
+
+    def h_min_before(self):
+        return np.concatenate(self._h_min, axis=1) if self._h_min else None
+
+
+#: Small per-chunk arrays kept in a store's bookkeeping (the rest goes into the dataset).
+_SMALL = ("count.made", "count.used", "count.left", "count.scrapped", "mechanics.progress", "mechanics.h_min_head")
+
+
+class _DatasetSink:
+    """Receives finished chunks of a ``keep="everything"`` study: into memory, or into the store."""
+
+    def __init__(self, study, ctx, store):
+        self.study, self.ctx, self.store = study, ctx, store
+        self.progress = _Progress()
+        n = study.n_engines
+        if store is None:
+            self.out = study._output(ctx, n, ctx.mechanics)
+            return
+        self.out = study._output(ctx, 0, 0)  # the counters; the engines go to the store
+        self.labels = {lab for s in ctx.schemes for grades in (s.housing, s.journal, s.shell) for lab in grades.labels}
+        if not store.has_template:
+            store.write_template(self._template())
+
+    def _dataset(self, out):
+        ctx = self.ctx
+        return out.dataset(self.study, ctx.engine, ctx.schemes, ctx.grade_labels, ctx.film_method, ctx.crank_angle)
+
+    def _template(self):
+        """The stored per-engine variables, full size and empty (dask), chunked like the study."""
+        import dask.array as da
+
+        study, ctx = self.study, self.ctx
+        one = self._dataset(study._output(ctx, 1, min(1, ctx.mechanics)))
+        step = study.chunk_lots * ctx.lot
+        sizes = {"engine": study.n_engines, "sampled_engine": ctx.mechanics if study.history else 0}
+        variables = {}
+        for name, var in to_stored(_per_engine(one), self.labels).data_vars.items():
+            shape = tuple(sizes.get(d, s) for d, s in zip(var.dims, var.shape))
+            chunks = tuple(step if d in sizes else s for d, s in zip(var.dims, shape))
+            # one dask chunk (a small graph however large the study); the Zarr chunks follow the study's
+            variables[name] = xr.Variable(var.dims, da.empty(shape, dtype=var.dtype, chunks=shape), var.attrs,
+                                          encoding={"chunks": chunks})
+        coords = {"engine": ("engine", np.arange(study.n_engines), one.engine.attrs)}
+        if study.history and ctx.mechanics:
+            coords["sampled_engine"] = ("sampled_engine", np.arange(ctx.mechanics), one.sampled_engine.attrs)
+        template = xr.Dataset(variables, coords=coords)
+        return to_stored(template.assign_coords({k: v for k, v in one.coords.items() if k not in sizes}))
+
+    def add(self, first, state, stored=False):
+        _, e0, e1 = self.study._bounds(self.ctx, first)
+        self.progress.add(state)
+        if self.store is None:
+            self.out.load_chunk(slice(e0, e1), state)
+            return
+        self.out.add_counts(state)
+        if not stored:
+            local = self.study._output(self.ctx, e1 - e0, state["history.h_min_history"].shape[1])
+            local.load_chunk(slice(0, e1 - e0), state)
+            ds = to_stored(_per_engine(self._dataset(local)), self.labels)
+            engine_vars = [k for k, v in ds.data_vars.items() if "engine" in v.dims]
+            self.store.write_region(_no_coords(ds[engine_vars]), {"engine": slice(e0, e1)})
+            kept = local.history["h_min_history"].shape[1]
+            if kept:
+                history = [k for k, v in ds.data_vars.items() if "sampled_engine" in v.dims]
+                self.store.write_region(_no_coords(ds[history]),
+                                        {"sampled_engine": slice(e0, e0 + kept)})
+            self.store.write_state(first, {k: state[k] for k in _SMALL})
+
+    def result(self):
+        self.out.mechanics_next = self.progress.next
+        if self.store is None:
+            return self._dataset(self.out)
+        whole = self._dataset(self.out)
+        self.store.write_rest(to_stored(whole.drop_vars([*_per_engine(whole).data_vars, "engine"])))
+        in_memory_order = list(self._dataset(self.study._output(self.ctx, 1, min(1, self.ctx.mechanics))).data_vars)
+        return open_study(self.store.path)[in_memory_order]
+
+
+def _no_coords(ds):
+    return ds.drop_vars(list(ds.coords))
+
+
+def _per_engine(ds):
+    """The variables of ``ds`` that run along the engines."""
+    return ds[[k for k, v in ds.data_vars.items() if {"engine", "sampled_engine"} & set(v.dims)]]
+
+
+class _SummarySink:
+    """Adds the lot summaries of a ``keep="summaries"`` study in lot order; saves each chunk in the store."""
+
+    def __init__(self, study, ctx, store):
+        self.study, self.ctx, self.store = study, ctx, store
+        self.progress = None
+        self.total = None
+        self.waiting = {}
+        self.queue = list(range(0, ctx.n_lots, study.chunk_lots))
+
+    def add(self, first, state, stored=False):
+        if self.store is not None and not stored:
+            self.store.write_state(first, state)
+        self.waiting[first] = state
+        # add the chunks that are next in order; out-of-order chunks wait
+        while self.queue and self.queue[0] in self.waiting:
+            state = self.waiting.pop(self.queue.pop(0))
+            for lot in range(len(next(iter(state.values())))):
+                self.total = summarise.add(self.total, {k: v[lot] for k, v in state.items()})
+
+    def result(self):
+        study, ctx = self.study, self.ctx
+        attrs = {"stackup_version": __version__, "study": json.dumps(study.parameters()), "seed": study.seed,
+                 "engine": ctx.engine.name, "clearance_window": list(ctx.engine.clearance_window),
+                 "bin_width": summarise.BIN_WIDTH, "Conventions": "CF-1.10",
+                 "title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}"}
+        ds = summarise.dataset(self.total, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
+        if self.store is not None:
+            self.store.write_rest(to_stored(ds))
+        return ds
 
 
 #: Press-fit results stored per bearing: dataset name -> PressFit field.
@@ -401,37 +484,38 @@ def _chunk_task(study, first):
     return first, study.chunk_state(first)
 
 
-def _distribute(study, firsts, scheduler):
-    """Yield (first, state) of each chunk as it finishes on ``scheduler``."""
-    if scheduler == "processes":
-        import dask
+def _results(study, firsts, scheduler, progress):
+    """Yield (first, state) of each chunk as it finishes; in order in this process."""
+    if scheduler is None:
+        for first in firsts:
+            yield first, study.chunk_state(first, progress)
+    elif scheduler == "processes":
+        from distributed import Client, LocalCluster
 
-        tasks = [dask.delayed(_chunk_task)(study, first) for first in firsts]
-        yield from dask.compute(*tasks, scheduler="processes")
-        return
-    if hasattr(scheduler, "submit") and hasattr(scheduler, "gather"):
-        from distributed import as_completed
-
-        futures = [scheduler.submit(_chunk_task, study, first, pure=False) for first in firsts]
-        for _, result in as_completed(futures, with_results=True):
-            yield result
-        return
-    raise ValueError(f"scheduler: {scheduler!r} is not None, 'processes' or a dask.distributed Client")
+        with LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                          host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
+            yield from _stream(study, firsts, client)
+    else:
+        yield from _stream(study, firsts, scheduler)
 
 
-def _write_chunk(path, state):
-    """One finished chunk as netCDF, written to a temporary name and renamed: whole or absent."""
-    variables = {name.replace(".", "__"): (tuple(f"{name}_{k}" for k in range(np.ndim(v))), np.asarray(v))
-                 for name, v in state.items()}
-    tmp = path.with_suffix(".tmp")
-    xr.Dataset(variables).to_netcdf(tmp, engine="netcdf4")
-    os.replace(tmp, path)
+def _stream(study, firsts, client):
+    """Chunks on a dask cluster, at most two per worker thread in flight, yielded as they finish.
 
+    A bounded window keeps memory flat on the workers and here however many
+    chunks a study has; a chunk lost with its worker is recomputed by dask.
+    """
+    from distributed import as_completed
 
-def _read_chunk(path):
-    with xr.open_dataset(path, engine="netcdf4") as ds:
-        return {name.replace("__", "."): (var.values.astype(str) if var.dtype == object else var.values)
-                for name, var in ds.load().data_vars.items()}
+    pending = iter(firsts)
+    window = 2 * max(1, sum(client.nthreads().values()))
+    futures = as_completed([client.submit(_chunk_task, study, first, pure=False)
+                            for first in itertools.islice(pending, window)], with_results=True)
+    for future, result in futures:
+        yield result
+        future.release()
+        for first in itertools.islice(pending, 1):
+            futures.add(client.submit(_chunk_task, study, first, pure=False))
 
 
 def _fingerprint(study):
@@ -508,6 +592,8 @@ class _Output:
         self.offsets = {k: np.empty((n, b, 2)) for k in ("bore_offset", "journal_eccentricity")}
         self.mechanics_next = 0  # first engine the mechanical chain has not run on
         self.mechanics_done = False
+        self.origin = 0  # study number of engine 0 here
+        self.h_min_before = None  # cycle-minimum film of the engines before origin (target_error)
         self.status = np.empty(shape, np.int8)
         self.option = np.empty(shape, np.int8)
         self.made = np.zeros((n_schemes, n_labels), np.int64)
@@ -531,7 +617,10 @@ class _Output:
     def film_error(self, engines):
         """Largest relative 95 % half-width over schemes of the mean cycle-minimum film of the first engines."""
         worst = 0.0
-        for h in self.mechanics["h_min"][:, :engines]:
+        h_min = self.mechanics["h_min"][:, :engines - self.origin]
+        if self.h_min_before is not None:
+            h_min = np.concatenate([self.h_min_before, h_min], axis=1)
+        for h in h_min:
             computed = np.isfinite(h).any(axis=1)  # engines the chain ran on
             values = np.nanmean(h[computed], axis=1)
             if values.size < 2:
@@ -554,11 +643,11 @@ class _Output:
         for name, (a, axis) in self._per_engine().items():
             index = (slice(None),) * axis + (engines,)
             a[index] = state[name]
+        self.add_counts(state)
+
+    def add_counts(self, state):
         for k in ("made", "used", "left", "scrapped"):
             getattr(self, k)[...] += state[f"count.{k}"]
-        done_to, done = (int(v) for v in state["mechanics.progress"])
-        self.mechanics_next = max(self.mechanics_next, done_to)  # chunks may arrive in any order
-        self.mechanics_done = self.mechanics_done or bool(done)
 
     def store_parts(self, engines, parts):
         self.parts["housing_bore"][engines] = parts.housing_bore

@@ -60,3 +60,8 @@ def test_unknown_scheduler():
 def test_streaming_summaries_are_identical_on_a_cluster(client):
     kw = dict(KW, mechanics_engines=0, history=False, keep="summaries")
     xr.testing.assert_identical(Study(**kw).run(scheduler=client), Study(**kw).run())
+
+
+def test_a_study_streamed_into_a_store_from_a_cluster_is_identical(reference, client, tmp_path):
+    stored = Study(**KW, store=str(tmp_path / "s.zarr")).run(scheduler=client)
+    xr.testing.assert_identical(stored.load(), reference)

@@ -215,41 +215,6 @@ def test_crank_angle_step_must_divide_the_cycle():
         Study(crank_angle_step=7.0)
 
 
-def test_interrupted_study_resumes_without_losing_or_repeating_chunks(engine_file, tmp_path, monkeypatch):
-    import pickle
-
-    import stackup.study as study_module
-
-    engine = engine_file(lot=40)
-    reference = small(engine, n_engines=200, chunk_lots=1).run()
-    calls = {"n": 0}
-    real = study_module.assemble
-
-    def failing(*args, **kwargs):
-        calls["n"] += 1
-        if calls["n"] > 6 * 2:  # six schemes per chunk: die in the third chunk
-            raise KeyboardInterrupt("power cut")
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(study_module, "assemble", failing)
-    interrupted = small(engine, n_engines=200, chunk_lots=1, checkpoint=str(tmp_path / "ckpt"))
-    with pytest.raises(KeyboardInterrupt):
-        interrupted.run()
-    assert sorted(p.name for p in (tmp_path / "ckpt").glob("chunk-*")) == ["chunk-000000.nc", "chunk-000001.nc"]
-
-    calls["n"] = -10**9  # no more failures; count the chunks computed on resume
-    resumed = pickle.loads(pickle.dumps(interrupted)).run()
-    assert calls["n"] == -10**9 + 6 * 3  # only chunks 2, 3 and 4 were computed
-    xr.testing.assert_identical(resumed, reference)
-
-
-def test_checkpoint_folder_of_another_study_is_refused(engine_file, tmp_path):
-    folder = str(tmp_path / "ckpt")
-    small(engine_file(), n_engines=60, checkpoint=folder).run()
-    with pytest.raises(ValueError, match="checkpoint: folder .* holds chunks of another study"):
-        small(engine_file(), n_engines=61, checkpoint=folder).run()
-
-
 def test_qmc_sampler_is_reproducible_unbiased_and_conserves_parts(engine_file):
     engine = engine_file(lot=64)
     kw = dict(n_engines=256, schemes=("iso13778-4",))
