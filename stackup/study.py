@@ -484,6 +484,17 @@ def _chunk_task(study, first):
     return first, study.chunk_state(first)
 
 
+#: glibc malloc settings for the worker processes of ``scheduler="processes"`` (dask config keys).
+#: The dask nanny sets MALLOC_TRIM_THRESHOLD_=65536, which also fixes glibc's mmap threshold at
+#: 128 kB, so every large numpy array of a chunk is a fresh mmap with its page faults: 1.4x the CPU
+#: time per chunk here. Arrays up to 16 MiB from the heap, trimmed past 64 MiB, cost less
+#: (reports/bench_scale.md); set the same keys for the workers of your own cluster.
+WORKER_MALLOC = {
+    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 64 * 2**20,
+    "distributed.nanny.pre-spawn-environ.MALLOC_MMAP_THRESHOLD_": 16 * 2**20,
+}
+
+
 def _results(study, firsts, scheduler, progress):
     """Yield (first, state) of each chunk as it finishes; in order in this process."""
     if scheduler is None:
@@ -492,8 +503,11 @@ def _results(study, firsts, scheduler, progress):
     elif scheduler == "processes":
         from distributed import Client, LocalCluster
 
-        with LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                          host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
+        import dask
+
+        with dask.config.set(WORKER_MALLOC), LocalCluster(
+                n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True, host="127.0.0.1",
+                dashboard_address=None) as cluster, Client(cluster) as client:
             yield from _stream(study, firsts, client)
     else:
         yield from _stream(study, firsts, scheduler)

@@ -1,13 +1,18 @@
-"""Scaling benchmark: streaming studies in-process against two local dask workers, and peak memory.
+"""Scaling benchmark: streaming studies in-process against two local dask workers, memory, and 10^9 bearings.
 
-Scheme iso13778-4 on the example engine. Clearance stages (streaming
-summaries): bearings per second in-process and on a LocalCluster of 2 worker
-processes (loopback); peak memory (maximum resident set of a fresh process)
-of streaming studies of 10^7 and 10^8 bearings; the time a run of 10^9
-bearings takes here, extrapolated. Full chain (beam, film, life): engine-
-cycles per second in-process and on the 2 workers. Ratios in the same run.
+Scheme iso13778-4 on the example engine. Throughput of the clearance stages
+(streaming summaries, bearings per second) and of the full chain (beam,
+film, life; engine-cycles per second) in-process and on a LocalCluster of 2
+single-threaded worker processes on loopback, once with dask's default worker
+environment and once with stackup's malloc settings (``WORKER_MALLOC``, what
+``scheduler="processes"`` uses); each the best of ``--repeat`` runs after a
+warm-up that reaches every worker, ratios against in-process in the same run.
+Peak memory (maximum resident set of a fresh process) of streaming studies at
+10^7 and 10^8 bearings, and of studies kept whole in a Zarr store (out of
+core) at two sizes. Finally a real run of 10^9 bearings with
+``scheduler="processes"`` streaming its summaries into a Zarr store.
 
-    python studies/bench_scale.py [--large 100000000]
+    python studies/bench_scale.py [--large 100000000] [--billion 1000000000]
 
 Writes reports/bench_scale.md.
 """
@@ -16,9 +21,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 from _common import environment, write_report
 
@@ -26,77 +34,143 @@ SCHEME = "iso13778-4"
 BEARINGS_PER_ENGINE = 5
 
 
-def streaming(engines, scheduler=None, chunk_lots=20):
+def study(bearings, **kw):
     from stackup import Study
 
+    return Study(n_engines=bearings // BEARINGS_PER_ENGINE, schemes=(SCHEME,), progress=False, **kw)
+
+
+def streaming(bearings, scheduler=None, store=None, keep="summaries"):
     t0 = time.perf_counter()
-    Study(n_engines=engines, schemes=(SCHEME,), mechanics_engines=0, keep="summaries", chunk_lots=chunk_lots,
-          progress=False).run(scheduler=scheduler)
+    study(bearings, mechanics_engines=0, keep=keep, store=store).run(scheduler=scheduler)
     return time.perf_counter() - t0
 
 
-def chain(engines, scheduler=None):
-    from stackup import Study
+#: Shell lot of the full-chain runs [engines]: one lot per chunk, so 1000 engines make 10 chunks to share out.
+CHAIN_LOT = 100
 
+
+def chain_engine():
+    """The example engine with shell lots of CHAIN_LOT engines (a file next to the other temporary files)."""
+    from importlib.resources import files
+
+    text = (files("stackup") / "data" / "engines" / "iso-example.toml").read_text()
+    path = Path(tempfile.gettempdir()) / f"iso-example-lot{CHAIN_LOT}.toml"
+    path.write_text(text.replace("lot_engines = 1000", f"lot_engines = {CHAIN_LOT}"))
+    return str(path)
+
+
+def chain(engines, scheduler=None):
     t0 = time.perf_counter()
-    Study(n_engines=engines, schemes=(SCHEME,), mechanics_engines=engines, chunk_lots=1, progress=False).run(
+    study(engines * BEARINGS_PER_ENGINE, engine=chain_engine(), mechanics_engines=engines, chunk_lots=1).run(
         scheduler=scheduler)
     return time.perf_counter() - t0
 
 
-def peak_rss(bearings):
-    """Run a streaming study of ``bearings`` in a fresh process; return (seconds, peak RSS in MiB)."""
-    code = ("import resource, time, json, sys; sys.path.insert(0, 'studies'); from bench_scale import streaming; "
-            f"t = streaming({bearings // BEARINGS_PER_ENGINE}); "
-            "print(json.dumps([t, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024]))")
+def best(fn, repeat):
+    return min(fn() for _ in range(repeat))
+
+
+def in_fresh_process(call):
+    """Run ``call`` (source text returning seconds) in a fresh process: (seconds, peak RSS [MiB] here, of children)."""
+    code = ("import resource, json, sys; sys.path.insert(0, 'studies'); from bench_scale import *; "
+            f"t = {call}; "
+            "print(json.dumps([t, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, "
+            "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024]))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     return json.loads(out.strip().splitlines()[-1])
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--medium", type=int, default=10_000_000)
-    parser.add_argument("--large", type=int, default=100_000_000)
-    parser.add_argument("--chain-engines", type=int, default=2000)
-    args = parser.parse_args(argv)
+def folder_size(path):
+    return sum(p.stat().st_size for p in Path(path).rglob("*") if p.is_file()) / 2**20
+
+
+def throughput(args):
+    """Rates in-process and on two workers with dask's and with stackup's worker environment."""
+    import dask
     from distributed import Client, LocalCluster
 
-    probe = 2_000_000  # bearings for the throughput rows
-    streaming(2000)  # compile and warm caches
-    t_in = streaming(probe // BEARINGS_PER_ENGINE)
-    t_chain_in = chain(args.chain_engines)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address=None) as cluster, Client(cluster) as client:
-        streaming(2000, scheduler=client)
-        t_two = streaming(probe // BEARINGS_PER_ENGINE, scheduler=client)
-        chain(200, scheduler=client)
-        t_chain_two = chain(args.chain_engines, scheduler=client)
-    medium = peak_rss(args.medium)
-    large = peak_rss(args.large)
-    rate_in, rate_two = probe / t_in, probe / t_two
+    from stackup.study import WORKER_MALLOC
+
+    probe = args.probe
+    streaming(50_000)  # compile and warm caches
+    rows = {"in-process": (best(lambda: streaming(probe), args.repeat),
+                           best(lambda: chain(args.chain_engines), args.repeat))}
+    for label, config in (("2 workers, dask's default environment", {}), ("2 workers, WORKER_MALLOC", WORKER_MALLOC)):
+        with dask.config.set(config), LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                                   host="127.0.0.1", dashboard_address=None) as cluster, \
+                Client(cluster) as client:
+            streaming(probe, scheduler=client)  # every worker compiles and builds the study context
+            chain(args.chain_engines, scheduler=client)
+            rows[label] = (best(lambda: streaming(probe, scheduler=client), args.repeat),
+                           best(lambda: chain(args.chain_engines, scheduler=client), args.repeat))
+    return rows
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--probe", type=int, default=2_000_000, help="bearings of the throughput runs")
+    parser.add_argument("--chain-engines", type=int, default=600)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--medium", type=int, default=10_000_000)
+    parser.add_argument("--large", type=int, default=100_000_000)
+    parser.add_argument("--stored", type=int, nargs=2, default=[1_000_000, 4_000_000],
+                        help="bearings of the two studies kept whole in a Zarr store")
+    parser.add_argument("--billion", type=int, default=1_000_000_000, help="bearings of the largest run; 0 skips it")
+    args = parser.parse_args(argv)
+
+    rows = throughput(args)
+    base = rows["in-process"]
     lines = [
         "# Scaling: streaming studies on dask",
         "",
         f"{environment()}. Scheme {SCHEME}, example engine ({BEARINGS_PER_ENGINE} bearings per engine). "
-        "Streaming summaries (`keep='summaries'`); 2 workers = `distributed.LocalCluster(n_workers=2, "
-        "threads_per_worker=1)` on loopback; the machine has 2 cores.",
+        "2 workers = `distributed.LocalCluster(n_workers=2, threads_per_worker=1)` on loopback; the machine has "
+        "2 cores, shared with the client and the scheduler. Best of "
+        f"{args.repeat} runs after a warm-up on every worker; ratios against in-process in the same run.",
         "",
-        "| stage | in-process | 2 local workers | ratio |",
-        "|---|---|---|---|",
-        f"| clearance stages [bearings/s] ({probe:,} bearings) | {rate_in:,.0f} | {rate_two:,.0f} | {rate_two / rate_in:.2f} |",
-        f"| full chain: beam, film, life [engine-cycles/s] ({args.chain_engines:,} engines) | "
-        f"{args.chain_engines / t_chain_in:.1f} | {args.chain_engines / t_chain_two:.1f} | {t_chain_in / t_chain_two:.2f} |",
-        "",
-        "| streaming study (in-process) | time [s] | peak memory (max RSS) [MiB] |",
-        "|---|---|---|",
-        f"| {args.medium:,.0f} bearings | {medium[0]:.0f} | {medium[1]:.0f} |",
-        f"| {args.large:,.0f} bearings | {large[0]:.0f} | {large[1]:.0f} |",
-        "",
-        f"A run of 10^9 bearings here: about {1e9 / args.large * large[0] / 60:.0f} min in-process, "
-        f"{1e9 / rate_two / 60:.0f} min on the 2 workers (extrapolated from the rows above), in flat memory.",
-        "",
-        "Reproduce: `python studies/bench_scale.py`.",
+        f"| where | clearance stages [bearings/s] ({args.probe:,} bearings, `keep='summaries'`) | ratio "
+        f"| full chain: beam, film, life [engine-cycles/s] ({args.chain_engines:,} engines, "
+        f"chunks of {CHAIN_LOT}) | ratio |",
+        "|---|---|---|---|---|",
     ]
+    for label, (t_clear, t_chain) in rows.items():
+        lines.append(f"| {label} | {args.probe / t_clear:,.0f} | {base[0] / t_clear:.2f} "
+                     f"| {args.chain_engines / t_chain:.1f} | {base[1] / t_chain:.2f} |")
+    lines += [
+        "",
+        "In-process, the numba kernels of the press fit and the crankshaft run on both cores; a worker runs "
+        "them on one thread. dask's nanny starts workers with `MALLOC_TRIM_THRESHOLD_=65536`, which also fixes "
+        "glibc's mmap threshold at 128 kB, so each large array of a chunk is a fresh mmap with its page faults; "
+        "`stackup.study.WORKER_MALLOC` (heap up to 16 MiB, trim past 64 MiB) is what `scheduler=\"processes\"` "
+        "sets, and what to set on the workers of your own cluster.",
+        "",
+        "| study (in a fresh process, in-process scheduler) | time [s] | peak memory (max RSS) [MiB] | store [MiB] |",
+        "|---|---|---|---|",
+    ]
+    for bearings in (args.medium, args.large):
+        t, rss, _ = in_fresh_process(f"streaming({bearings})")
+        lines.append(f"| {bearings:,} bearings, streaming summaries | {t:.0f} | {rss:.0f} | — |")
+    work = Path(tempfile.mkdtemp(prefix="bench_scale-"))
+    try:
+        for bearings in args.stored:
+            store = work / f"whole-{bearings}.zarr"
+            t, rss, _ = in_fresh_process(f"streaming({bearings}, store={str(store)!r}, keep='everything')")
+            lines.append(f"| {bearings:,} bearings, every engine kept in a Zarr store | {t:.0f} | {rss:.0f} "
+                         f"| {folder_size(store):,.0f} |")
+        if args.billion:
+            store = work / "billion.zarr"
+            t, rss, workers = in_fresh_process(f"streaming({args.billion}, scheduler='processes', store={str(store)!r})")
+            lines += [
+                "",
+                f"A real run of {args.billion:,} bearings (`keep='summaries'`, `scheduler='processes'`: 2 workers, "
+                f"summaries streamed into a Zarr store): {t / 60:.1f} min ({args.billion / t:,.0f} bearings/s), "
+                f"peak memory {rss:.0f} MiB in the client and {workers:.0f} MiB in the largest worker; "
+                f"the store holds {folder_size(store):,.0f} MiB (one summary per chunk).",
+            ]
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    lines += ["", "Reproduce: `python studies/bench_scale.py`."]
     write_report("reports/bench_scale.md", lines)
 
 
