@@ -13,16 +13,12 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from .assembly import ASSEMBLED, STATUS  # noqa: E402
+from .fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX  # noqa: E402
 from .stats import proportion_ci, quantile_ci  # noqa: E402
 
 #: Tail quantiles reported: the +-3 sigma points of a normal distribution.
 TAIL_LOW, TAIL_HIGH = 0.00135, 0.99865
 UM = 1e6
-#: Press-fit design limits (physics.md sec. 3): the bearing must not spin or
-#: fret below this contact pressure [Pa]; joint faces protrude above this
-#: shell compression [Pa].
-CONTACT_PRESSURE_MIN = 8e6
-SHELL_STRESS_MAX = 450e6
 
 
 def fit_summary(ds, *, contact_pressure_min=CONTACT_PRESSURE_MIN, shell_stress_max=SHELL_STRESS_MAX):

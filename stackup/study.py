@@ -57,10 +57,12 @@ class Study:
         the cycle; 0 skips the stage; with ``target_error`` it is the cap.
         Engines with a bearing not assembled are skipped and marked.
     keep : {"everything", "summaries"}
-        Keep every engine, or only streaming summaries of the clearance
-        stages (:mod:`stackup.summaries`: histograms, counts, moments, shell
-        counters, worst bearings), so memory stays flat as ``n_engines``
-        grows; the mechanical chain is not run with ``"summaries"``.
+        Keep every engine, or only streaming summaries
+        (:mod:`stackup.summaries`: histograms, counts, moments and extremes of
+        the clearance and press-fit stages, shell counters, worst bearings,
+        and the mechanical chain's results of the engines it runs on), so
+        memory stays flat as ``n_engines`` grows. ``history`` is not kept
+        with ``"summaries"``.
     history : bool
         Keep each mechanically computed engine's bearing loads and minimum
         film at every crank angle, on dimensions ``sampled_engine`` and
@@ -233,18 +235,20 @@ class Study:
         else:
             local.mechanics_next, local.mechanics_done = progress.next, progress.done
             local.h_min_before = progress.h_min_before()
-        local.mechanics_done = local.mechanics_done or summaries
         before = local.counters()
         self._fill(ctx, local, e0, first)
         state = local.chunk_state(slice(0, e1 - e0), before)
+        mechanical = max(0, min(e1, ctx.mechanics) - e0)  # engines of the chunk in the mechanical range
+        head = {"mechanics.progress": state["mechanics.progress"],
+                "mechanics.h_min_head": state["mechanics.h_min"][:, :mechanical].copy()}  # not a view: kept
         if summaries:
             # one summary per production lot: lots are fixed units, so the sums do not depend on the chunking
             reduced = [summarise.reduce_chunk(piece, e0=e0 + j * ctx.lot, window=ctx.engine.clearance_window,
                                               n_schemes=len(ctx.schemes))
                        for j, piece in enumerate(summarise.split_state(state, lots, ctx.lot))]
-            return {k: np.stack([r[k] for r in reduced]) for k in reduced[0]}  # lots along the first axis
-        state["mechanics.h_min_head"] = state["mechanics.h_min"][:, :max(0, min(e1, ctx.mechanics) - e0)]
-        return state
+            lot_summaries = {f"lot.{k}": np.stack([r[k] for r in reduced]) for k in reduced[0]}  # lots first
+            return {**lot_summaries, **summarise.mechanics_sample(state, mechanical), **head}
+        return {**state, **head}
 
     def run(self, scheduler=None) -> xr.Dataset:
         """Sample, measure, grade, pair, assemble and run the stages; return the dataset.
@@ -395,8 +399,9 @@ class _SummarySink:
 
     def __init__(self, study, ctx, store):
         self.study, self.ctx, self.store = study, ctx, store
-        self.progress = None
+        self.progress = _Progress()
         self.total = None
+        self.sample = []
         self.waiting = {}
         self.queue = list(range(0, ctx.n_lots, study.chunk_lots))
 
@@ -407,8 +412,11 @@ class _SummarySink:
         # add the chunks that are next in order; out-of-order chunks wait
         while self.queue and self.queue[0] in self.waiting:
             state = self.waiting.pop(self.queue.pop(0))
-            for lot in range(len(next(iter(state.values())))):
-                self.total = summarise.add(self.total, {k: v[lot] for k, v in state.items()})
+            lots = {k[len("lot."):]: v for k, v in state.items() if k.startswith("lot.")}
+            for lot in range(len(next(iter(lots.values())))):
+                self.total = summarise.add(self.total, {k: v[lot] for k, v in lots.items()})
+            self.sample.append({k: v for k, v in state.items() if k.startswith("sample.")})
+            self.progress.add(state)
 
     def result(self):
         study, ctx = self.study, self.ctx
@@ -416,7 +424,11 @@ class _SummarySink:
                  "engine": ctx.engine.name, "clearance_window": list(ctx.engine.clearance_window),
                  "bin_width": summarise.BIN_WIDTH, "Conventions": "CF-1.10",
                  "title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}"}
-        ds = summarise.dataset(self.total, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
+        used = self.progress.next
+        sample = {k: np.concatenate([piece[k] for piece in self.sample], axis=1)[:, :used] for k in self.sample[0]}
+        attrs["mechanics_engines_used"] = used
+        attrs["film_method_used"] = ctx.film_method
+        ds = summarise.dataset(self.total, sample, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
         if self.store is not None:
             self.store.write_rest(to_stored(ds))
         return ds
@@ -749,14 +761,7 @@ class _Output:
                                "housing bore centre off the straight bearing line (coaxiality)"),
             "journal_eccentricity": var(("engine", "bearing", "axis"), self.offsets["journal_eccentricity"], "m",
                                         "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
-            "reaction_max": var(sed, self.mechanics["reaction_max"], "N",
-                                "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
-            "h_min": var(sed, self.mechanics["h_min"], "m", "minimum oil film thickness over the engine cycle (quasi-static)"),
-            "h_min_mean": var(sed, self.mechanics["h_min_mean"], "m", "cycle mean of the minimum oil film thickness"),
-            "alpha": var(sed, self.mechanics["alpha"], "1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
-            "life": var(sed, self.mechanics["life"], "s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
-            "film_temperature": var(sed, self.mechanics["film_temperature"], "degC",
-                                    "effective oil film temperature (isothermal heat balance)"),
+            **{name: var(sed, self.mechanics[name], *summarise.MECHANICS_VARIABLES[name]) for name in MECHANICS_FIELDS},
             "crank_status": var(("scheme", "engine"), self.crank_status, "1", "status of the crankshaft beam stage",
                                 flag_values=np.arange(len(CYCLE_STATUS), dtype=np.int8), flag_meanings=" ".join(CYCLE_STATUS)),
             "status": var(sed, self.status, "1", "assembly status of the bearing",

@@ -9,13 +9,21 @@ A study of 10^8 bearings cannot keep every engine. With
 - counts per assembly status and of bearings outside the design window (the
   ppm estimates, with exact binomial intervals);
 - moments (count, sum, sum of squares) for means and spreads;
+- the press fit: bearings that lose the fit, fall below the minimum contact
+  pressure or exceed the maximum shell stress (:mod:`stackup.fit` limits),
+  the lowest contact pressure and the highest shell stress, moments of the
+  housing swell;
 - the shell counters (made, used, left, scrapped per grade);
 - the :data:`WORST` bearings with the smallest and the largest operating
-  clearance, with their inputs.
+  clearance, with their inputs;
+- every per-bearing result of the mechanical chain (loads, film, life) on
+  the engines it runs on (the first ``mechanics_engines``, a few hundred), on
+  a ``sampled_engine`` dimension with their operating clearance.
 
-Histograms, counts and counters merge exactly; sums are added in chunk order,
-so the result is identical whatever the scheduler; the worst lists merge by
-keeping the extremes (ties broken by engine number).
+Histograms, counts and counters merge exactly, extremes by min and max; sums
+are added in lot order, so the result is identical whatever the scheduler;
+the worst lists merge by keeping the extremes (ties broken by engine number);
+the mechanical sample is concatenated in engine order.
 """
 
 from __future__ import annotations
@@ -24,6 +32,8 @@ import numpy as np
 import xarray as xr
 
 from .assembly import ASSEMBLED, STATUS
+from .crank.cycle import CYCLE_STATUS
+from .fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX
 
 BIN_START = 0.0  # [m]
 BIN_WIDTH = 0.1e-6  # [m]
@@ -31,6 +41,16 @@ BINS = 3000  # up to 300 um
 WORST = 20
 CLEARANCES = ("clearance_nominal", "clearance_operating")
 INPUTS = ("housing_bore", "journal_d", "shell_upper_wall", "shell_lower_wall")
+
+#: Per-bearing results of the mechanical chain: name -> (units, long name).
+MECHANICS_VARIABLES = {
+    "reaction_max": ("N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
+    "h_min": ("m", "minimum oil film thickness over the engine cycle (quasi-static)"),
+    "h_min_mean": ("m", "cycle mean of the minimum oil film thickness"),
+    "alpha": ("1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
+    "life": ("s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
+    "film_temperature": ("degC", "effective oil film temperature (isothermal heat balance)"),
+}
 
 
 def reduce_chunk(state, *, e0, window, n_schemes):
@@ -51,6 +71,15 @@ def reduce_chunk(state, *, e0, window, n_schemes):
         out[f"sumsq.{name}"] = (masked**2).sum(axis=(1, 2))
     c = state["floats.clearance_operating"]
     out["count.outside_window"] = np.sum(ok & ((c < window[0]) | (c > window[1])), axis=(1, 2))
+    pressure, stress = state["floats.contact_pressure"], state["floats.shell_stress"]
+    out["count.loss_of_fit"] = np.sum(ok & state["loss_of_fit"], axis=(1, 2))
+    out["count.low_contact_pressure"] = np.sum(ok & (pressure < CONTACT_PRESSURE_MIN), axis=(1, 2))
+    out["count.high_shell_stress"] = np.sum(ok & (stress > SHELL_STRESS_MAX), axis=(1, 2))
+    out["min.contact_pressure"] = np.where(ok, pressure, np.inf).min(axis=(1, 2))
+    out["max.shell_stress"] = np.where(ok, stress, -np.inf).max(axis=(1, 2))
+    swell = np.where(ok, state["floats.housing_swell"], 0.0)
+    out["sum.housing_swell"] = swell.sum(axis=(1, 2))
+    out["sumsq.housing_swell"] = (swell**2).sum(axis=(1, 2))
     for k in ("made", "used", "left", "scrapped"):
         out[f"count.{k}"] = state[f"count.{k}"]
     engines = e0 + np.arange(status.shape[1])
@@ -80,7 +109,11 @@ def add(total, summary):
     if total is None:
         return {k: np.array(v, copy=True) for k, v in summary.items()}
     for k, v in summary.items():
-        if not k.startswith("worst."):
+        if k.startswith("min."):
+            total[k] = np.minimum(total[k], v)
+        elif k.startswith("max."):
+            total[k] = np.maximum(total[k], v)
+        elif not k.startswith("worst."):
             total[k] = total[k] + v
     for side, sign in (("low", 1.0), ("high", -1.0)):
         rows = np.concatenate([total[f"worst.{side}"], summary[f"worst.{side}"]], axis=1)
@@ -112,8 +145,20 @@ def split_state(state, lots, lot_engines):
     return pieces
 
 
-def dataset(total, *, schemes, grade_labels, attrs):
-    """The summary dataset, units and long names on every variable."""
+def mechanics_sample(state, engines):
+    """The mechanical chain's results of the chunk's first ``engines`` engines (a chunk state's slice)."""
+    names = {f"sample.{name}": f"mechanics.{name}" for name in MECHANICS_VARIABLES}
+    names.update({"sample.crank_status": "crank_status", "sample.clearance_operating": "floats.clearance_operating"})
+    # copies: a view would keep the whole chunk's arrays alive for as long as the sample is kept
+    return {key: state[name][:, :engines].copy() for key, name in names.items()}
+
+
+def dataset(total, sample, *, schemes, grade_labels, attrs):
+    """The summary dataset, units and long names on every variable.
+
+    ``sample`` holds the mechanical chain's results (:func:`mechanics_sample`)
+    of the engines it ran on, in engine order.
+    """
     def var(dims, data, units, long_name, **extra):
         return xr.Variable(dims, data, {"units": units, "long_name": long_name, **extra})
 
@@ -126,6 +171,18 @@ def dataset(total, *, schemes, grade_labels, attrs):
         "shells_used": var(("scheme", "shell_grade"), total["count.used"], "1", "shells of the grade fitted"),
         "shells_left": var(("scheme", "shell_grade"), total["count.left"], "1", "shells left at the ends of the lots"),
         "shells_scrapped": var("scheme", total["count.scrapped"], "1", "shells read outside every grade"),
+        "loss_of_fit_count": var("scheme", total["count.loss_of_fit"], "1",
+                                 "assembled bearings whose shells have no interference left in service"),
+        "low_contact_pressure_count": var("scheme", total["count.low_contact_pressure"], "1",
+                                          "assembled bearings with contact pressure below the design minimum",
+                                          limit=CONTACT_PRESSURE_MIN),
+        "high_shell_stress_count": var("scheme", total["count.high_shell_stress"], "1",
+                                       "assembled bearings with shell stress above the design maximum",
+                                       limit=SHELL_STRESS_MAX),
+        "contact_pressure_min": var("scheme", _finite(total["min.contact_pressure"]), "Pa",
+                                    "lowest contact pressure of an assembled bearing"),
+        "shell_stress_max": var("scheme", _finite(total["max.shell_stress"]), "Pa",
+                                "highest shell stress of an assembled bearing"),
     }
     n = total["count.status"][:, ASSEMBLED]
     for name in CLEARANCES:
@@ -136,6 +193,20 @@ def dataset(total, *, schemes, grade_labels, attrs):
         data[f"{name}_mean"] = var("scheme", mean, "m", f"mean {label} diametral clearance")
         data[f"{name}_std"] = var("scheme", np.sqrt(np.maximum(total[f"sumsq.{name}"] / n - mean**2, 0) * n / (n - 1)),
                                   "m", f"standard deviation of the {label} diametral clearance")
+    swell = total["sum.housing_swell"] / n
+    data["housing_swell_mean"] = var("scheme", swell, "m", "mean elastic growth of the housing bore from the press fit")
+    data["housing_swell_std"] = var("scheme", np.sqrt(np.maximum(total["sumsq.housing_swell"] / n - swell**2, 0)
+                                                      * n / (n - 1)), "m",
+                                    "standard deviation of the growth of the housing bore from the press fit")
+    sed = ("scheme", "sampled_engine", "bearing")
+    for name, (units, long_name) in MECHANICS_VARIABLES.items():
+        data[name] = var(sed, sample[f"sample.{name}"], units, long_name)
+    data["clearance_operating_sampled"] = var(sed, sample["sample.clearance_operating"], "m",
+                                              "diametral operating clearance of the bearings of the mechanical chain")
+    data["crank_status"] = var(("scheme", "sampled_engine"), sample["sample.crank_status"], "1",
+                               "status of the crankshaft beam stage",
+                               flag_values=np.arange(len(CYCLE_STATUS), dtype=np.int8),
+                               flag_meanings=" ".join(CYCLE_STATUS))
     fields = ["clearance_operating", "engine", "bearing", *INPUTS]
     for side in ("low", "high"):
         data[f"worst_{side}"] = var(("scheme", "rank", "field"), total[f"worst.{side}"], "mixed",
@@ -148,8 +219,16 @@ def dataset(total, *, schemes, grade_labels, attrs):
         "clearance_bin": ("clearance_bin", centres, {"units": "m", "long_name": "clearance bin centre"}),
         "rank": ("rank", np.arange(1, WORST + 1), {"long_name": "rank among the extremes"}),
         "field": ("field", fields, {"long_name": "recorded quantity"}),
+        "bearing": ("bearing", np.arange(1, sample["sample.h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
+        "sampled_engine": ("sampled_engine", np.arange(sample["sample.crank_status"].shape[1]),
+                           {"long_name": "engine of the mechanical chain (its number in the study)"}),
     }
     return xr.Dataset(data, coords=coords, attrs={**attrs, "kept": "summaries"})
+
+
+def _finite(values):
+    """Extremes over no bearing (inf) as NaN."""
+    return np.where(np.isfinite(values), values, np.nan)
 
 
 def quantile(ds, name, q):

@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from stackup.fit import press_fit  # noqa: E402
-from stackup.report import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX  # noqa: E402
+from stackup.fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX  # noqa: E402
 
 BORE = 50.2e-3
 LENGTH = 15e-3

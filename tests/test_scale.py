@@ -58,7 +58,7 @@ def test_unknown_scheduler():
 
 
 def test_streaming_summaries_are_identical_on_a_cluster(client):
-    kw = dict(KW, mechanics_engines=0, history=False, keep="summaries")
+    kw = dict(KW, history=False, keep="summaries")
     xr.testing.assert_identical(Study(**kw).run(scheduler=client), Study(**kw).run())
 
 

@@ -53,3 +53,24 @@ def test_memory_of_a_streaming_study_does_not_grow_with_n():
     Study(**{**KW, "n_engines": 1000}, keep="summaries").run()  # warm caches
     small, large = peak_memory(4000), peak_memory(16000)
     assert large < 1.2 * small
+
+
+def test_summaries_cover_the_press_fit_and_the_mechanical_chain():
+    kw = dict(n_engines=2500, mechanics_engines=30, crank_angle_step=12.0, progress=False, pilot_engines=3000,
+              chunk_lots=1, schemes=("iso13778-3", "iso13778-4"))
+    full, summary = Study(**kw).run(), Study(**kw, keep="summaries").run()
+    assert summary.attrs["mechanics_engines_used"] == 30
+    for name in ("reaction_max", "h_min", "h_min_mean", "alpha", "life", "film_temperature", "crank_status"):
+        np.testing.assert_array_equal(summary[name].values, full[name].isel(engine=slice(0, 30)).values)
+    np.testing.assert_array_equal(summary.clearance_operating_sampled.values,
+                                  full.clearance_operating.isel(engine=slice(0, 30)).values)
+    for scheme in full.scheme.values:
+        d, s = full.sel(scheme=scheme), summary.sel(scheme=scheme)
+        ok = d.status.values == 0
+        p, sigma = d.contact_pressure.values[ok], d.shell_stress.values[ok]
+        assert float(s.contact_pressure_min) == p.min() and float(s.shell_stress_max) == sigma.max()
+        assert int(s.low_contact_pressure_count) == np.count_nonzero(p < s.low_contact_pressure_count.attrs["limit"])
+        assert int(s.high_shell_stress_count) == np.count_nonzero(sigma > s.high_shell_stress_count.attrs["limit"])
+        assert int(s.loss_of_fit_count) == np.count_nonzero(d.loss_of_fit.values[ok])
+        assert float(s.housing_swell_mean) == pytest.approx(d.housing_swell.values[ok].mean(), rel=1e-12)
+    xr.testing.assert_equal(Study(**{**kw, "chunk_lots": 3}, keep="summaries").run(), summary)

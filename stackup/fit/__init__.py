@@ -26,6 +26,12 @@ from . import reference, tiers
 
 METHODS = ("lame", "thin-ring", "fe")
 
+#: Press-fit design limits (physics.md sec. 3): the bearing must not spin or
+#: fret below this contact pressure [Pa]; joint faces protrude above this
+#: shell compression [Pa].
+CONTACT_PRESSURE_MIN = 8e6
+SHELL_STRESS_MAX = 450e6
+
 
 @dataclass(frozen=True)
 class PressFit:
