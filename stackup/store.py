@@ -9,11 +9,14 @@ Layout of a store (Zarr format 3, one folder):
   (shell counters, scheme limits) and the attributes follow when the study
   ends. With ``keep="summaries"`` the summary dataset is written at the end.
 - the group ``chunks`` is the bookkeeping: its attribute ``study`` is the study
-  fingerprint (a store holding another study is refused), and one subgroup
-  per finished chunk holds that chunk's small state (shell counters,
-  progress of the mechanical chain, or its summary). The subgroup is marked
+  fingerprint (a store holding another study is refused). With
+  ``keep="everything"`` one subgroup per finished chunk holds that chunk's
+  small state (shell counters, progress of the mechanical chain), marked
   ``complete`` only after everything of the chunk is written, so a chunk is
-  either whole or computed again on a rerun: nothing is lost or counted twice.
+  either whole or computed again on a rerun. With ``keep="summaries"`` the
+  running total of the chunks added so far (in lot order) is saved now and
+  then into one of two slots, the pointer to it switched last. Either way
+  nothing is lost or counted twice.
 
 Grade labels are stored as int8 codes into a label list kept with each
 variable, and :func:`open_study` turns them back into the fixed-width strings
@@ -76,14 +79,36 @@ class ChunkStore:
             group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
         group.attrs["complete"] = True
 
+    def write_total(self, total, next_first):
+        """Save a running total (dict of arrays) that holds every chunk before chunk ``next_first``.
+
+        Written into the slot not in use, then the pointer is switched (last):
+        an interruption leaves the previous total whole.
+        """
+        saved = self._book.attrs.get("total")
+        slot = "total-b" if saved and saved["slot"] == "total-a" else "total-a"
+        group = self._book.require_group(slot)
+        for name, value in total.items():
+            value = np.asarray(value)
+            group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
+        self._book.attrs["total"] = {"slot": slot, "next": int(next_first)}
+
+    def read_total(self):
+        """(total, next_first) of the last saved running total, or None."""
+        saved = self._book.attrs.get("total")
+        if not saved:
+            return None
+        group = self._book[saved["slot"]]
+        return {name: array[...] for name, array in group.arrays()}, saved["next"]
+
     @property
     def has_template(self):
         return bool(self._book.attrs.get("template"))
 
     def write_template(self, template):
         """Create the per-engine variables of ``template`` (dask-backed, nothing computed)."""
-        encoding = {name: {**var.encoding, **codec} for name, var in template.variables.items()
-                    for codec in [_fast(template).get(name, {})]}
+        codecs = _fast(template)
+        encoding = {name: {**var.encoding, **codecs.get(name, {})} for name, var in template.variables.items()}
         template.to_zarr(self.path, mode="a", compute=False, consolidated=False, zarr_format=3, encoding=encoding)
         self._book.attrs["template"] = True
 

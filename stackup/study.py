@@ -6,6 +6,7 @@ import itertools
 import json
 import math
 import os
+import time
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -280,11 +281,9 @@ class Study:
         store = ChunkStore(self.store, _fingerprint(self)) if self.store is not None else None
         sink = (_SummarySink if self.keep == "summaries" else _DatasetSink)(self, ctx, store)
         firsts = list(range(0, ctx.n_lots, self.chunk_lots))
-        finished = store.finished() if store is not None else set()
         with tqdm(total=len(firsts), unit="chunk", disable=_no_bar(self.progress), desc="study") as bar:
-            for first in sorted(finished):
-                sink.add(first, store.read_state(first), stored=True)
-                bar.update(1)
+            finished = sink.resume()
+            bar.update(len(finished))
             todo = [first for first in firsts if first not in finished]
             for first, state in _results(self, todo, scheduler, sink.progress):
                 sink.add(first, state)
@@ -311,6 +310,10 @@ class _Progress:
         return np.concatenate(self._h_min, axis=1) if self._h_min else None
 
 
+#: Least time between two saves of the running total of a ``keep="summaries"`` study in its store [s]:
+#: a resumed study recomputes at most the chunks finished in this time.
+SUMMARY_CHECKPOINT_SECONDS = 30.0
+
 #: Small per-chunk arrays kept in a store's bookkeeping (the rest goes into the dataset).
 _SMALL = ("count.made", "count.used", "count.left", "count.scrapped", "mechanics.progress", "mechanics.h_min_head")
 
@@ -329,6 +332,13 @@ class _DatasetSink:
         self.labels = {lab for s in ctx.schemes for grades in (s.housing, s.journal, s.shell) for lab in grades.labels}
         if not store.has_template:
             store.write_template(self._template())
+
+    def resume(self):
+        """Add the chunks the store holds; return their numbers."""
+        finished = self.store.finished() if self.store is not None else set()
+        for first in sorted(finished):
+            self.add(first, self.store.read_state(first), stored=True)
+        return finished
 
     def _dataset(self, out):
         ctx = self.ctx
@@ -395,7 +405,7 @@ def _per_engine(ds):
 
 
 class _SummarySink:
-    """Adds the lot summaries of a ``keep="summaries"`` study in lot order; saves each chunk in the store."""
+    """Adds the lot summaries of a ``keep="summaries"`` study in lot order; saves the running total in the store."""
 
     def __init__(self, study, ctx, store):
         self.study, self.ctx, self.store = study, ctx, store
@@ -404,10 +414,22 @@ class _SummarySink:
         self.sample = []
         self.waiting = {}
         self.queue = list(range(0, ctx.n_lots, study.chunk_lots))
+        self.saved_at = time.monotonic()
 
-    def add(self, first, state, stored=False):
-        if self.store is not None and not stored:
-            self.store.write_state(first, state)
+    def resume(self):
+        """Start from the total saved in the store; return the numbers of the chunks it holds."""
+        saved = self.store.read_total() if self.store is not None else None
+        if saved is None:
+            return set()
+        state, next_first = saved
+        self.total = {k[len("lot."):]: v for k, v in state.items() if k.startswith("lot.")}
+        self.sample = [{k: v for k, v in state.items() if k.startswith("sample.")}]
+        self.progress.add(state)
+        finished = {first for first in self.queue if first < next_first}
+        self.queue = [first for first in self.queue if first >= next_first]
+        return finished
+
+    def add(self, first, state):
         self.waiting[first] = state
         # add the chunks that are next in order; out-of-order chunks wait
         while self.queue and self.queue[0] in self.waiting:
@@ -417,6 +439,24 @@ class _SummarySink:
                 self.total = summarise.add(self.total, {k: v[lot] for k, v in lots.items()})
             self.sample.append({k: v for k, v in state.items() if k.startswith("sample.")})
             self.progress.add(state)
+        if self.store is not None and time.monotonic() - self.saved_at >= SUMMARY_CHECKPOINT_SECONDS:
+            self._save()
+
+    def _save(self):
+        if self.total is None:
+            return
+        sample = self._sample()
+        head = self.progress.h_min_before()
+        self.store.write_total({
+            **{f"lot.{k}": v for k, v in self.total.items()}, **sample,
+            "mechanics.progress": np.array([self.progress.next, int(self.progress.done)]),
+            "mechanics.h_min_head": head if head is not None else sample["sample.h_min"][:, :0],
+        }, self.queue[0] if self.queue else self.ctx.n_lots)
+        self.sample = [sample]
+        self.saved_at = time.monotonic()
+
+    def _sample(self):
+        return {k: np.concatenate([piece[k] for piece in self.sample], axis=1) for k in self.sample[0]}
 
     def result(self):
         study, ctx = self.study, self.ctx
@@ -424,8 +464,10 @@ class _SummarySink:
                  "engine": ctx.engine.name, "clearance_window": list(ctx.engine.clearance_window),
                  "bin_width": summarise.BIN_WIDTH, "Conventions": "CF-1.10",
                  "title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}"}
+        if self.store is not None:
+            self._save()  # a rerun of the finished study only reads the total
         used = self.progress.next
-        sample = {k: np.concatenate([piece[k] for piece in self.sample], axis=1)[:, :used] for k in self.sample[0]}
+        sample = {k: v[:, :used] for k, v in self._sample().items()}
         attrs["mechanics_engines_used"] = used
         attrs["film_method_used"] = ctx.film_method
         ds = summarise.dataset(self.total, sample, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)

@@ -97,9 +97,11 @@ def test_every_variable_has_units_and_long_name_and_attrs_reproduce_the_study(en
     xr.testing.assert_identical(Study(**params, progress=False).run(), ds)
 
 
-def test_netcdf_round_trip_is_identical(engine_file, tmp_path):
-    ds = small(engine_file()).run()
-    xr.testing.assert_identical(open_dataset(save(ds, tmp_path / "x.nc")), ds)
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+@pytest.mark.parametrize("keep", ["everything", "summaries"])
+def test_saved_datasets_round_trip_identically(engine_file, tmp_path, suffix, keep):
+    ds = small(engine_file(), keep=keep).run()
+    xr.testing.assert_identical(open_dataset(save(ds, tmp_path / f"x{suffix}")), ds)
 
 
 @pytest.mark.parametrize(
