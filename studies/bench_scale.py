@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -96,6 +97,13 @@ def throughput(args):
     streaming(50_000)  # compile and warm caches
     rows = {"in-process": (best(lambda: streaming(probe), args.repeat),
                            best(lambda: chain(args.chain_engines), args.repeat))}
+    # the same in a fresh process started with WORKER_MALLOC's settings in its environment
+    environ = {**os.environ, **{key.rsplit(".", 1)[1]: str(value) for key, value in WORKER_MALLOC.items()}}
+    code = ("import json, sys; sys.path.insert(0, 'studies'); from bench_scale import *; streaming(50_000); "
+            f"print(json.dumps([best(lambda: streaming({probe}), {args.repeat}), "
+            f"best(lambda: chain({args.chain_engines}), {args.repeat})]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=environ)
+    rows["in-process, WORKER_MALLOC in the environment"] = tuple(json.loads(out.stdout.strip().splitlines()[-1]))
     for label, config in (("2 workers, dask's default environment", {}), ("2 workers, WORKER_MALLOC", WORKER_MALLOC)):
         with dask.config.set(config), LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                                    host="127.0.0.1", dashboard_address=None) as cluster, \
@@ -143,7 +151,9 @@ def main(argv=None):
         "them on one thread. dask's nanny starts workers with `MALLOC_TRIM_THRESHOLD_=65536`, which also fixes "
         "glibc's mmap threshold at 128 kB, so each large array of a chunk is a fresh mmap with its page faults; "
         "`stackup.study.WORKER_MALLOC` (heap up to 16 MiB, trim past 64 MiB) is what `scheduler=\"processes\"` "
-        "sets, and what to set on the workers of your own cluster.",
+        "sets, and what to set on the workers of your own cluster. The same settings in the environment of an "
+        "in-process run (`MALLOC_MMAP_THRESHOLD_=16777216 MALLOC_TRIM_THRESHOLD_=67108864`) show what glibc's "
+        "default costs there; the 2-worker ratio against that row is the gain from the second core.",
         "",
         "| study (in a fresh process, in-process scheduler) | time [s] | peak memory (max RSS) [MiB] | store [MiB] |",
         "|---|---|---|---|",
@@ -166,7 +176,7 @@ def main(argv=None):
                 f"A real run of {args.billion:,} bearings (`keep='summaries'`, `scheduler='processes'`: 2 workers, "
                 f"summaries streamed into a Zarr store): {t / 60:.1f} min ({args.billion / t:,.0f} bearings/s), "
                 f"peak memory {rss:.0f} MiB in the client and {workers:.0f} MiB in the largest worker; "
-                f"the store holds {folder_size(store):,.0f} MiB (one summary per chunk).",
+                f"the store holds {folder_size(store):,.2f} MiB (the running total of the summaries).",
             ]
     finally:
         shutil.rmtree(work, ignore_errors=True)
