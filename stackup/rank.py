@@ -30,17 +30,29 @@ from .stats import proportion_ci, quantile_ci
 RULE = (("outside_window_ppm", "lower"), ("alpha_over_limit_pct", "lower"), ("life_median_h", "higher"))
 
 
-def _scheme_metrics(d, window, h_lim_cr):
+def _clearance_metrics(d, window):
+    """Bearings, clearance mean and spread [m], bearings outside the window, assembled bearings, stock-outs."""
+    if d.attrs.get("kept") == "summaries":
+        counts = d.status_count.values
+        return (int(counts.sum()), float(d.clearance_operating_mean), float(d.clearance_operating_std),
+                int(d.outside_window_count), int(counts[ASSEMBLED]), int(counts[SHELL_STOCKOUT]))
     ok = d.status.values == ASSEMBLED
     c = d.clearance_operating.values[ok]
-    outside = proportion_ci(np.count_nonzero((c < window[0]) | (c > window[1])), c.size)
+    return (int(ok.size), float(c.mean()), float(c.std(ddof=1)),
+            np.count_nonzero((c < window[0]) | (c > window[1])), c.size,
+            np.count_nonzero(d.status.values == SHELL_STOCKOUT))
+
+
+def _scheme_metrics(d, window, h_lim_cr):
+    bearings, mean, std, outside, assembled, stockouts = _clearance_metrics(d, window)
+    outside = proportion_ci(outside, assembled)
     row = {
-        "bearings": int(ok.size),
-        "clearance_mean_um": float(c.mean()) * 1e6,
-        "clearance_std_um": float(c.std(ddof=1)) * 1e6,
+        "bearings": bearings,
+        "clearance_mean_um": mean * 1e6,
+        "clearance_std_um": std * 1e6,
         "outside_window_ppm": outside[0] * 1e6,
         "outside_window_ppm_ci": (outside[1] * 1e6, outside[2] * 1e6),
-        "stockout_ppm": 1e6 * float(np.count_nonzero(d.status.values == SHELL_STOCKOUT)) / ok.size,
+        "stockout_ppm": 1e6 * float(stockouts) / bearings,
         "shell_grades": int(d.grade_in_scheme.values.sum()),
         "surplus_pct": 100.0 * float(d.shells_left.sum()) / max(float(d.shells_made.sum()), 1.0),
     }
@@ -83,7 +95,9 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
     Parameters
     ----------
     ds : xarray.Dataset
-        A :class:`stackup.Study` result.
+        A :class:`stackup.Study` result, every engine kept or its streaming
+        summaries (``keep="summaries"``; then ``window`` is the engine's,
+        the one the summaries count).
     scenarios : dict of str -> xarray.Dataset, optional
         The same schemes under declared scenarios (process mean shift, gauge
         error, misalignment, ...); adds, per metric, the worst change over the
@@ -101,9 +115,13 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
         One row per scheme, sorted by rank; ``rank`` (ties share a rank) and
         the metrics with their 95 % intervals (``*_ci`` columns).
     """
-    window = tuple(ds.attrs["clearance_window"]) if window is None else tuple(window)
+    counted = tuple(ds.attrs["clearance_window"])
+    window = counted if window is None else tuple(window)
     if len(window) != 2 or not window[0] < window[1]:
         raise ValueError(f"window: {window!r} is not a (lower, upper) clearance window in m")
+    if ds.attrs.get("kept") == "summaries" and not np.allclose(window, counted, rtol=0, atol=1e-12):
+        raise ValueError(f"window: {window!r} m differs from {counted!r} m, the window the summaries count; "
+                         "rank a study that keeps every engine, or run the study with that window")
     rows = {str(s): _scheme_metrics(ds.sel(scheme=s), window, h_lim_cr) for s in ds.scheme.values}
     frame = pd.DataFrame.from_dict(rows, orient="index")
     frame.index.name = "scheme"

@@ -184,6 +184,9 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "shell_stress_max": var("scheme", _finite(total["max.shell_stress"]), "Pa",
                                 "highest shell stress of an assembled bearing"),
     }
+    data["grade_in_scheme"] = var(("scheme", "shell_grade"),
+                                  np.array([[lab in s.shell.labels for lab in grade_labels] for s in schemes]),
+                                  "1", "the scheme has this shell grade")
     n = total["count.status"][:, ASSEMBLED]
     for name in CLEARANCES:
         label = name.replace("clearance_", "")

@@ -78,3 +78,20 @@ def test_sensitivity_recovers_known_variance_shares():
     assert frame.loc["housing bore", "share"] == pytest.approx(0.8, abs=0.02)
     assert frame.loc["journal", "share"] == pytest.approx(0.2, abs=0.02)
     assert set(frame.index) <= set(INPUTS)
+
+
+def test_summaries_rank_like_the_full_dataset():
+    import pandas as pd
+
+    from stackup import Study, rank
+
+    kw = dict(n_engines=2500, mechanics_engines=25, crank_angle_step=12.0, progress=False, pilot_engines=3000,
+              schemes=("iso13778-1", "iso13778-4"))
+    full, summary = rank(Study(**kw).run()), rank(Study(**kw, keep="summaries").run())
+    exact = ["bearings", "outside_window_ppm", "stockout_ppm", "shell_grades", "surplus_pct", "life_median_h",
+             "alpha_over_limit_pct", "rank"]
+    pd.testing.assert_frame_equal(summary[exact], full[exact])
+    np.testing.assert_allclose(summary.clearance_mean_um, full.clearance_mean_um, rtol=1e-12)
+    np.testing.assert_allclose(summary.clearance_std_um, full.clearance_std_um, rtol=1e-9)
+    with pytest.raises(ValueError, match="window: .* differs from .* the window the summaries count"):
+        rank(Study(**{**kw, "mechanics_engines": 0}, keep="summaries").run(), window=(40e-6, 70e-6))
