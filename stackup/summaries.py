@@ -59,16 +59,13 @@ def reduce_chunk(state, *, e0, window, n_schemes):
     ok = status == ASSEMBLED
     out = {"count.status": np.stack([np.sum(status == k, axis=(1, 2)) for k in range(len(STATUS))], axis=-1)}
     for name in CLEARANCES:
-        c = state[f"floats.{name}"]
-        idx = np.floor((np.where(ok, c, 0.0) - BIN_START) / BIN_WIDTH).astype(np.int64)
-        idx = np.clip(idx, 0, BINS - 1)
+        masked = np.where(ok, state[f"floats.{name}"], 0.0)
+        idx = np.clip(np.floor((masked - BIN_START) / BIN_WIDTH).astype(np.int64), 0, BINS - 1)
         hist = np.zeros((n_schemes, BINS), np.int64)
         for i in range(n_schemes):
             hist[i] = np.bincount(idx[i][ok[i]], minlength=BINS)
         out[f"hist.{name}"] = hist
-        masked = np.where(ok, c, 0.0)
-        out[f"sum.{name}"] = masked.sum(axis=(1, 2))
-        out[f"sumsq.{name}"] = (masked**2).sum(axis=(1, 2))
+        out.update(_moments(name, masked))
     c = state["floats.clearance_operating"]
     out["count.outside_window"] = np.sum(ok & ((c < window[0]) | (c > window[1])), axis=(1, 2))
     pressure, stress = state["floats.contact_pressure"], state["floats.shell_stress"]
@@ -77,9 +74,7 @@ def reduce_chunk(state, *, e0, window, n_schemes):
     out["count.high_shell_stress"] = np.sum(ok & (stress > SHELL_STRESS_MAX), axis=(1, 2))
     out["min.contact_pressure"] = np.where(ok, pressure, np.inf).min(axis=(1, 2))
     out["max.shell_stress"] = np.where(ok, stress, -np.inf).max(axis=(1, 2))
-    swell = np.where(ok, state["floats.housing_swell"], 0.0)
-    out["sum.housing_swell"] = swell.sum(axis=(1, 2))
-    out["sumsq.housing_swell"] = (swell**2).sum(axis=(1, 2))
+    out.update(_moments("housing_swell", np.where(ok, state["floats.housing_swell"], 0.0)))
     for k in ("made", "used", "left", "scrapped"):
         out[f"count.{k}"] = state[f"count.{k}"]
     engines = e0 + np.arange(status.shape[1])
@@ -102,6 +97,17 @@ def reduce_chunk(state, *, e0, window, n_schemes):
                 rows[i, :order.size, 3 + j] = inputs[name][i].ravel()[order]
         out[f"worst.{side}"] = rows
     return out
+
+
+def _moments(name, masked):
+    """Sum and sum of squares per scheme of values zeroed where not assembled."""
+    return {f"sum.{name}": masked.sum(axis=(1, 2)), f"sumsq.{name}": (masked**2).sum(axis=(1, 2))}
+
+
+def _mean_std(total, name, n):
+    """Mean and sample standard deviation per scheme from the moments of ``n`` values."""
+    mean = total[f"sum.{name}"] / n
+    return mean, np.sqrt(np.maximum(total[f"sumsq.{name}"] / n - mean**2, 0) * n / (n - 1))
 
 
 def add(total, summary):
@@ -192,14 +198,12 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         label = name.replace("clearance_", "")
         data[f"{name}_histogram"] = var(("scheme", "clearance_bin"), total[f"hist.{name}"], "1",
                                         f"assembled bearings per {BIN_WIDTH * 1e6:g} um bin of the {label} clearance")
-        mean = total[f"sum.{name}"] / n
+        mean, std = _mean_std(total, name, n)
         data[f"{name}_mean"] = var("scheme", mean, "m", f"mean {label} diametral clearance")
-        data[f"{name}_std"] = var("scheme", np.sqrt(np.maximum(total[f"sumsq.{name}"] / n - mean**2, 0) * n / (n - 1)),
-                                  "m", f"standard deviation of the {label} diametral clearance")
-    swell = total["sum.housing_swell"] / n
-    data["housing_swell_mean"] = var("scheme", swell, "m", "mean elastic growth of the housing bore from the press fit")
-    data["housing_swell_std"] = var("scheme", np.sqrt(np.maximum(total["sumsq.housing_swell"] / n - swell**2, 0)
-                                                      * n / (n - 1)), "m",
+        data[f"{name}_std"] = var("scheme", std, "m", f"standard deviation of the {label} diametral clearance")
+    mean, std = _mean_std(total, "housing_swell", n)
+    data["housing_swell_mean"] = var("scheme", mean, "m", "mean elastic growth of the housing bore from the press fit")
+    data["housing_swell_std"] = var("scheme", std, "m",
                                     "standard deviation of the growth of the housing bore from the press fit")
     sed = ("scheme", "sampled_engine", "bearing")
     for name, (units, long_name) in MECHANICS_VARIABLES.items():
