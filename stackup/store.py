@@ -67,16 +67,13 @@ class ChunkStore:
 
     def read_state(self, first):
         """The small state saved with chunk ``first``."""
-        group = self._book[f"{first:06d}"]
-        return {name: array[...] for name, array in group.arrays()}
+        return _read_arrays(self._book[f"{first:06d}"])
 
     def write_state(self, first, state):
         """Save chunk ``first``'s small state and mark the chunk complete (last)."""
         group = self._book.require_group(f"{first:06d}")
         group.attrs["complete"] = False
-        for name, value in state.items():
-            value = np.asarray(value)
-            group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
+        _write_arrays(group, state)
         group.attrs["complete"] = True
 
     def write_total(self, total, next_first):
@@ -87,10 +84,7 @@ class ChunkStore:
         """
         saved = self._book.attrs.get("total")
         slot = "total-b" if saved and saved["slot"] == "total-a" else "total-a"
-        group = self._book.require_group(slot)
-        for name, value in total.items():
-            value = np.asarray(value)
-            group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
+        _write_arrays(self._book.require_group(slot), total)
         self._book.attrs["total"] = {"slot": slot, "next": int(next_first)}
 
     def read_total(self):
@@ -98,8 +92,7 @@ class ChunkStore:
         saved = self._book.attrs.get("total")
         if not saved:
             return None
-        group = self._book[saved["slot"]]
-        return {name: array[...] for name, array in group.arrays()}, saved["next"]
+        return _read_arrays(self._book[saved["slot"]]), saved["next"]
 
     @property
     def has_template(self):
@@ -119,6 +112,17 @@ class ChunkStore:
     def write_rest(self, ds):
         """Write the variables that do not run along the engines, and the dataset's attributes."""
         ds.to_zarr(self.path, mode="a", consolidated=False, zarr_format=3)
+
+
+def _write_arrays(group, arrays):
+    """Write a dict of arrays into a Zarr group, one array each (replacing arrays of the same name)."""
+    for name, value in arrays.items():
+        value = np.asarray(value)
+        group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
+
+
+def _read_arrays(group):
+    return {name: array[...] for name, array in group.arrays()}
 
 
 def _fast(ds):
