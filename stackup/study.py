@@ -330,6 +330,8 @@ class _DatasetSink:
             return
         self.out = study._output(ctx, 0, 0)  # the counters; the engines go to the store
         self.labels = {lab for s in ctx.schemes for grades in (s.housing, s.journal, s.shell) for lab in grades.labels}
+        # one engine's dataset: the variables, dimensions, attributes and order of the stored one
+        self.layout = self._dataset(study._output(ctx, 1, min(1, ctx.mechanics)))
         if not store.has_template:
             store.write_template(self._template())
 
@@ -348,8 +350,7 @@ class _DatasetSink:
         """The stored per-engine variables, full size and empty (dask), chunked like the study."""
         import dask.array as da
 
-        study, ctx = self.study, self.ctx
-        one = self._dataset(study._output(ctx, 1, min(1, ctx.mechanics)))
+        study, ctx, one = self.study, self.ctx, self.layout
         step = study.chunk_lots * ctx.lot
         sizes = {"engine": study.n_engines, "sampled_engine": ctx.mechanics if study.history else 0}
         variables = {}
@@ -391,8 +392,12 @@ class _DatasetSink:
             return self._dataset(self.out)
         whole = self._dataset(self.out)
         self.store.write_rest(to_stored(whole.drop_vars([*_per_engine(whole).data_vars, "engine"])))
-        in_memory_order = list(self._dataset(self.study._output(self.ctx, 1, min(1, self.ctx.mechanics))).data_vars)
-        return open_study(self.store.path)[in_memory_order]
+        return open_study(self.store.path)[list(self.layout.data_vars)]
+
+
+def _prefixed(state, prefix):
+    """The arrays of ``state`` whose names start with ``prefix``, by name without it."""
+    return {k[len(prefix):]: v for k, v in state.items() if k.startswith(prefix)}
 
 
 def _no_coords(ds):
@@ -422,8 +427,8 @@ class _SummarySink:
         if saved is None:
             return set()
         state, next_first = saved
-        self.total = {k[len("lot."):]: v for k, v in state.items() if k.startswith("lot.")}
-        self.sample = [{k: v for k, v in state.items() if k.startswith("sample.")}]
+        self.total = _prefixed(state, "lot.")
+        self.sample = [_prefixed(state, "sample.")]
         self.progress.add(state)
         finished = {first for first in self.queue if first < next_first}
         self.queue = [first for first in self.queue if first >= next_first]
@@ -434,10 +439,10 @@ class _SummarySink:
         # add the chunks that are next in order; out-of-order chunks wait
         while self.queue and self.queue[0] in self.waiting:
             state = self.waiting.pop(self.queue.pop(0))
-            lots = {k[len("lot."):]: v for k, v in state.items() if k.startswith("lot.")}
+            lots = _prefixed(state, "lot.")
             for lot in range(len(next(iter(lots.values())))):
                 self.total = summarise.add(self.total, {k: v[lot] for k, v in lots.items()})
-            self.sample.append({k: v for k, v in state.items() if k.startswith("sample.")})
+            self.sample.append(_prefixed(state, "sample."))
             self.progress.add(state)
         if self.store is not None and time.monotonic() - self.saved_at >= SUMMARY_CHECKPOINT_SECONDS:
             self._save()
@@ -448,9 +453,9 @@ class _SummarySink:
         sample = self._sample()
         head = self.progress.h_min_before()
         self.store.write_total({
-            **{f"lot.{k}": v for k, v in self.total.items()}, **sample,
+            **{f"lot.{k}": v for k, v in self.total.items()}, **{f"sample.{k}": v for k, v in sample.items()},
             "mechanics.progress": np.array([self.progress.next, int(self.progress.done)]),
-            "mechanics.h_min_head": head if head is not None else sample["sample.h_min"][:, :0],
+            "mechanics.h_min_head": head if head is not None else sample["h_min"][:, :0],
         }, self.queue[0] if self.queue else self.ctx.n_lots)
         self.sample = [sample]
         self.saved_at = time.monotonic()

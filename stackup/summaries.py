@@ -162,8 +162,8 @@ def mechanics_sample(state, engines):
 def dataset(total, sample, *, schemes, grade_labels, attrs):
     """The summary dataset, units and long names on every variable.
 
-    ``sample`` holds the mechanical chain's results (:func:`mechanics_sample`)
-    of the engines it ran on, in engine order.
+    ``sample`` holds the mechanical chain's results (:func:`mechanics_sample`,
+    without the ``sample.`` prefix) of the engines it ran on, in engine order.
     """
     def var(dims, data, units, long_name, **extra):
         return xr.Variable(dims, data, {"units": units, "long_name": long_name, **extra})
@@ -207,10 +207,10 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
                                     "standard deviation of the growth of the housing bore from the press fit")
     sed = ("scheme", "sampled_engine", "bearing")
     for name, (units, long_name) in MECHANICS_VARIABLES.items():
-        data[name] = var(sed, sample[f"sample.{name}"], units, long_name)
-    data["clearance_operating_sampled"] = var(sed, sample["sample.clearance_operating"], "m",
+        data[name] = var(sed, sample[name], units, long_name)
+    data["clearance_operating_sampled"] = var(sed, sample["clearance_operating"], "m",
                                               "diametral operating clearance of the bearings of the mechanical chain")
-    data["crank_status"] = var(("scheme", "sampled_engine"), sample["sample.crank_status"], "1",
+    data["crank_status"] = var(("scheme", "sampled_engine"), sample["crank_status"], "1",
                                "status of the crankshaft beam stage",
                                flag_values=np.arange(len(CYCLE_STATUS), dtype=np.int8),
                                flag_meanings=" ".join(CYCLE_STATUS))
@@ -226,8 +226,8 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "clearance_bin": ("clearance_bin", centres, {"units": "m", "long_name": "clearance bin centre"}),
         "rank": ("rank", np.arange(1, WORST + 1), {"long_name": "rank among the extremes"}),
         "field": ("field", fields, {"long_name": "recorded quantity"}),
-        "bearing": ("bearing", np.arange(1, sample["sample.h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
-        "sampled_engine": ("sampled_engine", np.arange(sample["sample.crank_status"].shape[1]),
+        "bearing": ("bearing", np.arange(1, sample["h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
+        "sampled_engine": ("sampled_engine", np.arange(sample["crank_status"].shape[1]),
                            {"long_name": "engine of the mechanical chain (its number in the study)"}),
     }
     return xr.Dataset(data, coords=coords, attrs={**attrs, "kept": "summaries"})
