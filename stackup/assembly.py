@@ -47,8 +47,7 @@ class Assembly:
 
 def shell_demand_per_engine(scheme, parts):
     """Shells of each grade each engine's preferred pairs ask for (engines, grades); built, gradable bearings only."""
-    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
-    up, lo = scheme.pair_indices(*scheme.classify(h_read, j_read))
+    up, lo = scheme.pair_indices(*scheme.grade_indices(parts.housing_reading, parts.journal_reading))
     built = ~(parts.block_scrapped | parts.crank_scrapped)[:, None] & (up >= 0)
     grades = np.arange(len(scheme.shell.labels))
     return (np.sum(built[..., None] & (up[..., None] == grades), axis=1)
@@ -74,8 +73,7 @@ def assemble(scheme, parts, shells, *, lot_engines):
         Engines per lot (the last lot may be shorter).
     """
     n, b = parts.housing_bore.shape
-    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
-    h_idx, j_idx = scheme.classify(h_read, j_read)
+    h_idx, j_idx = scheme.grade_indices(parts.housing_reading, parts.journal_reading)
     preferred = scheme.pair_code(h_idx, j_idx)
 
     status = np.full((n, b), ASSEMBLED, dtype=np.int8)

@@ -154,8 +154,7 @@ def _from_dataset(ds, *, volume, service_level, lot_engines):
 
 def _graded_parts(scheme, engine, parts, part, volume):
     """Share and counts of housing bores or journals read into each of the scheme's grades."""
-    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
-    index = scheme.classify(h_read, j_read)[0 if part == "housing" else 1]
+    index = scheme.grade_indices(parts.housing_reading, parts.journal_reading)[0 if part == "housing" else 1]
     grades = scheme.housing if part == "housing" else scheme.journal
     if not grades.graded:
         raise ValueError(f"part: scheme {scheme.name} does not grade the {part}")
@@ -190,8 +189,7 @@ def simulate_lot_coverage(scheme, processes="iso-example", *, order_up_to, lot_e
 
 def _preferred_pair_demand(scheme, parts):
     """Bearings per preferred pair code (n_grades**2,), over gradable built bearings."""
-    h_read, j_read = scheme.read(parts.housing_reading, parts.journal_reading)
-    code = scheme.pair_code(*scheme.classify(h_read, j_read))
+    code = scheme.pair_code(*scheme.grade_indices(parts.housing_reading, parts.journal_reading))
     built = ~(parts.block_scrapped | parts.crank_scrapped)[:, None] & (code >= 0)
     return np.bincount(code[built], minlength=len(scheme.shell.labels) ** 2)
 

@@ -287,6 +287,11 @@ class Scheme:
         """Housing and journal grade indices of readings [m]; -1 where out of the scheme's range."""
         return self.housing.classify(housing_d), self.journal.classify(journal_d)
 
+    def grade_indices(self, housing_reading, journal_reading):
+        """Housing and journal grade indices of gauge readings [m]: read out at the scheme's steps
+        (:meth:`read`), then classified (:meth:`classify`); -1 where out of range."""
+        return self.classify(*self.read(housing_reading, journal_reading))
+
     def pair_code(self, housing_index, journal_index):
         """Preferred pair code ``upper * n_shell_grades + lower`` of graded parts; -1 where either index is -1."""
         nj, nh = self.cell_pairs.shape[:2]

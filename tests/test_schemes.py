@@ -204,3 +204,13 @@ def test_matrix_with_a_short_row_is_rejected(write_toml):
 def test_unknown_scheme_name():
     with pytest.raises(ValueError, match=r"scheme: 'iso13778-9' is not a known scheme \(available: .*iso13778-1"):
         schemes.load("iso13778-9")
+
+
+def test_grade_indices_read_out_then_classify():
+    s6 = schemes.load("iso13778-6")
+    rng = np.random.default_rng(3)
+    housing, journal = rng.uniform(50.0e-3, 50.018e-3, 200), rng.uniform(46.0e-3, 46.018e-3, 200)
+    graded = s6.grade_indices(housing, journal)
+    expected = s6.classify(*s6.read(housing, journal))
+    np.testing.assert_array_equal(graded[0], expected[0])
+    np.testing.assert_array_equal(graded[1], expected[1])
