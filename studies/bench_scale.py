@@ -28,6 +28,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from _common import environment, write_report
@@ -83,29 +84,43 @@ def peak_memory():
         return next(int(line.split()[1]) for line in status if line.startswith("VmHWM:")) / 1024
 
 
-def on_two_workers(bearings, store):
-    """A streaming study on a LocalCluster like ``scheduler="processes"`` starts: (seconds, largest worker peak [MiB])."""
+@contextmanager
+def two_workers(config):
+    """A Client of a LocalCluster of 2 single-threaded worker processes on loopback, under dask ``config``."""
     import dask
     from distributed import Client, LocalCluster
 
+    with dask.config.set(config), LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                               dashboard_address=None) as cluster, Client(cluster) as client:
+        yield client
+
+
+def on_two_workers(bearings, store):
+    """A streaming study on a LocalCluster like ``scheduler="processes"`` starts: (seconds, largest worker peak [MiB])."""
     from stackup.study import WORKER_MALLOC
 
-    with dask.config.set(WORKER_MALLOC), LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                                      host="127.0.0.1", dashboard_address=None) as cluster, \
-            Client(cluster) as client:
+    with two_workers(WORKER_MALLOC) as client:
         seconds = streaming(bearings, scheduler=client, store=store)
         return seconds, max(client.run(peak_memory).values())
 
 
-def in_fresh_process(call):
-    """Run ``call`` (source text giving seconds, or seconds and a worker peak) in a fresh process.
+def in_process_rates(probe, chain_engines, repeat):
+    """Best times [s] in this process of the clearance stages and of the full chain, after a warm-up."""
+    streaming(50_000)  # compile and warm caches
+    return best(lambda: streaming(probe), repeat), best(lambda: chain(chain_engines), repeat)
 
-    Returns (seconds, peak memory of that process [MiB], worker peak [MiB] or None).
-    """
+
+def with_peak(result):
+    """(seconds, peak memory of this process [MiB], worker peak [MiB] or None) once ``result`` is in."""
+    seconds, workers = result if isinstance(result, tuple) else (result, None)
+    return seconds, peak_memory(), workers
+
+
+def in_fresh_process(expression, env=None):
+    """The value of ``expression`` (source text, JSON-able) evaluated in a fresh process importing this module."""
     code = ("import json, sys; sys.path.insert(0, 'studies'); from bench_scale import *; "
-            f"r = {call}; r = r if isinstance(r, tuple) else (r, None); "
-            "print(json.dumps([r[0], peak_memory(), r[1]]))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+            f"print(json.dumps({expression}))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
     return json.loads(out.strip().splitlines()[-1])
 
 
@@ -115,29 +130,18 @@ def folder_size(path):
 
 def throughput(args):
     """Rates in-process and on two workers with dask's and with stackup's worker environment."""
-    import dask
-    from distributed import Client, LocalCluster
-
     from stackup.study import WORKER_MALLOC
 
-    probe = args.probe
-    streaming(50_000)  # compile and warm caches
-    rows = {"in-process": (best(lambda: streaming(probe), args.repeat),
-                           best(lambda: chain(args.chain_engines), args.repeat))}
+    rows = {"in-process": in_process_rates(args.probe, args.chain_engines, args.repeat)}
     # the same in a fresh process started with WORKER_MALLOC's settings in its environment
     environ = {**os.environ, **{key.rsplit(".", 1)[1]: str(value) for key, value in WORKER_MALLOC.items()}}
-    code = ("import json, sys; sys.path.insert(0, 'studies'); from bench_scale import *; streaming(50_000); "
-            f"print(json.dumps([best(lambda: streaming({probe}), {args.repeat}), "
-            f"best(lambda: chain({args.chain_engines}), {args.repeat})]))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=environ)
-    rows["in-process, WORKER_MALLOC in the environment"] = tuple(json.loads(out.stdout.strip().splitlines()[-1]))
+    rows["in-process, WORKER_MALLOC in the environment"] = tuple(in_fresh_process(
+        f"in_process_rates({args.probe}, {args.chain_engines}, {args.repeat})", env=environ))
     for label, config in (("2 workers, dask's default environment", {}), ("2 workers, WORKER_MALLOC", WORKER_MALLOC)):
-        with dask.config.set(config), LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                                   host="127.0.0.1", dashboard_address=None) as cluster, \
-                Client(cluster) as client:
-            streaming(probe, scheduler=client)  # every worker compiles and builds the study context
+        with two_workers(config) as client:
+            streaming(args.probe, scheduler=client)  # every worker compiles and builds the study context
             chain(args.chain_engines, scheduler=client)
-            rows[label] = (best(lambda: streaming(probe, scheduler=client), args.repeat),
+            rows[label] = (best(lambda: streaming(args.probe, scheduler=client), args.repeat),
                            best(lambda: chain(args.chain_engines, scheduler=client), args.repeat))
     return rows
 
@@ -186,18 +190,19 @@ def main(argv=None):
         "|---|---|---|---|",
     ]
     for bearings in (args.medium, args.large):
-        t, rss, _ = in_fresh_process(f"streaming({bearings})")
+        t, rss, _ = in_fresh_process(f"with_peak(streaming({bearings}))")
         lines.append(f"| {bearings:,} bearings, streaming summaries | {t:.0f} | {rss:.0f} | — |")
     work = Path(tempfile.mkdtemp(prefix="bench_scale-"))
     try:
         for bearings in args.stored:
             store = work / f"whole-{bearings}.zarr"
-            t, rss, _ = in_fresh_process(f"streaming({bearings}, store={str(store)!r}, keep='everything')")
+            t, rss, _ = in_fresh_process(
+                f"with_peak(streaming({bearings}, store={str(store)!r}, keep='everything'))")
             lines.append(f"| {bearings:,} bearings, every engine kept in a Zarr store | {t:.0f} | {rss:.0f} "
                          f"| {folder_size(store):,.0f} |")
         if args.billion:
             store = work / "billion.zarr"
-            t, rss, workers = in_fresh_process(f"on_two_workers({args.billion}, store={str(store)!r})")
+            t, rss, workers = in_fresh_process(f"with_peak(on_two_workers({args.billion}, store={str(store)!r}))")
             lines += [
                 "",
                 f"A real run of {args.billion:,} bearings (`keep='summaries'`, 2 workers with `WORKER_MALLOC` as "
