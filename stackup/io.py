@@ -7,14 +7,14 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .store import open_study, to_stored
+from .study.store import open_study, to_stored
 
 
 def save(ds, path):
     """Write ``ds`` to ``path``: a Zarr store if it ends in ``.zarr``, else netCDF-4 (compressed).
 
     netCDF keeps strings as character arrays; Zarr keeps grade labels as int8
-    codes with their labels (:func:`stackup.store.to_stored`).
+    codes with their labels (:func:`stackup.study.store.to_stored`).
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -30,11 +30,12 @@ import numpy as np
 
 from . import _validate as check
 from ._random import PILOT_KEY, as_generator, lot_generator, seed_sequence
-from .assembly import shell_demand
 from .engines import load_engine
 from .fit import press_fit
-from .parts import ShellNormals, draw_lot
+from .parts import ShellNormals
 from .schemes import load as load_scheme
+from .stats import Z95
+from .study.pilot import pilot_parts, shell_plan
 
 #: Shells in the pool the estimator draws from, per scheme.
 POOL = 400_000
@@ -52,13 +53,10 @@ class TailEstimate:
 
 
 def _pool(engine, scheme, seed, pilot_engines):
-    root = seed_sequence(seed)
-    pilot, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), pilot_engines)
-    supply = engine.shell_wall
-    aim = supply.aim_share(scheme, shell_demand(scheme, pilot)) if supply.mode == "to-order" else None
-    rng = lot_generator(root, PILOT_KEY - 1)
+    aim = shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim
+    rng = lot_generator(seed_sequence(seed), PILOT_KEY - 1)
     normals = ShellNormals(*(rng.standard_normal(POOL) for _ in range(3)))
-    shells = supply.make(scheme, normals, aim)
+    shells = engine.shell_wall.make(scheme, normals, aim)
     return [np.flatnonzero(shells.grade == g) for g in range(len(scheme.shell.labels))], shells
 
 
@@ -124,5 +122,5 @@ def clearance_tail(engine, scheme, *, n_bearings, side="upper", threshold=None, 
     share = values.mean()
     se = values.std(ddof=1) / np.sqrt(n)
     ess = w.sum() ** 2 / np.sum(w**2)
-    return TailEstimate(float(share), float(se), (float(max(share - 1.96 * se, 0.0)), float(share + 1.96 * se)), n,
+    return TailEstimate(float(share), float(se), (float(max(share - Z95 * se, 0.0)), float(share + Z95 * se)), n,
                         float(ess))

@@ -7,7 +7,7 @@ import pytest
 import xarray as xr
 
 from stackup import Study
-from stackup.summaries import BIN_WIDTH, quantile
+from stackup.study.summaries import BIN_WIDTH, quantile
 
 KW = dict(n_engines=4000, mechanics_engines=0, progress=False, pilot_engines=3000, chunk_lots=1)
 

@@ -7,8 +7,6 @@ The numpy twin, and the definition of every term, is
 import numpy as np
 from numba import njit, prange
 
-from ..fit.tiers import FREE_RADIUS_ITERATIONS
-
 
 @njit(cache=True, inline="always")
 def _shell_compliance(r0, wall, modulus, poisson, thin):
@@ -26,8 +24,11 @@ def _at(values, i):
 
 @njit(cache=True, parallel=True)
 def press_fit(n, housing_bore, housing_outer, shell_wall, crush_height, check_bore, check_stress, journal_d,
-              delta_t, e_h, nu_h, al_h, e_s, nu_s, al_s, al_j, thin, with_journal):
-    """1-D arrays of length n (or 1, broadcast) in; (p, stress, swell, bore, shell_bore, clearance, loss) out."""
+              delta_t, e_h, nu_h, al_h, e_s, nu_s, al_s, al_j, thin, with_journal, free_radius_iterations):
+    """1-D arrays of length n (or 1, broadcast) in; (p, stress, swell, bore, shell_bore, clearance, loss) out.
+
+    ``free_radius_iterations``: fixed-point steps for the shell's free radius (see the numpy twin).
+    """
     p_out = np.empty(n)
     stress = np.empty(n)
     swell = np.empty(n)
@@ -40,7 +41,7 @@ def press_fit(n, housing_bore, housing_outer, shell_wall, crush_height, check_bo
         sigma_c = _at(check_stress, i)
         base = 0.5 * _at(check_bore, i) + _at(crush_height, i) / np.pi
         r0 = base
-        for _ in range(FREE_RADIUS_ITERATIONS):
+        for _ in range(free_radius_iterations):
             r0 = base + sigma_c * t0 / r0 * _shell_compliance(r0, t0, e_s, nu_s, thin)
         dt = _at(delta_t, i)
         grow_h = 1.0 + al_h * dt

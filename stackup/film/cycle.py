@@ -1,4 +1,4 @@
-"""One stage of a study: each bearing's oil film over the engine cycle, and its wear life."""
+"""One stage of a study: each bearing's oil film over the engine cycle at its effective temperature."""
 
 from __future__ import annotations
 
@@ -6,8 +6,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..life import alpha as boundary_share
-from ..life import levanov_method1
 from . import oil as oils
 from . import tiers
 from .orbit import orbit
@@ -15,18 +13,22 @@ from .orbit import orbit
 
 @dataclass(frozen=True)
 class BearingFilms:
-    """Film and life of bearings (engines, bearings)."""
+    """Film of bearings over the cycle.
 
-    h_min: np.ndarray  # minimum over the cycle [m]
-    h_min_mean: np.ndarray  # mean of the minimum film over the cycle [m]
-    alpha: np.ndarray  # share of the cycle below h_lim_cr [-]
-    life: np.ndarray  # Levanov method 1 with the cycle-minimum film [s]
-    temperature: np.ndarray  # effective film temperature [degC]
-    history: np.ndarray  # minimum film at each crank angle (engines, bearings, angles) [m]
+    Attributes
+    ----------
+    h_min : numpy.ndarray (engines, bearings, angles)
+        Minimum film thickness at each crank angle [m].
+    temperature : numpy.ndarray (engines, bearings)
+        Effective film temperature [degC].
+    """
+
+    h_min: np.ndarray
+    temperature: np.ndarray
 
 
 def bearing_films(spec, reactions, crank_angle, *, clearance, journal_d, method="quasi-static",
-                  steady_method="finite", h_lim_cr=1.9e-6, n=-2.0, wear_limit=30e-6, wear_rate=1e-13):
+                  steady_method="finite"):
     """Film over the cycle for bearings with given reaction histories.
 
     Parameters
@@ -41,8 +43,6 @@ def bearing_films(spec, reactions, crank_angle, *, clearance, journal_d, method=
         Diametral operating clearance and journal diameter [m].
     method, steady_method : str
         Tiers of :func:`stackup.film.orbit.orbit`.
-    h_lim_cr, n, wear_limit, wear_rate :
-        Parameters of :func:`stackup.life.levanov_method1` and the boundary share.
 
     Notes
     -----
@@ -64,7 +64,4 @@ def bearing_films(spec, reactions, crank_angle, *, clearance, journal_d, method=
     temperature, mu = oils.effective_temperature(spec.oil, np.full(mean_load.shape, spec.oil_supply_temperature), heat)
     film = orbit(loads, crank_angle, diameter=journal_d, length=spec.bearing_width, clearance=clearance,
                  viscosity=mu, speed=spec.speed, method=method, steady_method=steady_method)
-    h_min = film.h_min.min(axis=-1)
-    life = levanov_method1(np.maximum(h_min, 1e-12), h_lim_cr=h_lim_cr, n=n, wear_limit=wear_limit, wear_rate=wear_rate)
-    return BearingFilms(h_min, film.h_min.mean(axis=-1), boundary_share(film.h_min, h_lim_cr=h_lim_cr), life.life,
-                        temperature, film.h_min)
+    return BearingFilms(film.h_min, temperature)

@@ -155,7 +155,7 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, length, 
     flat = [_flat(x, shape) for x in (originals[0], *originals[1:6], originals[7], originals[6])]
     p, sigma, swell, bore_s, shell_bore, clearance, loss = _kernel.press_fit(
         bore.size, *flat, *props["housing"], *props["shell"], journal.expansion, method == "thin-ring",
-        journal_d is not None)
+        journal_d is not None, tiers.FREE_RADIUS_ITERATIONS)
     return PressFit(p.reshape(shape), sigma.reshape(shape), swell.reshape(shape), bore_s.reshape(shape),
                     shell_bore.reshape(shape), None if journal_d is None else clearance.reshape(shape),
                     loss.reshape(shape))

@@ -30,8 +30,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-#: Fixed-width string type of grade labels in a study dataset.
-LABEL_DTYPE = "<U2"
+from .schema import LABEL_DTYPE
+
 #: How string coordinates are stored: variable-length UTF-8, the string type Zarr 3 specifies.
 STORED_STRING = np.dtypes.StringDType()
 #: Attribute of a stored label variable: the labels its int8 codes index.
@@ -77,7 +77,7 @@ class ChunkStore:
         group.attrs["complete"] = True
 
     def write_total(self, total, next_first):
-        """Save a running total (dict of arrays) that holds every chunk before chunk ``next_first``.
+        """Save a running total (nested dicts of arrays) that holds every chunk before chunk ``next_first``.
 
         Written into the slot not in use, then the pointer is switched (last):
         an interruption leaves the previous total whole.
@@ -115,14 +115,19 @@ class ChunkStore:
 
 
 def _write_arrays(group, arrays):
-    """Write a dict of arrays into a Zarr group, one array each (replacing arrays of the same name)."""
+    """Write nested dicts of arrays into a Zarr group: an array per array, a subgroup per dict (replacing)."""
     for name, value in arrays.items():
+        if isinstance(value, dict):
+            _write_arrays(group.require_group(name), value)
+            continue
         value = np.asarray(value)
         group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
 
 
 def _read_arrays(group):
-    return {name: array[...] for name, array in group.arrays()}
+    """What :func:`_write_arrays` wrote: nested dicts of arrays."""
+    return {**{name: array[...] for name, array in group.arrays()},
+            **{name: _read_arrays(sub) for name, sub in group.groups()}}
 
 
 def _fast(ds):

@@ -1,0 +1,270 @@
+"""Where the stages meet: one chunk of production lots through every stage of a study.
+
+    parts -> assembly (per scheme) -> press fit -> crankshaft -> film -> life
+
+Each stage is called through its public API with plain arrays; no stage
+imports another. The result of a chunk is a :class:`ChunkResult`: the
+chunk's per-engine variables under their dataset names
+(:data:`stackup.study.schema.PER_ENGINE`), the shell counters and the
+mechanical chain's progress.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..assembly import ASSEMBLED, assemble
+from ..crank.cycle import NOT_COMPUTED, engine_cycles, worst_status
+from ..film.cycle import bearing_films
+from ..fit import press_fit
+from ..life import alpha as boundary_share
+from ..life import levanov_method1
+from ..parts import BlockParts, draw_lot
+from ..stats import mean_half_width
+from .._random import lot_generator
+from . import schema
+
+#: Engines per step of the mechanical chain when it runs to a target error.
+MECHANICS_BATCH = 25
+
+
+@dataclass
+class ShellCounts:
+    """Shell counters of some lots, per scheme: made, used and left per grade, scrapped."""
+
+    made: np.ndarray  # (schemes, grades)
+    used: np.ndarray
+    left: np.ndarray
+    scrapped: np.ndarray  # (schemes,)
+
+    @classmethod
+    def zeros(cls, n_schemes, n_grades):
+        return cls(*(np.zeros((n_schemes, n_grades), np.int64) for _ in range(3)), np.zeros(n_schemes, np.int64))
+
+    def add(self, other):
+        """Add ``other``'s counts to these, in place."""
+        for name in ("made", "used", "left", "scrapped"):
+            getattr(self, name)[...] += getattr(other, name)
+
+
+@dataclass
+class MechanicsProgress:
+    """How far the mechanical chain has run: engines ``[0, next)`` are done; ``done`` once it stops."""
+
+    next: int = 0
+    done: bool = False
+
+
+@dataclass
+class ChunkResult:
+    """What one chunk of production lots computed.
+
+    Attributes
+    ----------
+    first : int
+        First lot of the chunk (its number in the study's chunking).
+    engines : range
+        Study numbers of the chunk's engines.
+    per_engine : dict of str -> numpy.ndarray
+        Every variable of :data:`schema.PER_ENGINE`, the chunk's engines on
+        the variable's engine axis.
+    history : dict of str -> numpy.ndarray
+        :data:`schema.HISTORY` variables of the chunk's engines that keep one
+        (the first engines of the mechanical chain, ``Study(history=True)``),
+        engines on axis 1.
+    shells : ShellCounts
+    progress : MechanicsProgress
+        The mechanical chain's progress after this chunk.
+    h_min_head : numpy.ndarray (schemes, engines, bearings)
+        Cycle-minimum film of the chunk's engines within the mechanical range
+        (what a ``target_error`` decision needs of earlier chunks).
+    """
+
+    first: int
+    engines: range
+    per_engine: dict
+    history: dict
+    shells: ShellCounts
+    progress: MechanicsProgress
+    h_min_head: np.ndarray
+
+    def take(self, rows):
+        """The per-engine variables of the chunk's engines ``rows`` (a slice), by name."""
+        return {name: value[(slice(None),) * schema.PER_ENGINE[name].engine_axis + (rows,)]
+                for name, value in self.per_engine.items()}
+
+
+def run_chunk(ctx, study, first, progress=None):
+    """Compute chunk ``first`` (lots ``first`` .. ``first + chunk_lots - 1``) through every stage.
+
+    Parameters
+    ----------
+    ctx : stackup.study.context.Context
+        What follows from the study's parameters alone (engine, schemes, shell aims, ...).
+    study : stackup.study.Study
+        Stage options: tiers, sampler, ``history``, ``target_error``.
+    first : int
+        First lot of the chunk.
+    progress : MechanicsProgress and h_min of earlier engines, optional
+        A ``target_error`` study's progress over the chunks before, in order
+        (``(MechanicsProgress, h_min_before)``); None for every other study.
+    """
+    lots, e0, e1 = ctx.bounds(first, study.chunk_lots)
+    n = e1 - e0
+    b = ctx.engine.main_bearings
+    drawn = [draw_lot(ctx.engine, lot_generator(ctx.root, k), min(ctx.lot, study.n_engines - k * ctx.lot),
+                      study.sampler) for k in lots]
+    parts = BlockParts(*(np.concatenate([getattr(p, f) for p, _ in drawn]) for f in BlockParts.__dataclass_fields__))
+    sizes = {"scheme": len(ctx.schemes), "engine": n, "bearing": b, "axis": 2}
+    out = {name: var.empty(sizes) for name, var in schema.PER_ENGINE.items()}
+    out.update(housing_bore=parts.housing_bore, housing_bore_reading=parts.housing_reading,
+               journal_d=parts.journal_d, journal_d_reading=parts.journal_reading,
+               block_scrapped=parts.block_scrapped, crank_scrapped=parts.crank_scrapped,
+               bore_offset=parts.bore_offset, journal_eccentricity=parts.journal_eccentricity)
+    shells = ShellCounts.zeros(len(ctx.schemes), len(ctx.grade_labels))
+    stages = []
+    for i, (scheme, share) in enumerate(zip(ctx.schemes, ctx.shares)):
+        made = [ctx.engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
+        result = assemble(scheme, parts, made, lot_engines=ctx.lot)
+        _record_assembly(out, shells, i, result, scheme, ctx.grade_labels)
+        fit = _press_fit(ctx.engine, parts, result, study.fit_method)
+        for name in schema.FIT:
+            out[name][i] = fit[name]
+        out["loss_of_fit"][i] = fit["loss_of_fit"]
+        stages.append((result, fit))
+
+    kept = max(0, min(e1, ctx.mechanics) - e0) if study.history else 0
+    history = {name: var.on("sampled_engine").empty({**sizes, "sampled_engine": kept,
+                                                     "crank_angle": ctx.crank_angle.size})
+               for name, var in schema.HISTORY.items()}
+    state, h_min_before = progress if progress is not None else (MechanicsProgress(min(e0, ctx.mechanics)), None)
+    state = MechanicsProgress(state.next, state.done)
+    # mechanical chain: engines in order, in batches at fixed engine numbers, until the target error is
+    # met (decisions do not depend on the chunking)
+    a = max(e0, state.next)
+    while not state.done and a < min(e1, ctx.mechanics):
+        stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
+        rows = slice(a - e0, stop - e0)
+        for i, (result, fit) in enumerate(stages):
+            values, status = _mechanics(ctx, parts, result, fit, rows, study.crank_method)
+            for name, v in values.items():
+                if name in history:
+                    if rows.start < kept:
+                        history[name][i, rows.start:min(rows.stop, kept)] = v[:kept - rows.start]
+                else:
+                    out[name][i, rows] = v
+            out["crank_status"][i, rows] = status
+        a = state.next = stop
+        if a == ctx.mechanics or (study.target_error and a % MECHANICS_BATCH == 0
+                                  and _film_error(out["h_min"][:, :a - e0], h_min_before) <= study.target_error):
+            state.done = True
+    mechanical = max(0, min(e1, ctx.mechanics) - e0)  # engines of the chunk in the mechanical range
+    return ChunkResult(first, range(e0, e1), out, history, shells, state,
+                       out["h_min"][:, :mechanical].copy())  # a copy: kept after the chunk is gone
+
+
+def _record_assembly(out, shells, i, a, scheme, grade_labels):
+    """Scheme ``i``'s assembly into the chunk's arrays and shell counters."""
+    def labels(gradeset, index):
+        return np.array((*gradeset.labels, ""))[index]
+
+    out["housing_grade"][i] = labels(scheme.housing, a.housing_grade)
+    out["journal_grade"][i] = labels(scheme.journal, a.journal_grade)
+    out["shell_upper_grade"][i] = labels(scheme.shell, a.upper_grade)
+    out["shell_lower_grade"][i] = labels(scheme.shell, a.lower_grade)
+    out["shell_upper_wall"][i] = a.upper_wall
+    out["shell_lower_wall"][i] = a.lower_wall
+    out["shell_upper_crush"][i] = a.upper_crush
+    out["shell_lower_crush"][i] = a.lower_crush
+    out["clearance_nominal"][i] = a.clearance
+    out["status"][i] = a.status
+    out["shell_option"][i] = a.option
+    cols = [grade_labels.index(lab) for lab in scheme.shell.labels]
+    shells.made[i, cols] += a.shells_made
+    shells.used[i, cols] += a.shells_used
+    shells.left[i, cols] += a.shells_left
+    shells.scrapped[i] += a.shells_scrapped
+
+
+#: Press-fit results stored per bearing: dataset name -> PressFit field.
+FIT_FIELDS = {
+    "contact_pressure": "contact_pressure",
+    "shell_stress": "shell_stress",
+    "housing_swell": "housing_swell",
+    "bore_in_service": "bore_in_service",
+    "clearance_operating": "clearance",
+}
+
+
+def _press_fit(engine, parts, assembly, method):
+    """Press fit of the assembled bearings; NaN elsewhere (the status says why)."""
+    ok = assembly.status == ASSEMBLED
+    fit = press_fit(
+        housing_bore=parts.housing_bore[ok],
+        shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
+        crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]),
+        journal_d=parts.journal_d[ok],
+        method=method,
+        **engine.press_fit.kwargs(),
+    )
+    out = {}
+    for name, field in FIT_FIELDS.items():
+        full = np.full(ok.shape, np.nan)
+        full[ok] = getattr(fit, field)
+        out[name] = full
+    loss = np.zeros(ok.shape, bool)
+    loss[ok] = fit.loss_of_fit
+    out["loss_of_fit"] = loss
+    return out
+
+
+def _mechanics(ctx, parts, assembly, fit, rows, crank_method):
+    """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
+
+    Engines with a bearing not assembled are skipped (``not_computed``).
+    """
+    engine, crank_angle = ctx.engine, ctx.crank_angle
+    count = rows.stop - rows.start
+    built = np.all(assembly.status[rows] == ASSEMBLED, axis=1)
+    out = {k: np.full((count, engine.main_bearings), np.nan) for k in schema.MECHANICS}
+    out["load_history"] = np.full((count, engine.main_bearings, crank_angle.size, 2), np.nan)
+    out["h_min_history"] = np.full((count, engine.main_bearings, crank_angle.size), np.nan)
+    status = np.full(count, NOT_COMPUTED, np.int8)
+    if built.any():
+        clearance = fit["clearance_operating"][rows][built]
+        r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[rows][built],
+                          journal_eccentricity=parts.journal_eccentricity[rows][built],
+                          clearance=clearance, crank_angle=crank_angle, method=crank_method)
+        out["reaction_max"][built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
+        status[built] = worst_status(r.status)
+        films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance,
+                              journal_d=parts.journal_d[rows][built], steady_method=ctx.film_method)
+        h_min = films.h_min.min(axis=-1)
+        out["h_min"][built] = h_min
+        out["h_min_mean"][built] = films.h_min.mean(axis=-1)
+        out["alpha"][built] = boundary_share(films.h_min)
+        out["life"][built] = levanov_method1(np.maximum(h_min, 1e-12)).life
+        out["film_temperature"][built] = films.temperature
+        out["load_history"][built] = np.moveaxis(r.reactions, 1, 2)
+        out["h_min_history"][built] = films.h_min
+    return out, status
+
+
+def _film_error(h_min, h_min_before):
+    """Largest relative 95 % half-width over schemes of the mean cycle-minimum film of the engines so far.
+
+    ``h_min`` (schemes, engines, bearings) of this chunk's engines so far,
+    ``h_min_before`` those of the chunks before (or None).
+    """
+    worst = 0.0
+    if h_min_before is not None:
+        h_min = np.concatenate([h_min_before, h_min], axis=1)
+    for h in h_min:
+        computed = np.isfinite(h).any(axis=1)  # engines the chain ran on
+        values = np.nanmean(h[computed], axis=1)
+        if values.size < 2:
+            return np.inf
+        worst = max(worst, mean_half_width(values) / values.mean())
+    return worst

@@ -1,0 +1,167 @@
+"""Every variable a study dataset can hold, declared once: name, dimensions, units, long name, flags.
+
+The full dataset (every engine kept) and the streaming summaries build their
+variables from this table, so a variable reads the same in both. A variable
+that runs along the sampled engines has ``"engine"`` among its dimensions;
+the summaries keep the mechanical chain's per-engine results on
+``"sampled_engine"`` instead (:meth:`Var.on`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import xarray as xr
+
+from ..assembly import NOT_GRADED, STATUS
+from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+
+SED = ("scheme", "engine", "bearing")
+ED = ("engine", "bearing")
+SG = ("scheme", "shell_grade")
+#: Fixed-width string type of grade labels in a study dataset.
+LABEL_DTYPE = "<U2"
+
+
+@dataclass(frozen=True)
+class Var:
+    """A dataset variable's declaration."""
+
+    dims: tuple
+    units: str
+    long_name: str
+    flags: tuple = ()  # CF flag meanings of an integer status, by code
+    dtype: str = "f8"
+    fill: object = np.nan  # value until a stage fills it (a chunk's arrays start with it)
+
+    def __call__(self, data, *, dims=None, **attrs):
+        """The variable with ``data`` (on ``dims`` if given), its units, long name and flags."""
+        flags = {}
+        if self.flags:
+            flags = {"flag_values": np.arange(len(self.flags), dtype=np.int8), "flag_meanings": " ".join(self.flags)}
+        return xr.Variable(dims or self.dims, data, {"units": self.units, "long_name": self.long_name, **flags,
+                                                     **attrs})
+
+    def on(self, engine_dim):
+        """The same variable with its engine dimension renamed (e.g. to ``sampled_engine``)."""
+        return replace(self, dims=tuple(engine_dim if d == "engine" else d for d in self.dims))
+
+    def empty(self, sizes):
+        """An array of this variable's shape for dimension ``sizes`` (dim -> length), filled with ``fill``."""
+        return np.full(tuple(sizes[d] for d in self.dims), self.fill, self.dtype)
+
+    @property
+    def engine_axis(self):
+        """Position of the engine dimension, or None."""
+        return self.dims.index("engine") if "engine" in self.dims else None
+
+
+#: Per-bearing results of the mechanical chain (crankshaft, film, life).
+MECHANICS = {
+    "reaction_max": Var(SED, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
+    "h_min": Var(SED, "m", "minimum oil film thickness over the engine cycle (quasi-static)"),
+    "h_min_mean": Var(SED, "m", "cycle mean of the minimum oil film thickness"),
+    "alpha": Var(SED, "1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
+    "life": Var(SED, "s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
+    "film_temperature": Var(SED, "degC", "effective oil film temperature (isothermal heat balance)"),
+}
+
+#: Press-fit results per bearing.
+FIT = {
+    "contact_pressure": Var(SED, "Pa", "contact pressure between shell backs and housing bore in service"),
+    "shell_stress": Var(SED, "Pa", "mean compressive hoop stress of the shell wall in service (positive in compression)"),
+    "housing_swell": Var(SED, "m", "elastic growth of the housing bore diameter from the shell press fit"),
+    "bore_in_service": Var(SED, "m", "housing bore diameter at operating temperature, swell included"),
+    "clearance_operating": Var(SED, "m", "diametral operating clearance: press fit, swell and temperature "
+                                         "(NaN where status is not assembled)"),
+}
+
+#: Variables of the dataset that keeps every engine, in dataset order.
+FULL = {
+    "housing_bore": Var(ED, "m", "housing bore diameter (true)"),
+    "housing_bore_reading": Var(ED, "m", "housing bore diameter as read by the gauge"),
+    "journal_d": Var(ED, "m", "journal diameter (true)"),
+    "journal_d_reading": Var(ED, "m", "journal diameter as read by the gauge"),
+    "block_scrapped": Var(("engine",), "1", "block scrapped: a bore read outside its drawing limits", dtype="?",
+                          fill=False),
+    "crank_scrapped": Var(("engine",), "1", "crankshaft scrapped: a journal read outside its drawing limits",
+                          dtype="?", fill=False),
+    "housing_grade": Var(SED, "1", "housing bore grade (empty: not graded)", dtype=LABEL_DTYPE, fill=""),
+    "journal_grade": Var(SED, "1", "journal grade (empty: not graded)", dtype=LABEL_DTYPE, fill=""),
+    "shell_upper_grade": Var(SED, "1", "upper shell grade fitted (empty: none)", dtype=LABEL_DTYPE, fill=""),
+    "shell_lower_grade": Var(SED, "1", "lower shell grade fitted (empty: none)", dtype=LABEL_DTYPE, fill=""),
+    "shell_upper_wall": Var(SED, "m", "upper shell crown wall thickness (true; NaN where status says none fitted)"),
+    "shell_lower_wall": Var(SED, "m", "lower shell crown wall thickness (true; NaN where status says none fitted)"),
+    "shell_upper_crush": Var(SED, "m", "crush height of the upper shell (NaN where none fitted)"),
+    "shell_lower_crush": Var(SED, "m", "crush height of the lower shell (NaN where none fitted)"),
+    "clearance_nominal": Var(SED, "m", "nominal diametral clearance D_H - (s_upper + s_lower + D_J), no swell "
+                                       "(NaN where status is not assembled)"),
+    **FIT,
+    "loss_of_fit": Var(SED, "1", "the shells have no interference left at operating temperature", dtype="?",
+                       fill=False),
+    "bore_offset": Var(("engine", "bearing", "axis"), "m", "housing bore centre off the straight bearing line (coaxiality)"),
+    "journal_eccentricity": Var(("engine", "bearing", "axis"), "m",
+                                "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
+    **MECHANICS,
+    "crank_status": Var(("scheme", "engine"), "1", "status of the crankshaft beam stage", CYCLE_STATUS, "i1",
+                        NOT_COMPUTED),
+    "status": Var(SED, "1", "assembly status of the bearing", STATUS, "i1", NOT_GRADED),
+    "shell_option": Var(SED, "1", "shell pair used: 0 preferred, k > 0 the scheme's k-th alternative, -1 none",
+                        dtype="i1", fill=-1),
+    "shells_made": Var(SG, "1", "shells made and sorted into the grade"),
+    "shells_used": Var(SG, "1", "shells of the grade fitted to bearings"),
+    "shells_left": Var(SG, "1", "shells of the grade left in stock at the ends of the lots"),
+    "shells_scrapped": Var(("scheme",), "1", "shells read outside every grade of the scheme (scrapped)"),
+    "grade_in_scheme": Var(SG, "1", "the scheme has this shell grade"),
+    "clearance_stated": Var(("scheme", "bound"), "m", "clearance range stated by the scheme's source"),
+    "clearance_limit": Var(("scheme", "bound"), "m", "worst-case nominal clearance over the scheme's allowed combinations"),
+}
+
+#: Histories over the cycle of the engines of the mechanical chain (``Study(history=True)``).
+HISTORY = {
+    "load_history": Var(("scheme", "sampled_engine", "bearing", "crank_angle", "axis"), "N",
+                        "bearing load over the cycle (force of the journal on the bearing)"),
+    "h_min_history": Var(("scheme", "sampled_engine", "bearing", "crank_angle"), "m",
+                         "minimum oil film thickness over the cycle"),
+}
+
+#: Variables of a chunk that run along the engines: what a chunk computes for each engine.
+PER_ENGINE = {name: var for name, var in FULL.items() if "engine" in var.dims}
+
+#: Grade labels (fixed-width strings; stored as int8 codes, :mod:`stackup.study.store`).
+LABELS = ("housing_grade", "journal_grade", "shell_upper_grade", "shell_lower_grade")
+
+#: Bins of the clearance histograms of the streaming summaries: from BIN_START [m], BIN_WIDTH [m] wide.
+BIN_START, BIN_WIDTH, BINS = 0.0, 0.1e-6, 3000  # up to 300 um
+#: Bearings the streaming summaries keep at each end of the operating clearance.
+WORST = 20
+
+#: Streaming summaries (``keep="summaries"``): the counts, extremes and moments they reduce to.
+SUMMARY = {
+    **{f"clearance_{label}_histogram": Var(("scheme", "clearance_bin"), "1", f"assembled bearings per "
+                                           f"{BIN_WIDTH * 1e6:g} um bin of the {label} clearance")
+       for label in ("nominal", "operating")},
+    **{f"clearance_{label}_mean": Var(("scheme",), "m", f"mean {label} diametral clearance")
+       for label in ("nominal", "operating")},
+    **{f"clearance_{label}_std": Var(("scheme",), "m", f"standard deviation of the {label} diametral clearance")
+       for label in ("nominal", "operating")},
+    **{f"worst_{side}": Var(("scheme", "rank", "field"), "mixed",
+                            f"the {WORST} bearings with the {extreme} operating clearance and their inputs "
+                            "(see field; lengths in m)")
+       for side, extreme in (("low", "smallest"), ("high", "largest"))},
+    "status_count": Var(("scheme", "status"), "1", "bearings per assembly status"),
+    "outside_window_count": Var(("scheme",), "1",
+                                "assembled bearings with the operating clearance outside the design window"),
+    "loss_of_fit_count": Var(("scheme",), "1", "assembled bearings whose shells have no interference left in service"),
+    "low_contact_pressure_count": Var(("scheme",), "1",
+                                      "assembled bearings with contact pressure below the design minimum"),
+    "high_shell_stress_count": Var(("scheme",), "1", "assembled bearings with shell stress above the design maximum"),
+    "contact_pressure_min": Var(("scheme",), "Pa", "lowest contact pressure of an assembled bearing"),
+    "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing"),
+    "housing_swell_mean": Var(("scheme",), "m", "mean elastic growth of the housing bore from the press fit"),
+    "housing_swell_std": Var(("scheme",), "m", "standard deviation of the growth of the housing bore from the press fit"),
+    "clearance_operating_sampled": Var(("scheme", "sampled_engine", "bearing"), "m",
+                                       "diametral operating clearance of the bearings of the mechanical chain"),
+}
+
