@@ -1,4 +1,10 @@
-"""Saving and opening study datasets (netCDF-4 or Zarr by the path's suffix), so a saved file reproduces itself."""
+"""Saving and opening study datasets (netCDF-4 or Zarr by the path's suffix), so a saved file reproduces itself.
+
+A comparison (:class:`stackup.study.compare.Comparison`) is one file: the
+study in the root group, each scenario's summaries in a group
+``scenario_<k>`` (its label in the attribute ``scenario``) and the
+sensitivity dataset in the group ``sensitivity``.
+"""
 
 from __future__ import annotations
 
@@ -10,17 +16,20 @@ import xarray as xr
 from .study.store import open_study, to_stored
 
 
-def save(ds, path):
+def save(ds, path, *, group=None):
     """Write ``ds`` to ``path``: a Zarr store if it ends in ``.zarr``, else netCDF-4 (compressed).
 
     netCDF keeps strings as character arrays; Zarr keeps grade labels as int8
-    codes with their labels (:func:`stackup.study.store.to_stored`).
+    codes with their labels (:func:`stackup.study.store.to_stored`). With
+    ``group`` the dataset is added to an existing file as that group.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    mode = "w" if group is None else "a"
     if path.suffix == ".zarr":
         labels = {str(v) for var in ds.data_vars.values() if var.dtype.kind == "U" for v in np.unique(var.values)}
-        to_stored(ds, labels).to_zarr(path, mode="w-", consolidated=False, zarr_format=3)
+        to_stored(ds, labels).to_zarr(path, mode="w-" if group is None else "a", group=group, consolidated=False,
+                                      zarr_format=3)
         return path
     encoding = {}
     for name, var in ds.variables.items():
@@ -28,17 +37,50 @@ def save(ds, path):
             encoding[name] = {"dtype": "S1", "zlib": True}
         elif var.dtype.kind in "fiub" and var.ndim > 0 and name not in ds.dims:
             encoding[name] = {"zlib": True, "complevel": 1}
-    ds.to_netcdf(path, encoding=encoding, engine="netcdf4")
+    ds.to_netcdf(path, mode=mode, group=group, encoding=encoding, engine="netcdf4")
     return path
 
 
-def open_dataset(path):
+def open_dataset(path, *, group=None):
     """Load a saved study dataset (netCDF-4 or Zarr) into memory, strings back as numpy unicode."""
     path = Path(path)
     if path.suffix == ".zarr":
-        return open_study(path).load()
-    ds = xr.load_dataset(path, engine="netcdf4")
+        return open_study(path, group=group).load()
+    ds = xr.load_dataset(path, engine="netcdf4", group=group)
     for name, var in ds.variables.items():
         if var.dtype == object:
             ds[name] = var.astype(str)
     return ds
+
+
+def save_comparison(comparison, path):
+    """Write a :class:`~stackup.study.compare.Comparison` into one file (see the module docstring)."""
+    path = save(comparison.dataset, path)
+    for k, (label, ds) in enumerate(comparison.scenarios.items()):
+        save(ds.assign_attrs(scenario=label), path, group=f"scenario_{k}")
+    save(comparison.sensitivity, path, group="sensitivity")
+    return path
+
+
+def open_comparison(path):
+    """The :class:`~stackup.study.compare.Comparison` saved in ``path``, in memory."""
+    from .study.compare import Comparison
+
+    groups = _groups(Path(path))
+    scenarios = {}
+    for name in sorted((g for g in groups if g.startswith("scenario_")), key=lambda g: int(g.split("_")[1])):
+        ds = open_dataset(path, group=name)
+        scenarios[ds.attrs.pop("scenario")] = ds
+    return Comparison(open_dataset(path), scenarios, open_dataset(path, group="sensitivity"))
+
+
+def _groups(path):
+    """Names of the groups directly under the root of a netCDF file or Zarr store."""
+    if path.suffix == ".zarr":
+        import zarr
+
+        return [name for name, _ in zarr.open_group(str(path), mode="r").groups()]
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        return list(nc.groups)

@@ -1,56 +1,82 @@
-"""Scheme-comparison tables and report, from a saved study dataset alone."""
+"""Scheme-comparison tables and report, from saved study datasets alone.
+
+Every number comes from the study dataset (every engine kept, or its
+streaming summaries), the scenario datasets and the sensitivity dataset of a
+:class:`stackup.study.compare.Comparison`; nothing is sampled here. Figures
+are drawn on matplotlib ``Figure`` objects, so the user's backend is never
+changed.
+"""
 
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
-
-from .assembly import ASSEMBLED, STATUS  # noqa: E402
-from .fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX  # noqa: E402
-from .stats import proportion_ci, quantile_ci  # noqa: E402
+from .assembly import STATUS
+from .stats import mean_half_width, proportion_ci, quantile_ci
+from .study import summaries
+from .study.schema import flag
 
 #: Tail quantiles reported: the +-3 sigma points of a normal distribution.
 TAIL_LOW, TAIL_HIGH = 0.00135, 0.99865
 UM = 1e6
 
 
-def fit_summary(ds, *, contact_pressure_min=CONTACT_PRESSURE_MIN, shell_stress_max=SHELL_STRESS_MAX):
-    """One row per scheme: nominal against operating clearance [um], press-fit limits as shares with 95 % intervals."""
+def kept_summaries(ds):
+    """The dataset holds streaming summaries (``Study(keep="summaries")``), not every engine."""
+    return ds.attrs.get("kept") == "summaries"
+
+
+def _assembled(d, name):
+    """Values of ``name`` of one scheme's assembled bearings (a full dataset)."""
+    return d[name].values[d.status.values == flag(d.status, "assembled")]
+
+
+def fit_summary(ds):
+    """One row per scheme: nominal against operating clearance [um], press-fit limits as shares with 95 % intervals.
+
+    The design limits are the dataset's (``contact_pressure_min``,
+    ``shell_stress_max`` attributes, Pa). From summaries, the operating
+    quantiles are read from the 0.1 um histogram.
+    """
+    p_min, s_max = ds.attrs["contact_pressure_min"], ds.attrs["shell_stress_max"]
     rows = []
     for name in ds.scheme.values:
         d = ds.sel(scheme=name)
-        ok = d.status.values == ASSEMBLED
-        nominal = d.clearance_nominal.values[ok]
-        operating = d.clearance_operating.values[ok]
-        p = d.contact_pressure.values[ok]
-        sigma = d.shell_stress.values[ok]
-        low_p = proportion_ci(np.count_nonzero(p < contact_pressure_min), p.size)
-        high_s = proportion_ci(np.count_nonzero(sigma > shell_stress_max), sigma.size)
-        lost = proportion_ci(np.count_nonzero(d.loss_of_fit.values[ok]), p.size)
-        rows.append({
-            "scheme": str(name),
-            "nominal_mean_um": nominal.mean() * UM,
-            "nominal_std_um": nominal.std(ddof=1) * UM,
-            "operating_mean_um": operating.mean() * UM,
-            "operating_std_um": operating.std(ddof=1) * UM,
-            "operating_p00135_um": quantile_ci(operating, TAIL_LOW)[0] * UM,
-            "operating_p99865_um": quantile_ci(operating, TAIL_HIGH)[0] * UM,
-            "swell_mean_um": d.housing_swell.values[ok].mean() * UM,
-            "contact_pressure_min_mpa": p.min() / 1e6,
-            "shell_stress_max_mpa": sigma.max() / 1e6,
-            "low_pressure_ppm": low_p[0] * 1e6,
-            "low_pressure_ci_ppm": (low_p[1] * 1e6, low_p[2] * 1e6),
-            "high_stress_ppm": high_s[0] * 1e6,
-            "high_stress_ci_ppm": (high_s[1] * 1e6, high_s[2] * 1e6),
-            "loss_of_fit_ppm": lost[0] * 1e6,
-        })
+        if kept_summaries(ds):
+            n = int(d.status_count.sel(status="assembled"))
+            counts = (int(d.low_contact_pressure_count), int(d.high_shell_stress_count), int(d.loss_of_fit_count))
+            hist = d.clearance_operating_histogram.values
+            row = {"nominal_mean_um": float(d.clearance_nominal_mean) * UM,
+                   "nominal_std_um": float(d.clearance_nominal_std) * UM,
+                   "operating_mean_um": float(d.clearance_operating_mean) * UM,
+                   "operating_std_um": float(d.clearance_operating_std) * UM,
+                   "operating_p00135_um": summaries.quantile_ci(hist, TAIL_LOW)[0] * UM,
+                   "operating_p99865_um": summaries.quantile_ci(hist, TAIL_HIGH)[0] * UM,
+                   "swell_mean_um": float(d.housing_swell_mean) * UM,
+                   "contact_pressure_min_mpa": float(d.contact_pressure_min) / 1e6,
+                   "shell_stress_max_mpa": float(d.shell_stress_max) / 1e6}
+        else:
+            nominal, operating = _assembled(d, "clearance_nominal"), _assembled(d, "clearance_operating")
+            p, sigma = _assembled(d, "contact_pressure"), _assembled(d, "shell_stress")
+            n = p.size
+            counts = (np.count_nonzero(p < p_min), np.count_nonzero(sigma > s_max),
+                      np.count_nonzero(_assembled(d, "loss_of_fit")))
+            row = {"nominal_mean_um": nominal.mean() * UM, "nominal_std_um": nominal.std(ddof=1) * UM,
+                   "operating_mean_um": operating.mean() * UM, "operating_std_um": operating.std(ddof=1) * UM,
+                   "operating_p00135_um": quantile_ci(operating, TAIL_LOW)[0] * UM,
+                   "operating_p99865_um": quantile_ci(operating, TAIL_HIGH)[0] * UM,
+                   "swell_mean_um": _assembled(d, "housing_swell").mean() * UM,
+                   "contact_pressure_min_mpa": p.min() / 1e6, "shell_stress_max_mpa": sigma.max() / 1e6}
+        low_p, high_s, lost = (proportion_ci(k, n) for k in counts)
+        rows.append({"scheme": str(name), **row,
+                     "low_pressure_ppm": low_p[0] * 1e6, "low_pressure_ci_ppm": (low_p[1] * 1e6, low_p[2] * 1e6),
+                     "high_stress_ppm": high_s[0] * 1e6, "high_stress_ci_ppm": (high_s[1] * 1e6, high_s[2] * 1e6),
+                     "loss_of_fit_ppm": lost[0] * 1e6})
     return pd.DataFrame(rows).set_index("scheme")
 
 
@@ -58,47 +84,63 @@ def clearance_summary(ds):
     """One row per scheme: nominal clearance statistics [um], shares outside the stated range, stock.
 
     Quantiles and shares come with 95 % intervals (order statistics and
-    Clopper-Pearson).
+    Clopper-Pearson). From summaries they are read from the 0.1 um histogram
+    of the nominal clearance (quantiles to a bin; the stated ranges lie on the
+    bin grid, so the share outside them is exact); substitutions are not
+    counted there (NaN).
     """
     rows = []
     for name in ds.scheme.values:
         d = ds.sel(scheme=name)
-        status = d.status.values
-        c = d.clearance_nominal.values[status == ASSEMBLED]
-        n_bearings = status.size
         lo_stated, hi_stated = d.clearance_stated.values
-        outside = int(np.count_nonzero((c < lo_stated) | (c > hi_stated)))
-        share, share_lo, share_hi = proportion_ci(outside, c.size)
-        p_lo = quantile_ci(c, TAIL_LOW)
-        p50 = quantile_ci(c, 0.5)
-        p_hi = quantile_ci(c, TAIL_HIGH)
+        if kept_summaries(ds):
+            counts = dict(zip(ds.status.values, d.status_count.values))
+            hist = d.clearance_nominal_histogram.values
+            n_bearings, n = int(sum(counts.values())), int(counts["assembled"])
+            outside = summaries.share_beyond(hist, lo_stated, hi_stated)
+            p_lo, p50, p_hi = (summaries.quantile_ci(hist, q) for q in (TAIL_LOW, 0.5, TAIL_HIGH))
+            filled = np.flatnonzero(hist)
+            extremes = (summaries.BIN_START + (filled[[0, -1]] + 0.5) * summaries.BIN_WIDTH if filled.size
+                        else (np.nan, np.nan))
+            mean, std = float(d.clearance_nominal_mean), float(d.clearance_nominal_std)
+            substituted = np.nan
+        else:
+            status = d.status.values
+            counts = {reason: np.count_nonzero(status == flag(d.status, reason)) for reason in STATUS}
+            c = _assembled(d, "clearance_nominal")
+            n_bearings, n = status.size, c.size
+            outside = int(np.count_nonzero((c < lo_stated) | (c > hi_stated)))
+            p_lo, p50, p_hi = (quantile_ci(c, q) for q in (TAIL_LOW, 0.5, TAIL_HIGH))
+            extremes = (c.min(), c.max()) if c.size else (np.nan, np.nan)
+            mean = float(c.mean()) if c.size else np.nan
+            std = float(c.std(ddof=1)) if c.size > 1 else np.nan
+            substituted = int(np.count_nonzero(d.shell_option.values > 0))
+        share, share_lo, share_hi = proportion_ci(outside, n)
         made = int(d.shells_made.sum()) + int(d.shells_scrapped)
         row = {
             "scheme": str(name),
             "bearings": n_bearings,
-            "assembled": c.size,
+            "assembled": n,
             "stated_min_um": lo_stated * UM,
             "stated_max_um": hi_stated * UM,
             "worst_case_min_um": float(d.clearance_limit.values[0]) * UM,
             "worst_case_max_um": float(d.clearance_limit.values[1]) * UM,
-            "mean_um": float(c.mean()) * UM if c.size else np.nan,
-            "std_um": float(c.std(ddof=1)) * UM if c.size > 1 else np.nan,
+            "mean_um": mean * UM,
+            "std_um": std * UM,
             "p00135_um": p_lo[0] * UM,
             "p00135_ci_um": (p_lo[1] * UM, p_lo[2] * UM),
             "median_um": p50[0] * UM,
             "p99865_um": p_hi[0] * UM,
             "p99865_ci_um": (p_hi[1] * UM, p_hi[2] * UM),
-            "min_um": float(c.min()) * UM if c.size else np.nan,
-            "max_um": float(c.max()) * UM if c.size else np.nan,
+            "min_um": float(extremes[0]) * UM,
+            "max_um": float(extremes[1]) * UM,
             "outside_stated_ppm": share * 1e6,
             "outside_stated_ci_ppm": (share_lo * 1e6, share_hi * 1e6),
             "shells_made": made,
             "shells_scrapped_pct": 100.0 * int(d.shells_scrapped) / made if made else np.nan,
-            "substituted": int(np.count_nonzero(d.shell_option.values > 0)),
+            "substituted": substituted,
         }
-        for code, reason in enumerate(STATUS):
-            if code != ASSEMBLED:
-                row[reason] = int(np.count_nonzero(status == code))
+        row.update({reason: int(counts[reason]) for reason in STATUS if reason != "assembled"})
         rows.append(row)
     return pd.DataFrame(rows).set_index("scheme")
 
@@ -115,30 +157,37 @@ def grade_usage(ds):
 def crank_summary(ds):
     """Per scheme and bearing: engines the beam ran on, and the cycle-maximum load [kN] with a 95 % interval of its mean."""
     rows = []
-    converged = ds.crank_status.values == 0
+    status = ds.crank_status
     for i, name in enumerate(ds.scheme.values):
-        ok = converged[i]
-        failed = int(np.count_nonzero((ds.crank_status.values[i] > 0) & (ds.crank_status.values[i] < 3)))
+        codes = status.values[i]
+        ok = codes == flag(status, "converged")
+        failed = int(np.count_nonzero((codes == flag(status, "max_iterations")) | (codes == flag(status, "not_finite"))))
         for b, bearing in enumerate(ds.bearing.values):
             r = ds.reaction_max.values[i, ok, b] / 1e3
-            half = 1.96 * r.std(ddof=1) / np.sqrt(r.size) if r.size > 1 else np.nan
             rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(ok.sum()), "failed": failed,
-                         "mean_kn": r.mean() if r.size else np.nan, "ci_kn": half,
+                         "mean_kn": r.mean() if r.size else np.nan,
+                         "ci_kn": mean_half_width(r) if r.size > 1 else np.nan,
                          "max_kn": r.max() if r.size else np.nan})
     return pd.DataFrame(rows).set_index(["scheme", "bearing"])
 
 
-#: Life target of the report [h] (Levanov et al. set 10 000 h for their diesel bearing; this is a design choice).
-LIFE_TARGET_HOURS = 1000.0
+def _converged(ds, i):
+    """Engines of scheme ``i`` whose crankshaft stage converged (the film and life were computed on them)."""
+    return ds.crank_status.values[i] == flag(ds.crank_status, "converged")
 
 
-def film_summary(ds, *, life_target_hours=LIFE_TARGET_HOURS):
-    """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals."""
+def film_summary(ds):
+    """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals.
+
+    The share of engines below the life target uses the engine's own target
+    (``life_target`` attribute, s).
+    """
     from .life import ALPHA_SCUFFING
 
+    life_target_hours = float(ds.attrs["life_target"]) / 3600
     rows = []
     for i, name in enumerate(ds.scheme.values):
-        done = ds.crank_status.values[i] == 0
+        done = _converged(ds, i)
         h = ds.h_min.values[i, done].ravel() * UM
         a = ds.alpha.values[i, done].ravel()
         life = ds.life.values[i, done].ravel() / 3600
@@ -159,9 +208,10 @@ def film_summary(ds, *, life_target_hours=LIFE_TARGET_HOURS):
 
 def film_histogram(ds, path):
     """Histograms of the cycle-minimum film and of the life per scheme; saved as PNG."""
-    fig, (ax_h, ax_l) = plt.subplots(1, 2, figsize=(11, 3.6))
+    fig = Figure(figsize=(11, 3.6))
+    ax_h, ax_l = fig.subplots(1, 2)
     for i, name in enumerate(ds.scheme.values):
-        done = ds.crank_status.values[i] == 0
+        done = _converged(ds, i)
         h = ds.h_min.values[i, done].ravel() * UM
         life = ds.life.values[i, done].ravel() / 3600
         if h.size:
@@ -174,32 +224,33 @@ def film_histogram(ds, path):
     ax_h.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
-    plt.close(fig)
     return path
 
 
-def sensitivity_chart(ds, path, *, outputs=("clearance_operating", "h_min")):
-    """Contributor chart: share of variance per input, per scheme and output (95 % bootstrap intervals); PNG."""
-    from .sensitivity import INPUTS, contributions
+def sensitivity_chart(sensitivity, path):
+    """Contributor chart from a sensitivity dataset (:func:`stackup.study.compare.sensitivity_dataset`); PNG.
 
-    outputs = [o for o in outputs if np.isfinite(ds[o].values).any()]
-    names = list(ds.scheme.values)
-    fig, axes = plt.subplots(len(outputs), len(names), figsize=(2.6 * len(names) + 1.5, 2.6 * len(outputs) + 0.5),
-                             sharex=True, squeeze=False)
+    Share of variance per input, per scheme and output, with 95 % bootstrap
+    intervals. Returns the R² of each panel, by (output, scheme).
+    """
+    outputs, names = list(sensitivity.output.values), list(sensitivity.scheme.values)
+    fig = Figure(figsize=(2.6 * len(names) + 1.5, 2.6 * len(outputs) + 0.5))
+    axes = fig.subplots(len(outputs), len(names), sharex=True, squeeze=False)
     fits = {}
+    inputs = list(reversed(sensitivity.input.values))  # the same order in every panel
     for r, output in enumerate(outputs):
         for c, name in enumerate(names):
             ax = axes[r, c]
-            try:
-                frame = contributions(ds, name, output=output, bootstrap=100)
-            except ValueError:
+            d = sensitivity.sel(output=output, scheme=name, input=inputs)
+            if not np.isfinite(float(d.r2)):
                 ax.set_axis_off()
                 continue
-            fits[(output, str(name))] = frame
-            frame = frame.reindex([k for k in reversed(INPUTS) if k in frame.index])  # same order in every panel
-            err = np.vstack([frame.share - frame.share_lo, frame.share_hi - frame.share]).clip(min=0) * 100
-            ax.barh(frame.index, 100 * frame.share, xerr=err, color="tab:blue", alpha=0.8)
-            ax.set_title(f"{name}\n{output} (R² {frame.attrs['r2']:.2f})", fontsize=8)
+            fits[(str(output), str(name))] = float(d.r2)
+            keep = np.isfinite(d.share.values)
+            share, lo, hi = (100 * d[k].values[keep] for k in ("share", "share_lo", "share_hi"))
+            err = np.vstack([share - lo, hi - share]).clip(min=0)
+            ax.barh(np.array(inputs)[keep], share, xerr=err, color="tab:blue", alpha=0.8)
+            ax.set_title(f"{name}\n{output} (R² {float(d.r2):.2f})", fontsize=8)
             ax.tick_params(labelsize=7)
             if c:
                 ax.set_yticklabels([])
@@ -208,7 +259,6 @@ def sensitivity_chart(ds, path, *, outputs=("clearance_operating", "h_min")):
         ax.set_xlabel("share of variance [%]")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
-    plt.close(fig)
     return fits
 
 
@@ -228,21 +278,40 @@ def _markdown_table(frame):
     return "\n".join([head, rule, *body])
 
 
+def _clearance_histograms(ds, name):
+    """(bin edges [um], nominal counts, operating counts) of one scheme, from values or the summary histograms."""
+    d = ds.sel(scheme=name)
+    if kept_summaries(ds):
+        edges = (summaries.BIN_START + np.arange(summaries.BINS + 1) * summaries.BIN_WIDTH) * UM
+        return edges, d.clearance_nominal_histogram.values, d.clearance_operating_histogram.values
+    return None, _assembled(d, "clearance_nominal") * UM, _assembled(d, "clearance_operating") * UM
+
+
 def clearance_histogram(ds, path):
     """Histograms of nominal and operating clearance per scheme, stated range shaded; saved as PNG."""
     names = list(ds.scheme.values)
-    fig, axes = plt.subplots(len(names), 1, figsize=(7.5, 1.6 * len(names) + 0.8), sharex=True)
-    axes = np.atleast_1d(axes)
-    ok = ds.status.values == ASSEMBLED
-    c_all = np.concatenate([ds.clearance_nominal.values[ok], ds.clearance_operating.values[ok]]) * UM
-    bins = np.arange(np.floor(c_all.min()) - 1, np.ceil(c_all.max()) + 2, 0.5)
+    fig = Figure(figsize=(7.5, 1.6 * len(names) + 0.8))
+    axes = np.atleast_1d(fig.subplots(len(names), 1, sharex=True))
+    data = {name: _clearance_histograms(ds, name) for name in names}
+    if kept_summaries(ds):
+        filled = [np.flatnonzero(h) for _, nom, op in data.values() for h in (nom, op)]
+        edges = data[names[0]][0]
+        lo, hi = min(f[0] for f in filled if f.size), max(f[-1] for f in filled if f.size)
+        bins = np.arange(np.floor(edges[lo]) - 1, np.ceil(edges[hi + 1]) + 2, 0.5)
+    else:
+        values = np.concatenate([np.concatenate([nom, op]) for _, nom, op in data.values()])
+        bins = np.arange(np.floor(values.min()) - 1, np.ceil(values.max()) + 2, 0.5)
     for ax, name in zip(axes, names):
-        d = ds.sel(scheme=name)
-        ok = d.status.values == ASSEMBLED
-        lo, hi = d.clearance_stated.values * UM
+        edges, nominal, operating = data[name]
+        lo, hi = ds.sel(scheme=name).clearance_stated.values * UM
         ax.axvspan(lo, hi, color="tab:green", alpha=0.12, label="stated range")
-        ax.hist(d.clearance_nominal.values[ok] * UM, bins=bins, color="tab:blue", alpha=0.75, label="nominal")
-        ax.hist(d.clearance_operating.values[ok] * UM, bins=bins, color="tab:red", alpha=0.55, label="operating")
+        if edges is None:
+            ax.hist(nominal, bins=bins, color="tab:blue", alpha=0.75, label="nominal")
+            ax.hist(operating, bins=bins, color="tab:red", alpha=0.55, label="operating")
+        else:  # re-binned from the summaries' 0.1 um bins
+            centres = 0.5 * (edges[1:] + edges[:-1])
+            ax.hist(centres, bins=bins, weights=nominal, color="tab:blue", alpha=0.75, label="nominal")
+            ax.hist(centres, bins=bins, weights=operating, color="tab:red", alpha=0.55, label="operating")
         ax.set_yscale("log")
         ax.set_ylabel("bearings")
         ax.set_title(str(name), fontsize=9, loc="left")
@@ -250,7 +319,6 @@ def clearance_histogram(ds, path):
     axes[0].legend(loc="upper right", fontsize=8, ncols=3)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return path
 
 
@@ -258,8 +326,8 @@ def grade_usage_chart(ds, path):
     """Shells fitted per grade and scheme as shares of the scheme's fitted shells; saved as PNG."""
     usage = grade_usage(ds)
     names = list(ds.scheme.values)
-    fig, axes = plt.subplots(1, len(names), figsize=(2.0 * len(names) + 1, 2.8), sharey=True)
-    axes = np.atleast_1d(axes)
+    fig = Figure(figsize=(2.0 * len(names) + 1, 2.8))
+    axes = np.atleast_1d(fig.subplots(1, len(names), sharey=True))
     for ax, name in zip(axes, names):
         u = usage.loc[name]
         made_share = 100.0 * u["shells_made"] / u["shells_used"].sum()
@@ -274,7 +342,6 @@ def grade_usage_chart(ds, path):
     fig.legend(handles, labels, loc="upper right", ncols=2, fontsize=8)
     fig.tight_layout(rect=(0, 0, 1, 0.9))
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return path
 
 
@@ -337,8 +404,30 @@ def markdown_to_html(text, folder):
             f"</head><body>{''.join(body)}</body></html>")
 
 
-def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
-    """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``; return the markdown path."""
+#: Names of the press-fit tiers in prose.
+FIT_TIERS = {"lame": "Thick-ring (Lamé)", "thin-ring": "Thin-ring", "fe": "Finite-element reference"}
+
+
+def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=None):
+    """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study dataset, every engine kept or its streaming summaries (then
+        the sections that need every engine say so).
+    scenarios : dict of str -> xarray.Dataset, optional
+        The study under declared scenarios (:class:`stackup.study.compare.Comparison`).
+    sensitivity : xarray.Dataset, optional
+        Contributions of the inputs (:func:`stackup.study.compare.sensitivity_dataset`).
+    dataset_file : str, optional
+        Name of the saved dataset, quoted in the report.
+
+    Returns
+    -------
+    pathlib.Path
+        The markdown report.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     summary = clearance_summary(ds)
@@ -367,6 +456,7 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
         "shells scrapped [%]": summary.shells_scrapped_pct.map("{:.2f}".format),
     })
     fit = fit_summary(ds)
+    p_min, s_max = ds.attrs["contact_pressure_min"], ds.attrs["shell_stress_max"]
     fit_table = pd.DataFrame({
         "scheme": fit.index,
         "nominal mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.nominal_mean_um, fit.nominal_std_um)],
@@ -375,8 +465,8 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
         "swell [µm]": fit.swell_mean_um.map("{:.2f}".format),
         "min p [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
         "max σ [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
-        f"p < {CONTACT_PRESSURE_MIN / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.low_pressure_ppm, fit.low_pressure_ci_ppm)],
-        f"σ > {SHELL_STRESS_MAX / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.high_stress_ppm, fit.high_stress_ci_ppm)],
+        f"p < {p_min / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.low_pressure_ppm, fit.low_pressure_ci_ppm)],
+        f"σ > {s_max / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.high_stress_ppm, fit.high_stress_ci_ppm)],
         "loss of fit [ppm]": fit.loss_of_fit_ppm.map("{:.0f}".format),
     })
     press = json.loads(ds.attrs["press_fit"])
@@ -415,7 +505,7 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
             "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
             "life B10 [h]": [f"{q[0]:.3g} [{q[1]:.3g}, {q[2]:.3g}]" for q in film.life_b10_h],
             "life median [h]": [f"{q[0]:.3g}" for q in film.life_median_h],
-            f"engines < {LIFE_TARGET_HOURS:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
+            f"engines < {float(ds.attrs['life_target']) / 3600:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
         })
         film_lines = [
             "## Oil film and bearing life",
@@ -433,33 +523,27 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
             "![Film thickness and life per scheme](film_life.png)",
             "",
         ]
-    from .plan import plan as plan_grades
+    plan_lines = ["## Planning: shells per grade", ""]
+    if kept_summaries(ds):
+        plan_lines += ["Planning needs each engine's shell demand: run the study with `keep=\"everything\"` "
+                       "(the summaries keep only the totals in the grade usage below).", ""]
+    else:
+        from .plan import plan as plan_grades
 
-    study_params = json.loads(ds.attrs["study"])
-    plan_rows = []
-    for name in ds.scheme.values:
-        try:
-            frame = plan_grades(str(name), study_params["engine"], volume=10_000, service_level=0.99,
-                                sample_engines=20_000, seed=study_params["seed"])
-        except ValueError:
-            continue
-        for grade, r in frame.iterrows():
-            plan_rows.append({"scheme": str(name), "grade": grade,
-                              "demand per 1000 engines": f"{r.demand_per_1000:.0f} [{r.demand_per_1000_lo:.0f}, {r.demand_per_1000_hi:.0f}]",
-                              "production share [%]": f"{100 * r.production_share:.2f}",
-                              "surplus for 10 000 engines": f"{r.surplus:+.0f}",
-                              "safety stock per lot (99 %)": f"{r.safety_stock:.0f}",
-                              "order-up-to per lot": f"{r.order_up_to:.0f}"})
-    plan_lines = []
-    if plan_rows:
-        plan_lines = [
-            "## Planning: shells per grade",
-            "",
-            "From `stackup.plan`: expected demand per grade (95 % interval), the share of the shell production "
-            "that lands in the grade when read and sorted, the surplus over 10 000 engines, and the safety stock "
-            f"per production lot ({ds.attrs['lot_engines']} engines) for a 99 % chance that the lot's demand is "
-            "covered (checked by simulated lots in the tests). `stackup plan --scheme NAME --volume N` prints "
-            "the same for any volume and service level.",
+        frame = plan_grades(ds, volume=10_000, service_level=0.99)
+        plan_rows = [{"scheme": scheme, "grade": grade,
+                      "demand per 1000 engines": f"{r.demand_per_1000:.0f} [{r.demand_per_1000_lo:.0f}, {r.demand_per_1000_hi:.0f}]",
+                      "production share [%]": f"{100 * r.production_share:.2f}",
+                      "surplus for 10 000 engines": f"{r.surplus:+.0f}",
+                      "safety stock per lot (99 %)": f"{r.safety_stock:.0f}",
+                      "order-up-to per lot": f"{r.order_up_to:.0f}"} for (scheme, grade), r in frame.iterrows()]
+        plan_lines += [
+            "From `stackup.plan` on this study's own engines and shell lots: expected demand per grade (95 % "
+            "interval), the share of the shell production that landed in the grade when read and sorted, the "
+            "surplus over 10 000 engines, and the safety stock per production lot "
+            f"({ds.attrs['lot_engines']} engines) for a 99 % chance that the lot's demand is covered (checked by "
+            "simulated lots in the tests). `stackup plan --scheme NAME --volume N` plans any volume and service "
+            "level.",
             "",
             _markdown_table(pd.DataFrame(plan_rows)),
             "",
@@ -495,15 +579,29 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
         if "worst_life_median_h" in ranking:
             rank_table["worst scenario: Δ life median [h]"] = [
                 f"{v:+.3g} ({name})" for v, name in zip(ranking.worst_life_median_h, ranking.worst_life_median_h_scenario)]
-    fits = sensitivity_chart(ds, out / "sensitivity.png")
-    r2_text = "; ".join(f"{scheme} {output} R² {frame.attrs['r2']:.2f}" for (output, scheme), frame in fits.items())
+    if sensitivity is not None and sensitivity.sizes["output"]:
+        fits = sensitivity_chart(sensitivity, out / "sensitivity.png")
+        r2_text = "; ".join(f"{scheme} {output} R² {r2:.2f}" for (output, scheme), r2 in fits.items())
+        sensitivity_lines = [
+            "Share of the variance of the operating clearance and of the cycle-minimum film (within each bearing "
+            "position) that each input explains, from standardised regression coefficients with 95 % bootstrap "
+            "intervals. In selective assembly the shells are chosen from the measured sizes, so inputs are "
+            "correlated: read the shares with the fit's R² (" + r2_text + ").",
+            "",
+            "![Contributions to the variance](sensitivity.png)",
+        ]
+    else:
+        sensitivity_lines = ["The contributions of the inputs come with `stackup.compare` (its `sensitivity` "
+                             "dataset, computed from a study that keeps every engine); none was given."]
     window = ranking.attrs["window_m"]
     study = json.loads(ds.attrs["study"])
+    n_engines = study["n_engines"]
     lines = [
         f"# Scheme comparison: {ds.attrs['engine']}",
         "",
         f"{ds.attrs['title']}. stackup {ds.attrs['stackup_version']}, seed {ds.attrs['seed']}, "
-        f"{ds.sizes['engine']:,} engines × {ds.sizes['bearing']} main bearings per scheme.",
+        f"{n_engines:,} engines × {ds.sizes['bearing']} main bearings per scheme"
+        + (" (streaming summaries: quantiles and histograms to 0.1 µm)." if kept_summaries(ds) else "."),
         "",
         "Nominal diametral clearance C = D_H − (s_upper + s_lower + D_J) of every assembled bearing, "
         "from true sizes; grading used gauge readings. No housing swell or temperature (as the "
@@ -523,12 +621,7 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
         "",
         "## What drives the spread",
         "",
-        "Share of the variance of the operating clearance and of the cycle-minimum film (within each bearing "
-        "position) that each input explains, from standardised regression coefficients with 95 % bootstrap "
-        "intervals. In selective assembly the shells are chosen from the measured sizes, so inputs are "
-        "correlated: read the shares with the fit's R² (" + r2_text + ").",
-        "",
-        "![Contributions to the variance](sensitivity.png)",
+        *sensitivity_lines,
         "",
         "## Clearance per scheme",
         "",
@@ -543,9 +636,10 @@ def write_report(ds, out_dir, *, dataset_file=None, scenarios=None):
         f"{press['check_bore'] * 1e3:.3f} mm block at {press['check_stress'] / 1e6:.0f} MPa) in a "
         f"{press['housing_material']} housing ring of outer diameter {press['housing_outer'] * 1e3:.0f} mm; "
         f"assembled at {press['assembly_temperature']:.0f} °C, running at {press['temperature']:.0f} °C "
-        f"({press['shell_material']} shells, {press['journal_material']} journal). Thick-ring (Lamé) tier. "
-        f"Design limits: contact pressure at least {CONTACT_PRESSURE_MIN / 1e6:.0f} MPa, shell compression at most "
-        f"{SHELL_STRESS_MAX / 1e6:.0f} MPa.",
+        f"({press['shell_material']} shells, {press['journal_material']} journal). "
+        f"{FIT_TIERS.get(study['fit_method'], study['fit_method'])} tier. "
+        f"Design limits: contact pressure at least {p_min / 1e6:.0f} MPa, shell compression at most "
+        f"{s_max / 1e6:.0f} MPa.",
         "",
         _markdown_table(fit_table),
         "",

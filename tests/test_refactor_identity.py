@@ -32,4 +32,12 @@ def test_same_seed_gives_the_dataset_saved_before_the_redesign(case, tmp_path):
         for name, long_name in RENAMED.items():
             before[name].attrs["long_name"] = long_name
     after = open_dataset(save(Study(progress=False, **CASES[case]).run(), tmp_path / "after.nc"))
-    xr.testing.assert_identical(after, before)
+    added = set(after.attrs) - set(before.attrs)  # attributes are only added: the reports read them
+    assert added <= {"contact_pressure_min", "shell_stress_max", "engine_source", "lot_engines", "shell_surplus",
+                     "shell_supply", "pilot_engines", "scheme_sources", "press_fit", "life_target",
+                     "crush_height_limits"}
+    if case == "summaries":  # the summaries now carry the schemes' clearance ranges as the full dataset does
+        assert set(after.data_vars) - set(before.data_vars) == {"clearance_stated", "clearance_limit"}
+        after = after.drop_vars(["clearance_stated", "clearance_limit", "bound"])
+    xr.testing.assert_identical(after.drop_attrs(deep=False).assign_attrs({k: after.attrs[k] for k in before.attrs}),
+                                before)

@@ -189,7 +189,7 @@ def test_report_has_press_fit_section_with_intervals(engine_file, tmp_path):
     from stackup.report import fit_summary, write_report
 
     ds = small(engine_file()).run()
-    summary = fit_summary(ds, contact_pressure_min=40e6)  # a limit most bearings miss
+    summary = fit_summary(ds.assign_attrs(contact_pressure_min=40e6))  # a limit most bearings miss
     assert np.all(summary.low_pressure_ppm > 5e5)
     for lo, hi in summary.low_pressure_ci_ppm:
         assert lo < hi

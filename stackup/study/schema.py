@@ -165,3 +165,18 @@ SUMMARY = {
                                        "diametral operating clearance of the bearings of the mechanical chain"),
 }
 
+
+
+def flag(variable, meaning):
+    """The code of ``meaning`` in a status variable's CF ``flag_meanings`` (e.g. ``flag(ds.status, "assembled")``)."""
+    meanings = variable.attrs["flag_meanings"].split()
+    if meaning not in meanings:
+        raise ValueError(f"{variable.name}: {meaning!r} is not one of its flags ({', '.join(meanings)})")
+    return int(variable.attrs["flag_values"][meanings.index(meaning)])
+
+
+def scheme_variables(schemes):
+    """The schemes' stated and worst-case clearance ranges, as every study dataset carries them."""
+    stated = np.array([s.stated_clearance if s.stated_clearance else (np.nan, np.nan) for s in schemes])
+    return {"clearance_stated": FULL["clearance_stated"](stated),
+            "clearance_limit": FULL["clearance_limit"](np.array([s.clearance_limits() for s in schemes]))}

@@ -14,6 +14,7 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
+from ..fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX
 from . import schema
 from . import summaries as summarise
 from .chain import ChunkResult, MechanicsProgress, ShellCounts
@@ -57,11 +58,10 @@ def full_dataset(study, ctx, per_engine, history, shells, mechanics_used):
     engine, schemes, grade_labels = ctx.engine, ctx.schemes, ctx.grade_labels
     n, b = per_engine["block_scrapped"].size, engine.main_bearings
     in_scheme = np.array([[lab in s.shell.labels for lab in grade_labels] for s in schemes])
-    stated = np.array([s.stated_clearance if s.stated_clearance else (np.nan, np.nan) for s in schemes])
     values = {**per_engine, "shells_made": shells.made, "shells_used": shells.used, "shells_left": shells.left,
-              "shells_scrapped": shells.scrapped, "grade_in_scheme": in_scheme, "clearance_stated": stated,
-              "clearance_limit": np.array([s.clearance_limits() for s in schemes])}
-    data = {name: var(values[name]) for name, var in schema.FULL.items()}
+              "shells_scrapped": shells.scrapped, "grade_in_scheme": in_scheme}
+    scheme_vars = schema.scheme_variables(schemes)
+    data = {name: scheme_vars[name] if name in scheme_vars else var(values[name]) for name, var in schema.FULL.items()}
     coords = {
         "scheme": ("scheme", [s.name for s in schemes], {"long_name": "selective-fitting scheme"}),
         "engine": ("engine", np.arange(n), {"long_name": "sampled engine (block, crankshaft and its shells)"}),
@@ -77,8 +77,14 @@ def full_dataset(study, ctx, per_engine, history, shells, mechanics_used):
                                     {"long_name": "engine of the mechanical chain (its number in the engine dimension)"})
         coords["crank_angle"] = ("crank_angle", ctx.crank_angle,
                                  {"units": "degree", "long_name": "crank angle from firing TDC of the first cylinder fired"})
-    attrs = {
-        "title": f"Selective assembly of {engine.title or engine.name}",
+    attrs = {"title": f"Selective assembly of {engine.title or engine.name}", **attributes(study, ctx, mechanics_used)}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def attributes(study, ctx, mechanics_used):
+    """Attributes of every study dataset: the parameters that reproduce it and the engine data reports quote."""
+    engine = ctx.engine
+    return {
         "stackup_version": __version__,
         "study": json.dumps(study.parameters()),
         "seed": study.seed,
@@ -90,14 +96,15 @@ def full_dataset(study, ctx, per_engine, history, shells, mechanics_used):
         "pilot_engines": study.pilot_engines,
         "film_method_used": ctx.film_method,
         "mechanics_engines_used": mechanics_used,
-        "scheme_sources": json.dumps({s.name: s.source for s in schemes}),
+        "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
         "press_fit": json.dumps(engine.press_fit.kwargs()),
         "clearance_window": list(engine.clearance_window),
         "life_target": engine.life_target,
         "crush_height_limits": [engine.shell_wall.crush.lo, engine.shell_wall.crush.hi],
+        "contact_pressure_min": CONTACT_PRESSURE_MIN,
+        "shell_stress_max": SHELL_STRESS_MAX,
         "Conventions": "CF-1.10",
     }
-    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _arrays(ctx, n_engines, kept):
@@ -266,17 +273,13 @@ class SummarySink:
         return {k: np.concatenate([piece[k] for piece in self.sample], axis=1) for k in self.sample[0]}
 
     def result(self):
-        study, ctx = self.study, self.ctx
-        attrs = {"stackup_version": __version__, "study": json.dumps(study.parameters()), "seed": study.seed,
-                 "engine": ctx.engine.name, "clearance_window": list(ctx.engine.clearance_window),
-                 "bin_width": summarise.BIN_WIDTH, "Conventions": "CF-1.10",
-                 "title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}"}
+        ctx = self.ctx
         if self.store is not None:
             self._save()  # a rerun of the finished study only reads the total
         used = self.progress.state.next
         sample = {k: v[:, :used] for k, v in self._sample().items()}
-        attrs["mechanics_engines_used"] = used
-        attrs["film_method_used"] = ctx.film_method
+        attrs = {"title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}",
+                 **attributes(self.study, ctx, used), "bin_width": summarise.BIN_WIDTH}
         ds = summarise.dataset(self.total, sample, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
         if self.store is not None:
             self.store.write_rest(to_stored(ds))

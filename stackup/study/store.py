@@ -164,12 +164,12 @@ def to_stored(ds, labels=()):
     return ds.assign(coded).assign_coords(strings)
 
 
-def open_study(path):
-    """The study dataset in a store, lazily (dask-backed): nothing is read until used.
+def open_study(path, *, group=None):
+    """The study dataset in a store (or one of its groups), lazily (dask-backed): nothing is read until used.
 
     Grade labels come back as fixed-width strings, as in an in-memory study.
     """
-    ds = xr.open_zarr(Path(path), consolidated=False, zarr_format=3)
+    ds = xr.open_zarr(Path(path), group=group, consolidated=False, zarr_format=3)
     labels = {}
     for name, var in ds.data_vars.items():
         if LABELS_ATTR in var.attrs:

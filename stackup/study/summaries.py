@@ -205,6 +205,7 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "shell_stress_max": summary["shell_stress_max"](_finite(total.maxima["shell_stress"])),
         "grade_in_scheme": full["grade_in_scheme"](
             np.array([[lab in s.shell.labels for lab in grade_labels] for s in schemes])),
+        **schema.scheme_variables(schemes),
     }
     n = counts["status"][:, ASSEMBLED]
     for name in CLEARANCES:
@@ -227,6 +228,7 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "clearance_bin": ("clearance_bin", centres, {"units": "m", "long_name": "clearance bin centre"}),
         "rank": ("rank", np.arange(1, WORST + 1), {"long_name": "rank among the extremes"}),
         "field": ("field", fields, {"long_name": "recorded quantity"}),
+        "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
         "bearing": ("bearing", np.arange(1, sample["h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
         "sampled_engine": ("sampled_engine", np.arange(sample["crank_status"].shape[1]),
                            {"long_name": "engine of the mechanical chain (its number in the study)"}),
@@ -245,3 +247,40 @@ def quantile(ds, name, q):
     cdf = np.cumsum(hist, axis=-1) / hist.sum(axis=-1, keepdims=True)
     index = np.array([np.searchsorted(row, q) for row in cdf])
     return BIN_START + (index + 0.5) * BIN_WIDTH
+
+
+def quantile_ci(hist, q, *, confidence=0.95):
+    """Quantile ``q`` [m] of one scheme's clearance histogram with a distribution-free interval, to a bin.
+
+    The interval is spanned by the order statistics whose ranks are the
+    binomial ``(n, q)`` quantiles at ``alpha/2`` and ``1 - alpha/2``, as
+    :func:`stackup.stats.quantile_ci` does for values; each is read as the
+    centre of the bin that holds it. Returns ``(estimate, lower, upper)``.
+    """
+    from scipy import stats
+
+    hist = np.asarray(hist)
+    n = int(hist.sum())
+    if n == 0:
+        return np.nan, np.nan, np.nan
+    cumulative = np.cumsum(hist)
+
+    def centre(rank):  # of the bin holding the order statistic of this rank (1-based)
+        if rank < 1:
+            return -np.inf
+        if rank > n:
+            return np.inf
+        return BIN_START + (np.searchsorted(cumulative, rank) + 0.5) * BIN_WIDTH
+
+    alpha = 1.0 - confidence
+    estimate = BIN_START + (np.searchsorted(cumulative / n, q) + 0.5) * BIN_WIDTH
+    return (float(estimate), float(centre(int(stats.binom.ppf(alpha / 2, n, q)))),
+            float(centre(int(stats.binom.ppf(1 - alpha / 2, n, q)) + 1)))
+
+
+def share_beyond(hist, lo, hi):
+    """Bearings of a histogram with a value below ``lo`` or above ``hi`` [m], both on the bin grid (exact)."""
+    edges = BIN_START + np.arange(np.asarray(hist).size + 1) * BIN_WIDTH
+    below = edges[1:] <= lo + 1e-3 * BIN_WIDTH  # bins wholly below lo
+    above = edges[:-1] >= hi - 1e-3 * BIN_WIDTH  # bins from hi up: their values exceed hi (continuous values)
+    return int(np.asarray(hist)[below | above].sum())

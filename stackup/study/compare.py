@@ -1,0 +1,111 @@
+"""The main job as a library call: a scheme comparison with its declared scenarios."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import xarray as xr
+
+from ..scenarios import DECLARED
+from ..sensitivity import INPUTS, contributions
+from . import ISO_SCHEMES, Study
+
+#: Engines of the mechanical chain in a scenario that disturbs it (misalignment); the
+#: clearance-only scenarios run no mechanics.
+SCENARIO_MECHANICS_ENGINES = 50
+#: Outputs of the contributor chart.
+SENSITIVITY_OUTPUTS = ("clearance_operating", "h_min")
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """What the main job computes; every part is a dataset, so a report needs nothing else.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        The study (every engine kept).
+    scenarios : dict of str -> xarray.Dataset
+        The same study under each declared scenario, with the same seed
+        (common random numbers), as streaming summaries.
+    sensitivity : xarray.Dataset
+        Contributions of the inputs to the variance of each output per scheme
+        (:func:`sensitivity_dataset`).
+    """
+
+    dataset: xr.Dataset
+    scenarios: dict
+    sensitivity: xr.Dataset
+
+
+def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
+            progress=None, **study_options):
+    """Compare selective-fitting schemes on an engine: the study, its scenarios and what drives the spread.
+
+    Parameters
+    ----------
+    engine : str or path
+        Built-in engine name or engine TOML file.
+    schemes : sequence of str or path
+    n_engines : int
+    seed : int
+    scenarios : dict of str -> dict
+        Label -> scenario (:mod:`stackup.scenarios`); each is run with the
+        same seed on the clearance stages, and on
+        :data:`SCENARIO_MECHANICS_ENGINES` engines of the mechanical chain
+        where it disturbs that chain (misalignment). Empty for none.
+    progress : bool or None
+        Progress bars (None: only on a terminal).
+    **study_options
+        Further :class:`~stackup.study.Study` parameters.
+
+    Returns
+    -------
+    Comparison
+    """
+    study = Study(engine=engine, schemes=tuple(schemes), n_engines=n_engines, seed=seed, progress=progress,
+                  **study_options)
+    ds = study.run()
+    runs = {label: replace(study, scenario=change, keep="summaries",
+                           mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
+            for label, change in (scenarios or {}).items()}
+    return Comparison(ds, runs, sensitivity_dataset(ds))
+
+
+def sensitivity_dataset(ds, *, outputs=SENSITIVITY_OUTPUTS, bootstrap=100, seed=0):
+    """Regression contributions of the inputs to each output per scheme (:func:`stackup.sensitivity.contributions`).
+
+    Variables on (output, scheme, input): ``share`` with ``share_lo`` and
+    ``share_hi`` (95 % bootstrap interval) and ``src``; ``r2`` on (output,
+    scheme). NaN where an output was not computed or an input has no spread.
+    """
+    outputs = [o for o in outputs if np.isfinite(ds[o].values).any()]
+    schemes = [str(s) for s in ds.scheme.values]
+    inputs = list(INPUTS)
+    shape = (len(outputs), len(schemes), len(inputs))
+    values = {k: np.full(shape, np.nan) for k in ("share", "share_lo", "share_hi", "src")}
+    r2 = np.full(shape[:2], np.nan)
+    for i, output in enumerate(outputs):
+        for j, scheme in enumerate(schemes):
+            try:
+                frame = contributions(ds, scheme, output=output, bootstrap=bootstrap, rng=seed)
+            except ValueError:  # too few bearings with this output
+                continue
+            for name in values:
+                values[name][i, j] = frame[name].reindex(inputs).to_numpy()
+            r2[i, j] = frame.attrs["r2"]
+    dims = ("output", "scheme", "input")
+    data = {
+        "share": (dims, values["share"], {"units": "1", "long_name": "share of the explained variance (SRC^2, normalised)"}),
+        "share_lo": (dims, values["share_lo"], {"units": "1", "long_name": "lower 95 % bootstrap bound of share"}),
+        "share_hi": (dims, values["share_hi"], {"units": "1", "long_name": "upper 95 % bootstrap bound of share"}),
+        "src": (dims, values["src"], {"units": "1", "long_name": "standardised regression coefficient"}),
+        "r2": (dims[:2], r2, {"units": "1", "long_name": "coefficient of determination of the linear fit"}),
+    }
+    coords = {"output": ("output", outputs, {"long_name": "output variable of the study dataset"}),
+              "scheme": ("scheme", schemes, {"long_name": "selective-fitting scheme"}),
+              "input": ("input", inputs, {"long_name": "input of a bearing"})}
+    return xr.Dataset(data, coords=coords, attrs={"method": "standardised regression coefficients within each "
+                                                            "bearing position, bootstrap over bearings",
+                                                  "bootstrap": bootstrap, "seed": seed})
