@@ -241,14 +241,6 @@ def _finite(values):
     return np.where(np.isfinite(values), values, np.nan)
 
 
-def quantile(ds, name, q):
-    """Quantile [m] of a clearance from its histogram, within half a bin (BIN_WIDTH / 2)."""
-    hist = ds[f"{name}_histogram"].values
-    cdf = np.cumsum(hist, axis=-1) / hist.sum(axis=-1, keepdims=True)
-    index = np.array([np.searchsorted(row, q) for row in cdf])
-    return BIN_START + (index + 0.5) * BIN_WIDTH
-
-
 def quantile_ci(hist, q, *, confidence=0.95):
     """Quantile ``q`` [m] of one scheme's clearance histogram with a distribution-free interval, to a bin.
 
