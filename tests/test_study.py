@@ -112,6 +112,9 @@ def test_saved_datasets_round_trip_identically(engine_file, tmp_path, suffix, ke
         ({"seed": -1}, "seed: -1 is not valid"),
         ({"schemes": ()}, "schemes: give at least one scheme"),
         ({"schemes": ("iso13778-4", "iso13778-4")}, "names a scheme twice"),
+        ({"window": (45, 65)}, r"window: \(45.0, 65.0\) m is not a clearance window; .* in metres"),
+        ({"window": (65e-6, 45e-6)}, "is not a clearance window"),
+        ({"window": 50e-6}, "is not a \\(lower, upper\\) pair"),
     ],
 )
 def test_bad_study_input(kw, message):
@@ -270,3 +273,13 @@ def test_history_on_a_crank_angle_dimension_only_when_asked():
     np.testing.assert_allclose(ds.h_min_history.min("crank_angle").values, ds.h_min.values[:, :4])
     np.testing.assert_allclose(np.linalg.norm(ds.load_history.values, axis=-1).max(axis=-1), ds.reaction_max.values[:, :4])
     assert ds.crank_angle.attrs["units"] == "degree"
+
+
+def test_a_study_window_overrides_the_engines_for_counts_and_ranking(engine_file):
+    from stackup import rank
+
+    kw = dict(keep="summaries", schemes=("iso13778-4",))
+    own, wide = small(engine_file(), **kw).run(), small(engine_file(), window=(10e-6, 200e-6), **kw).run()
+    assert tuple(wide.attrs["clearance_window"]) == (10e-6, 200e-6)
+    assert int(wide.outside_window_count.sum()) == 0 < int(own.outside_window_count.sum())
+    assert rank(wide).loc["iso13778-4", "outside_window_ppm"] == 0

@@ -98,6 +98,9 @@ class Study:
     scenario : dict or None
         Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
         ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
+    window : (float, float) or None
+        Design window of the operating clearance [m] that the summaries
+        count and the ranking uses; None takes the engine's.
     store : str or None
         Path of a Zarr store the results stream into as chunks finish
         (:mod:`stackup.study.store`), so a study larger than memory can keep every
@@ -126,6 +129,7 @@ class Study:
     progress: bool | None = None
     sampler: str = "mc"
     scenario: dict | None = None
+    window: tuple | None = None
     store: str | None = None
 
     def __post_init__(self):
@@ -151,6 +155,8 @@ class Study:
             raise ValueError(f"schemes: {list(self.schemes)!r} names a scheme twice")
         seed_sequence(self.seed)
         self.engine = str(self.engine)
+        if self.window is not None:
+            self.window = _window(self.window)
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
@@ -205,6 +211,18 @@ class Study:
                 out.add(result)
                 bar.update(1)
         return out.result()
+
+
+def _window(window):
+    """A design window of the operating clearance as (lower, upper) in m, or a ValueError saying why not."""
+    try:
+        lo, hi = (float(v) for v in window)
+    except (TypeError, ValueError):
+        raise ValueError(f"window: {window!r} is not a (lower, upper) pair of clearances in m") from None
+    if not 0.0 < lo < hi < 1e-3:
+        raise ValueError(f"window: ({lo!r}, {hi!r}) m is not a clearance window; give 0 < lower < upper < 1 mm "
+                         "in metres, e.g. (45e-6, 65e-6)")
+    return lo, hi
 
 
 __all__ = ["ISO_SCHEMES", "Study", "WORKER_MALLOC", "open_study"]

@@ -40,7 +40,7 @@ class Comparison:
 
 
 def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
-            progress=None, **study_options):
+            progress=None, log=None, **study_options):
     """Compare selective-fitting schemes on an engine: the study, its scenarios and what drives the spread.
 
     Parameters
@@ -57,6 +57,9 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         where it disturbs that chain (misalignment). Empty for none.
     progress : bool or None
         Progress bars (None: only on a terminal).
+    log : callable or None
+        Called with one line of text as each stage starts (the study, each
+        scenario, the sensitivity), e.g. ``print`` for logs.
     **study_options
         Further :class:`~stackup.study.Study` parameters.
 
@@ -64,12 +67,17 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     -------
     Comparison
     """
+    log = log or (lambda line: None)
     study = Study(engine=engine, schemes=tuple(schemes), n_engines=n_engines, seed=seed, progress=progress,
                   **study_options)
+    log(f"study: {study.n_engines:,} engines x {len(study.schemes)} schemes")
     ds = study.run()
-    runs = {label: replace(study, scenario=change, keep="summaries",
-                           mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
-            for label, change in (scenarios or {}).items()}
+    runs = {}
+    for k, (label, change) in enumerate((scenarios or {}).items(), start=1):
+        log(f"scenario {k}/{len(scenarios)}: {label}")
+        runs[label] = replace(study, scenario=change, keep="summaries",
+                              mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
+    log("sensitivity: contributions of the inputs")
     return Comparison(ds, runs, sensitivity_dataset(ds))
 
 

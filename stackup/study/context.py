@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -74,6 +74,8 @@ def context(study):
     key = fingerprint(study)
     if key not in _CACHE:
         engine = apply_scenario(load_engine(study.engine), study.scenario)
+        if study.window is not None:
+            engine = replace(engine, clearance_window=study.window)
         schemes = [load_scheme(s) for s in study.schemes]
         names = [s.name for s in schemes]
         if len(set(names)) != len(names):
