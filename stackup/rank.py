@@ -24,6 +24,7 @@ import pandas as pd
 from .assembly import ASSEMBLED, SHELL_STOCKOUT
 from .life import ALPHA_SCUFFING
 from .stats import proportion_ci, quantile_ci
+from .study.schema import flag
 
 #: (column, better) in order of precedence: share outside the clearance window,
 #: share of bearings in boundary friction above the scuffing limit, median life.
@@ -56,7 +57,7 @@ def _scheme_metrics(d, window, h_lim_cr):
         "shell_grades": int(d.grade_in_scheme.values.sum()),
         "surplus_pct": 100.0 * float(d.shells_left.sum()) / max(float(d.shells_made.sum()), 1.0),
     }
-    done = d.crank_status.values == 0
+    done = d.crank_status.values == flag(d.crank_status, "converged")
     if done.any() and "h_min" in d:
         h = d.h_min.values[done].ravel()
         a = d.alpha.values[done].ravel()

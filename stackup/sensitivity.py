@@ -59,6 +59,8 @@ def contributions(ds, scheme, *, output="clearance_operating", within_bearing=Tr
     through the choice of shells and shows there.
     """
     d = ds.sel(scheme=scheme)
+    if "mech_engine" in d[output].dims:  # a result of the mechanical chain: its engines only
+        d = d.isel(engine=d.mech_engine.values).drop_vars("mech_engine").rename({"mech_engine": "engine"})
     y = d[output].values
     ok = (d.status.values == ASSEMBLED) & np.isfinite(y)
     columns = [np.array(INPUTS[k](d), dtype=float) for k in INPUTS]

@@ -4,7 +4,7 @@
 
 The same as ``stackup compare``, through the library: :func:`stackup.compare`
 runs the study, its declared scenarios and the sensitivity; the comparison is
-saved in one netCDF file and the report is written from it.
+saved in one compact netCDF file and the report is written from that file.
 """
 
 import argparse

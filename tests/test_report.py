@@ -40,7 +40,7 @@ def test_compare_runs_the_study_its_scenarios_and_the_sensitivity(comparison):
 
 
 def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison, tmp_path, monkeypatch):
-    path = save_comparison(comparison, tmp_path / "compare.nc")
+    path = save_comparison(comparison, tmp_path / "compare.nc", compact=False)  # exact: the same report
     expected = write_report(comparison.dataset, tmp_path / "memory", scenarios=comparison.scenarios,
                             sensitivity=comparison.sensitivity).read_text()
     saved = open_comparison(path)
@@ -80,3 +80,25 @@ def test_importing_the_report_leaves_the_matplotlib_backend_alone():
             "print(matplotlib.get_backend())")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "svg"
+
+
+def test_a_compact_file_keeps_every_variable_within_half_its_resolution(comparison, tmp_path):
+    from stackup.io import open_dataset, save
+    from stackup.study.schema import STORED_RESOLUTION
+
+    ds = comparison.dataset
+    exact, compact = save(ds, tmp_path / "exact.nc"), save(ds, tmp_path / "compact.nc", compact=True)
+    assert compact.stat().st_size < 0.5 * exact.stat().st_size  # 0.25 at the main job's size; headers weigh here
+    back = open_dataset(compact)
+    assert list(back.data_vars) == list(ds.data_vars)
+    for name, var in ds.data_vars.items():
+        if var.dtype.kind != "f":
+            np.testing.assert_array_equal(back[name].values, var.values)
+            continue
+        np.testing.assert_array_equal(np.isnan(back[name].values), np.isnan(var.values))  # NaN stays NaN
+        resolution = STORED_RESOLUTION.get(var.attrs["units"]) if var.ndim >= 2 else None
+        if resolution:
+            assert np.nanmax(np.abs(back[name].values - var.values)) <= 0.5 * resolution * (1 + 1e-6)
+        else:  # float32, or exact below two dimensions
+            np.testing.assert_allclose(back[name].values, var.values, rtol=2**-23)
+        assert back[name].attrs["units"] == var.attrs["units"]

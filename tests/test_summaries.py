@@ -61,7 +61,7 @@ def test_summaries_cover_the_press_fit_and_the_mechanical_chain():
     full, summary = Study(**kw).run(), Study(**kw, keep="summaries").run()
     assert summary.attrs["mechanics_engines_used"] == 30
     for name in ("reaction_max", "h_min", "h_min_mean", "alpha", "life", "film_temperature", "crank_status"):
-        np.testing.assert_array_equal(summary[name].values, full[name].isel(engine=slice(0, 30)).values)
+        np.testing.assert_array_equal(summary[name].values, full[name].values)
     np.testing.assert_array_equal(summary.clearance_operating_sampled.values,
                                   full.clearance_operating.isel(engine=slice(0, 30)).values)
     for scheme in full.scheme.values:

@@ -71,7 +71,7 @@ class Study:
         with ``"summaries"``.
     history : bool
         Keep each mechanically computed engine's bearing loads and minimum
-        film at every crank angle, on dimensions ``sampled_engine`` and
+        film at every crank angle, on dimensions ``mech_engine`` and
         ``crank_angle`` (large: 720 angles per bearing and scheme).
     target_error : float or None
         Run the mechanical chain only until the 95 % interval of each

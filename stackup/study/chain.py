@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..assembly import ASSEMBLED, assemble
-from ..crank.cycle import NOT_COMPUTED, engine_cycles, worst_status
+from ..crank.cycle import engine_cycles, worst_status
 from ..film.cycle import bearing_films
 from ..fit import press_fit
 from ..life import alpha as boundary_share
@@ -70,25 +70,27 @@ class ChunkResult:
     per_engine : dict of str -> numpy.ndarray
         Every variable of :data:`schema.PER_ENGINE`, the chunk's engines on
         the variable's engine axis.
-    history : dict of str -> numpy.ndarray
-        :data:`schema.HISTORY` variables of the chunk's engines that keep one
-        (the first engines of the mechanical chain, ``Study(history=True)``),
-        engines on axis 1.
+    per_mech : dict of str -> numpy.ndarray
+        The :data:`schema.MECHANICS` variables (and :data:`schema.HISTORY`
+        with ``Study(history=True)``) of the chunk's engines within the
+        mechanical range (the study's first engines), on ``mech_engine``;
+        engines the chain did not reach are ``not_computed``.
     shells : ShellCounts
     progress : MechanicsProgress
         The mechanical chain's progress after this chunk.
-    h_min_head : numpy.ndarray (schemes, engines, bearings)
-        Cycle-minimum film of the chunk's engines within the mechanical range
-        (what a ``target_error`` decision needs of earlier chunks).
     """
 
     first: int
     engines: range
     per_engine: dict
-    history: dict
+    per_mech: dict
     shells: ShellCounts
     progress: MechanicsProgress
-    h_min_head: np.ndarray
+
+    @property
+    def h_min_head(self):
+        """Cycle-minimum film of the chunk's engines within the mechanical range (schemes, engines, bearings)."""
+        return self.per_mech["h_min"]
 
     def take(self, rows):
         """The per-engine variables of the chunk's engines ``rows`` (a slice), by name."""
@@ -135,10 +137,10 @@ def run_chunk(ctx, study, first, progress=None):
         out["loss_of_fit"][i] = fit["loss_of_fit"]
         stages.append((result, fit))
 
-    kept = max(0, min(e1, ctx.mechanics) - e0) if study.history else 0
-    history = {name: var.on("sampled_engine").empty({**sizes, "sampled_engine": kept,
-                                                     "crank_angle": ctx.crank_angle.size})
-               for name, var in schema.HISTORY.items()}
+    mechanical = max(0, min(e1, ctx.mechanics) - e0)  # engines of the chunk in the mechanical range
+    kept = schema.PER_MECH if study.history else schema.MECHANICS
+    mech = {name: var.empty({**sizes, "mech_engine": mechanical, "crank_angle": ctx.crank_angle.size})
+            for name, var in kept.items()}
     state, h_min_before = progress if progress is not None else (MechanicsProgress(min(e0, ctx.mechanics)), None)
     state = MechanicsProgress(state.next, state.done)
     # mechanical chain: engines in order, in batches at fixed engine numbers, until the target error is
@@ -148,21 +150,14 @@ def run_chunk(ctx, study, first, progress=None):
         stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
         rows = slice(a - e0, stop - e0)
         for i, (result, fit) in enumerate(stages):
-            values, status = _mechanics(ctx, parts, result, fit, rows, study.crank_method)
-            for name, v in values.items():
-                if name in history:
-                    if rows.start < kept:
-                        history[name][i, rows.start:min(rows.stop, kept)] = v[:kept - rows.start]
-                else:
-                    out[name][i, rows] = v
-            out["crank_status"][i, rows] = status
+            for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method).items():
+                if name in mech:
+                    mech[name][i, rows] = value
         a = state.next = stop
         if a == ctx.mechanics or (study.target_error and a % MECHANICS_BATCH == 0
-                                  and _film_error(out["h_min"][:, :a - e0], h_min_before) <= study.target_error):
+                                  and _film_error(mech["h_min"][:, :a - e0], h_min_before) <= study.target_error):
             state.done = True
-    mechanical = max(0, min(e1, ctx.mechanics) - e0)  # engines of the chunk in the mechanical range
-    return ChunkResult(first, range(e0, e1), out, history, shells, state,
-                       out["h_min"][:, :mechanical].copy())  # a copy: kept after the chunk is gone
+    return ChunkResult(first, range(e0, e1), out, mech, shells, state)
 
 
 def _record_assembly(out, shells, i, a, scheme, grade_labels):
@@ -224,21 +219,21 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
     Engines with a bearing not assembled are skipped (``not_computed``).
+    Returns the :data:`schema.PER_MECH` variables of one scheme, engines first.
     """
     engine, crank_angle = ctx.engine, ctx.crank_angle
     count = rows.stop - rows.start
     built = np.all(assembly.status[rows] == ASSEMBLED, axis=1)
-    out = {k: np.full((count, engine.main_bearings), np.nan) for k in schema.MECHANICS}
-    out["load_history"] = np.full((count, engine.main_bearings, crank_angle.size, 2), np.nan)
-    out["h_min_history"] = np.full((count, engine.main_bearings, crank_angle.size), np.nan)
-    status = np.full(count, NOT_COMPUTED, np.int8)
+    sizes = {"scheme": 1, "mech_engine": count, "bearing": engine.main_bearings, "axis": 2,
+             "crank_angle": crank_angle.size}
+    out = {name: var.empty(sizes)[0] for name, var in schema.PER_MECH.items()}
     if built.any():
         clearance = fit["clearance_operating"][rows][built]
         r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[rows][built],
                           journal_eccentricity=parts.journal_eccentricity[rows][built],
                           clearance=clearance, crank_angle=crank_angle, method=crank_method)
         out["reaction_max"][built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
-        status[built] = worst_status(r.status)
+        out["crank_status"][built] = worst_status(r.status)
         films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance,
                               journal_d=parts.journal_d[rows][built], steady_method=ctx.film_method)
         h_min = films.h_min.min(axis=-1)
@@ -249,7 +244,7 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method):
         out["film_temperature"][built] = films.temperature
         out["load_history"][built] = np.moveaxis(r.reactions, 1, 2)
         out["h_min_history"][built] = films.h_min
-    return out, status
+    return out
 
 
 def _film_error(h_min, h_min_before):

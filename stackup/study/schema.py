@@ -2,14 +2,15 @@
 
 The full dataset (every engine kept) and the streaming summaries build their
 variables from this table, so a variable reads the same in both. A variable
-that runs along the sampled engines has ``"engine"`` among its dimensions;
-the summaries keep the mechanical chain's per-engine results on
-``"sampled_engine"`` instead (:meth:`Var.on`).
+of each sampled engine has ``"engine"`` among its dimensions; the results of
+the mechanical chain (crankshaft, film, life), which runs on the first
+engines only, have ``"mech_engine"`` instead, whose coordinate is the number
+of the engine on ``"engine"``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
@@ -18,10 +19,15 @@ from ..assembly import NOT_GRADED, STATUS
 from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
 
 SED = ("scheme", "engine", "bearing")
+SMB = ("scheme", "mech_engine", "bearing")
 ED = ("engine", "bearing")
 SG = ("scheme", "shell_grade")
 #: Fixed-width string type of grade labels in a study dataset.
 LABEL_DTYPE = "<U2"
+#: Resolution a compact file keeps of per-bearing values, by units (:func:`stackup.io.save`): 10 nm is
+#: a fiftieth of the gauges' repeatability (0.5 um) and a hundredth of their read-out, 10 kPa a
+#: thousandth of a shell's contact pressure, 1 N a ten-thousandth of a main bearing's load.
+STORED_RESOLUTION = {"m": 1e-8, "Pa": 1e4, "N": 1.0, "degC": 1e-2}
 
 
 @dataclass(frozen=True)
@@ -43,28 +49,26 @@ class Var:
         return xr.Variable(dims or self.dims, data, {"units": self.units, "long_name": self.long_name, **flags,
                                                      **attrs})
 
-    def on(self, engine_dim):
-        """The same variable with its engine dimension renamed (e.g. to ``sampled_engine``)."""
-        return replace(self, dims=tuple(engine_dim if d == "engine" else d for d in self.dims))
-
     def empty(self, sizes):
         """An array of this variable's shape for dimension ``sizes`` (dim -> length), filled with ``fill``."""
         return np.full(tuple(sizes[d] for d in self.dims), self.fill, self.dtype)
 
     @property
     def engine_axis(self):
-        """Position of the engine dimension, or None."""
-        return self.dims.index("engine") if "engine" in self.dims else None
+        """Position of the engine dimension (``engine`` or ``mech_engine``)."""
+        return next(i for i, d in enumerate(self.dims) if d in ("engine", "mech_engine"))
 
 
 #: Per-bearing results of the mechanical chain (crankshaft, film, life).
 MECHANICS = {
-    "reaction_max": Var(SED, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
-    "h_min": Var(SED, "m", "minimum oil film thickness over the engine cycle (quasi-static)"),
-    "h_min_mean": Var(SED, "m", "cycle mean of the minimum oil film thickness"),
-    "alpha": Var(SED, "1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
-    "life": Var(SED, "s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
-    "film_temperature": Var(SED, "degC", "effective oil film temperature (isothermal heat balance)"),
+    "reaction_max": Var(SMB, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
+    "h_min": Var(SMB, "m", "minimum oil film thickness over the engine cycle (quasi-static)"),
+    "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness"),
+    "alpha": Var(SMB, "1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
+    "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
+    "film_temperature": Var(SMB, "degC", "effective oil film temperature (isothermal heat balance)"),
+    "crank_status": Var(("scheme", "mech_engine"), "1", "status of the crankshaft beam stage", CYCLE_STATUS, "i1",
+                        NOT_COMPUTED),
 }
 
 #: Press-fit results per bearing.
@@ -104,8 +108,6 @@ FULL = {
     "journal_eccentricity": Var(("engine", "bearing", "axis"), "m",
                                 "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
     **MECHANICS,
-    "crank_status": Var(("scheme", "engine"), "1", "status of the crankshaft beam stage", CYCLE_STATUS, "i1",
-                        NOT_COMPUTED),
     "status": Var(SED, "1", "assembly status of the bearing", STATUS, "i1", NOT_GRADED),
     "shell_option": Var(SED, "1", "shell pair used: 0 preferred, k > 0 the scheme's k-th alternative, -1 none",
                         dtype="i1", fill=-1),
@@ -120,14 +122,15 @@ FULL = {
 
 #: Histories over the cycle of the engines of the mechanical chain (``Study(history=True)``).
 HISTORY = {
-    "load_history": Var(("scheme", "sampled_engine", "bearing", "crank_angle", "axis"), "N",
+    "load_history": Var((*SMB, "crank_angle", "axis"), "N",
                         "bearing load over the cycle (force of the journal on the bearing)"),
-    "h_min_history": Var(("scheme", "sampled_engine", "bearing", "crank_angle"), "m",
-                         "minimum oil film thickness over the cycle"),
+    "h_min_history": Var((*SMB, "crank_angle"), "m", "minimum oil film thickness over the cycle"),
 }
 
-#: Variables of a chunk that run along the engines: what a chunk computes for each engine.
+#: Variables a chunk computes for each of its engines.
 PER_ENGINE = {name: var for name, var in FULL.items() if "engine" in var.dims}
+#: Variables a chunk computes for each of its engines in the mechanical chain (histories on request).
+PER_MECH = {**MECHANICS, **HISTORY}
 
 #: Grade labels (fixed-width strings; stored as int8 codes, :mod:`stackup.study.store`).
 LABELS = ("housing_grade", "journal_grade", "shell_upper_grade", "shell_lower_grade")
@@ -161,8 +164,7 @@ SUMMARY = {
     "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing"),
     "housing_swell_mean": Var(("scheme",), "m", "mean elastic growth of the housing bore from the press fit"),
     "housing_swell_std": Var(("scheme",), "m", "standard deviation of the growth of the housing bore from the press fit"),
-    "clearance_operating_sampled": Var(("scheme", "sampled_engine", "bearing"), "m",
-                                       "diametral operating clearance of the bearings of the mechanical chain"),
+    "clearance_operating_sampled": Var(SMB, "m", "diametral operating clearance of the bearings of the mechanical chain"),
 }
 
 
@@ -180,3 +182,9 @@ def scheme_variables(schemes):
     stated = np.array([s.stated_clearance if s.stated_clearance else (np.nan, np.nan) for s in schemes])
     return {"clearance_stated": FULL["clearance_stated"](stated),
             "clearance_limit": FULL["clearance_limit"](np.array([s.clearance_limits() for s in schemes]))}
+
+
+def mech_engine_coord(n):
+    """The ``mech_engine`` coordinate of a dataset whose mechanical chain ran on its first ``n`` engines."""
+    return ("mech_engine", np.arange(n), {"long_name": "engine of the mechanical chain (its number on the engine "
+                                                       "dimension)"})

@@ -53,12 +53,17 @@ class Progress:
         return self.state, self.h_min_before()
 
 
-def full_dataset(study, ctx, per_engine, history, shells, mechanics_used):
-    """The dataset of a study that keeps every engine, each variable as :data:`schema.FULL` declares it."""
+def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
+    """The dataset of a study that keeps every engine, each variable as :data:`schema.FULL` declares it.
+
+    ``per_mech`` holds the mechanical chain's variables of its first
+    ``mechanics_used`` engines (longer arrays are cut there).
+    """
     engine, schemes, grade_labels = ctx.engine, ctx.schemes, ctx.grade_labels
     n, b = per_engine["block_scrapped"].size, engine.main_bearings
     in_scheme = np.array([[lab in s.shell.labels for lab in grade_labels] for s in schemes])
-    values = {**per_engine, "shells_made": shells.made, "shells_used": shells.used, "shells_left": shells.left,
+    used = {name: value[:, :mechanics_used] for name, value in per_mech.items()}
+    values = {**per_engine, **used, "shells_made": shells.made, "shells_used": shells.used, "shells_left": shells.left,
               "shells_scrapped": shells.scrapped, "grade_in_scheme": in_scheme}
     scheme_vars = schema.scheme_variables(schemes)
     data = {name: scheme_vars[name] if name in scheme_vars else var(values[name]) for name, var in schema.FULL.items()}
@@ -69,12 +74,10 @@ def full_dataset(study, ctx, per_engine, history, shells, mechanics_used):
         "shell_grade": ("shell_grade", grade_labels, {"long_name": "shell grade label"}),
         "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
         "axis": ("axis", ["cap", "transverse"], {"long_name": "engine-fixed axis: towards the bearing cap, transverse"}),
+        "mech_engine": schema.mech_engine_coord(mechanics_used),
     }
-    kept = history["h_min_history"].shape[1]
-    if kept:
-        data.update({name: var(history[name]) for name, var in schema.HISTORY.items()})
-        coords["sampled_engine"] = ("sampled_engine", np.arange(kept),
-                                    {"long_name": "engine of the mechanical chain (its number in the engine dimension)"})
+    if study.history:
+        data.update({name: var(used[name]) for name, var in schema.HISTORY.items()})
         coords["crank_angle"] = ("crank_angle", ctx.crank_angle,
                                  {"units": "degree", "long_name": "crank angle from firing TDC of the first cylinder fired"})
     attrs = {"title": f"Selective assembly of {engine.title or engine.name}", **attributes(study, ctx, mechanics_used)}
@@ -107,12 +110,13 @@ def attributes(study, ctx, mechanics_used):
     }
 
 
-def _arrays(ctx, n_engines, kept):
-    """Empty per-engine and history arrays of ``n_engines`` engines, ``kept`` of them with histories."""
+def _arrays(study, ctx, n_engines, n_mech):
+    """Empty per-engine arrays of ``n_engines`` engines and mechanical-chain arrays of ``n_mech`` engines."""
     sizes = {"scheme": len(ctx.schemes), "engine": n_engines, "bearing": ctx.engine.main_bearings, "axis": 2,
-             "sampled_engine": kept, "crank_angle": ctx.crank_angle.size}
+             "mech_engine": n_mech, "crank_angle": ctx.crank_angle.size}
+    mech = schema.PER_MECH if study.history else schema.MECHANICS
     return ({name: var.empty(sizes) for name, var in schema.PER_ENGINE.items()},
-            {name: var.empty(sizes) for name, var in schema.HISTORY.items()})
+            {name: var.empty(sizes) for name, var in mech.items()})
 
 
 class MemorySink:
@@ -121,7 +125,7 @@ class MemorySink:
     def __init__(self, study, ctx):
         self.study, self.ctx = study, ctx
         self.progress = Progress()
-        self.per_engine, self.history = _arrays(ctx, study.n_engines, ctx.mechanics if study.history else 0)
+        self.per_engine, self.per_mech = _arrays(study, ctx, study.n_engines, ctx.mechanics)
         self.shells = ShellCounts.zeros(len(ctx.schemes), len(ctx.grade_labels))
 
     def resume(self):
@@ -132,12 +136,12 @@ class MemorySink:
         rows = slice(result.engines.start, result.engines.stop)
         for name, value in result.per_engine.items():
             self.per_engine[name][(slice(None),) * schema.PER_ENGINE[name].engine_axis + (rows,)] = value
-        for name, value in result.history.items():
-            self.history[name][:, rows] = value  # the first engines only: the slice is shorter or empty
+        for name, value in result.per_mech.items():
+            self.per_mech[name][:, rows] = value  # the first engines only: the slice is shorter or empty
         self.shells.add(result.shells)
 
     def result(self):
-        return full_dataset(self.study, self.ctx, self.per_engine, self.history, self.shells, self.progress.state.next)
+        return full_dataset(self.study, self.ctx, self.per_engine, self.per_mech, self.shells, self.progress.state.next)
 
 
 def _no_coords(ds):
@@ -145,8 +149,8 @@ def _no_coords(ds):
 
 
 def _per_engine(ds):
-    """The variables of ``ds`` that run along the engines."""
-    return ds[[k for k, v in ds.data_vars.items() if {"engine", "sampled_engine"} & set(v.dims)]]
+    """The variables of ``ds`` that run along the engines (``engine`` or ``mech_engine``)."""
+    return ds[[k for k, v in ds.data_vars.items() if {"engine", "mech_engine"} & set(v.dims)]]
 
 
 class StoreSink:
@@ -158,12 +162,12 @@ class StoreSink:
         self.shells = ShellCounts.zeros(len(ctx.schemes), len(ctx.grade_labels))
         self.labels = {lab for s in ctx.schemes for grades in (s.housing, s.journal, s.shell) for lab in grades.labels}
         # one engine's dataset: the variables, dimensions, attributes and order of the stored one
-        self.layout = self._dataset(*_arrays(ctx, 1, min(1, ctx.mechanics) if study.history else 0))
+        self.layout = self._dataset(*_arrays(study, ctx, 1, 1), mechanics_used=1)
         if not store.has_template:
             store.write_template(self._template())
 
-    def _dataset(self, per_engine, history):
-        return full_dataset(self.study, self.ctx, per_engine, history, self.shells, self.progress.state.next)
+    def _dataset(self, per_engine, per_mech, mechanics_used):
+        return full_dataset(self.study, self.ctx, per_engine, per_mech, self.shells, mechanics_used)
 
     def _template(self):
         """The stored per-engine variables, full size and empty (dask), chunked like the study."""
@@ -171,7 +175,7 @@ class StoreSink:
 
         study, ctx, one = self.study, self.ctx, self.layout
         step = study.chunk_lots * ctx.lot
-        sizes = {"engine": study.n_engines, "sampled_engine": ctx.mechanics if study.history else 0}
+        sizes = {"engine": study.n_engines, "mech_engine": ctx.mechanics}
         variables = {}
         for name, var in to_stored(_per_engine(one), self.labels).data_vars.items():
             shape = tuple(sizes.get(d, s) for d, s in zip(var.dims, var.shape))
@@ -179,9 +183,8 @@ class StoreSink:
             # one dask chunk (a small graph however large the study); the Zarr chunks follow the study's
             variables[name] = xr.Variable(var.dims, da.empty(shape, dtype=var.dtype, chunks=shape), var.attrs,
                                           encoding={"chunks": chunks})
-        coords = {"engine": ("engine", np.arange(study.n_engines), one.engine.attrs)}
-        if study.history and ctx.mechanics:
-            coords["sampled_engine"] = ("sampled_engine", np.arange(ctx.mechanics), one.sampled_engine.attrs)
+        coords = {"engine": ("engine", np.arange(study.n_engines), one.engine.attrs),
+                  "mech_engine": schema.mech_engine_coord(ctx.mechanics)}
         template = xr.Dataset(variables, coords=coords)
         return to_stored(template.assign_coords({k: v for k, v in one.coords.items() if k not in sizes}))
 
@@ -201,20 +204,22 @@ class StoreSink:
     def add(self, result):
         self._count(result.progress, result.h_min_head, result.shells)
         e0, e1 = result.engines.start, result.engines.stop
-        ds = to_stored(_per_engine(self._dataset(result.per_engine, result.history)), self.labels)
+        mechanical = result.per_mech["h_min"].shape[1]
+        ds = to_stored(_per_engine(self._dataset(result.per_engine, result.per_mech, mechanical)), self.labels)
         engine_vars = [k for k, v in ds.data_vars.items() if "engine" in v.dims]
         self.store.write_region(_no_coords(ds[engine_vars]), {"engine": slice(e0, e1)})
-        kept = result.history["h_min_history"].shape[1]
-        if kept:
-            history = [k for k, v in ds.data_vars.items() if "sampled_engine" in v.dims]
-            self.store.write_region(_no_coords(ds[history]), {"sampled_engine": slice(e0, e0 + kept)})
+        if mechanical:
+            mech_vars = [k for k, v in ds.data_vars.items() if "mech_engine" in v.dims]
+            self.store.write_region(_no_coords(ds[mech_vars]), {"mech_engine": slice(e0, e0 + mechanical)})
         self.store.write_state(result.first, {
             "shells": vars(result.shells), "h_min_head": result.h_min_head,
             "progress": np.array([result.progress.next, int(result.progress.done)])})
 
     def result(self):
-        whole = self._dataset(*_arrays(self.ctx, 0, 0))
-        self.store.write_rest(to_stored(whole.drop_vars([*_per_engine(whole).data_vars, "engine"])))
+        used = self.progress.state.next
+        whole = self._dataset(*_arrays(self.study, self.ctx, 0, 0), mechanics_used=0).assign_attrs(
+            mechanics_engines_used=used)
+        self.store.write_rest(to_stored(whole.drop_vars([*_per_engine(whole).data_vars, "engine", "mech_engine"])))
         return open_study(self.store.path)[list(self.layout.data_vars)]
 
 

@@ -178,4 +178,8 @@ def open_study(path, *, group=None):
             labels[name] = xr.Variable(var.dims, var.data.map_blocks(table.__getitem__, dtype=table.dtype), attrs)
     coords = {name: (var.dims, np.array(var.values.tolist(), dtype=str), var.attrs) for name, var in ds.coords.items()
               if var.dtype == STORED_STRING or var.dtype == object}
-    return ds.assign(labels).assign_coords(coords)
+    ds = ds.assign(labels).assign_coords(coords)
+    if "mech_engine" in ds.dims and "mechanics_engines_used" in ds.attrs:
+        # the store holds room for every engine the chain may run on; a target error may stop it earlier
+        ds = ds.isel(mech_engine=slice(0, int(ds.attrs["mechanics_engines_used"])))
+    return ds

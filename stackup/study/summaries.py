@@ -18,7 +18,7 @@ A study of 10^8 bearings cannot keep every engine. With
   clearance, with their inputs;
 - every per-bearing result of the mechanical chain (loads, film, life) on
   the engines it runs on (the first ``mechanics_engines``, a few hundred), on
-  a ``sampled_engine`` dimension with their operating clearance.
+  the ``mech_engine`` dimension with their operating clearance.
 
 Histograms, counts and counters merge exactly, extremes by min and max; sums
 are added in lot order, so the result is identical whatever the scheduler;
@@ -42,8 +42,8 @@ from .chain import MechanicsProgress, ShellCounts
 CLEARANCES = ("clearance_nominal", "clearance_operating")
 MOMENTS = (*CLEARANCES, "housing_swell")
 INPUTS = ("housing_bore", "journal_d", "shell_upper_wall", "shell_lower_wall")
-#: What the mechanical chain's sample keeps of each engine it ran on.
-SAMPLED = (*schema.MECHANICS, "crank_status", "clearance_operating")
+#: What the summaries keep of each engine the mechanical chain ran on.
+SAMPLED = (*schema.MECHANICS, "clearance_operating")
 
 
 @dataclass
@@ -123,8 +123,9 @@ def reduce_chunk(result, *, lot_engines, window):
         shells = result.shells if j == 0 else ShellCounts.zeros(*result.shells.made.shape)
         lots.append(_reduce(result.take(rows), shells, e0=start, window=window))
     mechanical = result.h_min_head.shape[1]
-    # copies: a view would keep the whole chunk's arrays alive for as long as the sample is kept
-    sample = {name: result.per_engine[name][:, :mechanical].copy() for name in SAMPLED}
+    # a copy: a view would keep the whole chunk's arrays alive for as long as the sample is kept
+    sample = {**{name: result.per_mech[name] for name in schema.MECHANICS},
+              "clearance_operating": result.per_engine["clearance_operating"][:, :mechanical].copy()}
     return ChunkSummary(result.first, lots, sample, result.progress, result.h_min_head)
 
 
@@ -214,10 +215,9 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
                                                      for k, v in zip(("mean", "std"), mean_std(total, name, n)))
     data["housing_swell_mean"], data["housing_swell_std"] = (summary[f"housing_swell_{k}"](v) for k, v in
                                                              zip(("mean", "std"), mean_std(total, "housing_swell", n)))
-    for name in schema.MECHANICS:
-        data[name] = schema.MECHANICS[name].on("sampled_engine")(sample[name])
+    for name, var in schema.MECHANICS.items():
+        data[name] = var(sample[name])
     data["clearance_operating_sampled"] = summary["clearance_operating_sampled"](sample["clearance_operating"])
-    data["crank_status"] = full["crank_status"].on("sampled_engine")(sample["crank_status"])
     fields = ["clearance_operating", "engine", "bearing", *INPUTS]
     for side in ("low", "high"):
         data[f"worst_{side}"] = summary[f"worst_{side}"](total.worst[side])
@@ -230,8 +230,7 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "field": ("field", fields, {"long_name": "recorded quantity"}),
         "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
         "bearing": ("bearing", np.arange(1, sample["h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
-        "sampled_engine": ("sampled_engine", np.arange(sample["crank_status"].shape[1]),
-                           {"long_name": "engine of the mechanical chain (its number in the study)"}),
+        "mech_engine": schema.mech_engine_coord(sample["crank_status"].shape[1]),
     }
     return xr.Dataset(data, coords=coords, attrs={**attrs, "kept": "summaries"})
 
