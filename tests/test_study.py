@@ -285,3 +285,19 @@ def test_a_study_window_overrides_the_engines_for_counts_and_ranking(engine_file
     assert tuple(wide.attrs["clearance_window"]) == (10e-6, 200e-6)
     assert int(wide.outside_window_count.sum()) == 0 < int(narrow.outside_window_count.sum())
     assert rank(wide).loc["iso13778-4", "outside_window_ppm"] == 0 < rank(narrow).loc["iso13778-4", "outside_window_ppm"]
+
+
+def test_a_stage_failing_on_many_engines_stops_the_run_naming_stage_share_and_cause(engine_file, write_toml):
+    from stackup.study.failures import FailureCount, StageFailure
+
+    # a scheme whose journal grades start 6 um above the drawing's lower limit: about 8 % cannot be graded
+    text = (schemes._builtin_dir() / "iso13778-4.toml").read_text().replace(
+        "A = [46.000, 46.006], B = [46.006, 46.012], C = [46.012, 46.018]",
+        "A = [46.006, 46.012], B = [46.012, 46.018], C = [46.018, 46.024]")
+    wrong = write_toml("shifted.toml", text.replace('name = "iso13778-4"', 'name = "shifted"'))
+    with pytest.raises(StageFailure, match=r"grading: failed on .* of .* bearings with parts inside their drawing "
+                                           r"limits \(\d+\.\d %, more than the study's failure_limit of 5 %\); "
+                                           r"likely cause: the scheme's grade ranges"):
+        small(engine_file(), schemes=(str(wrong),), n_engines=120, pilot_engines=2000).run()
+    counts = FailureCount.of_dataset(small(engine_file(), schemes=(str(wrong),), failure_limit=1.0).run())
+    assert 0.05 < counts.shares()["grading"] < 0.2 and "grading: failed on" in counts.lines()[0]

@@ -31,6 +31,7 @@ from ..fit import METHODS as FIT_METHODS
 from ..parts import SAMPLERS
 from . import chain, summaries
 from .context import context, fingerprint
+from .failures import FailureCount
 from .schedule import WORKER_MALLOC, check_scheduler, results
 from .sinks import sink
 from .store import ChunkStore, open_study
@@ -98,6 +99,11 @@ class Study:
     scenario : dict or None
         Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
         ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
+    failure_limit : float
+        Largest share of engines or bearings a stage may fail on
+        (:mod:`stackup.study.failures`: a scheme that grades no part, a
+        crankshaft beam that does not converge) before the run stops with
+        an error naming the stage and the likely cause [-]; 1.0 never stops.
     window : (float, float) or None
         Design window of the operating clearance [m] that the summaries
         count and the ranking uses; None takes the engine's.
@@ -129,6 +135,7 @@ class Study:
     progress: bool | None = None
     sampler: str = "mc"
     scenario: dict | None = None
+    failure_limit: float = 0.05
     window: tuple | None = None
     store: str | None = None
 
@@ -146,6 +153,7 @@ class Study:
         check.one_of("crank_method", self.crank_method, CRANK_METHODS)
         check.one_of("film_method", self.film_method, ("short", "finite", "reynolds", "auto"))
         self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
+        self.failure_limit = float(check.in_range("failure_limit", self.failure_limit, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
             raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
         self.schemes = tuple(str(s) for s in self.schemes)
@@ -173,8 +181,10 @@ class Study:
         """
         ctx = context(self)
         result = chain.run_chunk(ctx, self, first, progress)
+        failed = FailureCount.of_chunk(result)
         if self.keep == "summaries":
-            return summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window)
+            result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window)
+        result.failures = failed
         return result
 
     def run(self, scheduler=None) -> xr.Dataset:
@@ -207,7 +217,9 @@ class Study:
             finished = out.resume()
             bar.update(len(finished))
             todo = [first for first in firsts if first not in finished]
+            failures = FailureCount()
             for result in results(self, todo, scheduler, out.progress):
+                failures.merge(result.failures).check(self.failure_limit)  # stop before storing a failed chunk
                 out.add(result)
                 bar.update(1)
         return out.result()

@@ -86,6 +86,7 @@ class ChunkResult:
     per_mech: dict
     shells: ShellCounts
     progress: MechanicsProgress
+    failures: object = None  # the chunk's FailureCount, set by Study.chunk
 
     @property
     def h_min_head(self):

@@ -108,6 +108,7 @@ class ChunkSummary:
     sample: dict  # SAMPLED variable -> (schemes, engines of the chain in the chunk, ...)
     progress: MechanicsProgress
     h_min_head: np.ndarray
+    failures: object = None  # the chunk's FailureCount, set by Study.chunk
 
 
 def reduce_chunk(result, *, lot_engines, window):
