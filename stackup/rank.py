@@ -90,6 +90,16 @@ def _beats(a, b):
     return 0
 
 
+def _counted_window(ds):
+    """The dataset's design window (lower, upper) [m]; one window even where concatenation spread it over schemes."""
+    window = ds.clearance_window
+    spread = [d for d in window.dims if d != "bound"]
+    first = window.isel({d: 0 for d in spread})
+    if not bool((window == first).all()):
+        raise ValueError("clearance_window: the schemes of this dataset were counted against different windows")
+    return tuple(float(v) for v in first.values)
+
+
 def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
     """Schemes of a study dataset ranked by robustness.
 
@@ -106,7 +116,7 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
         gives it.
     window : (float, float), optional
         Design window of the operating clearance [m]; default the engine's
-        (``ds.attrs["clearance_window"]``).
+        (the dataset's ``clearance_window``).
     h_lim_cr : float
         Critical film thickness [m].
 
@@ -116,7 +126,7 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
         One row per scheme, sorted by rank; ``rank`` (ties share a rank) and
         the metrics with their 95 % intervals (``*_ci`` columns).
     """
-    counted = tuple(ds.attrs["clearance_window"])
+    counted = _counted_window(ds)
     window = counted if window is None else tuple(window)
     if len(window) != 2 or not window[0] < window[1]:
         raise ValueError(f"window: {window!r} is not a (lower, upper) clearance window in m")

@@ -39,11 +39,11 @@ def _assembled(d, name):
 def fit_summary(ds):
     """One row per scheme: nominal against operating clearance [um], press-fit limits as shares with 95 % intervals.
 
-    The design limits are the dataset's (``contact_pressure_min``,
-    ``shell_stress_max`` attributes, Pa). From summaries, the operating
+    The design limits are the dataset's (``design_contact_pressure_min``,
+    ``design_shell_stress_max``). From summaries, the operating
     quantiles are read from the 0.1 um histogram.
     """
-    p_min, s_max = ds.attrs["contact_pressure_min"], ds.attrs["shell_stress_max"]
+    p_min, s_max = float(ds.design_contact_pressure_min), float(ds.design_shell_stress_max)
     rows = []
     for name in ds.scheme.values:
         d = ds.sel(scheme=name)
@@ -180,11 +180,11 @@ def film_summary(ds):
     """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals.
 
     The share of engines below the life target uses the engine's own target
-    (``life_target`` attribute, s).
+    (``life_target``).
     """
     from .life import ALPHA_SCUFFING
 
-    life_target_hours = float(ds.attrs["life_target"]) / 3600
+    life_target_hours = float(ds.life_target) / 3600
     rows = []
     for i, name in enumerate(ds.scheme.values):
         done = _converged(ds, i)
@@ -456,7 +456,7 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
         "shells scrapped [%]": summary.shells_scrapped_pct.map("{:.2f}".format),
     })
     fit = fit_summary(ds)
-    p_min, s_max = ds.attrs["contact_pressure_min"], ds.attrs["shell_stress_max"]
+    p_min, s_max = float(ds.design_contact_pressure_min), float(ds.design_shell_stress_max)
     fit_table = pd.DataFrame({
         "scheme": fit.index,
         "nominal mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.nominal_mean_um, fit.nominal_std_um)],
@@ -505,7 +505,7 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
             "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
             "life B10 [h]": [f"{q[0]:.3g} [{q[1]:.3g}, {q[2]:.3g}]" for q in film.life_b10_h],
             "life median [h]": [f"{q[0]:.3g}" for q in film.life_median_h],
-            f"engines < {float(ds.attrs['life_target']) / 3600:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
+            f"engines < {float(ds.life_target) / 3600:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
         })
         film_lines = [
             "## Oil film and bearing life",
@@ -631,8 +631,8 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
         "",
         "## Operating clearance: press fit, housing swell and temperature",
         "",
-        f"The shells are an interference fit (crush height {1e3 * ds.attrs['crush_height_limits'][0]:.3f}–"
-        f"{1e3 * ds.attrs['crush_height_limits'][1]:.3f} mm per half shell, checked in a "
+        f"The shells are an interference fit (crush height {1e3 * float(ds.crush_height_limits[0]):.3f}–"
+        f"{1e3 * float(ds.crush_height_limits[1]):.3f} mm per half shell, checked in a "
         f"{press['check_bore'] * 1e3:.3f} mm block at {press['check_stress'] / 1e6:.0f} MPa) in a "
         f"{press['housing_material']} housing ring of outer diameter {press['housing_outer'] * 1e3:.0f} mm; "
         f"assembled at {press['assembly_temperature']:.0f} °C, running at {press['temperature']:.0f} °C "

@@ -37,7 +37,7 @@ def run(n, seed, sampler):
     elapsed = time.perf_counter() - t0
     d = ds.sel(scheme=SCHEME)
     c = d.clearance_operating.values[d.status.values == 0]
-    lo, hi = ds.attrs["clearance_window"]
+    lo, hi = ds.clearance_window.values
     k = int(np.count_nonzero((c < lo) | (c > hi)))
     share, s_lo, s_hi = proportion_ci(k, c.size)
     return {"mean_um": c.mean() * 1e6, "std_um": c.std(ddof=1) * 1e6, "outside_ppm": share * 1e6,

@@ -53,7 +53,7 @@ def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison
 
 
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
-    ds = comparison.dataset.assign_attrs(contact_pressure_min=20e6, shell_stress_max=300e6, life_target=7200.0)
+    ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
     text = write_report(ds, tmp_path).read_text()
     assert "p < 20 MPa [ppm]" in text and "σ > 300 MPa [ppm]" in text and "engines < 2 h [%]" in text
 

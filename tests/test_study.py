@@ -183,7 +183,7 @@ def test_operating_clearance_is_the_press_fit_of_the_stored_parts(engine_file):
     np.testing.assert_array_equal(ds.clearance_operating.values[ok], fit.clearance)
     np.testing.assert_array_equal(ds.contact_pressure.values[ok], fit.contact_pressure)
     assert np.all(np.isnan(ds.clearance_operating.values[~ok]))
-    lo, hi = ds.attrs["crush_height_limits"]
+    lo, hi = ds.crush_height_limits.values
     crush = ds.shell_upper_crush.values[ok]
     assert crush.min() >= lo and crush.max() <= hi
 
@@ -192,7 +192,7 @@ def test_report_has_press_fit_section_with_intervals(engine_file, tmp_path):
     from stackup.report import fit_summary, write_report
 
     ds = small(engine_file()).run()
-    summary = fit_summary(ds.assign_attrs(contact_pressure_min=40e6))  # a limit most bearings miss
+    summary = fit_summary(ds.assign(design_contact_pressure_min=40e6))  # a limit most bearings miss
     assert np.all(summary.low_pressure_ppm > 5e5)
     for lo, hi in summary.low_pressure_ci_ppm:
         assert lo < hi
@@ -282,7 +282,7 @@ def test_a_study_window_overrides_the_engines_for_counts_and_ranking(engine_file
 
     kw = dict(keep="summaries", schemes=("iso13778-4",))
     narrow, wide = (small(engine_file(), window=w, **kw).run() for w in ((30e-6, 31e-6), (10e-6, 200e-6)))
-    assert tuple(wide.attrs["clearance_window"]) == (10e-6, 200e-6)
+    assert tuple(wide.clearance_window.values) == (10e-6, 200e-6)
     assert int(wide.outside_window_count.sum()) == 0 < int(narrow.outside_window_count.sum())
     assert rank(wide).loc["iso13778-4", "outside_window_ppm"] == 0 < rank(narrow).loc["iso13778-4", "outside_window_ppm"]
 

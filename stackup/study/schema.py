@@ -118,6 +118,8 @@ FULL = {
     "grade_in_scheme": Var(SG, "1", "the scheme has this shell grade"),
     "clearance_stated": Var(("scheme", "bound"), "m", "clearance range stated by the scheme's source"),
     "clearance_limit": Var(("scheme", "bound"), "m", "worst-case nominal clearance over the scheme's allowed combinations"),
+    "reading_resolution": Var(("scheme", "part"), "m", "step the scheme reads housing bores and journals to "
+                                                         "(0: continuous); readings round to the nearest step"),
 }
 
 #: Histories over the cycle of the engines of the mechanical chain (``Study(history=True)``).
@@ -158,8 +160,8 @@ SUMMARY = {
                                 "assembled bearings with the operating clearance outside the design window"),
     "loss_of_fit_count": Var(("scheme",), "1", "assembled bearings whose shells have no interference left in service"),
     "low_contact_pressure_count": Var(("scheme",), "1",
-                                      "assembled bearings with contact pressure below the design minimum"),
-    "high_shell_stress_count": Var(("scheme",), "1", "assembled bearings with shell stress above the design maximum"),
+                                      "assembled bearings with contact pressure below design_contact_pressure_min"),
+    "high_shell_stress_count": Var(("scheme",), "1", "assembled bearings with shell stress above design_shell_stress_max"),
     "contact_pressure_min": Var(("scheme",), "Pa", "lowest contact pressure of an assembled bearing"),
     "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing"),
     "housing_swell_mean": Var(("scheme",), "m", "mean elastic growth of the housing bore from the press fit"),
@@ -177,11 +179,31 @@ def flag(variable, meaning):
     return int(variable.attrs["flag_values"][meanings.index(meaning)])
 
 
+#: The engine's design data every study dataset carries, with units (not as attributes, which have none).
+DESIGN = {
+    "clearance_window": Var(("bound",), "m", "design window of the diametral operating clearance"),
+    "life_target": Var((), "s", "bearing life the engine asks for"),
+    "crush_height_limits": Var(("bound",), "m", "drawing limits of the crush height of a half shell"),
+    "design_contact_pressure_min": Var((), "Pa", "least contact pressure between shell back and housing in service"),
+    "design_shell_stress_max": Var((), "Pa", "largest compressive hoop stress of the shell wall"),
+}
+
+
+def design_variables(engine, *, contact_pressure_min, shell_stress_max):
+    """The :data:`DESIGN` variables of ``engine`` (its window, life target, crush limits and press-fit limits)."""
+    values = {"clearance_window": engine.clearance_window, "life_target": engine.life_target,
+              "crush_height_limits": (engine.shell_wall.crush.lo, engine.shell_wall.crush.hi),
+              "design_contact_pressure_min": contact_pressure_min, "design_shell_stress_max": shell_stress_max}
+    return {name: var(np.asarray(values[name], dtype=float)) for name, var in DESIGN.items()}
+
+
 def scheme_variables(schemes):
     """The schemes' stated and worst-case clearance ranges, as every study dataset carries them."""
     stated = np.array([s.stated_clearance if s.stated_clearance else (np.nan, np.nan) for s in schemes])
+    resolution = np.array([[s.housing.resolution, s.journal.resolution] for s in schemes])
     return {"clearance_stated": FULL["clearance_stated"](stated),
-            "clearance_limit": FULL["clearance_limit"](np.array([s.clearance_limits() for s in schemes]))}
+            "clearance_limit": FULL["clearance_limit"](np.array([s.clearance_limits() for s in schemes])),
+            "reading_resolution": FULL["reading_resolution"](resolution)}
 
 
 def mech_engine_coord(n):

@@ -65,8 +65,9 @@ def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
     used = {name: value[:, :mechanics_used] for name, value in per_mech.items()}
     values = {**per_engine, **used, "shells_made": shells.made, "shells_used": shells.used, "shells_left": shells.left,
               "shells_scrapped": shells.scrapped, "grade_in_scheme": in_scheme}
-    scheme_vars = schema.scheme_variables(schemes)
-    data = {name: scheme_vars[name] if name in scheme_vars else var(values[name]) for name, var in schema.FULL.items()}
+    fixed = {**schema.scheme_variables(schemes), **design_variables(engine)}
+    data = {name: fixed[name] if name in fixed else var(values[name]) for name, var in schema.FULL.items()}
+    data.update({name: fixed[name] for name in schema.DESIGN})
     coords = {
         "scheme": ("scheme", [s.name for s in schemes], {"long_name": "selective-fitting scheme"}),
         "engine": ("engine", np.arange(n), {"long_name": "sampled engine (block, crankshaft and its shells)"}),
@@ -74,6 +75,7 @@ def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
         "shell_grade": ("shell_grade", grade_labels, {"long_name": "shell grade label"}),
         "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
         "axis": ("axis", ["cap", "transverse"], {"long_name": "engine-fixed axis: towards the bearing cap, transverse"}),
+        "part": ("part", ["housing", "journal"], {"long_name": "graded part"}),
         "mech_engine": schema.mech_engine_coord(mechanics_used),
     }
     if study.history:
@@ -82,6 +84,11 @@ def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
                                  {"units": "degree", "long_name": "crank angle from firing TDC of the first cylinder fired"})
     attrs = {"title": f"Selective assembly of {engine.title or engine.name}", **attributes(study, ctx, mechanics_used)}
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def design_variables(engine):
+    """The engine's design data as dataset variables (:data:`stackup.study.schema.DESIGN`)."""
+    return schema.design_variables(engine, contact_pressure_min=CONTACT_PRESSURE_MIN, shell_stress_max=SHELL_STRESS_MAX)
 
 
 def attributes(study, ctx, mechanics_used):
@@ -101,11 +108,6 @@ def attributes(study, ctx, mechanics_used):
         "mechanics_engines_used": mechanics_used,
         "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
         "press_fit": json.dumps(engine.press_fit.kwargs()),
-        "clearance_window": list(engine.clearance_window),
-        "life_target": engine.life_target,
-        "crush_height_limits": [engine.shell_wall.crush.lo, engine.shell_wall.crush.hi],
-        "contact_pressure_min": CONTACT_PRESSURE_MIN,
-        "shell_stress_max": SHELL_STRESS_MAX,
         "Conventions": "CF-1.10",
     }
 
@@ -286,6 +288,7 @@ class SummarySink:
         attrs = {"title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}",
                  **attributes(self.study, ctx, used), "bin_width": summarise.BIN_WIDTH}
         ds = summarise.dataset(self.total, sample, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
+        ds = ds.assign(design_variables(ctx.engine))
         if self.store is not None:
             self.store.write_rest(to_stored(ds))
         return ds

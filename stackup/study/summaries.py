@@ -199,10 +199,8 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "outside_window_count": summary["outside_window_count"](counts["outside_window"]),
         **{f"shells_{k}": full[f"shells_{k}"](counts[f"shells_{k}"]) for k in ("made", "used", "left", "scrapped")},
         "loss_of_fit_count": summary["loss_of_fit_count"](counts["loss_of_fit"]),
-        "low_contact_pressure_count": summary["low_contact_pressure_count"](counts["low_contact_pressure"],
-                                                                           limit=CONTACT_PRESSURE_MIN),
-        "high_shell_stress_count": summary["high_shell_stress_count"](counts["high_shell_stress"],
-                                                                     limit=SHELL_STRESS_MAX),
+        "low_contact_pressure_count": summary["low_contact_pressure_count"](counts["low_contact_pressure"]),
+        "high_shell_stress_count": summary["high_shell_stress_count"](counts["high_shell_stress"]),
         "contact_pressure_min": summary["contact_pressure_min"](_finite(total.minima["contact_pressure"])),
         "shell_stress_max": summary["shell_stress_max"](_finite(total.maxima["shell_stress"])),
         "grade_in_scheme": full["grade_in_scheme"](
@@ -230,6 +228,7 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         "rank": ("rank", np.arange(1, WORST + 1), {"long_name": "rank among the extremes"}),
         "field": ("field", fields, {"long_name": "recorded quantity"}),
         "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
+        "part": ("part", ["housing", "journal"], {"long_name": "graded part"}),
         "bearing": ("bearing", np.arange(1, sample["h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
         "mech_engine": schema.mech_engine_coord(sample["crank_status"].shape[1]),
     }
