@@ -15,6 +15,7 @@ import xarray as xr
 
 from .. import __version__
 from ..fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX
+from ..tolerances import _mean as process_mean
 from . import schema
 from . import summaries as summarise
 from .chain import ChunkResult, MechanicsProgress, ShellCounts
@@ -91,6 +92,29 @@ def design_variables(engine):
     return schema.design_variables(engine, contact_pressure_min=CONTACT_PRESSURE_MIN, shell_stress_max=SHELL_STRESS_MAX)
 
 
+def processes(engine):
+    """How the engine's parts are made and read, as plain data in SI units (keys say the unit)."""
+    def dimension(dim):
+        mean, std = float(process_mean(dim.process)), float(dim.process.std)
+        return {"limits_m": [dim.lo, dim.hi], "distribution": type(dim.process).__name__, "mean_m": mean,
+                "std_m": std, "cpk": min(dim.hi - mean, mean - dim.lo) / (3 * std), "shared": dim.shared,
+                "gauge_repeatability_m": dim.gauge.repeatability, "gauge_resolution_m": dim.gauge.resolution}
+
+    supply = engine.shell_wall
+    out = {"housing_bore": dimension(engine.housing_bore), "journal_d": dimension(engine.journal_d),
+           "shell_wall": {"supply": supply.mode, "sigma_m": supply.sigma, "target_offset_m": supply.target_offset,
+                          "gauge_repeatability_m": supply.gauge.repeatability,
+                          "gauge_resolution_m": supply.gauge.resolution, "lot_engines": supply.lot_engines,
+                          "surplus": supply.surplus},
+           "crush_height": dimension(supply.crush)}
+    crank = engine.crank
+    if crank is not None:
+        out["crank"] = {"speed_rpm": crank.speed * 30 / np.pi, "bearing_width_m": crank.bearing_width,
+                        "coaxiality_m": crank.coaxiality, "journal_runout_m": crank.journal_runout,
+                        "oil": crank.oil, "oil_supply_temperature_degC": crank.oil_supply_temperature}
+    return out
+
+
 def attributes(study, ctx, mechanics_used):
     """Attributes of every study dataset: the parameters that reproduce it and the engine data reports quote."""
     engine = ctx.engine
@@ -108,6 +132,7 @@ def attributes(study, ctx, mechanics_used):
         "mechanics_engines_used": mechanics_used,
         "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
         "press_fit": json.dumps(engine.press_fit.kwargs()),
+        "engine_processes": json.dumps(processes(engine)),
         "Conventions": "CF-1.10",
     }
 
