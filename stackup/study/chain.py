@@ -229,23 +229,46 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method):
              "crank_angle": crank_angle.size}
     out = {name: var.empty(sizes)[0] for name, var in schema.PER_MECH.items()}
     if built.any():
-        clearance = fit["clearance_operating"][rows][built]
-        r = engine_cycles(engine.crank, bore_offset=parts.bore_offset[rows][built],
-                          journal_eccentricity=parts.journal_eccentricity[rows][built],
-                          clearance=clearance, crank_angle=crank_angle, method=crank_method)
-        out["reaction_max"][built] = np.linalg.norm(r.reactions, axis=-1).max(axis=1)
-        out["crank_status"][built] = worst_status(r.status)
-        films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance,
-                              journal_d=parts.journal_d[rows][built], steady_method=ctx.film_method)
-        h_min = films.h_min.min(axis=-1)
-        out["h_min"][built] = h_min
-        out["h_min_mean"][built] = films.h_min.mean(axis=-1)
-        out["alpha"][built] = boundary_share(films.h_min)
-        out["life"][built] = levanov_method1(np.maximum(h_min, 1e-12)).life
-        out["film_temperature"][built] = films.temperature
-        out["load_history"][built] = np.moveaxis(r.reactions, 1, 2)
-        out["h_min_history"][built] = films.h_min
+        values = mechanical_chain(engine, clearance=fit["clearance_operating"][rows][built],
+                                  journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
+                                  journal_eccentricity=parts.journal_eccentricity[rows][built],
+                                  crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method)
+        for name, value in values.items():
+            out[name][built] = value
     return out
+
+
+def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
+                     film_method):
+    """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
+
+    Parameters
+    ----------
+    engine : Engine
+        With a crank section.
+    clearance, journal_d : array_like (engines, bearings)
+        Diametral operating clearance and journal diameter [m].
+    bore_offset, journal_eccentricity : array_like (engines, bearings, 2)
+        Misalignment of the bores and journals [m].
+    crank_angle : numpy.ndarray
+        [deg]
+    crank_method, film_method : str
+        Tiers of the crankshaft supports and the steady film.
+    """
+    r = engine_cycles(engine.crank, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
+                      clearance=clearance, crank_angle=crank_angle, method=crank_method)
+    films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance, journal_d=journal_d,
+                          steady_method=film_method)
+    h_min = films.h_min.min(axis=-1)
+    return {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
+            "crank_status": worst_status(r.status),
+            "h_min": h_min,
+            "h_min_mean": films.h_min.mean(axis=-1),
+            "alpha": boundary_share(films.h_min),
+            "life": levanov_method1(np.maximum(h_min, 1e-12)).life,
+            "film_temperature": films.temperature,
+            "load_history": np.moveaxis(r.reactions, 1, 2),
+            "h_min_history": films.h_min}
 
 
 def _film_error(h_min, h_min_before):
