@@ -24,7 +24,7 @@ def _compare(args):
     elapsed = time.perf_counter() - t0
     out = Path(args.out)
     data = save_comparison(result, out / "compare.nc")
-    report = write_report(result.dataset, out, scenarios=result.scenarios, sensitivity=result.sensitivity,
+    report = write_report(result.dataset, out, scenarios=result.scenarios, sensitivity=result.sensitivity, tails=result.tails,
                           dataset_file=data.name)
     ds = result.dataset
     summary = clearance_summary(ds)

@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..assembly import STATUS
+from ..rank import MIN_COUNTED
 from . import figures, prose
 from .html import anchor, markdown_to_html
 from .tables import (bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
@@ -52,7 +53,7 @@ def _section(title, *lines):
     return [f"## {title}", "", *lines, ""]
 
 
-def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=None):
+def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, dataset_file=None):
     """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``.
 
     Parameters
@@ -64,6 +65,9 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
         The study under declared scenarios (:class:`stackup.study.compare.Comparison`).
     sensitivity : xarray.Dataset, optional
         Contributions of the inputs (:func:`stackup.study.compare.sensitivity_dataset`).
+    tails : xarray.Dataset, optional
+        Tail estimates beyond the window (:func:`stackup.study.compare.tails_dataset`),
+        used by the ranking where too few bearings are counted outside.
     dataset_file : str, optional
         Name of the saved dataset, quoted in the report.
 
@@ -77,7 +81,7 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     scenarios = scenarios or {}
-    ranking = rank_schemes(ds, scenarios=scenarios or None)
+    ranking = rank_schemes(ds, scenarios=scenarios or None, tails=tails)
     scenario_rankings = {label: rank_schemes(other) for label, other in scenarios.items()}
     summary = clearance_summary(ds)
     study = json.loads(ds.attrs["study"])
@@ -125,7 +129,9 @@ def _ranking_section(ds, ranking, scenarios):
         "rank": ranking["rank"],
         "scheme": ranking.index,
         "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(ranking.clearance_mean_um, ranking.clearance_std_um)],
-        "outside window [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci)],
+        "outside window [ppm]": [_fmt_ci(v, ci, 0 if v >= 10 else 1) + ("" if src == "counted" else " †")
+                                 for v, ci, src in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
+                                                       ranking.outside_window_source)],
         "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
                          for v, ci in zip(column("alpha_over_limit_pct"), column("alpha_over_limit_pct_ci"))],
         "life median [h]": [f"{v:.3g} [{ci[0]:.3g}, {ci[1]:.3g}]" if isinstance(ci, tuple) else "—"
@@ -145,8 +151,15 @@ def _ranking_section(ds, ranking, scenarios):
             f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.")
     if scenarios:
         rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "
-                 "each run with the same seed.")
-    return _section("Ranking", rule, "", markdown_table(table), "", *prose.non_discriminating(ranking))
+                 "each run with the same seed (counted shares).")
+    notes = []
+    if (ranking.outside_window_source != "counted").any():
+        notes.append(f"† Fewer than {MIN_COUNTED} bearings of the study fell outside the window, too few for a tight "
+                     "interval: the share is estimated by subset simulation through the same assembly chain "
+                     "(`stackup.tail`; bins never run short there), with its stated standard error; the study "
+                     "counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
+                     + ".")
+    return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
 
 
 def _sensitivity_section(sensitivity, out):

@@ -32,11 +32,16 @@ class Comparison:
     sensitivity : xarray.Dataset
         Contributions of the inputs to the variance of each output per scheme
         (:func:`sensitivity_dataset`).
+    tails : xarray.Dataset
+        Shares of bearings beyond each edge of the design window per scheme,
+        by subset simulation (:func:`tails_dataset`), which the ranking uses
+        where the study counts too few bearings outside the window.
     """
 
     dataset: xr.Dataset
     scenarios: dict
     sensitivity: xr.Dataset
+    tails: xr.Dataset
 
 
 def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
@@ -78,7 +83,10 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         runs[label] = replace(study, scenario=change, keep="summaries",
                               mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
     log("sensitivity: contributions of the inputs")
-    return Comparison(ds, runs, sensitivity_dataset(ds))
+    sensitivity = sensitivity_dataset(ds)
+    log("tails: shares beyond the design window by subset simulation")
+    return Comparison(ds, runs, sensitivity, tails_dataset(engine, schemes, window=study_options.get("window"),
+                                                          seed=seed, pilot_engines=study.pilot_engines))
 
 
 def sensitivity_dataset(ds, *, outputs=SENSITIVITY_OUTPUTS, bootstrap=100, seed=0):
@@ -117,3 +125,36 @@ def sensitivity_dataset(ds, *, outputs=SENSITIVITY_OUTPUTS, bootstrap=100, seed=
     return xr.Dataset(data, coords=coords, attrs={"method": "standardised regression coefficients within each "
                                                             "bearing position, bootstrap over bearings",
                                                   "bootstrap": bootstrap, "seed": seed})
+
+
+def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=2_000):
+    """Share of bearings below and above the design window per scheme, by subset simulation (:mod:`stackup.tail`).
+
+    Variables on (scheme, side): ``tail_share`` and its ``tail_standard_error``,
+    with the chain evaluations each estimate cost (``tail_bearings``).
+    """
+    from ..engines import load_engine
+    from ..schemes import load as load_scheme
+    from ..tail import clearance_tail
+
+    engine = load_engine(engine)
+    window = engine.clearance_window if window is None else window
+    loaded = [load_scheme(s) for s in schemes]
+    sides = ("lower", "upper")
+    shares, errors, cost = (np.full((len(loaded), 2), np.nan) for _ in range(3))
+    for i, scheme in enumerate(loaded):
+        for j, side in enumerate(sides):
+            if not np.isfinite(window[j]) or (side == "lower" and window[j] <= 0):
+                continue
+            t = clearance_tail(engine, scheme, side=side, threshold=window[j], seed=seed,
+                               pilot_engines=pilot_engines, n_level=n_level)
+            shares[i, j], errors[i, j], cost[i, j] = t.share, t.standard_error, t.bearings
+    dims = ("scheme", "side")
+    return xr.Dataset(
+        {"tail_share": (dims, shares, {"units": "1", "long_name": "share of assembled bearings beyond the window edge "
+                                                                   "(subset simulation)"}),
+         "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
+         "tail_bearings": (dims, cost, {"units": "1", "long_name": "chain evaluations of the estimate"})},
+        coords={"scheme": ("scheme", [s.name for s in loaded], {"long_name": "selective-fitting scheme"}),
+                "side": ("side", list(sides), {"long_name": "edge of the design window"})},
+        attrs={"window": list(map(float, window)), "method": "subset simulation (stackup.tail)", "seed": seed})
