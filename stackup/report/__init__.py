@@ -99,7 +99,7 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
         *_section("Methods and assumptions", *prose.methods(ds)),
         *_section("Limits of validity", *prose.limits_of_validity(ds)),
         *_ranking_section(ds, ranking, scenarios),
-        *_sensitivity_section(sensitivity, out),
+        *_sensitivity_section(sensitivity, ranking, out),
         *_clearance_section(ds, summary, out),
         *_fit_section(ds),
         *_crank_section(ds, n_mech),
@@ -162,18 +162,20 @@ def _ranking_section(ds, ranking, scenarios):
     return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
 
 
-def _sensitivity_section(sensitivity, out):
+def _sensitivity_section(sensitivity, ranking, out):
     if sensitivity is None or not sensitivity.sizes.get("output"):
-        return _section("What drives the spread", "The contributions of the inputs come with `stackup.compare` "
-                        "(its `sensitivity` dataset, computed from a study that keeps every engine); none was given.")
-    fits = figures.sensitivity_chart(sensitivity, out / "sensitivity.png")
-    r2_text = "; ".join(f"{scheme} {output} R² {r2:.2f}" for (output, scheme), r2 in fits.items())
+        return _section("What drives the spread", "The Sobol indices come with `stackup.compare` (its `sensitivity` "
+                        "dataset); none was given.")
+    figures.sensitivity_chart(sensitivity, out / "sensitivity.png")
     return _section(
         "What drives the spread",
-        "Share of the variance of the operating clearance and of the cycle-minimum film (within each bearing "
-        "position) that each input explains, from standardised regression coefficients with 95 % bootstrap "
-        "intervals. In selective assembly the shells are chosen from the measured sizes, so inputs are "
-        "correlated: read the shares with the fit's R² (" + r2_text + ").", "",
+        *prose.tighten_first(sensitivity, ranking), "",
+        "Sobol indices of the root inputs: each sample engine is built from its own sizes, gauge errors, the shells "
+        "taken from their grades' bins and crush heights, and goes through grading, pairing and the press fit (and "
+        "for the film and the life through the crankshaft and the oil film). The first-order index S_1 is the share "
+        "of the output's variance an input explains alone; the total index S_T adds its interactions. The gap "
+        "between them, and a sum of S_1 below one, is the grading: a reading near a grade boundary sends a part "
+        "to another pair. Process mean shifts are not inputs here: the declared scenarios shift them.", "",
         "![What drives the spread](sensitivity.png)")
 
 
