@@ -109,19 +109,9 @@ def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="subs
     n_level = check.integer("n_level", n_level, minimum=100)
     elite = float(check.in_range("elite", elite, 0.0, 0.5, lo_open=True))
     defensive = float(check.in_range("defensive", defensive, 0.0, 1.0, lo_open=True))
-    if threshold is None:
-        threshold = engine.clearance_window[1 if side == "upper" else 0]
-    threshold = float(check.finite("threshold", threshold))
-    sign = 1.0 if side == "upper" else -1.0
-    model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
-                      bearings=1)
-    dim = len(model.columns(TAIL_GROUPS)[0])
+    score, dim = clearance_margin(engine, scheme, side=side, threshold=threshold, seed=seed,
+                                  pilot_engines=pilot_engines)
     rng = as_generator(np.random.SeedSequence(seed).spawn(1)[0])
-
-    def score(z):
-        """Distance into the tail [m]: > 0 beyond the threshold; -inf where not assembled."""
-        c = model.engines(special.ndtr(z), groups=TAIL_GROUPS)["clearance_operating"][:, 0]
-        return np.where(np.isfinite(c), sign * (c - threshold), -np.inf)
 
     if method == "mc":
         z = rng.standard_normal((n, dim))
@@ -152,6 +142,33 @@ def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="subs
     w = np.exp(_log_normal(z) - log_q)
     hit = (score(z) > 0).astype(float)
     return _estimate(hit * w, w, spent + n, levels)
+
+
+def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pilot_engines=20_000):
+    """A bearing's distance into the tail as a function of its root inputs in standard normal space.
+
+    Returns ``(margin, dim)``: ``margin(z)`` for ``z`` (bearings, dim) is
+    the operating clearance beyond ``threshold`` [m] towards ``side``
+    (> 0 in the tail; -inf where not assembled), through grading, pairing,
+    the shell taken from its grade's bin and the press fit
+    (:class:`~stackup.study.roots.RootModel` of one bearing). The function a
+    reliability library sees.
+    """
+    engine = load_engine(engine)
+    scheme = load_scheme(scheme)
+    check.one_of("side", side, ("upper", "lower"))
+    if threshold is None:
+        threshold = engine.clearance_window[1 if side == "upper" else 0]
+    threshold = float(check.finite("threshold", threshold))
+    sign = 1.0 if side == "upper" else -1.0
+    model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
+                      bearings=1)
+
+    def margin(z):
+        c = model.engines(special.ndtr(z), groups=TAIL_GROUPS)["clearance_operating"][:, 0]
+        return np.where(np.isfinite(c), sign * (c - threshold), -np.inf)
+
+    return margin, len(model.columns(TAIL_GROUPS)[0])
 
 
 def _log_normal(z):
