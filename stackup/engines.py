@@ -2,8 +2,16 @@
 
 An engine file (TOML, lengths in mm) names its number of main bearings and,
 per dimension, the drawing limits, the process, the gauge and the share of
-variance common to one block or crankshaft. Built-in engines ship in
-``stackup/data/engines``; a user's file works the same way, by path.
+variance common to one block or crankshaft (journals also their form error and
+how it is read, housing bores their bolt-tension scatter). ``[press_fit]``
+holds the housing ring, materials and shell lining, the checking block, the
+temperatures the fit is checked at (``cold_temperature``,
+``assembly_temperature``, ``temperature`` for the clearance,
+``hot_temperature``) and the source of the crush height;
+``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
+operating-clearance window (absolute, or ``relative_clearance`` C/D of the
+journal) with its source. Built-in engines ship in ``stackup/data/engines``;
+a user's file works the same way, by path.
 """
 
 from __future__ import annotations

@@ -23,16 +23,17 @@ def _at(values, i):
 
 
 @njit(cache=True, parallel=True)
-def press_fit(n, housing_bore, housing_outer, shell_wall, equivalent_wall, crush_height, check_bore, check_stress,
-              journal_d, delta_t, shell_expansion, wall_growth, e_h, nu_h, al_h, e_s, nu_s, al_j, thin, with_journal,
+def press_fit(n, housing_bore, housing_outer, shell_wall, lining_thickness, crush_height, check_bore, check_stress,
+              journal_d, delta_t, e_h, nu_h, al_h, e_s, nu_s, al_s, e_l, nu_l, al_l, al_j, thin, with_journal,
               free_radius_iterations):
     """1-D arrays of length n (or 1, broadcast) in; (p, stress, swell, bore, shell_bore, clearance, loss) out.
 
-    ``shell_wall`` is the full wall, ``equivalent_wall`` the steel-equivalent
-    wall that carries the mechanics [m]; ``shell_expansion`` the lined
-    ring's expansion and ``wall_growth`` its wall's thermal thickening
-    [1/K]; ``free_radius_iterations``:
-    fixed-point steps for the shell's free radius (see the numpy twin).
+    ``shell_wall`` is the full wall, ``lining_thickness`` its lining [m];
+    ``e_l, nu_l, al_l`` the lining's modulus, Poisson's ratio and expansion.
+    The steel-equivalent wall, the lined ring's expansion and the wall's
+    thermal thickening are formed per bearing as in the numpy twin
+    (``equivalent_wall``, ``equivalent_expansion``, ``wall_expansion``);
+    ``free_radius_iterations``: fixed-point steps for the shell's free radius.
     """
     p_out = np.empty(n)
     stress = np.empty(n)
@@ -43,7 +44,12 @@ def press_fit(n, housing_bore, housing_outer, shell_wall, equivalent_wall, crush
     loss = np.empty(n, np.bool_)
     for i in prange(n):
         t0 = _at(shell_wall, i)
-        te0 = _at(equivalent_wall, i)
+        t_l = _at(lining_thickness, i)
+        back = t0 - t_l
+        lining = t_l * (e_l / e_s)
+        te0 = back + lining
+        al_e = (back * al_s + lining * al_l) / te0
+        al_t = (back * (al_s + nu_s * (al_s - al_e)) + t_l * (al_l + nu_l * (al_l - al_e))) / t0
         sigma_c = _at(check_stress, i)
         base = 0.5 * _at(check_bore, i) + _at(crush_height, i) / np.pi
         r0 = base
@@ -51,11 +57,11 @@ def press_fit(n, housing_bore, housing_outer, shell_wall, equivalent_wall, crush
             r0 = base + sigma_c * te0 / r0 * _shell_compliance(r0, te0, e_s, nu_s, thin)
         dt = _at(delta_t, i)
         grow_h = 1.0 + al_h * dt
-        grow_s = 1.0 + _at(shell_expansion, i) * dt
+        grow_s = 1.0 + al_e * dt
         a = 0.5 * _at(housing_bore, i) * grow_h
         b = 0.5 * _at(housing_outer, i) * grow_h
         r0 *= grow_s
-        t = t0 * (1.0 + _at(wall_growth, i) * dt)
+        t = t0 * (1.0 + al_t * dt)
         te = te0 * grow_s
         c_h = a / e_h * ((b * b + a * a) / (b * b - a * a) + nu_h)
         c_s = _shell_compliance(r0, te, e_s, nu_s, thin)

@@ -178,11 +178,6 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, length, 
         i = np.argmax(lining_t >= wall)
         raise ValueError(f"lining_thickness: {float(lining_t.flat[i])!r} m is not below the shell wall "
                          f"{float(wall.flat[i])!r} m; the steel back needs a thickness")
-    equivalent = tiers.equivalent_wall(shell_wall, lining_thickness, lining.modulus, shell.modulus)
-    expansion = tiers.equivalent_expansion(shell_wall, lining_thickness, lining.modulus, shell.modulus,
-                                           lining.expansion, shell.expansion)
-    wall_growth = tiers.wall_expansion(shell_wall, lining_thickness, expansion, shell.poisson, lining.poisson,
-                                       shell.expansion, lining.expansion)
 
     props = {"housing": (housing.modulus, housing.poisson, housing.expansion),
              "shell": (shell.modulus, shell.poisson, shell.expansion),
@@ -198,11 +193,11 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, length, 
         return PressFit(out["contact_pressure"], out["shell_stress"], out["housing_swell"], out["bore_in_service"],
                         out["shell_bore"], out.get("clearance"), out["loss_of_fit"].astype(bool))
 
-    flat = [_flat(x, shape) for x in (housing_bore, housing_outer, shell_wall, equivalent, crush_height, check_bore,
-                                      check_stress, housing_bore if journal_d is None else journal_d,
-                                      temperature - assembly_temperature, expansion, wall_growth)]
+    flat = [_flat(x, shape) for x in (housing_bore, housing_outer, shell_wall, lining_thickness, crush_height,
+                                      check_bore, check_stress, housing_bore if journal_d is None else journal_d,
+                                      temperature - assembly_temperature)]
     p, sigma, swell, bore_s, shell_bore, clearance, loss = _kernel.press_fit(
-        bore.size, *flat, *props["housing"], shell.modulus, shell.poisson, journal.expansion, method == "thin-ring",
+        bore.size, *flat, *props["housing"], *props["shell"], *props["lining"], journal.expansion, method == "thin-ring",
         journal_d is not None, tiers.FREE_RADIUS_ITERATIONS)
     return PressFit(p.reshape(shape), sigma.reshape(shape), swell.reshape(shape), bore_s.reshape(shape),
                     shell_bore.reshape(shape), None if journal_d is None else clearance.reshape(shape),

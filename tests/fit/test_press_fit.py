@@ -149,8 +149,8 @@ def test_kernel_matches_numpy_twin(cases):
         want = tiers.press_fit(bore, bore * cols["ratio"], wall, te, cols["crush"], bore + cols["block"],
                                cols["stress"], cols["dt"], housing, (back[0], back[1], alpha), 11.5e-6, journal, thin,
                                wall_growth=growth)
-        got = kernel.press_fit(bore.size, bore, bore * cols["ratio"], wall, te, cols["crush"], bore + cols["block"],
-                               cols["stress"], journal, cols["dt"], alpha, growth, *housing, back[0], back[1],
+        got = kernel.press_fit(bore.size, bore, bore * cols["ratio"], wall, t_lining, cols["crush"],
+                               bore + cols["block"], cols["stress"], journal, cols["dt"], *housing, *back, *lining,
                                11.5e-6, thin, True, tiers.FREE_RADIUS_ITERATIONS)
         names = ["contact_pressure", "shell_stress", "housing_swell", "bore_in_service", "shell_bore", "clearance", "loss_of_fit"]
         for name, g in zip(names, got):
