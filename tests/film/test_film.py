@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from stackup.film import min_film_thickness, oil, reynolds, tiers
+from stackup.film import ECCENTRICITY_VALID, ERROR_GRID, journal_position, min_film_thickness, oil, reynolds, tiers
 
 # Raimondi & Boyd (1958), full journal bearing with Swift-Stieber film ends, as tabulated in
 # Shigley's Mechanical Engineering Design: Sommerfeld number S at eccentricity eps.
@@ -115,6 +115,74 @@ def test_eccentricity_0_99_and_monotone_load():
     assert np.isfinite(tiers.short_load_function(np.array([0.99, 0.999999])).all())
 
 
+@pytest.mark.parametrize("method", ["short", "finite", "reynolds"])
+def test_zero_load_gives_the_concentric_journal(method):
+    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
+    film = min_film_thickness(np.array([0.0, 0.0]), **kw)
+    np.testing.assert_array_equal(film.eccentricity, 0.0)
+    np.testing.assert_array_equal(film.h_min, 25e-6)
+    assert film.valid.all() and np.all(film.side_flow == 0)
+    np.testing.assert_allclose(film.attitude_angle, np.pi / 2)
+    # Petroff: the concentric film's torque 2 pi mu omega R^3 L / c
+    np.testing.assert_allclose(film.friction_torque, 2 * np.pi * 0.01 * 419.0 * 0.023**3 * 0.022 / 25e-6, rtol=2e-3)
+
+
+@pytest.mark.parametrize("method", ["short", "finite", "reynolds"])
+def test_extreme_loads_give_a_thin_flagged_film_not_an_exception(method):
+    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
+    loads = np.array([3e7, 1e9, 1e15, 1e300])
+    film = min_film_thickness(loads, **kw)
+    assert np.all((film.h_min > 0) & (film.h_min < 25e-6 * (1 - ECCENTRICITY_VALID)))
+    assert np.all(np.diff(film.h_min) <= 0) and not film.valid.any()
+    assert np.all(np.isfinite(film.friction_torque)) and np.all(np.isfinite(film.side_flow))
+    assert min_film_thickness(1e4, **kw).valid
+
+
+def test_finite_tier_outside_its_l_over_d_is_flagged_and_held_at_the_edge():
+    kw = dict(clearance=50e-6, viscosity=0.01, speed=419.0, method="finite")
+    wide = min_film_thickness(1e4, diameter=0.046, length=0.2, **kw)  # L/D 4.3, above the table's 2
+    edge = min_film_thickness(1e4, diameter=0.046, length=0.092, **kw)  # L/D 2
+    assert not wide.valid and edge.valid
+    assert 0 < float(wide.h_min) < 25e-6 and float(wide.h_min) > float(edge.h_min)
+
+
+def test_finite_tier_follows_reynolds_up_to_the_end_of_its_table():
+    # above the old table end (0.98) the tier no longer extrapolates: within 2 % of the reference at 0.985-0.995
+    for eps in (0.985, 0.99, 0.9937):
+        field = reynolds.solve_field(eps, 1.0)
+        film = min_film_thickness(field.force * 1e6, diameter=2.0, length=1.0, clearance=2e-3, viscosity=1.0,
+                                  speed=1.0, method="finite")
+        assert float(film.h_min) == pytest.approx(1e-3 * (1 - eps), rel=0.02) and film.valid
+
+
+def test_error_grid_spans_the_finite_table():
+    data = np.load(str(resources_table()))
+    ld, eps = data["length_over_diameter"], data["eccentricity"]
+    grid_ld, grid_eps = ERROR_GRID["length_over_diameter"], ERROR_GRID["eccentricity"]
+    assert min(grid_ld) < ld[1] and max(grid_ld) > ld[-2]
+    # below the first node, inside the last interval, and between the nodes added above the old end (0.98)
+    assert min(grid_eps) < eps[0] and eps[-2] < max(grid_eps) < eps[-1] == ECCENTRICITY_VALID
+    assert sum(0.98 < g < ECCENTRICITY_VALID for g in grid_eps) >= 2 and not set(grid_eps) & set(eps)
+
+
+def resources_table():
+    from importlib import resources
+
+    return resources.files("stackup") / "data" / "film_finite_table.npz"
+
+
+def test_journal_position_matches_the_mobility_tiers_steady_orbit():
+    from stackup.film.orbit import orbit
+
+    geometry = dict(diameter=0.046, length=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
+    load = np.array([3e3, 7e3])
+    angle = np.arange(0.0, 720.0, 4.0)
+    settled = orbit(np.tile(load, (angle.size, 1)), angle, **geometry, method="mobility").position[-1]
+    film = min_film_thickness(np.linalg.norm(load), **geometry, method="short")
+    x = journal_position(load, eccentricity=film.eccentricity, attitude_angle=film.attitude_angle, clearance=60e-6)
+    np.testing.assert_allclose(x, settled, rtol=5e-3, atol=5e-9)
+
+
 def test_tiers_agree_where_they_should():
     kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0)
     load = np.array([2e3, 1e4, 3e4])
@@ -124,11 +192,10 @@ def test_tiers_agree_where_they_should():
 
 
 @pytest.mark.parametrize("kw, message", [
-    (dict(load=-1.0), "load: -1.0 is not valid; must be > 0"),
+    (dict(load=-1.0), "load: -1.0 is not valid; must be >= 0"),
     (dict(speed=0.0), "speed: 0.0 is not valid; must be > 0"),
     (dict(clearance=np.nan), "clearance: nan is not a finite number"),
     (dict(method="reynold"), "method: 'reynold' is not one of 'short', 'finite', 'reynolds'"),
-    (dict(length=0.2), "L/D .* is outside the finite tier's table"),
 ])
 def test_bad_input(kw, message):
     args = dict(load=1e4, diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method="finite")
