@@ -1,5 +1,7 @@
 """Film tiers: Raimondi & Boyd, closed forms, limits, mass conservation, hard cases, oils."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -204,13 +206,56 @@ def test_bad_input(kw, message):
         min_film_thickness(args.pop("load"), **args)
 
 
-def test_vogel_fit_passes_through_its_points():
+def walther(kv40, kv100, t):
+    """ASTM D341 written out here: log10 log10(nu + 0.7) = A - B log10 T (cSt, K)."""
+    z40, z100 = (math.log10(math.log10(kv * 1e6 + 0.7)) for kv in (kv40, kv100))
+    b = (z40 - z100) / (math.log10(373.15) - math.log10(313.15))
+    return (10 ** 10 ** (z40 + b * math.log10(313.15) - b * math.log10(t + 273.15)) - 0.7) * 1e-6
+
+
+def test_low_shear_vogel_passes_through_kv40_and_kv100_and_follows_astm_d341():
     o = oil.get("SAE-10W-40")
-    rho40, rho100 = (o.density(t) for t in (40.0, 100.0))
-    assert float(o.viscosity(40.0)) == pytest.approx(95e-6 * rho40, rel=1e-9)
-    assert float(o.viscosity(100.0)) == pytest.approx(14.5e-6 * rho100, rel=1e-9)
-    assert float(o.viscosity(150.0)) == pytest.approx(3.7e-3, rel=1e-9)
-    assert float(o.viscosity(60.0, pressure=0.0)) > float(o.viscosity(80.0))
+    rho = lambda t: 865.0 / (1 + oil.THERMAL_EXPANSION * (t - 15))  # noqa: E731
+    assert float(o.low_shear_viscosity(40.0)) == pytest.approx(95e-6 * rho(40.0), rel=1e-8)
+    assert float(o.low_shear_viscosity(100.0)) == pytest.approx(14.5e-6 * rho(100.0), rel=1e-8)
+    for t in (20.0, 60.0, 120.0, 150.0, 200.0):
+        assert float(o.low_shear_viscosity(t)) == pytest.approx(walther(95e-6, 14.5e-6, t) * rho(t), rel=0.02), t
+
+
+@pytest.mark.parametrize("name", oil.available())
+def test_vogel_constant_is_physical_for_every_builtin_oil(name):
+    # Vogel temperature -C3 degC between about 90 and 210 K (the old fit through HTHS gave 10W-40 C3 = 258 K)
+    assert oil.VOGEL_C3_RANGE[0] < oil.get(name).c3 < oil.VOGEL_C3_RANGE[1]
+
+
+def test_fit_vogel_keeps_c3_inside_its_range():
+    # three points that an exact fit would only pass with C3 = 258 K (the old 10W-40 mix of low and high shear)
+    t = np.array([40.0, 100.0, 150.0])
+    c = (5e-7, 3408.76, 257.98)
+    mu = c[0] * np.exp(c[1] / (t + c[2]))
+    c1, c2, c3 = oil.fit_vogel(t, mu)
+    assert c3 == pytest.approx(oil.VOGEL_C3_RANGE[1], abs=1e-6)
+    exact = oil.fit_vogel(t, 0.01 * np.exp(900.0 / (t + 110.0)))
+    np.testing.assert_allclose(exact, (0.01, 900.0, 110.0), rtol=1e-7)
+
+
+@pytest.mark.parametrize("name", ["SAE-5W-30", "SAE-10W-40", "SAE-15W-40"])
+def test_multigrade_shear_thinning_passes_through_hths(name):
+    o = oil.get(name)
+    hths = {"SAE-5W-30": 3.1e-3, "SAE-10W-40": 3.7e-3, "SAE-15W-40": 4.1e-3}[name]
+    assert float(o.viscosity(150.0, shear_rate=1e6)) == pytest.approx(hths, rel=1e-10)
+    rates = np.geomspace(1e-1, 1e12, 30)
+    mu = o.viscosity(100.0, shear_rate=rates)
+    assert np.all(np.diff(mu) < 0)
+    assert mu[0] == pytest.approx(float(o.low_shear_viscosity(100.0)), rel=1e-3)
+    assert mu[-1] == pytest.approx(o.second_newtonian * float(o.low_shear_viscosity(100.0)), rel=2e-3)
+    assert float(o.viscosity(100.0, shear_rate=0.0)) == float(o.low_shear_viscosity(100.0))
+
+
+def test_monograde_is_newtonian():
+    o = oil.get("SAE-30")
+    assert o.second_newtonian == 1.0
+    assert float(o.viscosity(120.0, shear_rate=1e7)) == float(o.low_shear_viscosity(120.0))
 
 
 def test_pressure_term_raises_viscosity():
