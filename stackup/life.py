@@ -257,8 +257,14 @@ def life_summary(life, *, target, confidence=0.95):
     x = x[~np.isnan(x)]
     target = float(check.positive("target", target))
     below = proportion_ci(np.count_nonzero(x < target), x.size, confidence=confidence)
-    return LifeSummary(quantile_ci(x, 0.10, confidence=confidence), quantile_ci(x, 0.5, confidence=confidence),
-                       below, int(x.size))
+    # an infinite life (no wear) stands in as the largest float, so quantiles between two of them stay infinite
+    top = np.finfo(float).max
+    finite = np.minimum(x, top)
+
+    def quantile(q):
+        return tuple(np.inf if v >= top else v for v in quantile_ci(finite, q, confidence=confidence))
+
+    return LifeSummary(quantile(0.10), quantile(0.5), below, int(x.size))
 
 
 @dataclass(frozen=True)

@@ -105,6 +105,9 @@ def test_life_summary_quantiles_and_share_below_target():
     assert s.median[0] == pytest.approx(np.quantile(life, 0.5))
     assert s.share_below_target[0] == pytest.approx(0.099) and s.share_below_target[1] < 0.099 < s.share_below_target[2]
     np.testing.assert_allclose(engine_life(np.array([[5.0, 2.0, np.inf], [np.nan, 1.0, 3.0]])), [2.0, np.nan])
+    # method 2 gives bearings that never wear an infinite life: quantiles among them are infinite, not NaN
+    worn = life_summary(np.array([1.0, 2.0, np.inf, np.inf, np.inf]) * 3600, target=1.5 * 3600)
+    assert worn.median[0] == np.inf and worn.b10[0] == pytest.approx(1.4 * 3600) and worn.share_below_target[0] == 0.2
 
 
 # ---- method 2 -----------------------------------------------------------------------------------------------------
