@@ -248,17 +248,42 @@ def get(oil):
     return _OILS[oil]
 
 
+def _legacy_chain_oil(oil):
+    """The Vogel fit the current study chain was tuned with: exact through KV40, KV100 and HTHS150.
+
+    It mixes the low-shear KV points with the high-shear HTHS point (10W-40:
+    C3 = 258 K) and serves only :func:`effective_temperature`, so that the
+    main job's numbers change when the chain calls
+    :func:`stackup.film.heat.heat_balance` and not before; delete both with
+    ``stackup.film.cycle``.
+    """
+    with open(resources.files("stackup") / "data" / "oils.toml", "rb") as f:
+        e = tomllib.load(f)[oil.name]
+    t = np.array([40.0, 100.0, 150.0])
+    rho = e["density15"] / (1 + THERMAL_EXPANSION * (t[:2] - 15))
+    ln = np.log([e["kv40"] * rho[0], e["kv100"] * rho[1], e["hths150"]])
+
+    def mismatch(c3):
+        ratio = (1 / (t[0] + c3) - 1 / (t[1] + c3)) / (1 / (t[1] + c3) - 1 / (t[2] + c3))
+        return ratio - (ln[0] - ln[1]) / (ln[1] - ln[2])
+
+    c3 = optimize.brentq(mismatch, -t[0] + 1e-3, 1e4)
+    c2 = (ln[0] - ln[1]) / (1 / (t[0] + c3) - 1 / (t[1] + c3))
+    return Oil(oil.name, float(np.exp(ln[0] - c2 / (t[0] + c3))), float(c2), float(c3), oil.density15)
+
+
 def effective_temperature(oil, supply_temperature, film, *, share=0.5, tolerance=1e-3, max_iterations=100):
     """Effective film temperature [degC] and viscosity [Pa s] from a heat balance on the side flow alone.
 
     Superseded by :func:`stackup.film.heat.heat_balance` (feed flow, cycle
-    average, a status instead of an exception); kept only for
+    average, shear thinning, a status instead of an exception); kept, with
+    the viscosity fit it was tuned with (:func:`_legacy_chain_oil`), only for
     ``stackup.film.cycle`` until the study chain calls the new balance.
 
     ``film(viscosity)`` returns (friction power [W], side flow [m^3/s]) for a
     viscosity [Pa s] (arrays broadcast). Damped fixed point on the temperature.
     """
-    oil = get(oil)
+    oil = _legacy_chain_oil(get(oil))
     t_in = check.in_range("supply_temperature", supply_temperature, -30.0, 200.0, unit=" degC")
     t = np.array(t_in, dtype=float)
     for _ in range(max_iterations):
