@@ -33,6 +33,15 @@ def test_height_integral_at_zero_separation_closed_form():
         assert float(gaussian_height_integral(n, 0.0)) == pytest.approx(closed, rel=1e-12)
 
 
+def test_pressure_interpolation_stays_within_1e_8_of_the_exact_form():
+    lam = np.random.default_rng(0).uniform(-10.0, 37.0, 20000)
+    exact = gaussian_height_integral(2.5, lam)
+    p = greenwood_tripp(lam * 1e-6, roughness=1e-6, contact_modulus=1.0, asperities=TYPICAL_ASPERITIES)
+    k = 16 * math.sqrt(2) / 15 * math.pi * 0.04**2 * math.sqrt(1e-3)
+    np.testing.assert_allclose(p, k * exact, rtol=1e-8)
+    assert float(greenwood_tripp(38e-6, roughness=1e-6, contact_modulus=1e11)) == 0.0
+
+
 def test_published_polynomial_fit_of_f52_agrees_where_it_is_used():
     # Hu et al. 1994 (used by Arcoumanis et al. 1997): F_5/2(lambda) ~ 4.4086e-5 (4 - lambda)^6.804; within
     # 13 % up to lambda = 2 (the fit was made for piston-ring contacts, lambda < 2)
