@@ -20,6 +20,10 @@ the finite tier's table) the film is still returned, with ``valid`` False:
 the finite tier then holds its correction at the table's edge, the Reynolds
 tier continues with the short-bearing load curve scaled to its own load at
 :data:`ECCENTRICITY_VALID`.
+
+Submodules: :mod:`~stackup.film.orbit` (film over the cycle),
+:mod:`~stackup.film.heat` (heat balance with the oil feed),
+:mod:`~stackup.film.oil` (viscosity).
 """
 
 from __future__ import annotations
