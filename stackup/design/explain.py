@@ -44,7 +44,7 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
         + (f"; left out (no effect on the clearance): {', '.join(p.skipped)}" if p.skipped else "") + ".",
         "Solvers (scipy): differential evolution and edge-by-edge line searches (housing, journal limits),",
         "differential evolution and Nelder-Mead (shell limits), HiGHS MILP (pairing).",
-        f"Narrowest grades (a part at, or a shell aimed at, a grade's centre is read into it with probability",
+        "Narrowest grades (a part at, or a shell aimed at, a grade's centre is read into it with probability",
         f">= {p.sort_share:g}): housing {p.housing.min_bins * step_h:.3g} um, journal "
         f"{p.journal.min_bins * step_j:.3g} um, shell {p.min_width * PPM:.3g} um; limits on {step_h:.3g} um "
         f"(housing), {step_j:.3g} um (journal), {p.shell_step * PPM:.3g} um (shell) grids.",
