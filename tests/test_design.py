@@ -233,3 +233,12 @@ def test_design_subcommand_writes_the_scheme_with_the_window_in_micrometres(tmp_
     assert scheme.name == "mine" and len(scheme.shell.labels) == 3
     assert "47-63 um" in scheme.source
     assert f"scheme: {out}" in capsys.readouterr().out
+
+
+def test_design_for_one_shell_process_sorted_into_grades(engine_file):
+    # the sorted supply: landing shares follow the process, the pairing MILP balances demand against them
+    result = design_mod.design(engine_file(supply="sorted"), window=(45e-6, 65e-6), **QUICK)
+    assert result.aim_share is None
+    assert result.scheme.shell.graded and np.isfinite(result.objective)
+    lo, hi = result.scheme.shell.limits
+    assert lo < result.supply_mean < hi
