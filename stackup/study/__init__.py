@@ -172,7 +172,7 @@ class Study:
         seed_sequence(self.seed)
         self.engine = str(self.engine)
         if self.window is not None:
-            self.window = _window(self.window)
+            self.window = check.clearance_window("window", self.window)
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
@@ -231,18 +231,6 @@ class Study:
                 out.add(result)
                 bar.update(1)
         return out.result()
-
-
-def _window(window):
-    """A design window of the operating clearance as (lower, upper) in m, or a ValueError saying why not."""
-    try:
-        lo, hi = (float(v) for v in window)
-    except (TypeError, ValueError):
-        raise ValueError(f"window: {window!r} is not a (lower, upper) pair of clearances in m") from None
-    if not 0.0 < lo < hi < 1e-3:
-        raise ValueError(f"window: ({lo!r}, {hi!r}) m is not a clearance window; give 0 < lower < upper < 1 mm "
-                         "in metres, e.g. (45e-6, 65e-6)")
-    return lo, hi
 
 
 __all__ = ["ISO_SCHEMES", "Study", "WORKER_MALLOC", "open_study"]
