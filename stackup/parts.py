@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -38,11 +38,18 @@ class BlockParts:
 
 @dataclass(frozen=True)
 class ShellNormals:
-    """Standard normals of the shells made in one lot: wall, wall gauge and crush height."""
+    """Random numbers of the shells made in one lot: normals of wall, wall gauge and crush height, and the order.
+
+    ``order`` (uniform keys, optional) is the order in which a lot's shells
+    reach the bins: a lot made to order is produced grade after grade, but its
+    shells are sorted into bins that mix them, so the shells a bin gives out
+    first are not those aimed at one grade. None keeps production order.
+    """
 
     size: np.ndarray
     gauge: np.ndarray
     crush: np.ndarray
+    order: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -127,6 +134,7 @@ def draw_lot(engine, rng, n_engines, sampler="mc"):
     z_form_bore = rng.standard_normal((n_engines, b, 3)) if hb.form is not None else None
     z_form_journal = rng.standard_normal((n_engines, b, 3)) if jd.form is not None else None
     z_bolt = rng.standard_normal((n_engines, b)) if hb.bolt_scatter else None
+    shells = replace(shells, order=rng.random(n_shells))
 
     bore = hb.true_sizes(z_block, z_bore)
     bore_reading = hb.read(bore, g_bore, z_form_bore)
@@ -252,6 +260,8 @@ class ShellSupply:
             centre = self._aim(scheme)
             quantity = apportion(aim_share, normals.size.size)
             wall = np.repeat(centre, quantity) + self.sigma * normals.size
+            if normals.order is not None:  # made grade after grade, mixed in the bins
+                wall = wall[np.argsort(normals.order, kind="stable")]
         reading = self.gauge.read(wall, normals.gauge)
         crush = self.crush.process.from_normal(normals.crush)
         grade = np.where(self.crush.outside(crush), -1, scheme.shell.classify(reading))
