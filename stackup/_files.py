@@ -17,6 +17,8 @@ import math
 import tomllib
 from pathlib import Path
 
+from . import _validate as check
+
 #: Length units a file may declare, in m.
 UNITS = {"mm": 1e-3, "um": 1e-6, "m": 1.0}
 
@@ -174,9 +176,10 @@ class Table:
         if count is not None and len(value) != count:
             raise ValueError(f"{self._at(name)}: {len(value)} values; give {count}")
         out = [self._length(name, v, scale, units, plausible, what) for v in value]
-        if increasing and any(b <= a for a, b in zip(out, out[1:])):
-            raise ValueError(f"{self._at(name)}: {value!r} {units} is not increasing (lower limit first, and a "
-                             "tolerance wider than zero)")
+        if increasing and len(out) == 2:  # drawing limits: the messages every limit check gives
+            check.limits(self._at(name), *value, unit=units)
+        elif increasing and any(b <= a for a, b in zip(out, out[1:])):
+            raise ValueError(f"{self._at(name)}: {value!r} {units} is not increasing")
         return out
 
     def close(self):
