@@ -3,7 +3,10 @@
 An engine file (TOML, lengths in mm) names its number of main bearings and,
 per dimension, the drawing limits, the process, the gauge and the share of
 variance common to one block or crankshaft. Built-in engines ship in
-``stackup/data/engines``; a user's file works the same way, by path.
+``stackup/data/engines``; a user's file works the same way, by path or by
+name from a folder named in the ``STACKUP_ENGINE_PATH`` environment variable
+(folders separated as in ``PATH``; a user's file replaces a built-in one of the
+same name).
 """
 
 from __future__ import annotations
@@ -115,9 +118,24 @@ def _builtin_dir():
     return Path(str(resources.files("stackup") / "data" / "engines"))
 
 
+def _search_dirs():
+    dirs = [Path(p) for p in os.environ.get("STACKUP_ENGINE_PATH", "").split(os.pathsep) if p]
+    return [*dirs, _builtin_dir()]
+
+
+def engine_files():
+    """Where :func:`load_engine` finds each engine by name: {name: path}, the user's folders first."""
+    found = {}
+    for folder in _search_dirs():
+        if folder.is_dir():
+            for path in sorted(folder.glob("*.toml")):
+                found.setdefault(path.stem, path)
+    return found
+
+
 def available_engines():
-    """Names of the built-in engines."""
-    return sorted(p.stem for p in _builtin_dir().glob("*.toml"))
+    """Names of the engines :func:`load_engine` finds by name: built-in ones and the user's (``STACKUP_ENGINE_PATH``)."""
+    return sorted(engine_files())
 
 
 def load_engine(name_or_path):
@@ -127,9 +145,10 @@ def load_engine(name_or_path):
     text = os.fspath(name_or_path)
     path = Path(text)
     if not path.is_file():
-        path = _builtin_dir() / f"{text}.toml"
-        if not path.is_file():
-            raise ValueError(f"engine: {text!r} is not a built-in engine ({', '.join(available_engines())}) nor a file")
+        path = engine_files().get(text)
+        if path is None:
+            raise ValueError(f"engine: {text!r} is not a built-in engine nor one in STACKUP_ENGINE_PATH "
+                             f"({', '.join(available_engines())}) nor a file")
     where = f"engine file {path.name!r}"
     with open(path, "rb") as f:
         data = tomllib.load(f)
