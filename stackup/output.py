@@ -141,8 +141,8 @@ def _staging(parent, where):
     try:
         return Path(tempfile.mkdtemp(prefix=_STAGING, dir=parent))
     except OSError as error:
-        raise OutputRefused(f"{where}: {str(parent)!r} cannot be written ({error.strerror}); give a folder you can "
-                            "write to") from None
+        raise OutputRefused(f"{where}: no file can be created in {str(parent)!r} ({error.strerror}); give a folder "
+                            "you can write to") from None
 
 
 def saved_run(folder):

@@ -124,8 +124,9 @@ def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_eng
     if part != "shell":
         for name, value in (("service_level", service_level), ("lot_engines", lot_engines)):
             if value is not None:
-                raise ValueError(f"{name}: applies to the shell stock only; {part}s are graded, not stocked "
-                                 f"(plan them without {name}, or plan part='shell')")
+                what = "housing bores" if part == "housing" else "journals"
+                raise ValueError(f"{name}: applies to the shell stock only; {what} are graded, not stocked: "
+                                 "leave it out, or plan the shells")
     service_level = SERVICE_LEVEL if service_level is None else service_level
     service_level = float(check.in_range("service_level", service_level, 0.0, 1.0, lo_open=True, hi_open=True))
     if isinstance(scheme, xr.Dataset):
@@ -166,6 +167,7 @@ def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_eng
     frame.attrs.update({"part": "shell", "scheme": scheme.name, "engine": engine.name, "volume": volume,
                         "service_level": service_level, "lot_engines": lot, "lot_note": note, "sample_engines": n,
                         "seed": seed, "supply": supply.mode, "shells_made": made,
+                        "shells_per_lot": supply.shells_per_lot(lot * engine.main_bearings),
                         "shell_surplus": supply.surplus, "main_bearings": engine.main_bearings,
                         "scrap_share": float(1 - landing.sum())})
     return frame
@@ -328,11 +330,16 @@ def planner_table(frame):
         mode = "made to order for each grade" if a["supply"] == "to-order" else "one process sorted into grades"
         title.append(f"Shells {mode}: {a['shells_made']:,} for the volume (two per bearing and "
                      f"{100 * a['shell_surplus']:.3g} % more), {scrap}.")
+    if a.get("lot_note"):
+        title.append(a["lot_note"][0].upper() + a["lot_note"][1:] + ".")
     title.append(f"Stock per lot: shells of each grade to hold at the start of each lot ({_lots(volume, lot)}) so "
                  f"that the lot's demand for the grade is covered in {100 * level:.4g} % of lots; the safety stock is "
                  "the part above the lot's expected demand.")
-    if a.get("lot_note"):
-        title.append(a["lot_note"][0].upper() + a["lot_note"][1:] + ".")
+    stock = int(frame.order_up_to.sum())
+    if "shells_per_lot" in a and stock > a["shells_per_lot"]:
+        title.append(f"Note: that stock ({stock:,} shells of all grades) is more than the {a['shells_per_lot']:,} "
+                     f"shells made per lot: the surplus of {100 * a['shell_surplus']:.3g} % does not cover the mix of "
+                     f"a lot of {lot:,} engines at {100 * level:.4g} %.")
     title.append(_estimated_from(a) + "; made, needed and surplus are for the whole volume (a negative surplus is "
                  "a shortfall).")
     table.attrs["title"] = title
@@ -378,7 +385,7 @@ def _estimated_from(a):
 
 def _lots(volume, lot):
     full, rest = divmod(volume, lot)
-    lots = f"{full:,} lot{'s' if full > 1 else ''} of {lot:,} engines"
+    lots = f"the volume is {full:,} lot{'s' if full > 1 else ''} of {lot:,} engines"
     return f"{lots} and one of {rest:,}, which needs no more" if rest else lots
 
 

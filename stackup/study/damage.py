@@ -265,3 +265,44 @@ def named_reads(ds, path, group=None):
         data[name] = var.copy(data=da.from_array(reader, chunks=chunks, name=False, asarray=True,
                                                  meta=np.empty((0,) * var.ndim, dtype=var.dtype)))
     return ds.assign(data)
+
+
+@dataclass(frozen=True)
+class StoreStatus:
+    """What a study store holds.
+
+    Attributes
+    ----------
+    study : dict or None
+        The study's parameters (None: not a store streamed by a study).
+    chunks_done : int
+        Study chunks written whole (``keep="everything"``), or chunks the
+        saved running total holds (``keep="summaries"``; 0 when none saved).
+    chunks_total : int or None
+        Study chunks of the whole study, where the store tells.
+    finished : bool
+        The study ran to its end (its dataset attributes are written).
+    """
+
+    study: dict | None
+    chunks_done: int
+    chunks_total: int | None
+    finished: bool
+
+
+def status(path):
+    """The :class:`StoreStatus` of the store at ``path``."""
+    root = _open(path)
+    study = _study(root)
+    finished = "stackup_version" in root.attrs
+    if study is None:
+        return StoreStatus(None, 0, None, finished)
+    book = root[BOOK]
+    if study.get("keep") == "summaries":
+        total = book.attrs.get("total")
+        done = -(-int(total["next"]) // int(study["chunk_lots"])) if total else 0
+        return StoreStatus(study, done, done if finished else None, finished)
+    done = sum(1 for _, group in book.groups() if group.attrs.get("complete"))
+    totals = [array.cdata_shape[list(array.metadata.dimension_names).index("engine")]
+              for _, array in root.arrays() if "engine" in (array.metadata.dimension_names or ()) and array.ndim > 1]
+    return StoreStatus(study, done, totals[0] if totals else None, finished)
