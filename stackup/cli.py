@@ -210,9 +210,9 @@ def _store_repair(args, state):
         print(f"{args.path}: every chunk was read, no damage found; nothing to repair.")
         return 0
     for damage in damages:
-        done = {"recompute": f"study chunk {damage.study_chunk:06d} marked to be computed again",
-                "coordinate": "engine numbers rewritten",
-                "restart": "saved running total dropped"}.get(damage.recovery, "left as it is")
+        done = (f"study chunk {damage.study_chunk:06d} marked to be computed again" if damage.recovery == "recompute"
+                else {"coordinate": "engine numbers rewritten",
+                      "restart": "saved running total dropped"}.get(damage.recovery, "left as it is"))
         print(f"  {damage.where()}: {done}")
     kinds = {d.recovery for d in damages}
     if kinds & {"recompute", "restart", "rerun"}:

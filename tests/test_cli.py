@@ -413,3 +413,49 @@ def test_an_interrupted_study_store_says_what_is_saved_and_how_to_resume(engine_
     assert result.returncode == 0
     assert (f"2 of 5 chunks computed; running the same study with store='{store}' computes the rest and keeps "
             "these.") in result.stdout
+
+
+def test_a_damaged_running_total_of_summaries_restarts_them(engine_file, tmp_path):
+    import zarr
+
+    store = tmp_path / "s.zarr"
+    kw = dict(keep="summaries")
+    summaries = Study(**{**_study(engine_file).parameters(), **kw, "progress": False})
+    reference = summaries.run()
+    Study(**{**_study(engine_file).parameters(), **kw, "progress": False, "store": str(store)}).run()
+    slot = zarr.open_group(str(store / "chunks")).attrs["total"]["slot"]
+    chunk = next(p for p in sorted((store / "chunks" / slot).rglob("*")) if p.is_file() and "/c/" in str(p))
+    _corrupt(chunk)
+    check = stackup("store", "check", store)
+    assert check.returncode == 1 and f"chunks/{slot}/" in check.stdout
+    assert "to drop the saved running total, then run the same study with the same store" in check.stdout
+    repair = stackup("store", "repair", store)
+    assert repair.returncode == 0 and "saved running total dropped" in repair.stdout
+    rerun = Study(**{**_study(engine_file).parameters(), **kw, "progress": False, "store": str(store)}).run()
+    xr.testing.assert_identical(rerun, reference)
+    assert stackup("store", "check", store).returncode == 0
+
+
+def test_damaged_store_metadata_is_named_and_not_repaired_chunk_by_chunk(engine_file, tmp_path):
+    store = tmp_path / "s.zarr"
+    _study(engine_file, store).run()
+    (store / "shell_stress" / "zarr.json").write_text('{"zarr_format": 3, "node_ty')
+    for action in ("check", "repair"):
+        result = stackup("store", action, store)
+        assert result.returncode == 2 and no_traceback_nor_warning(result)
+        assert ("its metadata file 'shell_stress/zarr.json' cannot be read" in result.stderr
+                and "delete the store and run the study again" in result.stderr)
+
+
+def test_the_quick_start_writes_where_git_tracks_nothing():
+    from stackup.cli import COMPARE_OUT, QUICK_OUT
+
+    root = Path(__file__).resolve().parents[1]
+    if not (root / ".git").exists():
+        pytest.skip("not a git checkout")
+    tracked = subprocess.run(["git", "ls-files", COMPARE_OUT, QUICK_OUT], cwd=root, capture_output=True, text=True)
+    assert tracked.returncode == 0 and tracked.stdout == ""
+    for out in (COMPARE_OUT, QUICK_OUT):
+        ignored = subprocess.run(["git", "check-ignore", "-q", f"{out}/report.md", f"{out}/film_life.png"], cwd=root)
+        assert ignored.returncode == 0, out
+    assert (root / "reports" / "reference" / "compare" / "report.md").is_file()

@@ -87,15 +87,17 @@ class Damage:
     def remedy(self, path):
         """What recovers it, in words."""
         repair_cmd = f"`stackup store repair {path}`"
-        return {
-            "recompute": f"run {repair_cmd} to mark study chunk {self.study_chunk:06d} to be computed again, then "
-                         "run the same study with the same store: it recomputes that chunk and keeps the rest",
-            "rerun": "run the same study with the same store again: it rewrites this variable at the end",
-            "coordinate": f"run {repair_cmd}: it rewrites the engine numbers",
-            "restart": f"run {repair_cmd} to drop the saved running total, then run the same study with the same "
-                       "store: its summaries start again",
-            "none": "this store was saved whole, not streamed by a study: save the dataset again",
-        }[self.recovery]
+        if self.recovery == "recompute":
+            return (f"run {repair_cmd} to mark study chunk {self.study_chunk:06d} to be computed again, then run the "
+                    "same study with the same store: it recomputes that chunk and keeps the rest")
+        if self.recovery == "rerun":
+            return "run the same study with the same store again: it rewrites this variable at the end"
+        if self.recovery == "coordinate":
+            return f"run {repair_cmd}: it rewrites the engine numbers"
+        if self.recovery == "restart":
+            return (f"run {repair_cmd} to drop the saved running total, then run the same study with the same "
+                    "store: its summaries start again")
+        return "this store was saved whole, not streamed by a study: save the dataset again"
 
 
 def _open(path, mode="r"):
@@ -167,6 +169,7 @@ def check(path):
     time, and chunk by chunk where a row fails.
     """
     root = _open(path)
+    _check_metadata(path)
     damages = []
     for variable, array in _arrays(root):
         grid = array.cdata_shape
@@ -186,6 +189,17 @@ def check(path):
                 except Exception as error:
                     damages.append(describe(root, variable, index, error))
     return damages
+
+
+def _check_metadata(path):
+    """Raise :class:`DamagedStore` naming a metadata file (``zarr.json``) that is not valid JSON: no chunk-wise repair."""
+    for meta in sorted(Path(path).rglob("zarr.json")):
+        try:
+            json.loads(meta.read_bytes())
+        except (ValueError, OSError) as error:
+            raise DamagedStore(f"store {str(path)!r} is damaged: its metadata file {str(meta.relative_to(path))!r} "
+                               f"cannot be read ({error}); this cannot be repaired chunk by chunk: delete the store "
+                               "and run the study again") from None
 
 
 def repair(path):
@@ -293,6 +307,7 @@ class StoreStatus:
 def status(path):
     """The :class:`StoreStatus` of the store at ``path``."""
     root = _open(path)
+    _check_metadata(path)
     study = _study(root)
     finished = "stackup_version" in root.attrs
     if study is None:
@@ -301,7 +316,7 @@ def status(path):
     if study.get("keep") == "summaries":
         total = book.attrs.get("total")
         done = -(-int(total["next"]) // int(study["chunk_lots"])) if total else 0
-        return StoreStatus(study, done, done if finished else None, finished)
+        return StoreStatus(study, done, done if finished and total else None, finished)
     done = sum(1 for _, group in book.groups() if group.attrs.get("complete"))
     totals = [array.cdata_shape[list(array.metadata.dimension_names).index("engine")]
               for _, array in root.arrays() if "engine" in (array.metadata.dimension_names or ()) and array.ndim > 1]
