@@ -102,13 +102,15 @@ def _window(window_um):
     if not 0.0 < lo < hi < 1000.0:
         raise ValueError(f"--window: {lo:g} {hi:g} um is not a clearance window; give LO HI in micrometres with "
                          "0 < LO < HI < 1000, e.g. --window 45 65")
-    return lo * 1e-6, hi * 1e-6
+    return lo / 1e6, hi / 1e6
 
 
 def _plan(args, state):
     from .output import prepare_file, write_file
     from .plan import plan, planner_table, planner_text
 
+    if args.force and args.csv in (None, "-"):
+        raise ValueError("--force: replaces an existing --csv FILE; without --csv FILE nothing is replaced")
     csv = prepare_file(args.csv, force=args.force) if args.csv not in (None, "-") else None
     frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
                  lot_engines=args.lot, sample_engines=args.sample, seed=args.seed, part=args.part)

@@ -15,12 +15,15 @@ import pytest
 import xarray as xr
 
 from stackup.cli import COMPARE_MIN_ENGINES, main, parser
+from stackup.io import open_dataset
 from stackup.plan import plan
 from stackup.study import Study, open_study
 from stackup.study.damage import DamagedStore
 
 # the smallest comparison with scenarios: about 20 s here
 SMALL_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "iso13778-6"]
+# ... with its own design window
+WINDOW_COMPARE = [*SMALL_COMPARE, "--window", "30", "45"]
 
 
 def stackup(*args, cwd=None, env=None, timeout=300):
@@ -148,6 +151,8 @@ def test_plan_refuses_an_existing_csv_without_force_before_computing(tmp_path):
     assert csv.read_text() == "a planner's own numbers\n"
     result = stackup("plan", "--scheme", "iso13778-5", "--volume", 100, "--sample", 1000, "--csv", csv, "--force")
     assert result.returncode == 0 and csv.read_text().startswith("grade,")
+    lone = stackup("plan", "--scheme", "iso13778-5", "--volume", 100, "--force")
+    assert lone.returncode == 2 and "--force: replaces an existing --csv FILE" in lone.stderr and lone.stdout == ""
     folder = stackup("plan", "--scheme", "iso13778-5", "--volume", 100, "--csv", tmp_path)
     assert folder.returncode == 2 and "is a folder; give a file name" in folder.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["shells.csv"]  # no temporary file left
@@ -247,7 +252,7 @@ def test_compare_refuses_to_replace_another_run_without_force(tmp_path):
 def small_run(tmp_path_factory):
     """One small comparison written by the command line (about 20 s)."""
     out = tmp_path_factory.mktemp("compare") / "run"
-    return out, stackup(*SMALL_COMPARE, "--out", out)
+    return out, stackup(*WINDOW_COMPARE, "--out", out)
 
 
 def test_a_run_logs_each_stage_and_writes_its_files_whole(small_run):
@@ -262,14 +267,17 @@ def test_a_run_logs_each_stage_and_writes_its_files_whole(small_run):
     assert {"compare.nc", "report.md", "report.html", "clearance_histogram.png"} <= names
     assert not any(name.startswith(".stackup-partial") for name in names)
     assert not any(p.name.startswith(".stackup-partial") for p in out.parent.iterdir())
+    ds = open_dataset(out / "compare.nc")
+    assert ds.clearance_window.values.tolist() == [30e-6, 45e-6]  # the --window, in m
 
 
 def test_a_different_run_into_a_folder_holding_a_run_is_refused(small_run):
     out, _ = small_run
     before = listing(out)
-    result = stackup(*SMALL_COMPARE, "--seed", 3, "--out", out)
+    result = stackup(*WINDOW_COMPARE, "--seed", 3, "--out", out)
     assert result.returncode == 2 and result.stdout == ""
-    assert "holds another run (100 engines of iso-example, 2 schemes, seed 0, 6 scenarios)" in result.stderr
+    assert "holds another run (100 engines of iso-example, 2 schemes, seed 0, window 30-45 um, 6 scenarios)" \
+        in result.stderr
     assert listing(out) == before
 
 
@@ -277,7 +285,7 @@ def test_a_different_run_into_a_folder_holding_a_run_is_refused(small_run):
 def test_the_same_run_again_replaces_it_and_ctrl_c_while_saving_leaves_it_as_it_was(small_run):
     out, _ = small_run
     before = listing(out)
-    process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *SMALL_COMPARE, "--out", str(out)],
+    process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *WINDOW_COMPARE, "--out", str(out)],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     for line in process.stdout:
         if "saving the dataset" in line:
@@ -287,7 +295,7 @@ def test_the_same_run_again_replaces_it_and_ctrl_c_while_saving_leaves_it_as_it_
     assert process.returncode == 130
     assert err == f"stackup: interrupted during saving the dataset; nothing was saved: {out} is as it was\n"
     assert listing(out) == before
-    again = stackup(*SMALL_COMPARE, "--out", out)
+    again = stackup(*WINDOW_COMPARE, "--out", out)
     assert again.returncode == 0
     assert all(listing(out)[name][1] > before[name][1] for name in before)  # every file written anew
 
@@ -346,7 +354,7 @@ def test_a_sound_store_is_checked_whole(engine_file, tmp_path):
     assert missing.returncode == 2 and "is not a Zarr store" in missing.stderr and no_traceback_nor_warning(missing)
 
 
-def test_a_damaged_chunk_is_named_with_its_recovery_and_recomputed_alone(engine_file, tmp_path):
+def test_a_damaged_chunk_is_named_with_its_recovery_and_recomputed_alone(engine_file, tmp_path, monkeypatch):
     store = tmp_path / "s.zarr"
     reference = _study(engine_file).run()
     _study(engine_file, store).run()
@@ -365,19 +373,16 @@ def test_a_damaged_chunk_is_named_with_its_recovery_and_recomputed_alone(engine_
     assert repair.returncode == 0 and f"{where}: study chunk 000002 marked to be computed again" in repair.stdout
     status = stackup("store", "check", store)
     assert "4 of 5 chunks computed" in status.stdout and status.returncode == 1  # still unreadable until recomputed
-    marked = {}
+    computed = []
     original = Study.chunk
 
     def counting(self, first, progress=None):
-        marked[first] = True
+        computed.append(first)
         return original(self, first, progress)
 
-    Study.chunk = counting
-    try:
-        recovered = _study(engine_file, store).run()
-    finally:
-        Study.chunk = original
-    assert list(marked) == [2]  # only the damaged chunk is computed again
+    monkeypatch.setattr(Study, "chunk", counting)
+    recovered = _study(engine_file, store).run()
+    assert computed == [2]  # only the damaged chunk is computed again
     xr.testing.assert_identical(recovered.load(), reference)
     assert stackup("store", "check", store).returncode == 0
 
