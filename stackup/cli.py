@@ -28,34 +28,36 @@ OPTIONS = {"n_engines": "--n", "volume": "--volume", "service_level": "--service
 
 
 class _State:
-    """What a Ctrl-C now leaves behind, in words (each command keeps it current)."""
+    """The stage under way and what a Ctrl-C now leaves behind, in words (each command keeps them current)."""
 
+    stage = ""
     saved = "nothing was saved"
+
+    def interrupted(self):
+        return f"stackup: interrupted{f' during {self.stage}' if self.stage else ''}; {self.saved}"
 
 
 class _Log:
     """One plain line per stage on stdout, with the time since the start (for logs and terminals alike)."""
 
-    def __init__(self, state, saved):
-        self.start, self.state, self.saved, self.stage = time.perf_counter(), state, saved, ""
+    def __init__(self, state):
+        self.start, self.state = time.perf_counter(), state
 
     def __call__(self, line):
-        self.stage = line
-        self.state.saved = f"interrupted during {line.split(':')[0]}; {self.saved}"
+        self.state.stage = line.split(":")[0]
         print(f"[{time.perf_counter() - self.start:7.1f} s] {line}", flush=True)
 
 
 def _compare(args, state):
     import stackup
 
+    from .engines import load_engine
     from .io import save_comparison
     from .output import prepare_folder
     from .report import clearance_summary, write_report
     from .scenarios import DECLARED
-    from .study import ISO_SCHEMES
-
-    from .engines import load_engine
     from .schemes import load as load_scheme
+    from .study import ISO_SCHEMES
 
     n = args.n if args.n is not None else (QUICK_ENGINES if args.quick else COMPARE_ENGINES)
     out = args.out if args.out is not None else (QUICK_OUT if args.quick else COMPARE_OUT)
@@ -69,8 +71,8 @@ def _compare(args, state):
                 "window": list(window) if window else None, "scenarios": list(scenarios)}
     existed = os.path.isdir(out)
     staged = prepare_folder(out, identity=identity, force=args.force)
-    log = _Log(state, f"nothing was saved: {out} is as it was" if existed else f"nothing was saved: {out} was not "
-               "created")
+    state.saved = f"nothing was saved: {out} {'is as it was' if existed else 'was not created'}"
+    log = _Log(state)
     try:
         result = stackup.compare(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed,
                                  scenarios=scenarios, log=log, window=window)
@@ -83,7 +85,7 @@ def _compare(args, state):
     except BaseException:
         staged.discard()
         raise
-    state.saved = f"{out} was written"
+    state.stage, state.saved = "", f"{out} was written"
     ds = result.dataset
     print(f"{n:,} engines x {ds.sizes['bearing']} bearings x {ds.sizes['scheme']} schemes in "
           f"{time.perf_counter() - log.start:.1f} s")
@@ -384,8 +386,7 @@ def main(argv=None):
     try:
         return args.func(args, state)
     except KeyboardInterrupt:
-        print(f"stackup: interrupted; {state.saved}" if not state.saved.startswith("interrupted")
-              else f"stackup: {state.saved}", file=sys.stderr)
+        print(state.interrupted(), file=sys.stderr)
         return EXIT_INTERRUPTED
     except ValueError as error:  # bad input, a refused output location, a damaged store: said, not a traceback
         print(f"stackup: error: {_message(error)}", file=sys.stderr)

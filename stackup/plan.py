@@ -17,12 +17,13 @@ of engines, per grade:
   with probability ``service_level`` (a cycle service level [1]_): the
   ``service_level`` quantile of the lot's demand, a sum of ``lot_engines``
   independent per-engine demands, whose distribution is the
-  ``lot_engines``-fold convolution of the sampled per-engine demand (exact
-  for small lots, where the normal approximation
-  :math:`L\mu_g + z_{SL}\,\sigma_g\sqrt{L}` covers too few lots: 98.4 %
-  instead of 99 % for lots of 50 engines with scheme 4). The safety stock is
-  that stock less the lot's expected demand. The tests check the service
-  level by simulating lots.
+  ``lot_engines``-fold convolution of the sampled per-engine demand. The
+  normal approximation :math:`L\mu_g + z_{SL}\,\sigma_g\sqrt{L}` covers
+  too few lots (as few as 98.4 % of lots of 50 engines and 98.7 % of lots of
+  1000 for a grade of scheme 4 instead of 99 %, in a bootstrap of the pilot's
+  engines), so it is used only past :data:`EXACT_LOT_SUPPORT`. The safety
+  stock is that stock less the lot's expected demand. The tests check the
+  service level by simulating lots.
 
 :func:`planner_table` turns a plan into the table a production planner uses:
 whole parts (rounded up where stock must cover demand), units in the column
