@@ -80,7 +80,7 @@ def _compare(args, state):
         data = save_comparison(result, staged.staging / "compare.nc")
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
         write_report(result.dataset, staged.staging, scenarios=result.scenarios, sensitivity=result.sensitivity,
-                     dataset_file=data.name)
+                     tails=result.tails, dataset_file=data.name)
         folder = staged.commit()
     except BaseException:
         staged.discard()

@@ -2,8 +2,9 @@
 
 A comparison (:class:`stackup.study.compare.Comparison`) is one file: the
 study in the root group, each scenario's summaries in a group
-``scenario_<k>`` (its label in the attribute ``scenario``) and the
-sensitivity dataset in the group ``sensitivity``.
+``scenario_<k>`` (its label in the attribute ``scenario``), the
+sensitivity dataset in the group ``sensitivity`` and the tail estimates in
+the group ``tails``.
 """
 
 from __future__ import annotations
@@ -89,6 +90,7 @@ def save_comparison(comparison, path, *, compact=True):
     for k, (label, ds) in enumerate(comparison.scenarios.items()):
         save(ds.assign_attrs(scenario=label), path, group=f"scenario_{k}")
     save(comparison.sensitivity, path, group="sensitivity")
+    save(comparison.tails, path, group="tails")
     return path
 
 
@@ -101,7 +103,8 @@ def open_comparison(path):
     for name in sorted((g for g in groups if g.startswith("scenario_")), key=lambda g: int(g.split("_")[1])):
         ds = open_dataset(path, group=name)
         scenarios[ds.attrs.pop("scenario")] = ds
-    return Comparison(open_dataset(path), scenarios, open_dataset(path, group="sensitivity"))
+    return Comparison(open_dataset(path), scenarios, open_dataset(path, group="sensitivity"),
+                      open_dataset(path, group="tails"))
 
 
 def _groups(path):

@@ -130,7 +130,7 @@ SOBOL_N = {"clearance_operating": 2048, "h_min": 128, "life": 128}
 
 def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scenario=None, mean_shift=0.0, bearing=1,
           crank_angle_step=4.0, crank_method="bearing-law", film_method="finite", pilot_engines=20_000,
-          bootstrap=200):
+          bootstrap=200, return_all=False):
     """First-order and total Sobol indices of the root inputs, through the real chain, with 95 % intervals.
 
     Parameters
@@ -159,6 +159,9 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
         Pilot sample the shell plan comes from (as in a study).
     bootstrap : int
         Resamples for the intervals.
+    return_all : bool
+        Return a dict of every output the same sample gives (the film and the
+        life come from one run of the mechanical chain).
 
     Returns
     -------
@@ -196,14 +199,16 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
     model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
                       mean_shift=mean_shift)
     names, owners = model.columns(groups)
-    frame = sobol_indices(
-        lambda u: _sobol_output(model, u, groups, output, bearing - 1, crank_angle_step, crank_method, film_method),
-        owners, n=n, seed=seed, bootstrap=bootstrap)
-    frame.attrs.update({"output": output, "scheme": scheme.name, "engine": engine.name})
-    return frame
+    outputs = (output,) if output == "clearance_operating" else ("h_min", "life")
+    frames = sobol_indices(
+        lambda u: _sobol_outputs(model, u, groups, outputs, bearing - 1, crank_angle_step, crank_method, film_method),
+        owners, n=n, seed=seed, bootstrap=bootstrap, outputs=outputs)
+    for name, frame in frames.items():
+        frame.attrs.update({"output": name, "scheme": scheme.name, "engine": engine.name})
+    return frames[output] if not return_all else frames
 
 
-def sobol_indices(evaluate, groups, *, n, seed=0, bootstrap=200, max_missing=0.01):
+def sobol_indices(evaluate, groups, *, n, seed=0, bootstrap=200, max_missing=0.01, outputs=None):
     """Sobol indices of a function of independent uniform inputs, by group, with 95 % bootstrap intervals.
 
     Parameters
@@ -219,19 +224,31 @@ def sobol_indices(evaluate, groups, *, n, seed=0, bootstrap=200, max_missing=0.0
     max_missing : float
         Largest share of NaN outputs accepted; they are replaced by the mean
         of the others (their share is in the attrs).
+    outputs : sequence of str, optional
+        Names of several outputs ``evaluate`` returns at once (samples,
+        outputs); then a dict of frames by name is returned.
 
     Returns
     -------
     pandas.DataFrame
         One row per group: ``S1``, ``S1_lo``, ``S1_hi``, ``ST``, ``ST_lo``, ``ST_hi``.
     """
-    from SALib.analyze import sobol as analyse
     from SALib.sample import sobol as saltelli
 
     names = [f"x{k}" for k in range(len(groups))]
     problem = {"num_vars": len(names), "names": names, "bounds": [[0.0, 1.0]] * len(names), "groups": list(groups)}
     u = saltelli.sample(problem, n, calc_second_order=False, scramble=True, seed=seed)
-    y = np.asarray(evaluate(u), dtype=float)
+    values = np.asarray(evaluate(u), dtype=float)
+    if outputs is not None:
+        return {name: _analyse(problem, values[:, k], groups, u, seed, bootstrap, max_missing)
+                for k, name in enumerate(outputs)}
+    return _analyse(problem, values, groups, u, seed, bootstrap, max_missing)
+
+
+def _analyse(problem, y, groups, u, seed, bootstrap, max_missing):
+    from SALib.analyze import sobol as analyse
+
+    n = u.shape[0] // (len(dict.fromkeys(groups)) + 2)
     missing = ~np.isfinite(y)
     if missing.mean() > max_missing:
         raise ValueError(f"{missing.mean():.1%} of the samples could not be evaluated (not graded or the chain "
@@ -249,14 +266,14 @@ def sobol_indices(evaluate, groups, *, n, seed=0, bootstrap=200, max_missing=0.0
     return frame
 
 
-def _sobol_output(model, u, groups, output, bearing, crank_angle_step, crank_method, film_method):
-    """The output of each sampled engine (see :func:`sobol`)."""
+def _sobol_outputs(model, u, groups, outputs, bearing, crank_angle_step, crank_method, film_method):
+    """The outputs of each sampled engine (samples, outputs) (see :func:`sobol`)."""
     engines = model.engines(u, groups=groups)
-    if output == "clearance_operating":
-        return engines["clearance_operating"][:, bearing]
+    if outputs == ("clearance_operating",):
+        return engines["clearance_operating"][:, bearing, None]
     from .study.chain import mechanical_chain
 
-    values = np.full(u.shape[0], np.nan)
+    values = np.full((u.shape[0], len(outputs)), np.nan)
     ok = np.all(np.isfinite(engines["clearance_operating"]), axis=1)
     mech = mechanical_chain(model.engine, clearance=engines["clearance_operating"][ok],
                             journal_d=engines["journal_d"][ok], bore_offset=engines["bore_offset"][ok],
@@ -264,5 +281,6 @@ def _sobol_output(model, u, groups, output, bearing, crank_angle_step, crank_met
                             crank_angle=np.arange(0.0, 720.0, crank_angle_step), crank_method=crank_method,
                             film_method=film_method)
     converged = mech["crank_status"] == 0
-    values[np.flatnonzero(ok)[converged]] = mech["h_min" if output == "h_min" else "life"][converged].min(axis=1)
+    for k, name in enumerate(outputs):
+        values[np.flatnonzero(ok)[converged], k] = mech[name][converged].min(axis=1)  # the engine's weakest bearing
     return values

@@ -21,6 +21,6 @@ if __name__ == "__main__":
     args = parser.parse_args()
     path = save_comparison(stackup.compare(n_engines=args.n, seed=args.seed), f"{args.out}/compare.nc")
     saved = open_comparison(path)  # the report is a function of the saved datasets
-    report = write_report(saved.dataset, args.out, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
+    report = write_report(saved.dataset, args.out, scenarios=saved.scenarios, sensitivity=saved.sensitivity, tails=saved.tails,
                           dataset_file=path.name)
     print(f"dataset: {path}\nreport:  {report}")

@@ -42,12 +42,12 @@ def test_compare_runs_the_study_its_scenarios_and_the_sensitivity(comparison):
 def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison, tmp_path, monkeypatch):
     path = save_comparison(comparison, tmp_path / "compare.nc", compact=False)  # exact: the same report
     expected = write_report(comparison.dataset, tmp_path / "memory", scenarios=comparison.scenarios,
-                            sensitivity=comparison.sensitivity).read_text()
+                            sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
     saved = open_comparison(path)
     assert list(saved.scenarios) == list(SCENARIOS)
     _no_randomness(monkeypatch)
     text = write_report(saved.dataset, tmp_path / "saved", scenarios=saved.scenarios,
-                        sensitivity=saved.sensitivity).read_text()
+                        sensitivity=saved.sensitivity, tails=saved.tails).read_text()
     assert text == expected
     assert "## Planning: shells per grade" in text and "misalignment ×2" in text
 

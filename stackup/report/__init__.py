@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..assembly import STATUS
+from ..rank import MIN_COUNTED
 from . import figures, prose
 from .html import anchor, markdown_to_html
 from .tables import (bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
@@ -52,7 +53,7 @@ def _section(title, *lines):
     return [f"## {title}", "", *lines, ""]
 
 
-def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=None):
+def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, dataset_file=None):
     """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``.
 
     Parameters
@@ -64,6 +65,9 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
         The study under declared scenarios (:class:`stackup.study.compare.Comparison`).
     sensitivity : xarray.Dataset, optional
         Contributions of the inputs (:func:`stackup.study.compare.sensitivity_dataset`).
+    tails : xarray.Dataset, optional
+        Tail estimates beyond the window (:func:`stackup.study.compare.tails_dataset`),
+        used by the ranking where too few bearings are counted outside.
     dataset_file : str, optional
         Name of the saved dataset, quoted in the report.
 
@@ -77,7 +81,7 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     scenarios = scenarios or {}
-    ranking = rank_schemes(ds, scenarios=scenarios or None)
+    ranking = rank_schemes(ds, scenarios=scenarios or None, tails=tails)
     scenario_rankings = {label: rank_schemes(other) for label, other in scenarios.items()}
     summary = clearance_summary(ds)
     study = json.loads(ds.attrs["study"])
@@ -95,7 +99,7 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, dataset_file=
         *_section("Methods and assumptions", *prose.methods(ds)),
         *_section("Limits of validity", *prose.limits_of_validity(ds)),
         *_ranking_section(ds, ranking, scenarios),
-        *_sensitivity_section(sensitivity, out),
+        *_sensitivity_section(sensitivity, ranking, out),
         *_clearance_section(ds, summary, out),
         *_fit_section(ds),
         *_crank_section(ds, n_mech),
@@ -125,7 +129,9 @@ def _ranking_section(ds, ranking, scenarios):
         "rank": ranking["rank"],
         "scheme": ranking.index,
         "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(ranking.clearance_mean_um, ranking.clearance_std_um)],
-        "outside window [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci)],
+        "outside window [ppm]": [_fmt_ci(v, ci, 0 if v >= 10 else 1) + ("" if src == "counted" else " †")
+                                 for v, ci, src in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
+                                                       ranking.outside_window_source)],
         "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
                          for v, ci in zip(column("alpha_over_limit_pct"), column("alpha_over_limit_pct_ci"))],
         "life median [h]": [f"{v:.3g} [{ci[0]:.3g}, {ci[1]:.3g}]" if isinstance(ci, tuple) else "—"
@@ -145,22 +151,31 @@ def _ranking_section(ds, ranking, scenarios):
             f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.")
     if scenarios:
         rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "
-                 "each run with the same seed.")
-    return _section("Ranking", rule, "", markdown_table(table), "", *prose.non_discriminating(ranking))
+                 "each run with the same seed (counted shares).")
+    notes = []
+    if (ranking.outside_window_source != "counted").any():
+        notes.append(f"† Fewer than {MIN_COUNTED} bearings of the study fell outside the window, too few for a tight "
+                     "interval: the share is estimated by subset simulation through the same assembly chain "
+                     "(`stackup.tail`; bins never run short there), with its stated standard error; the study "
+                     "counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
+                     + ".")
+    return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
 
 
-def _sensitivity_section(sensitivity, out):
+def _sensitivity_section(sensitivity, ranking, out):
     if sensitivity is None or not sensitivity.sizes.get("output"):
-        return _section("What drives the spread", "The contributions of the inputs come with `stackup.compare` "
-                        "(its `sensitivity` dataset, computed from a study that keeps every engine); none was given.")
-    fits = figures.sensitivity_chart(sensitivity, out / "sensitivity.png")
-    r2_text = "; ".join(f"{scheme} {output} R² {r2:.2f}" for (output, scheme), r2 in fits.items())
+        return _section("What drives the spread", "The Sobol indices come with `stackup.compare` (its `sensitivity` "
+                        "dataset); none was given.")
+    figures.sensitivity_chart(sensitivity, out / "sensitivity.png")
     return _section(
         "What drives the spread",
-        "Share of the variance of the operating clearance and of the cycle-minimum film (within each bearing "
-        "position) that each input explains, from standardised regression coefficients with 95 % bootstrap "
-        "intervals. In selective assembly the shells are chosen from the measured sizes, so inputs are "
-        "correlated: read the shares with the fit's R² (" + r2_text + ").", "",
+        *prose.tighten_first(sensitivity, ranking), "",
+        "Sobol indices of the root inputs: each sample engine is built from its own sizes, gauge errors, the shells "
+        "taken from their grades' bins and crush heights, and goes through grading, pairing and the press fit (and "
+        "for the film and the life through the crankshaft and the oil film). The first-order index S_1 is the share "
+        "of the output's variance an input explains alone; the total index S_T adds its interactions. The gap "
+        "between them, and a sum of S_1 below one, is the grading: a reading near a grade boundary sends a part "
+        "to another pair. Process mean shifts are not inputs here: the declared scenarios shift them.", "",
         "![What drives the spread](sensitivity.png)")
 
 

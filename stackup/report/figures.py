@@ -112,41 +112,35 @@ def film_by_bearing(ds, path):
 
 
 def sensitivity_chart(sensitivity, path):
-    """Contributor chart from a sensitivity dataset (:func:`stackup.study.compare.sensitivity_dataset`); PNG.
-
-    Share of variance per input, per scheme and output, with 95 % bootstrap
-    intervals. Returns the R² of each panel, by (output, scheme).
-    """
-    outputs, names = list(sensitivity.output.values), list(sensitivity.scheme.values)
-    columns = min(3, len(names))
-    rows_per_output = -(-len(names) // columns)
-    fig = Figure(figsize=(WIDTH, 2.4 * rows_per_output * len(outputs) + 0.8), layout="constrained")
-    axes = np.atleast_2d(fig.subplots(rows_per_output * len(outputs), columns, sharex=True, squeeze=False))
-    fits = {}
-    inputs = list(reversed(sensitivity.input.values))  # the same order in every panel
-    for r, output in enumerate(outputs):
-        for c, name in enumerate(names):
-            ax = axes[r * rows_per_output + c // columns, c % columns]
-            d = sensitivity.sel(output=output, scheme=name, input=inputs)
-            if not np.isfinite(float(d.r2)):
-                ax.set_axis_off()
-                continue
-            fits[(str(output), str(name))] = float(d.r2)
-            keep = np.isfinite(d.share.values)
-            share, lo, hi = (100 * d[k].values[keep] for k in ("share", "share_lo", "share_hi"))
-            err = np.vstack([share - lo, hi - share]).clip(min=0)
-            ax.barh(np.array(inputs)[keep], share, xerr=err, color="tab:blue", alpha=0.8)
-            ax.set_title(f"{name}: {output} (R² {float(d.r2):.2f})", fontsize=9)
-            ax.tick_params(labelsize=8)
-            if c % columns:
-                ax.set_yticklabels([])
-        for c in range(len(names), rows_per_output * columns):
-            axes[r * rows_per_output + c // columns, c % columns].set_axis_off()
+    """Total and first-order Sobol indices per input, one panel per scheme and output, 95 % intervals; PNG."""
+    panels = [(str(o), str(s)) for o in sensitivity.output.values for s in sensitivity.scheme.values
+              if np.isfinite(sensitivity.ST.sel(output=o, scheme=s).values).any()]
+    columns = min(3, len(panels))
+    rows = -(-len(panels) // columns)
+    fig = Figure(figsize=(WIDTH, 2.9 * rows + 0.9), layout="constrained")
+    axes = np.atleast_2d(fig.subplots(rows, columns, sharex=True, squeeze=False))
+    labels = {"clearance_operating": "operating clearance", "h_min": "engine's smallest film", "life": "engine life"}
+    for k, (output, scheme) in enumerate(panels):
+        ax = axes[k // columns, k % columns]
+        d = sensitivity.sel(output=output, scheme=scheme)
+        d = d.isel(input=np.flatnonzero(np.isfinite(d.ST.values))[::-1])  # the same order in every panel
+        y = np.arange(d.sizes["input"])
+        for index, offset, colour in (("ST", 0.2, "tab:blue"), ("S1", -0.2, "tab:orange")):
+            value = d[index].values
+            err = np.vstack([value - d[f"{index}_lo"].values, d[f"{index}_hi"].values - value]).clip(min=0)
+            ax.barh(y + offset, value, height=0.4, xerr=err, color=colour, alpha=0.85,
+                    label="total index S_T" if index == "ST" else "first-order index S_1")
+        ax.set_yticks(y, [str(i) for i in d.input.values] if k % columns == 0 else [""] * len(y), fontsize=8)
+        ax.set_title(f"{scheme}: {labels.get(output, output)}", fontsize=9)
+        ax.axvline(0, color="k", lw=0.5)
+    for k in range(len(panels), rows * columns):
+        axes[k // columns, k % columns].set_axis_off()
     for ax in axes[-1]:
-        ax.set_xlabel("share of explained variance [%]")
-    fig.suptitle("What drives the spread: regression shares with 95 % bootstrap intervals", fontsize=11)
-    _save(fig, path)
-    return fits
+        ax.set_xlabel("share of the output's variance [-]")
+    axes[0, 0].legend(fontsize=8, loc="lower right")
+    fig.suptitle("What drives the spread: Sobol indices of the root inputs through the assembly chain "
+                 "(95 % bootstrap intervals)", fontsize=11)
+    return _save(fig, path)
 
 
 def grade_usage_chart(ds, path):

@@ -156,6 +156,31 @@ def non_discriminating(ranking):
     return out
 
 
+def tighten_first(sensitivity, ranking):
+    """One sentence per analysed output of the recommended scheme: which input to tighten first."""
+    chosen = ranking.index[0]
+    labels = {"clearance_operating": "operating clearance", "h_min": "smallest film", "life": "life"}
+    out = []
+    for output in sensitivity.output.values:
+        schemes = [s for s in sensitivity.scheme.values
+                   if np.isfinite(sensitivity.ST.sel(output=output, scheme=s).values).any()]
+        scheme = chosen if chosen in schemes else (schemes[0] if schemes else None)
+        if scheme is None:
+            continue
+        d = sensitivity.sel(output=output, scheme=scheme).to_dataframe().dropna(subset=["ST"])
+        d = d.sort_values("ST", ascending=False)
+        top, second = d.iloc[0], d.iloc[1]
+        text = (f"**Tighten first ({scheme}, {labels.get(str(output), output)}):** the {d.index[0]}, with a total "
+                f"index of {top.ST:.2f} [{top.ST_lo:.2f}, {top.ST_hi:.2f}] of the variance "
+                f"(first-order {top.S1:.2f}), then the {d.index[1]} ({second.ST:.2f}).")
+        gauges = d[d.index.str.contains("gauge")]
+        if len(gauges) and gauges.ST.max() >= 0.05:
+            text += (" The gauges matter through misgrading: " + ", ".join(
+                f"{name} {row.ST:.2f}" for name, row in gauges.iterrows() if row.ST >= 0.05) + " (total indices).")
+        out += [text, ""]
+    return out[:-1]
+
+
 def read_out_notes(ds, summary):
     """Why a scheme's worst case goes beyond its stated range: readings rounded to the scheme's read-out."""
     out = []

@@ -164,12 +164,14 @@ class RootModel:
         The lot's planned share per shell grade (:func:`~stackup.study.pilot.shell_plan`).
     mean_shift : float
         Half-range of the process mean inputs [process standard deviations].
+    bearings : int, optional
+        Main bearings per engine built (default the engine's; 1 for a bearing on its own).
     """
 
-    def __init__(self, engine, scheme, aim_share, *, mean_shift=1.0):
+    def __init__(self, engine, scheme, aim_share, *, mean_shift=1.0, bearings=None):
         self.engine, self.scheme, self.mean_shift = engine, scheme, mean_shift
         self.bins = ShellBins.of(engine, scheme, aim_share)
-        self.b = engine.main_bearings
+        self.b = engine.main_bearings if bearings is None else bearings
 
     def columns(self, groups=GROUPS):
         """Names of the root inputs in column order and the group of each, for the given groups."""
