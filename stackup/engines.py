@@ -2,11 +2,18 @@
 
 An engine file (TOML, lengths in mm) names its number of main bearings and,
 per dimension, the drawing limits, the process, the gauge and the share of
-variance common to one block or crankshaft. Built-in engines ship in
-``stackup/data/engines``; a user's file works the same way, by path or by
-name from a folder named in the ``STACKUP_ENGINE_PATH`` environment variable
-(folders separated as in ``PATH``; a user's file replaces a built-in one of the
-same name).
+variance common to one block or crankshaft (journals also their form error and
+how it is read, housing bores their bolt-tension scatter). ``[press_fit]``
+holds the housing ring, materials and shell lining, the checking block, the
+temperatures the fit is checked at (``cold_temperature``,
+``assembly_temperature``, ``temperature`` for the clearance,
+``hot_temperature``) and the source of the crush height;
+``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
+operating-clearance window (absolute, or ``relative_clearance`` C/D of the
+journal) with its source. Built-in engines ship in ``stackup/data/engines``;
+a user's file works the same way, by path or by name from a folder named in
+the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
+``PATH``; a user's file replaces a built-in one of the same name).
 """
 
 from __future__ import annotations
@@ -25,14 +32,49 @@ from .crank import BellakhdharLaw
 from .film import oil as film_oil
 from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
-from .tolerances import Dimension, gauge_from_spec, process_from_spec
+from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
 
 
 @dataclass(frozen=True)
+class PressFitLimits:
+    """Design limits of the press fit, with their source.
+
+    Attributes
+    ----------
+    contact_pressure_min : float
+        Least contact pressure between shell backs and housing bore at any
+        declared temperature [Pa] (no spinning, no fretting, heat transfer).
+    shell_stress_max : float
+        Largest steel-equivalent compression of the shell wall at any
+        declared temperature [Pa] (no inward protrusion at the joint faces).
+    source : str
+    """
+
+    contact_pressure_min: float
+    shell_stress_max: float
+    source: str
+
+
+#: Limits of an engine file without ``[press_fit.limits]``: the lenient end
+#: of Kopeliovich's pressure range and the middle of his stress range.
+KOPELIOVICH_LIMITS = PressFitLimits(
+    contact_pressure_min=8e6, shell_stress_max=450e6,
+    source="Kopeliovich, Crush height of engine bearings, sec. 2: contact pressure commonly not less than "
+           "8-10 MPa; compression stress not above 400-500 MPa depending on the application (defaults: 8 MPa, "
+           "450 MPa)")
+
+
+@dataclass(frozen=True)
 class PressFitSpec:
-    """How the shells sit in the housing: keyword arguments of :func:`stackup.fit.press_fit` [SI]."""
+    """How the shells sit in the housing, at which temperatures it is checked, and against which limits [SI].
+
+    :meth:`kwargs` gives the keyword arguments of :func:`stackup.fit.press_fit`
+    at the operating temperature (the clearance), :meth:`extremes_kwargs`
+    those of :func:`stackup.fit.press_fit_extremes` over :attr:`temperatures`
+    (the stress and pressure checks).
+    """
 
     housing_outer: float
     housing_material: str
@@ -42,10 +84,30 @@ class PressFitSpec:
     check_bore: float
     check_stress: float
     assembly_temperature: float
-    temperature: float
+    temperature: float  # operating temperature: the clearance [degC]
+    lining_thickness: float = 0.0
+    lining_material: str | None = None
+    cold_temperature: float | None = None  # coldest state checked (cold start) [degC]; None: the assembly's
+    hot_temperature: float | None = None  # hottest state checked [degC]; None: the operating temperature
+    limits: PressFitLimits = KOPELIOVICH_LIMITS
+    crush_source: str = ""
+
+    _FIT = ("housing_outer", "housing_material", "shell_material", "journal_material", "length", "check_bore",
+            "check_stress", "assembly_temperature", "lining_thickness", "lining_material")
 
     def kwargs(self):
-        return dict(self.__dict__)
+        """Keyword arguments of :func:`stackup.fit.press_fit` at the operating temperature."""
+        return {**{name: getattr(self, name) for name in self._FIT}, "temperature": self.temperature}
+
+    @property
+    def temperatures(self):
+        """Temperatures the press fit is checked at [degC], coldest first: cold start, assembly, operating, hot."""
+        declared = (self.cold_temperature, self.assembly_temperature, self.temperature, self.hot_temperature)
+        return tuple(sorted({float(t) for t in declared if t is not None}))
+
+    def extremes_kwargs(self):
+        """Keyword arguments of :func:`stackup.fit.press_fit_extremes` over :attr:`temperatures`."""
+        return {**{name: getattr(self, name) for name in self._FIT}, "temperatures": self.temperatures}
 
 
 @dataclass(frozen=True)
@@ -111,7 +173,13 @@ class Engine:
     press_fit: PressFitSpec
     crank: CrankSpec | None = None
     clearance_window: tuple = (0.0, np.inf)  # design window of the operating clearance [m]
+    clearance_window_source: str = ""
     life_target: float = 1000.0 * 3600.0  # [s]
+
+    @property
+    def press_fit_limits(self):
+        """The engine's press-fit design limits with their source (:class:`PressFitLimits`)."""
+        return self.press_fit.limits
 
 
 def _builtin_dir():
@@ -169,7 +237,17 @@ def load_engine(name_or_path):
         process = process_from_spec(table.get("process", {}), lo=lo, hi=hi, scale=scale, field=f"{where}, key {key}.process")
         gauge = gauge_from_spec(table.get("gauge"), scale=scale, field=f"{where}, key {key}.gauge")
         shared = float(check.in_range(f"{where}, key {key}.shared", table.get("shared", 0.0), 0.0, 1.0, hi_open=True))
-        return Dimension(key, lo, hi, process, gauge, shared)
+        form = form_from_spec(table.get("form"), scale=scale, field=f"{where}, key {key}.form")
+        if form is not None:
+            # the gauge's readings are those of the form's planes and directions, averaged
+            if "readings" in (table.get("gauge") or {}) and gauge.readings != form.readings:
+                raise ValueError(f"{where}, key {key}.gauge.readings: {gauge.readings} readings, but the form is read "
+                                 f"in {form.readings} (planes x directions)")
+            gauge = replace(gauge, readings=form.readings, combine="mean")
+        bolt = float(check.positive(f"{where}, key {key}.bolt_scatter", table.get("bolt_scatter", 0.0),
+                                    allow_zero=True)) * scale
+        return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt,
+                         source=str(table.get("source", "")))
 
     shell = dict(data.get("shell_wall", {}))
     key = f"{where}, key shell_wall"
@@ -201,12 +279,19 @@ def load_engine(name_or_path):
         value = fit_table.pop(name, None)
         return default if value is None else float(check.positive(f"{key}.{name}", value)) * scale
 
-    def temperature(name):
-        return float(check.in_range(f"{key}.{name}", fit_table.pop(name, 20.0), -60.0, 300.0, unit=" degC"))
+    def temperature(name, default=20.0):
+        value = fit_table.pop(name, default)
+        return None if value is None else float(check.in_range(f"{key}.{name}", value, -60.0, 300.0, unit=" degC"))
 
-    def material(name):
-        return materials.get(fit_table.pop(name, "steel")).name
+    def material(name, default="steel"):
+        value = fit_table.pop(name, default)
+        return None if value is None else materials.get(value).name
 
+    lining_thickness = float(check.positive(f"{key}.lining_thickness", fit_table.pop("lining_thickness", 0.0),
+                                            allow_zero=True)) * scale
+    lining_material = material("lining_material", None)
+    if lining_thickness > 0 and lining_material is None:
+        raise ValueError(f"{key}.lining_material: missing; a lining_thickness > 0 needs the lining's material")
     spec = PressFitSpec(
         housing_outer=length("housing_outer"),
         housing_material=material("housing_material"),
@@ -218,32 +303,79 @@ def load_engine(name_or_path):
                                           lo_open=True, unit=" Pa")),
         assembly_temperature=temperature("assembly_temperature"),
         temperature=temperature("temperature"),
+        lining_thickness=lining_thickness,
+        lining_material=lining_material,
+        cold_temperature=temperature("cold_temperature", None),
+        hot_temperature=temperature("hot_temperature", None),
+        limits=_limits(fit_table.pop("limits", None), f"{key}.limits"),
+        crush_source=str(fit_table.pop("crush_height_source", "")),
     )
     if fit_table:
         raise ValueError(f"{key}: unknown key(s) {sorted(fit_table)}")
     if spec.housing_outer <= bore.hi:
         raise ValueError(f"{key}.housing_outer: {spec.housing_outer / scale!r} {units} is not above the housing bore")
+    if spec.cold_temperature is not None and spec.cold_temperature > spec.assembly_temperature:
+        raise ValueError(f"{key}.cold_temperature: {spec.cold_temperature!r} degC is above the assembly temperature "
+                         f"{spec.assembly_temperature!r} degC; the coldest state checked is the colder of the two")
+    if spec.hot_temperature is not None and spec.hot_temperature < spec.temperature:
+        raise ValueError(f"{key}.hot_temperature: {spec.hot_temperature!r} degC is below the operating temperature "
+                         f"{spec.temperature!r} degC")
+    journal = dimension("journal_d")
     return Engine(
         name=str(data.get("name", path.stem)),
         title=str(data.get("title", "")),
         source=str(data.get("source", "")),
         main_bearings=bearings,
         housing_bore=bore,
-        journal_d=dimension("journal_d"),
+        journal_d=journal,
         shell_wall=supply,
         press_fit=spec,
         crank=_crank(data, where, scale, bearings, path.parent) if "crank" in data else None,
-        **_targets(data, where, scale, units),
+        **_targets(data, where, scale, units, journal),
     )
 
 
-def _targets(data, where, scale, units):
+def _limits(table, key):
+    """Press-fit design limits from ``[press_fit.limits]`` (Pa, with their source); Kopeliovich's if absent."""
+    if table is None:
+        return KOPELIOVICH_LIMITS
+    table = dict(table)
+    for name in ("contact_pressure_min", "shell_stress_max", "source"):
+        if name not in table:
+            raise ValueError(f"{key}: missing '{name}' (limits in Pa, with the source they come from)")
+    limits = PressFitLimits(
+        contact_pressure_min=float(check.positive(f"{key}.contact_pressure_min", table.pop("contact_pressure_min"))),
+        shell_stress_max=float(check.positive(f"{key}.shell_stress_max", table.pop("shell_stress_max"))),
+        source=str(table.pop("source")),
+    )
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    if not (1e5 <= limits.contact_pressure_min <= 100e6 and 10e6 <= limits.shell_stress_max <= 2e9):
+        raise ValueError(f"{key}: contact_pressure_min {limits.contact_pressure_min!r} Pa, shell_stress_max "
+                         f"{limits.shell_stress_max!r} Pa; give the limits in Pa (e.g. 10e6 and 400e6)")
+    return limits
+
+
+def _targets(data, where, scale, units, journal):
+    """Design window of the operating clearance (absolute, or relative to the journal) and life target."""
     table = dict(data.get("targets", {}))
     key = f"{where}, key targets"
     out = {}
+    forms = [k for k in ("operating_clearance", "relative_clearance") if k in table]
+    if len(forms) > 1:
+        raise ValueError(f"{key}: give either operating_clearance or relative_clearance, not both")
     if "operating_clearance" in table:
         lo, hi = check.limits(f"{key}.operating_clearance", *table.pop("operating_clearance"), unit=units)
         out["clearance_window"] = (lo * scale, hi * scale)
+    if "relative_clearance" in table:
+        # psi = C / D of the journal's nominal size (its lower drawing limit)
+        lo, hi = check.limits(f"{key}.relative_clearance", *table.pop("relative_clearance"), unit="")
+        if lo <= 0 or hi >= 0.01:
+            raise ValueError(f"{key}.relative_clearance: [{lo!r}, {hi!r}] is not a clearance ratio C/D in (0, 0.01) "
+                             "(write 1 per mille as 0.001)")
+        out["clearance_window"] = (lo * journal.lo, hi * journal.lo)
+    if "clearance_source" in table:
+        out["clearance_window_source"] = str(table.pop("clearance_source"))
     if "life_hours" in table:
         out["life_target"] = float(check.positive(f"{key}.life_hours", table.pop("life_hours"))) * 3600.0
     if table:

@@ -52,8 +52,13 @@ def _outside(counted, assembled, tail):
     """Share outside the window [ppm] with its 95 % interval and where it comes from."""
     if counted < MIN_COUNTED and tail is not None and np.all(np.isfinite(tail.tail_share.values)):
         share = float(tail.tail_share.sum())
-        se = float(np.hypot(*tail.tail_standard_error.values))
-        return share * 1e6, (max(share - Z95 * se, 0.0) * 1e6, (share + Z95 * se) * 1e6), "subset simulation"
+        se = tail.tail_standard_error.values
+        if np.all(np.isfinite(se)):
+            half = Z95 * float(np.hypot(*se))
+            return share * 1e6, (max(share - half, 0.0) * 1e6, (share + half) * 1e6), "subset simulation"
+        # a side no sample reached: its upper bound; the bounds add
+        bounds = tail.tail_interval.values.sum(axis=0)
+        return share * 1e6, (bounds[0] * 1e6, bounds[1] * 1e6), "subset simulation"
     share, lo, hi = proportion_ci(counted, assembled)
     return share * 1e6, (lo * 1e6, hi * 1e6), "counted"
 

@@ -177,7 +177,7 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
     from .scenarios import apply as apply_scenario
     from .schemes import load as load_scheme
     from .study.pilot import pilot_parts, shell_plan
-    from .study.roots import GROUPS, RootModel
+    from .study.roots import RootModel
 
     check.one_of("output", output, SOBOL_OUTPUTS)
     engine = apply_scenario(load_engine(engine), scenario)
@@ -195,9 +195,9 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
     left_out = {"misalignment"} if output == "clearance_operating" else set()
     if mean_shift == 0.0:
         left_out |= {"bore process mean", "journal process mean"}
-    groups = tuple(g for g in GROUPS if g not in left_out)
     model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
                       mean_shift=mean_shift)
+    groups = tuple(g for g in model.groups if g not in left_out)
     names, owners = model.columns(groups)
     outputs = (output,) if output == "clearance_operating" else ("h_min", "life")
     frames = sobol_indices(

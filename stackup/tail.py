@@ -46,9 +46,8 @@ from .stats import Z95
 from .study.pilot import pilot_parts, shell_plan
 from .study.roots import RootModel
 
-#: Root inputs a bearing's clearance depends on (the groups of :class:`~stackup.study.roots.RootModel`).
-TAIL_GROUPS = ("housing bore", "journal", "bore gauge error", "journal gauge error", "shell wall",
-               "shell gauge error", "crush height")
+#: Root inputs a bearing's clearance does not depend on, or that are the scenarios' business.
+NOT_TAIL_GROUPS = ("bore process mean", "journal process mean", "misalignment")
 METHODS = ("subset", "cross-entropy", "mc")
 
 
@@ -164,11 +163,13 @@ def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pi
     model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
                       bearings=1)
 
+    groups = tuple(g for g in model.groups if g not in NOT_TAIL_GROUPS)
+
     def margin(z):
-        c = model.engines(special.ndtr(z), groups=TAIL_GROUPS)["clearance_operating"][:, 0]
+        c = model.engines(special.ndtr(z), groups=groups)["clearance_operating"][:, 0]
         return np.where(np.isfinite(c), sign * (c - threshold), -np.inf)
 
-    return margin, len(model.columns(TAIL_GROUPS)[0])
+    return margin, len(model.columns(groups)[0])
 
 
 def _log_normal(z):
@@ -222,9 +223,12 @@ def _subset(score, dim, rng, *, n_level, p0, max_levels):
         if threshold > 0.0 or level == max_levels:
             hits = s > 0.0
             p = hits.mean()
+            if p == 0:  # the tail lies beyond the last level: an upper bound by the rule of three
+                upper = float(np.exp(log_p) * 3.0 / s.size)
+                return TailEstimate(0.0, float("nan"), (0.0, upper), int(spent), float("nan"), level)
             gamma = _chain_correlation(chains, hits) if chains is not None else 0.0
-            cov2 += (1 - p) / (p * s.size) * (1 + gamma) if p > 0 else np.inf
-            log_p += np.log(p) if p > 0 else -np.inf
+            cov2 += (1 - p) / (p * s.size) * (1 + gamma)
+            log_p += np.log(p)
             break
         keep = np.argsort(s)[-n_seeds:]
         gamma = _chain_correlation(chains, s >= threshold) if chains is not None else 0.0

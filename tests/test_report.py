@@ -36,7 +36,7 @@ def test_compare_runs_the_study_its_scenarios_and_the_sensitivity(comparison):
     assert all(ds.attrs["kept"] == "summaries" for ds in comparison.scenarios.values())
     assert comparison.scenarios["misalignment ×2"].attrs["mechanics_engines_used"] > 0
     assert comparison.scenarios["bore mean +1σ"].attrs["mechanics_engines_used"] == 0
-    assert set(comparison.sensitivity.output.values) == {"clearance_operating", "h_min"}
+    assert set(comparison.sensitivity.output.values) == {"clearance_operating", "h_min", "life"}
 
 
 def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison, tmp_path, monkeypatch):

@@ -54,8 +54,8 @@ def test_ungraded_scheme_1_is_linear_so_sobol_equals_the_squared_standardised_co
 def test_graded_schemes_make_gauge_repeatability_matter():
     ungraded, graded = sobol("iso-example", "iso13778-1", n=1024), sobol("iso-example", "iso13778-4", n=1024)
     assert ungraded.loc["bore gauge error", "ST"] < 0.01  # nothing is chosen from a reading
-    for gauge in ("bore gauge error", "journal gauge error"):
-        assert graded.loc[gauge, "ST_lo"] > 0.1  # misgrading near grade boundaries
+    # misgrading near grade boundaries; the journal is read four times (two planes, two directions): less
+    assert graded.loc["bore gauge error", "ST_lo"] > 0.1 and graded.loc["journal gauge error", "ST_lo"] > 0.02
     assert graded.S1.sum() < 0.85  # a share of the spread comes from the grading's interactions
 
 

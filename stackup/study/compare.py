@@ -145,8 +145,10 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
 def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=1_000):
     """Share of bearings below and above the design window per scheme, by subset simulation (:mod:`stackup.tail`).
 
-    Variables on (scheme, side): ``tail_share`` and its ``tail_standard_error``,
-    with the chain evaluations each estimate cost (``tail_bearings``).
+    Variables on (scheme, side): ``tail_share``, its ``tail_standard_error``
+    and 95 % interval (``tail_interval`` on ``bound``; where no sample reaches
+    the tail the share is 0 with an upper bound and no standard error), with
+    the chain evaluations each estimate cost (``tail_bearings``).
     """
     from ..engines import load_engine
     from ..schemes import load as load_scheme
@@ -157,6 +159,7 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     loaded = [load_scheme(s) for s in schemes]
     sides = ("lower", "upper")
     shares, errors, cost = (np.full((len(loaded), 2), np.nan) for _ in range(3))
+    interval = np.full((len(loaded), 2, 2), np.nan)
     for i, scheme in enumerate(loaded):
         for j, side in enumerate(sides):
             if not np.isfinite(window[j]) or (side == "lower" and window[j] <= 0):
@@ -164,12 +167,15 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
             t = clearance_tail(engine, scheme, side=side, threshold=window[j], seed=seed,
                                pilot_engines=pilot_engines, n_level=n_level)
             shares[i, j], errors[i, j], cost[i, j] = t.share, t.standard_error, t.bearings
+            interval[i, j] = t.interval
     dims = ("scheme", "side")
     return xr.Dataset(
         {"tail_share": (dims, shares, {"units": "1", "long_name": "share of assembled bearings beyond the window edge "
                                                                    "(subset simulation)"}),
          "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
+         "tail_interval": ((*dims, "bound"), interval, {"units": "1", "long_name": "95 % interval of tail_share"}),
          "tail_bearings": (dims, cost, {"units": "1", "long_name": "chain evaluations of the estimate"})},
         coords={"scheme": ("scheme", [s.name for s in loaded], {"long_name": "selective-fitting scheme"}),
-                "side": ("side", list(sides), {"long_name": "edge of the design window"})},
+                "side": ("side", list(sides), {"long_name": "edge of the design window"}),
+                "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"})},
         attrs={"window": list(map(float, window)), "method": "subset simulation (stackup.tail)", "seed": seed})

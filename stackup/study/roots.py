@@ -14,6 +14,10 @@ own root inputs, uniform on [0, 1) (standard normals through
     The gauge's repeatability normal of each reading. A part read outside its
     drawing limits is graded at the limit: the analysis is of assembled
     bearings (scrap is a separate share in the study).
+``bore form error``, ``journal form error``, ``bolt tension``
+    Where the engine file declares them: each part's ovality, its angle and
+    taper (three normals, :class:`~stackup.tolerances.FormError`), and the
+    change of a bore between its reading and assembly (one normal each).
 ``shell wall``, ``shell gauge error``
     The shell a bearing receives is a shell *read* into the grade its pair
     asks for, taken from the grade's bin (the stock). Its reading is drawn
@@ -59,10 +63,13 @@ import numpy as np
 from scipy import special
 
 from ..fit import press_fit
+from ..tolerances import process_mean
 
-#: Root-input groups, in the order of the columns (see :meth:`RootModel.columns`).
-GROUPS = ("housing bore", "journal", "bore gauge error", "journal gauge error", "shell wall", "shell gauge error",
-          "crush height", "bore process mean", "journal process mean", "misalignment")
+#: Root-input groups, in the order of the columns (see :meth:`RootModel.columns`); an engine has
+#: those of them its file declares (:attr:`RootModel.groups`).
+GROUPS = ("housing bore", "journal", "bore gauge error", "journal gauge error", "bore form error",
+          "journal form error", "bolt tension", "shell wall", "shell gauge error", "crush height",
+          "bore process mean", "journal process mean", "misalignment")
 #: Largest |z| a uniform input maps to: keeps Phi^-1 finite at u = 0 (Sobol points start there).
 Z_MAX = 8.0
 
@@ -84,7 +91,9 @@ class ShellBins:
     shares : numpy.ndarray (aims,)
         Share of the shells made at each aim [-].
     sigma, gauge : float
-        Wall process and gauge standard deviations [m].
+        Wall process and gauge (combined reading) standard deviations [m].
+    bias : float
+        Mean of the combined reading's error [m] (the larger of two readings reads high).
     """
 
     lo: np.ndarray
@@ -93,20 +102,20 @@ class ShellBins:
     shares: np.ndarray
     sigma: float
     gauge: float
+    bias: float = 0.0
 
     @classmethod
     def of(cls, engine, scheme, aim_share):
         """The bins of ``scheme``'s shells made by ``engine``'s supply (``aim_share``: the lot's plan, or None)."""
         supply = engine.shell_wall
         lo, hi = scheme.shell.bins()
+        bias, spread = supply.gauge.noise_moments()
         if supply.mode == "to-order":
             return cls(lo, hi, np.asarray(supply._aim(scheme), float), np.asarray(aim_share, float),
-                       float(supply.sigma), float(supply.gauge.repeatability))
+                       float(supply.sigma), float(spread), float(bias))
         process = supply.dimension(scheme).process
-        from ..tolerances import _mean
-
-        return cls(lo, hi, np.array([_mean(process)]), np.array([1.0]), float(process.std),
-                   float(supply.gauge.repeatability))
+        return cls(lo, hi, np.array([process_mean(process)]), np.array([1.0]), float(process.std), float(spread),
+                   float(bias))
 
     @property
     def spread(self):
@@ -117,14 +126,15 @@ class ShellBins:
         """Reading [m] at position ``u`` in [0, 1) of the bin of ``grade`` (arrays of equal shape)."""
         s = self.spread
         lo, hi = self.lo[grade], self.hi[grade]
-        weight = self.shares[None, :] * (special.ndtr((hi[:, None] - self.aims) / s)
-                                         - special.ndtr((lo[:, None] - self.aims) / s))
+        centres = self.aims + self.bias  # where the readings of each production centre
+        weight = self.shares[None, :] * (special.ndtr((hi[:, None] - centres) / s)
+                                         - special.ndtr((lo[:, None] - centres) / s))
         target = u * weight.sum(axis=1)
         low, high = lo.copy(), hi.copy()
         for _ in range(48):  # bisection on the mixture's CDF within the bin: to 1e-14 of the bin width
             mid = 0.5 * (low + high)
-            below = (self.shares[None, :] * (special.ndtr((mid[:, None] - self.aims) / s)
-                                             - special.ndtr((lo[:, None] - self.aims) / s))).sum(axis=1)
+            below = (self.shares[None, :] * (special.ndtr((mid[:, None] - centres) / s)
+                                             - special.ndtr((lo[:, None] - centres) / s))).sum(axis=1)
             under = below < target
             low = np.where(under, mid, low)
             high = np.where(under, high, mid)
@@ -137,11 +147,12 @@ class ShellBins:
             return reading
         k = self.gauge**2 / s**2
         sd = self.sigma * self.gauge / s
+        centres = self.aims + self.bias
         # posterior share of each aim given the reading, then the gauge error's mixture quantile by bisection
-        log_w = np.log(np.maximum(self.shares, 1e-300))[None, :] - 0.5 * ((reading[:, None] - self.aims) / s) ** 2
+        log_w = np.log(np.maximum(self.shares, 1e-300))[None, :] - 0.5 * ((reading[:, None] - centres) / s) ** 2
         w = np.exp(log_w - log_w.max(axis=1, keepdims=True))
         w /= w.sum(axis=1, keepdims=True)
-        means = k * (reading[:, None] - self.aims)
+        means = self.bias + k * (reading[:, None] - centres)
         low = means.min(axis=1) - Z_MAX * sd
         high = means.max(axis=1) + Z_MAX * sd
         target = np.clip(u, special.ndtr(-Z_MAX), special.ndtr(Z_MAX))
@@ -172,36 +183,43 @@ class RootModel:
         self.engine, self.scheme, self.mean_shift = engine, scheme, mean_shift
         self.bins = ShellBins.of(engine, scheme, aim_share)
         self.b = engine.main_bearings if bearings is None else bearings
-
-    def columns(self, groups=GROUPS):
-        """Names of the root inputs in column order and the group of each, for the given groups."""
         b = self.b
-        sizes = {"housing bore": 1 + b, "journal": 1 + b, "bore gauge error": b, "journal gauge error": b,
-                 "shell wall": 2 * b, "shell gauge error": 2 * b, "crush height": 2 * b, "bore process mean": 1,
-                 "journal process mean": 1, "misalignment": 4 * b}
+        hb, jd = engine.housing_bore, engine.journal_d
+        self._sizes = {"housing bore": 1 + b, "journal": 1 + b, "bore gauge error": b, "journal gauge error": b,
+                       "bore form error": 3 * b if hb.form is not None else 0,
+                       "journal form error": 3 * b if jd.form is not None else 0,
+                       "bolt tension": b if hb.bolt_scatter else 0, "shell wall": 2 * b, "shell gauge error": 2 * b,
+                       "crush height": 2 * b, "bore process mean": 1, "journal process mean": 1, "misalignment": 4 * b}
+
+    @property
+    def groups(self):
+        """The root-input groups this engine has (:data:`GROUPS` its file declares)."""
+        return tuple(g for g in GROUPS if self._sizes[g])
+
+    def columns(self, groups=None):
+        """Names of the root inputs in column order and the group of each, for the given groups (default all)."""
         names, owners = [], []
-        for group in groups:
-            names += [f"{group} {k}" for k in range(sizes[group])]
-            owners += [group] * sizes[group]
+        for group in self.groups if groups is None else groups:
+            names += [f"{group} {k}" for k in range(self._sizes[group])]
+            owners += [group] * self._sizes[group]
         return names, owners
 
-    def engines(self, u, groups=GROUPS):
+    def engines(self, u, groups=None):
         """Parts and operating clearance of engines with root inputs ``u`` (engines, columns) in [0, 1).
 
-        Groups left out of ``groups`` sit at their median (0.5). Returns a
-        dict of (engines, bearings) arrays: ``housing_bore``, ``journal_d``,
-        ``clearance_operating``, and (engines, bearings, 2) ``bore_offset``
-        and ``journal_eccentricity``.
+        Groups of the engine left out of ``groups`` sit at their median
+        (0.5). Returns a dict of (engines, bearings) arrays:
+        ``housing_bore``, ``journal_d``, ``clearance_operating``, and
+        (engines, bearings, 2) ``bore_offset`` and ``journal_eccentricity``.
         """
         u = np.asarray(u, dtype=float)
         n, b = u.shape[0], self.b
-        full = np.full((n, len(self.columns()[0])), 0.5)
-        all_names, _ = self.columns()
+        all_names, all_owners = self.columns()
         names, _ = self.columns(groups)
+        full = np.full((n, len(all_names)), 0.5)
         full[:, [all_names.index(x) for x in names]] = u
-        col = dict(zip(GROUPS, np.split(np.arange(full.shape[1]), np.cumsum(
-            [1 + b, 1 + b, b, b, 2 * b, 2 * b, 2 * b, 1, 1]))))
-        take = {g: full[:, idx] for g, idx in col.items()}
+        owners = np.array(all_owners)
+        take = {g: full[:, owners == g] for g in self.groups}
         engine, scheme = self.engine, self.scheme
         hb, jd = engine.housing_bore, engine.journal_d
         shift_h = (2 * take["bore process mean"][:, 0] - 1) * self.mean_shift * hb.process.std
@@ -209,8 +227,12 @@ class RootModel:
         zb, zj = _normal(take["housing bore"]), _normal(take["journal"])
         bore = hb.true_sizes(zb[:, 0], zb[:, 1:]) + shift_h[:, None]
         journal = jd.true_sizes(zj[:, 0], zj[:, 1:]) + shift_j[:, None]
-        bore_read = np.clip(hb.gauge.read(bore, _normal(take["bore gauge error"])), hb.lo, hb.hi)
-        journal_read = np.clip(jd.gauge.read(journal, _normal(take["journal gauge error"])), jd.lo, jd.hi)
+        form = {part: _normal(take[f"{part} form error"]).reshape(n, b, 3) if f"{part} form error" in take else None
+                for part in ("bore", "journal")}
+        bore_read = np.clip(hb.read(bore, _normal(take["bore gauge error"]), form["bore"]), hb.lo, hb.hi)
+        journal_read = np.clip(jd.read(journal, _normal(take["journal gauge error"]), form["journal"]), jd.lo, jd.hi)
+        if "bolt tension" in take:  # bolted again at assembly: the bore the shells see is not the one read
+            bore = bore + hb.bolt_scatter * _normal(take["bolt tension"])
         upper, lower = scheme.pair_indices(*scheme.grade_indices(bore_read, journal_read))
         graded = upper >= 0
         walls = []

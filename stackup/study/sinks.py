@@ -15,7 +15,7 @@ import xarray as xr
 
 from .. import __version__
 from ..fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX
-from ..tolerances import _mean as process_mean
+from ..tolerances import process_mean
 from . import schema
 from . import summaries as summarise
 from .chain import ChunkResult, MechanicsProgress, ShellCounts
