@@ -186,7 +186,7 @@ def test_planner_table_is_whole_parts_that_add_up(plan4):
     made = grades["made, 10000 engines [shells]"]
     assert made.sum() == round(plan4.made.sum())  # apportioned: the grades add up to the shells made
     assert (abs(made - plan4.made) < 1).all()
-    assert (grades["needed, 10000 engines [shells]"] >= plan4.demanded).all()
+    assert (grades["needed, 10000 engines [shells]"] >= plan4.demanded - 1e-6).all()  # a whole number stays one
     assert (grades["stock per lot of 1000 engines [shells]"] >= plan4.lot_demand_mean).all()
     assert table.loc["all grades", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
     assert table.attrs["title"][0].startswith("How many shells of each grade to make and stock for 10,000 engines")
