@@ -2,6 +2,7 @@
 
 __version__ = "0.1.0"
 
+from . import design  # noqa: E402
 from .plan import plan  # noqa: E402
 from .rank import rank  # noqa: E402
 from .study import Study  # noqa: E402

@@ -30,6 +30,7 @@ from . import _validate as check
 from . import materials
 from .crank import BellakhdharLaw
 from .film import oil as film_oil
+from .film.heat import FEEDS, OilFeed
 from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
@@ -160,6 +161,37 @@ class CrankSpec:
 
 
 @dataclass(frozen=True)
+class WearSpec:
+    """Surfaces and wear of the main bearings, for the resource of Levanov et al. (2015) [SI].
+
+    ``critical_film`` is :math:`h_{lim,cr}`, at least the sum of the
+    roughnesses :math:`R_{z1} + R_{z2}` (eq. 3; the sum unless the file gives a
+    larger value); ``journal_rq`` and ``shell_rq`` are the RMS roughnesses of
+    the asperity contact (method 2), ``lining_material`` the shell's running
+    layer (:mod:`stackup.materials`).
+    """
+
+    journal_rz: float  # [m]
+    shell_rz: float  # [m]
+    journal_rq: float  # [m]
+    shell_rq: float  # [m]
+    critical_film: float  # h_lim,cr [m]
+    wear_limit: float  # limiting wear [m]
+    wear_rate: float  # wear speed gamma [m/s]
+    lining_material: str
+    roughness_source: str
+    wear_source: str
+
+
+#: Used when an engine file has no [wear] table: the paper's diesel (h_lim,cr = 1.9 um split between the surfaces).
+DEFAULT_WEAR = WearSpec(
+    journal_rz=0.8e-6, shell_rz=1.1e-6, journal_rq=0.2e-6, shell_rq=0.3e-6, critical_film=1.9e-6, wear_limit=30e-6,
+    wear_rate=1e-13, lining_material="aluminium",
+    roughness_source="default: h_lim,cr = 1.9 um of Levanov et al. 2015 split as journal Rz 0.8 um, shell Rz 1.1 um",
+    wear_source="default: Levanov et al. 2015, sec. 4 (30 um, 1e-13 m/s)")
+
+
+@dataclass(frozen=True)
 class Engine:
     """An engine's main bearings: how many, and how their parts are made."""
 
@@ -175,6 +207,8 @@ class Engine:
     clearance_window: tuple = (0.0, np.inf)  # design window of the operating clearance [m]
     clearance_window_source: str = ""
     life_target: float = 1000.0 * 3600.0  # [s]
+    wear: WearSpec = DEFAULT_WEAR  # surfaces and wear limits of the main bearings
+    oil_feed: OilFeed | None = None  # how the oil enters each main bearing (stackup.film.heat)
 
     @property
     def press_fit_limits(self):
@@ -332,7 +366,84 @@ def load_engine(name_or_path):
         press_fit=spec,
         crank=_crank(data, where, scale, bearings, path.parent) if "crank" in data else None,
         **_targets(data, where, scale, units, journal),
+        wear=_wear(data, where, scale),
+        oil_feed=_oil_feed(data, where, scale, spec.length),
     )
+
+
+def _wear(data, where, scale):
+    """The [wear] table: roughness (Rz, Rq) of journal and shell, lining, limiting wear and wear speed."""
+    if "wear" not in data:
+        return DEFAULT_WEAR
+    table = dict(data["wear"])
+    key = f"{where}, key wear"
+
+    def length(name):
+        if name not in table:
+            raise ValueError(f"{key}: missing '{name}'")
+        return float(check.positive(f"{key}.{name}", table.pop(name))) * scale
+
+    def text(name):
+        value = table.pop(name, "")
+        if not isinstance(value, str) or not value.strip():
+            raise ValueError(f"{key}: missing '{name}' (where the numbers come from)")
+        return value
+
+    rz1, rz2, rq1, rq2 = (length(n) for n in ("journal_rz", "shell_rz", "journal_rq", "shell_rq"))
+    for rz, rq, part in ((rz1, rq1, "journal"), (rz2, rq2, "shell")):
+        if rq >= rz:
+            raise ValueError(f"{key}.{part}_rq: {rq / scale!r} is not below {part}_rz {rz / scale!r}")
+    critical = rz1 + rz2
+    if "critical_film" in table:
+        given = length("critical_film")
+        if given < critical * (1 - 1e-12):
+            raise ValueError(f"{key}.critical_film: {given / scale!r} is below journal_rz + shell_rz = "
+                             f"{critical / scale!r} (Levanov et al. 2015, eq. 3: h_lim,cr > Rz1 + Rz2)")
+        critical = given
+    spec = WearSpec(journal_rz=rz1, shell_rz=rz2, journal_rq=rq1, shell_rq=rq2, critical_film=critical,
+                    wear_limit=length("wear_limit"), wear_rate=length("wear_rate"),
+                    lining_material=materials.get(table.pop("lining_material", "aluminium")).name,
+                    roughness_source=text("roughness_source"), wear_source=text("wear_source"))
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    return spec
+
+
+#: Groove width of the default feed, as a share of the bearing length.
+_DEFAULT_GROOVE_SHARE = 0.15
+
+
+def _oil_feed(data, where, scale, bearing_length):
+    """The [oil_feed] table: supply pressure [Pa] and the groove or hole (angles in deg, lengths in file units)."""
+    if "oil_feed" not in data:
+        return OilFeed("groove", 0.3e6, (0.5 * np.pi, 1.5 * np.pi), _DEFAULT_GROOVE_SHARE * bearing_length,
+                       source="default: 0.3 MPa into a 180 deg groove in the upper shell, 15 % of the bearing wide")
+    table = dict(data["oil_feed"])
+    key = f"{where}, key oil_feed"
+    kind = check.one_of(f"{key}.feed", table.pop("feed", None), FEEDS)
+    pressure = float(check.in_range(f"{key}.supply_pressure", table.pop("supply_pressure", None) or 0.0, 0.0, 2e7,
+                                    lo_open=True, unit=" Pa"))
+    source = table.pop("source", "")
+    if not isinstance(source, str) or not source.strip():
+        raise ValueError(f"{key}: missing 'source' (where the numbers come from)")
+    if kind == "groove":
+        arc = check.finite(f"{key}.groove_arc", table.pop("groove_arc", [90.0, 270.0]))
+        if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
+            raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
+                             f"start < end <= start + 360")
+        width = float(check.positive(f"{key}.groove_width", table.pop("groove_width", 0.0))) * scale
+        if width >= bearing_length:
+            raise ValueError(f"{key}.groove_width: {width / scale!r} is not below the bearing length")
+        feed = OilFeed(kind, pressure, tuple(float(a) for a in np.radians(arc)), width, source=source)
+    else:
+        diameter = float(check.positive(f"{key}.hole_diameter", table.pop("hole_diameter", 0.0))) * scale
+        if diameter >= bearing_length / 2:
+            raise ValueError(f"{key}.hole_diameter: {diameter / scale!r} is not below half the bearing length")
+        angle = float(check.finite(f"{key}.hole_angle", table.pop("hole_angle", 180.0)))
+        feed = OilFeed(kind, pressure, hole_angle=float(np.radians(angle)), hole_diameter=diameter, source=source)
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    return feed
 
 
 def _limits(table, key):

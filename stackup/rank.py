@@ -121,7 +121,7 @@ def _counted_window(ds):
     return tuple(float(v) for v in first.values)
 
 
-def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=1.9e-6):
+def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
     """Schemes of a study dataset ranked by robustness.
 
     Parameters
@@ -143,8 +143,8 @@ def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=1.9e-6):
     window : (float, float), optional
         Design window of the operating clearance [m]; default the engine's
         (the dataset's ``clearance_window``).
-    h_lim_cr : float
-        Critical film thickness [m].
+    h_lim_cr : float, optional
+        Critical film thickness [m]; default the engine's (the dataset's ``critical_film``).
 
     Returns
     -------
@@ -153,6 +153,7 @@ def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=1.9e-6):
         the metrics with their 95 % intervals (``*_ci`` columns).
     """
     counted = _counted_window(ds)
+    h_lim_cr = float(ds.critical_film.max()) if h_lim_cr is None else float(h_lim_cr)
     window = counted if window is None else tuple(window)
     if len(window) != 2 or not window[0] < window[1]:
         raise ValueError(f"window: {window!r} is not a (lower, upper) clearance window in m")

@@ -260,6 +260,7 @@ def _film_section(ds, out):
         "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
         "life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],
         "life median [h]": [f"{q[0]:.3g}" for q in film.life_median_h],
+        "method 2 life B10 [h]": [_fmt_q(q) for q in film.wear_chart_b10_h],
         f"engines < {target:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
     })
     per_bearing = bearing_summary(ds).reset_index()
@@ -271,10 +272,11 @@ def _film_section(ds, out):
                       life_table.add_prefix("life median [h], bearing ")], axis=1).reset_index()
     return _section(
         "Oil film and bearing life per bearing position",
-        f"Cycle-minimum film thickness of each bearing (`{ds.attrs['film_method_used']}` tier) at its effective oil "
-        "temperature; α is the share of the cycle with the film below the critical film h_lim,cr (above 20 % the "
-        "risk of scuffing rises sharply); life by Levanov et al. (2015) method 1. An engine's life is that of its "
-        f"weakest bearing; the life target is {target:,.0f} h (the engine's).", "",
+        f"Minimum film thickness of each bearing over the cycle (`{ds.attrs['film_method_used']}` tier) at its "
+        "effective oil temperature; α is the share of the cycle with the film below the critical film h_lim,cr = "
+        f"{float(ds.critical_film) * 1e6:.2f} µm (above 20 % the risk of scuffing rises sharply); life by Levanov et "
+        "al. (2015): method 1 on the film the methods section names, and method 2's wear chart. An engine's life "
+        f"is that of its weakest bearing; the life target is {target:,.0f} h (the engine's).", "",
         markdown_table(overall), "",
         _positions_text(ds), "",
         markdown_table(both), "",

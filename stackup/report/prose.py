@@ -255,7 +255,7 @@ def methods(ds):
             f"- **Oil film:** `{ds.attrs['film_method_used']}` tier"
             + (f" (largest h_min error against the Reynolds reference {100 * ds.attrs['film_tier_error']:.1f} %)"
                if "film_tier_error" in ds.attrs else "") + ".",
-            "- **Life:** Levanov et al. (2015) method 1; an engine's life is that of its weakest bearing.",
+            _life_method(ds, study),
         ]
     lines += [
         "- **Statistics:** 95 % intervals: order statistics for quantiles, Clopper–Pearson for shares, normal "
@@ -266,6 +266,22 @@ def methods(ds):
         lines.append("- **Summaries:** this dataset keeps streaming summaries: quantiles and histograms to "
                      "0.1 µm, exact counts.")
     return lines
+
+
+def _life_method(ds, study):
+    """The life methods, their film and constants with sources, in one bullet."""
+    wear = json.loads(ds.attrs["wear"])
+    film = study.get("life_film", "cycle-mean")
+    return (f"- **Life:** Levanov et al. (2015) method 1 (eqs. 4-5) on the {film.replace('-', ' ')} of the minimum "
+            "film over the cycle"
+            + (" (the paper's Table 1 pairs films of 5-9 µm with 5-17 % of the cycle in boundary friction, which only "
+               "the cycle mean allows)" if film == "cycle-mean" else " (a comparison: the paper implies the cycle mean)")
+            + f"; critical film h_lim,cr = {wear['critical_film_m'] * UM:.2f} µm from the journal's and the shell's "
+            f"roughness (Rz {wear['journal_rz_m'] * UM:.2f} + {wear['shell_rz_m'] * UM:.2f} µm, eq. 3; "
+            f"{wear['roughness_source'].strip()}), limiting wear {wear['wear_limit_m'] * UM:.0f} µm and wear speed "
+            f"{wear['wear_rate_m_per_s']:.0e} m/s ({wear['wear_source'].strip()}). Method 2 (eqs. 6-7): a wear chart "
+            "over the bearing surface where the film is below h_lim,cr, with the asperity contact pressure of "
+            "Greenwood and Tripp. An engine's life is that of its weakest bearing.")
 
 
 def limits_of_validity(ds):

@@ -28,6 +28,7 @@ from .. import _validate as check
 from .._random import seed_sequence
 from ..crank.cycle import METHODS as CRANK_METHODS
 from ..fit import METHODS as FIT_METHODS
+from ..life import FILM_STATISTICS
 from ..parts import SAMPLERS
 from . import chain, summaries
 from .context import context, fingerprint
@@ -91,6 +92,11 @@ class Study:
         for the cheapest tier whose h_min error is within ``film_error``.
     film_error : float
         Largest h_min error against the Reynolds tier that "auto" accepts [-].
+    life_film : {"cycle-mean", "cycle-minimum"}
+        The film Levanov's method 1 reads (:func:`stackup.life.cycle_film`):
+        the cycle mean of the minimum film, as the paper's results imply, or
+        the cycle minimum (a comparison: lives of hours for any bearing that
+        touches boundary friction).
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
     sampler : {"mc", "qmc"}
@@ -132,6 +138,7 @@ class Study:
     crank_method: str = "bearing-law"
     film_method: str = "finite"
     film_error: float = 0.05
+    life_film: str = "cycle-mean"
     progress: bool | None = None
     sampler: str = "mc"
     scenario: dict | None = None
@@ -153,6 +160,7 @@ class Study:
         check.one_of("crank_method", self.crank_method, CRANK_METHODS)
         check.one_of("film_method", self.film_method, ("short", "finite", "reynolds", "auto"))
         self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
+        check.one_of("life_film", self.life_film, FILM_STATISTICS)
         self.failure_limit = float(check.in_range("failure_limit", self.failure_limit, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
             raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
@@ -164,7 +172,7 @@ class Study:
         seed_sequence(self.seed)
         self.engine = str(self.engine)
         if self.window is not None:
-            self.window = _window(self.window)
+            self.window = check.clearance_window("window", self.window)
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
@@ -223,18 +231,6 @@ class Study:
                 out.add(result)
                 bar.update(1)
         return out.result()
-
-
-def _window(window):
-    """A design window of the operating clearance as (lower, upper) in m, or a ValueError saying why not."""
-    try:
-        lo, hi = (float(v) for v in window)
-    except (TypeError, ValueError):
-        raise ValueError(f"window: {window!r} is not a (lower, upper) pair of clearances in m") from None
-    if not 0.0 < lo < hi < 1e-3:
-        raise ValueError(f"window: ({lo!r}, {hi!r}) m is not a clearance window; give 0 < lower < upper < 1 mm "
-                         "in metres, e.g. (45e-6, 65e-6)")
-    return lo, hi
 
 
 __all__ = ["ISO_SCHEMES", "Study", "WORKER_MALLOC", "open_study"]

@@ -19,8 +19,10 @@ from ..assembly import ASSEMBLED, assemble
 from ..crank.cycle import engine_cycles, worst_status
 from ..film.cycle import bearing_films
 from ..fit import press_fit
+from .. import materials
+from ..contact import composite_roughness, contact_modulus
 from ..life import alpha as boundary_share
-from ..life import levanov_method1
+from ..life import cycle_film, levanov_method1, levanov_method2
 from ..parts import BlockParts, draw_lot
 from ..stats import mean_half_width
 from .._random import lot_generator
@@ -151,7 +153,7 @@ def run_chunk(ctx, study, first, progress=None):
         stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
         rows = slice(a - e0, stop - e0)
         for i, (result, fit) in enumerate(stages):
-            for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method).items():
+            for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film).items():
                 if name in mech:
                     mech[name][i, rows] = value
         a = state.next = stop
@@ -216,7 +218,7 @@ def _press_fit(engine, parts, assembly, method):
     return out
 
 
-def _mechanics(ctx, parts, assembly, fit, rows, crank_method):
+def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
     Engines with a bearing not assembled are skipped (``not_computed``).
@@ -232,14 +234,15 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method):
         values = mechanical_chain(engine, clearance=fit["clearance_operating"][rows][built],
                                   journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
                                   journal_eccentricity=parts.journal_eccentricity[rows][built],
-                                  crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method)
+                                  crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method,
+                                  life_film=life_film)
         for name, value in values.items():
             out[name][built] = value
     return out
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method):
+                     film_method, life_film="cycle-mean"):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
     Parameters
@@ -254,19 +257,36 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         [deg]
     crank_method, film_method : str
         Tiers of the crankshaft supports and the steady film.
+    life_film : {"cycle-mean", "cycle-minimum"}
+        The film statistic Levanov's method 1 reads (:func:`stackup.life.cycle_film`).
     """
     r = engine_cycles(engine.crank, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
                       clearance=clearance, crank_angle=crank_angle, method=crank_method)
-    films = bearing_films(engine.crank, r.reactions, crank_angle, clearance=clearance, journal_d=journal_d,
-                          steady_method=film_method)
-    h_min = films.h_min.min(axis=-1)
+    films = bearing_films(engine.crank, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
+                          journal_d=journal_d, steady_method=film_method)
+    wear = engine.wear
+    journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
+    chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
+                            speed=engine.crank.speed, bearing_radius=np.asarray(journal_d) / 2,
+                            h_lim_cr=wear.critical_film, roughness=composite_roughness(wear.journal_rq, wear.shell_rq),
+                            contact_modulus=contact_modulus(journal.modulus, journal.poisson, lining.modulus,
+                                                            lining.poisson), wear_limit=wear.wear_limit)
+    life = levanov_method1(cycle_film(films.h_min, statistic=life_film), h_lim_cr=wear.critical_film,
+                           wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
     return {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
             "crank_status": worst_status(r.status),
-            "h_min": h_min,
-            "h_min_mean": films.h_min.mean(axis=-1),
-            "alpha": boundary_share(films.h_min),
-            "life": levanov_method1(np.maximum(h_min, 1e-12)).life,
+            "h_min": films.h_min.min(axis=-1),
+            "h_min_mean": cycle_film(films.h_min, statistic="cycle-mean"),
+            "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
+            "life": life.life,
+            "life_wear_chart": chart.life,
+            "wear_rate": chart.wear_rate,
             "film_temperature": films.temperature,
+            "friction_power": films.friction_power,
+            "oil_flow": films.oil_flow,
+            "feed_flow": films.feed_flow,
+            "heat_status": films.heat_status,
+            "film_valid": films.valid,
             "load_history": np.moveaxis(r.reactions, 1, 2),
             "h_min_history": films.h_min}
 

@@ -25,6 +25,9 @@ STAGES = {
     "crankshaft": ("engines of the mechanical chain",
                    "the crankshaft beam did not converge: check the engine's [crank] section (spans, section "
                    "inertias, loads, units) and its [bearing_law]"),
+    "heat balance": ("bearings of the mechanical chain",
+                     "no oil temperature balances the film's friction below 250 degC: check the engine's [oil] and "
+                     "[oil_feed] (supply pressure, groove or hole) and the bearing's clearance and width"),
 }
 #: Fewest engines or bearings counted before a share can stop a run.
 MIN_COUNTED = 20
@@ -37,14 +40,21 @@ class FailureCount:
     failed: dict = field(default_factory=lambda: {stage: 0 for stage in STAGES})
     counted: dict = field(default_factory=lambda: {stage: 0 for stage in STAGES})
 
-    def add(self, status_counts, crank_status):
-        """Add bearings per assembly status (codes of :data:`stackup.assembly.STATUS`) and crank status codes."""
+    def add(self, status_counts, crank_status, heat_status=None):
+        """Add bearings per assembly status (:data:`stackup.assembly.STATUS` codes), crank and heat status codes.
+
+        ``heat_status`` (engines, bearings) of the engines the crankshaft stage ran on, or None.
+        """
         counts = np.asarray(status_counts)  # a stock-out is a result of the shell supply, not a failure
         self.failed["grading"] += int(counts[NOT_GRADED])
         self.counted["grading"] += int(counts.sum() - counts[BLOCK_SCRAPPED] - counts[CRANK_SCRAPPED])
         crank = np.asarray(crank_status)
         self.failed["crankshaft"] += int(np.count_nonzero(np.isin(crank, _CRANK_FAILED)))
         self.counted["crankshaft"] += int(np.count_nonzero(crank != NOT_COMPUTED))
+        if heat_status is not None:
+            heat = np.asarray(heat_status)[np.asarray(crank) != NOT_COMPUTED]
+            self.failed["heat balance"] += int(np.count_nonzero(heat != 0))
+            self.counted["heat balance"] += int(heat.size)
         return self
 
     def merge(self, other):
@@ -58,7 +68,7 @@ class FailureCount:
     def of_chunk(cls, result):
         """The failures of a :class:`~stackup.study.chain.ChunkResult`."""
         counts = np.bincount(result.per_engine["status"].ravel(), minlength=len(STATUS))
-        return cls().add(counts, result.per_mech["crank_status"])
+        return cls().add(counts, result.per_mech["crank_status"], result.per_mech["heat_status"])
 
     @classmethod
     def of_dataset(cls, ds):
@@ -67,7 +77,8 @@ class FailureCount:
             counts = ds.status_count.sum("scheme").values
         else:
             counts = np.bincount(ds.status.values.ravel(), minlength=len(STATUS))
-        return cls().add(counts, ds.crank_status.values)
+        return cls().add(counts, ds.crank_status.values,
+                         ds.heat_status.values if "heat_status" in ds else None)
 
     def shares(self):
         """Share of failures per stage (NaN where nothing was counted)."""

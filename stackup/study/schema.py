@@ -17,6 +17,7 @@ import xarray as xr
 
 from ..assembly import NOT_GRADED, STATUS
 from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+from ..film.heat import STATUS as HEAT_STATUS
 
 SED = ("scheme", "engine", "bearing")
 SMB = ("scheme", "mech_engine", "bearing")
@@ -62,11 +63,20 @@ class Var:
 #: Per-bearing results of the mechanical chain (crankshaft, film, life).
 MECHANICS = {
     "reaction_max": Var(SMB, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
-    "h_min": Var(SMB, "m", "minimum oil film thickness over the engine cycle (quasi-static)"),
-    "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness"),
-    "alpha": Var(SMB, "1", "share of the cycle with the film below h_lim_cr (boundary friction)"),
-    "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 with the cycle-minimum film"),
-    "film_temperature": Var(SMB, "degC", "effective oil film temperature (isothermal heat balance)"),
+    "h_min": Var(SMB, "m", "minimum oil film thickness over the engine cycle (the film tier of film_method_used)"),
+    "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness (the film of Levanov's method 1)"),
+    "alpha": Var(SMB, "1", "share of the cycle with the film below the critical film (boundary friction)"),
+    "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 on the film the study names (life_film)"),
+    "life_wear_chart": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 2 (wear chart over the bearing "
+                                     "surface, Greenwood-Tripp asperity contact; inf: never in boundary friction)"),
+    "wear_rate": Var(SMB, "m s-1", "wear speed of the deepest point of the bearing surface (method 2)"),
+    "film_temperature": Var(SMB, "degC", "effective oil film temperature (heat balance with feed and side flow)"),
+    "friction_power": Var(SMB, "W", "friction power of the film, cycle mean"),
+    "oil_flow": Var(SMB, "m3 s-1", "oil flow through the bearing (feed and side flow), cycle mean"),
+    "feed_flow": Var(SMB, "m3 s-1", "pressure-driven feed flow through the groove or hole, cycle mean"),
+    "heat_status": Var(SMB, "1", "status of the bearing's heat balance", HEAT_STATUS, "i1", 0),
+    "film_valid": Var(SMB, "1", "the film tier was inside its checked range at every crank angle", dtype="?",
+                      fill=False),
     "crank_status": Var(("scheme", "mech_engine"), "1", "status of the crankshaft beam stage", CYCLE_STATUS, "i1",
                         NOT_COMPUTED),
 }
@@ -186,6 +196,8 @@ DESIGN = {
     "crush_height_limits": Var(("bound",), "m", "drawing limits of the crush height of a half shell"),
     "design_contact_pressure_min": Var((), "Pa", "least contact pressure between shell back and housing in service"),
     "design_shell_stress_max": Var((), "Pa", "largest compressive hoop stress of the shell wall"),
+    "critical_film": Var((), "m", "critical film thickness h_lim,cr = Rz journal + Rz shell (Levanov et al. 2015, "
+                                  "eq. 3): below it, boundary friction"),
 }
 
 
@@ -193,7 +205,8 @@ def design_variables(engine, *, contact_pressure_min, shell_stress_max):
     """The :data:`DESIGN` variables of ``engine`` (its window, life target, crush limits and press-fit limits)."""
     values = {"clearance_window": engine.clearance_window, "life_target": engine.life_target,
               "crush_height_limits": (engine.shell_wall.crush.lo, engine.shell_wall.crush.hi),
-              "design_contact_pressure_min": contact_pressure_min, "design_shell_stress_max": shell_stress_max}
+              "design_contact_pressure_min": contact_pressure_min, "design_shell_stress_max": shell_stress_max,
+              "critical_film": engine.wear.critical_film}
     return {name: var(np.asarray(values[name], dtype=float)) for name, var in DESIGN.items()}
 
 
