@@ -11,7 +11,9 @@ temperatures the fit is checked at (``cold_temperature``,
 ``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
 operating-clearance window (absolute, or ``relative_clearance`` C/D of the
 journal) with its source. Built-in engines ship in ``stackup/data/engines``;
-a user's file works the same way, by path.
+a user's file works the same way, by path or by name from a folder named in
+the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
+``PATH``; a user's file replaces a built-in one of the same name).
 """
 
 from __future__ import annotations
@@ -217,21 +219,37 @@ def _builtin_dir():
     return Path(str(resources.files("stackup") / "data" / "engines"))
 
 
+def _search_dirs():
+    dirs = [Path(p) for p in os.environ.get("STACKUP_ENGINE_PATH", "").split(os.pathsep) if p]
+    return [*dirs, _builtin_dir()]
+
+
+def engine_locations():
+    """Where :func:`load_engine` finds each engine by name: {name: path}, the user's folders first."""
+    found = {}
+    for folder in _search_dirs():
+        if folder.is_dir():
+            for path in sorted(folder.glob("*.toml")):
+                found.setdefault(path.stem, path)
+    return found
+
+
 def available_engines():
-    """Names of the built-in engines."""
-    return sorted(p.stem for p in _builtin_dir().glob("*.toml"))
+    """Names of the engines :func:`load_engine` finds by name: built-in ones and the user's (``STACKUP_ENGINE_PATH``)."""
+    return sorted(engine_locations())
 
 
 def engine_path(name_or_path):
     """The file of a built-in engine name (``"iso-example"``) or of a path."""
     text = os.fspath(name_or_path)
     path = Path(text)
-    if path.exists() or path.suffix == ".toml" or os.sep in text:
+    if path.is_file() or path.suffix == ".toml" or os.sep in text:
         return path
-    builtin = _builtin_dir() / f"{text}.toml"
-    if not builtin.is_file():
-        raise ValueError(f"engine: {text!r} is not a built-in engine ({', '.join(available_engines())}) nor a file")
-    return builtin
+    found = engine_locations().get(text)
+    if found is None:
+        raise ValueError(f"engine: {text!r} is not a built-in engine nor one in STACKUP_ENGINE_PATH "
+                         f"({', '.join(available_engines())}) nor a file")
+    return found
 
 
 def engine_files(name_or_path):

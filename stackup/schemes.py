@@ -458,13 +458,19 @@ def _search_dirs():
     return [*dirs, _builtin_dir()]
 
 
+def files():
+    """Where :func:`load` finds each scheme by name: {name: path}, the user's folders first."""
+    found = {}
+    for folder in _search_dirs():
+        if folder.is_dir():
+            for path in sorted(folder.glob("*.toml")):
+                found.setdefault(path.stem, path)
+    return found
+
+
 def available():
     """Names of the schemes that :func:`load` finds by name, shipped ones and the user's."""
-    names = set()
-    for d in _search_dirs():
-        if d.is_dir():
-            names.update(p.stem for p in d.glob("*.toml"))
-    return sorted(names)
+    return sorted(files())
 
 
 def load(name_or_path):

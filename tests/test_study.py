@@ -165,7 +165,7 @@ def test_cli_compare_writes_dataset_and_report(tmp_path, capsys):
 
 
 def test_cli_reports_bad_input_as_an_error(capsys):
-    assert main(["compare", "--n", "10", "--schemes", "iso13778-9"]) == 2
+    assert main(["compare", "--n", "100", "--schemes", "iso13778-9"]) == 2
     assert "is not a known scheme" in capsys.readouterr().err
 
 
