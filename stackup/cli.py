@@ -52,7 +52,7 @@ def _compare(args, state):
     import stackup
 
     from .engines import load_engine
-    from .io import save_comparison
+    from .io import open_comparison, save_comparison
     from .output import prepare_folder
     from .report import clearance_summary, write_report
     from .scenarios import DECLARED
@@ -79,8 +79,9 @@ def _compare(args, state):
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
         data = save_comparison(result, staged.staging / "compare.nc")
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
-        write_report(result.dataset, staged.staging, scenarios=result.scenarios, sensitivity=result.sensitivity,
-                     tails=result.tails, dataset_file=data.name)
+        saved = open_comparison(data)  # the report reads what was saved, nothing else
+        write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
+                     tails=saved.tails, dataset_file=data.name)
         folder = staged.commit()
     except BaseException:
         staged.discard()
@@ -344,6 +345,9 @@ def parser():
                              f"variable {variable} add (a user's file of the same name replaces a built-in one). "
                              f"Any {name[:-1]} file also works by its path.")
         lst.set_defaults(func=func)
+
+    from .design_cli import add_parser as add_design_parser
+    add_design_parser(sub).formatter_class = _Formatter
 
     store = sub.add_parser("store", formatter_class=_Formatter, help="check or repair a study's Zarr store",
                            description="A study streamed into a Zarr store (Study(store=PATH)) can be checked for "

@@ -38,7 +38,7 @@ def add_parser(subparsers):
     return p
 
 
-def run(args):
+def run(args, state=None):
     """Design the scheme of parsed ``args``, write it, print its explanation."""
     from .design import design
     from .scenarios import DECLARED
