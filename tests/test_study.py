@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 import stackup.schemes as schemes
 from stackup.assembly import ASSEMBLED, BLOCK_SCRAPPED, CRANK_SCRAPPED, SHELL_STOCKOUT, STATUS
 from stackup.cli import main
+from stackup.engines import load_engine
 from stackup.io import open_dataset, save
 from stackup.study import ISO_SCHEMES, Study
 
@@ -301,3 +302,19 @@ def test_a_stage_failing_on_many_engines_stops_the_run_naming_stage_share_and_ca
         small(engine_file(), schemes=(str(wrong),), n_engines=120, pilot_engines=2000).run()
     counts = FailureCount.of_dataset(small(engine_file(), schemes=(str(wrong),), failure_limit=1.0).run())
     assert 0.05 < counts.shares()["grading"] < 0.2 and "grading: failed on" in counts.lines()[0]
+
+
+def test_press_fit_checks_use_the_engines_limits_at_every_declared_temperature():
+    engine = load_engine("iso-example-aluminium")
+    ds = Study(engine="iso-example-aluminium", n_engines=300, mechanics_engines=0, progress=False,
+               pilot_engines=2000, schemes=("iso13778-4",)).run()
+    limits = engine.press_fit_limits
+    assert float(ds.design_contact_pressure_min) == limits.contact_pressure_min
+    assert float(ds.design_shell_stress_max) == limits.shell_stress_max
+    assert ds.attrs["press_fit_limits_source"] == limits.source != ""
+    np.testing.assert_array_equal(ds.press_fit_temperatures.values, engine.press_fit.temperatures)
+    ok = ds.status.values == 0
+    # an aluminium housing shrinks onto the steel backs when cold: the stress check bites there, well above
+    # the stress at the operating temperature (Kopeliovich, sec. 6: about 100 MPa more at 80 K colder)
+    extra = (ds.shell_stress_highest.values - ds.shell_stress.values)[ok]
+    assert extra.min() > 80e6

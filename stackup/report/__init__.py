@@ -22,7 +22,7 @@ from ..assembly import STATUS
 from ..rank import MIN_COUNTED
 from . import figures, prose
 from .html import anchor, markdown_to_html
-from .tables import (bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
+from .tables import (UM, bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
                      kept_summaries)
 
 #: Sections in report order (their headings; the verdict comes before them).
@@ -210,18 +210,30 @@ def _fit_section(ds):
         "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
         "operating P0.135–P99.865 % [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(fit.operating_p00135_um, fit.operating_p99865_um)],
         "swell [µm]": fit.swell_mean_um.map("{:.2f}".format),
-        "min p [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
-        "max σ [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
+        "min p, all temperatures [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
+        "max σ, all temperatures [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
         f"p < {p_min / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.low_pressure_ppm, fit.low_pressure_ci_ppm)],
         f"σ > {s_max / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.high_stress_ppm, fit.high_stress_ci_ppm)],
         "loss of fit [ppm]": fit.loss_of_fit_ppm.map("{:.0f}".format),
     })
+    temperatures = ", ".join(f"{t:.0f}" for t in ds.press_fit_temperatures.values)
+    crush = ds.crush_height_limits.values * 1e3
+    window = ds.clearance_window.values * UM
+    sources = [f"- contact pressure at least {p_min / 1e6:.0f} MPa and shell compression at most "
+               f"{s_max / 1e6:.0f} MPa: {ds.attrs.get('press_fit_limits_source') or 'no source given'};",
+               f"- crush height {crush[0]:.3f}–{crush[1]:.3f} mm: "
+               f"{ds.attrs.get('crush_height_source') or 'no source given'};",
+               f"- operating-clearance window {window[0]:.1f}–{window[1]:.1f} µm: "
+               f"{ds.attrs.get('clearance_window_source') or 'no source given'}."]
     return _section(
         "Operating clearance: press fit, housing swell and temperature",
-        f"The shells' crush height presses them into the housing; the housing bore swells and the clearance "
-        f"changes with temperature. Design limits: contact pressure at least {p_min / 1e6:.0f} MPa, shell "
-        f"compression at most {s_max / 1e6:.0f} MPa (the methods section gives the housing and temperatures).", "",
-        markdown_table(table))
+        "The shells' crush height presses them into the housing; the housing bore swells and the clearance "
+        "changes with temperature. The clearance is that at the operating temperature; the two press-fit checks "
+        f"are made at every declared temperature ({temperatures} °C: cold start, assembly, operating, hot), "
+        "because they bite at different ends: the shell stress where the housing has shrunk most onto the steel "
+        "backs (cold for a light-alloy housing), the contact pressure where it has grown most (hot for aluminium, "
+        "cold for a cast iron that expands less than steel). The limits and where they come from:", "",
+        *sources, "", markdown_table(table))
 
 
 def _crank_section(ds, n_mech):

@@ -191,7 +191,8 @@ class Study:
         result = chain.run_chunk(ctx, self, first, progress)
         failed = FailureCount.of_chunk(result)
         if self.keep == "summaries":
-            result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window)
+            result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window,
+                                            limits=ctx.engine.press_fit_limits)
         result.failures = failed
         return result
 
