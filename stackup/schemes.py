@@ -354,6 +354,10 @@ class Scheme:
         path.write_text(_toml_text(self))
         return path
 
+    def to_toml_text(self):
+        """The text :meth:`to_toml` writes."""
+        return _toml_text(self)
+
     def clearance_limits(self):
         r"""Worst-case nominal diametral clearance (c_min, c_max) [m], without housing swell.
 

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 import stackup.schemes as schemes
 from stackup.assembly import ASSEMBLED, BLOCK_SCRAPPED, CRANK_SCRAPPED, SHELL_STOCKOUT, STATUS
 from stackup.cli import main
-from stackup.engines import load_engine
+from stackup.engines import engine_path, load_engine
 from stackup.io import open_dataset, save
 from stackup.study import ISO_SCHEMES, Study
 
@@ -171,7 +171,7 @@ def test_cli_reports_bad_input_as_an_error(capsys):
 
 
 def test_operating_clearance_is_the_press_fit_of_the_stored_parts(engine_file):
-    from stackup.engines import load_engine
+    from stackup.engines import engine_path, load_engine
     from stackup.fit import press_fit
 
     engine = engine_file()
@@ -318,3 +318,24 @@ def test_press_fit_checks_use_the_engines_limits_at_every_declared_temperature()
     # the stress at the operating temperature (Kopeliovich, sec. 6: about 100 MPa more at 80 K colder)
     extra = (ds.shell_stress_highest.values - ds.shell_stress.values)[ok]
     assert extra.min() > 80e6
+
+
+def test_a_dataset_reruns_identically_with_no_input_file_present(tmp_path):
+    engine = tmp_path / "my-engine.toml"
+    engine.write_text(engine_path("iso-example").read_text())
+    scheme_file = tmp_path / "mine.toml"
+    schemes.load("iso13778-5").to_toml(scheme_file)
+    designed = schemes.load("iso13778-4")  # a Scheme object, as the designer gives
+    kw = dict(n_engines=400, mechanics_engines=2, crank_angle_step=12.0, progress=False, pilot_engines=1000)
+    ds = Study(engine=str(engine), schemes=(str(scheme_file), designed), **kw).run()
+    stored = json.loads(ds.attrs["input_files"])
+    assert stored["engine"]["text"] == engine.read_text() and set(stored["schemes"]) == {str(scheme_file), "iso13778-4"}
+    engine.unlink()
+    scheme_file.unlink()
+    xr.testing.assert_identical(Study.from_dataset(ds).run(), ds)
+    # an edited engine text is another study: the rerun follows the stored text, not a file of the same name
+    edited = json.loads(ds.attrs["input_files"])
+    edited["engine"]["text"] = edited["engine"]["text"].replace("shared = 0.3", "shared = 0.0", 1)
+    assert edited != stored
+    other = Study.from_dataset(ds, files=edited).run()
+    assert not other.housing_bore.equals(ds.housing_bore)
