@@ -67,15 +67,16 @@ def _compare(args, state):
     load_engine(args.engine)  # a bad engine or scheme is said before any folder is touched
     for scheme in schemes:
         load_scheme(scheme)
+    design = None if args.no_design else {}
     identity = {"engine": args.engine, "schemes": list(schemes), "n_engines": n, "seed": args.seed,
-                "window": list(window) if window else None, "scenarios": list(scenarios)}
+                "window": list(window) if window else None, "scenarios": list(scenarios), "design": design}
     existed = os.path.isdir(out)
     staged = prepare_folder(out, identity=identity, force=args.force)
     state.saved = f"nothing was saved: {out} {'is as it was' if existed else 'was not created'}"
     log = _Log(state)
     try:
         result = stackup.compare(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed,
-                                 scenarios=scenarios, log=log, window=window)
+                                 scenarios=scenarios, design=design, log=log, window=window)
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
         data = save_comparison(result, staged.staging / "compare.nc")
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
@@ -306,6 +307,9 @@ def parser():
     cmp_.add_argument("--quick", action="store_true",
                       help=f"a small, fast run: {QUICK_ENGINES} engines, written to {QUICK_OUT}")
     cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
+    cmp_.add_argument("--no-design", action="store_true",
+                      help="compare only the schemes given, without a scheme designed for the engine and window "
+                           "(`stackup design`)")
     cmp_.add_argument("--force", action="store_true",
                       help="replace another run in the output folder (the same run again is always replaced)")
     cmp_.set_defaults(func=_compare)

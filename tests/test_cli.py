@@ -21,9 +21,9 @@ from stackup.study import Study, open_study
 from stackup.study.damage import DamagedStore
 
 # a small comparison with scenarios (a minute here; the tests that use it stop it at once)
-SMALL_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "iso13778-6"]
+SMALL_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "iso13778-6", "--no-design"]
 # the smallest comparison, with its own design window: about 20 s here
-WINDOW_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "--no-scenarios",
+WINDOW_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "--no-scenarios", "--no-design",
                   "--window", "30", "45"]
 
 

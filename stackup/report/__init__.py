@@ -13,6 +13,7 @@ streaming summaries), the scenario datasets and the sensitivity dataset of a
 from __future__ import annotations
 
 import json
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +27,7 @@ from .tables import (UM, bearing_summary, clearance_summary, crank_summary, film
                      kept_summaries)
 
 #: Sections in report order (their headings; the verdict comes before them).
-SECTIONS = ("Methods and assumptions", "Limits of validity", "Ranking", "What drives the spread",
+SECTIONS = ("Methods and assumptions", "Limits of validity", "Ranking", "Designed scheme", "What drives the spread",
             "Clearance per scheme", "Operating clearance: press fit, housing swell and temperature",
             "Bearing loads over the engine cycle", "Oil film and bearing life per bearing position",
             "Assembly, scrap and stock", "Planning: shells per grade", "Shell grade usage", "Parameters")
@@ -94,11 +95,13 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
         + (" (streaming summaries: quantiles and histograms to 0.1 µm)." if kept_summaries(ds) else "."),
         "",
         *prose.verdict(ds, ranking, scenario_rankings),
-        "Contents: " + " · ".join(f"[{title}](#{anchor(title)})" for title in SECTIONS),
+        "Contents: " + " · ".join(f"[{title}](#{anchor(title)})" for title in SECTIONS
+                                  if title != "Designed scheme" or "design" in ds.attrs),
         "",
         *_section("Methods and assumptions", *prose.methods(ds)),
         *_section("Limits of validity", *prose.limits_of_validity(ds)),
         *_ranking_section(ds, ranking, scenarios),
+        *_design_section(ds, ranking),
         *_sensitivity_section(sensitivity, ranking, out),
         *_clearance_section(ds, summary, out),
         *_fit_section(ds),
@@ -116,6 +119,60 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
     path.write_text(text)
     (out / "report.html").write_text(markdown_to_html(text, out))
     return path
+
+
+def _grades_um(gradeset):
+    """A dimension's grades as 'label lo–hi' in µm, or 'ungraded'."""
+    if not gradeset.graded:
+        return "ungraded"
+    lo0 = gradeset.limits[0]
+    return ", ".join(f"{lab} {(lo - lo0) * UM:+.1f}…{(hi - lo0) * UM:+.1f}"
+                     for lab, lo, hi in zip(gradeset.labels, gradeset.lo, gradeset.hi))
+
+
+def _design_section(ds, ranking):
+    """The designed scheme beside the ISO scheme it started from: what changed, why, and how it did."""
+    if "design" not in ds.attrs:
+        return []
+    from ..schemes import from_dict
+    from ..study.inputs import load_inputs
+
+    record = json.loads(ds.attrs["design"])
+    name, start = ds.attrs["designed_scheme"], record["start"]
+    params = json.loads(ds.attrs["study"])
+    _, loaded = load_inputs(json.loads(ds.attrs["input_files"]), params["schemes"])
+    designed = {s.name: s for s in loaded}[name]
+    started = from_dict(tomllib.loads(record["start_text"]), path=start)
+    rows = [{"dimension": label, f"{start} (start)": _grades_um(getattr(started, dim)), name: _grades_um(getattr(designed, dim))}
+            for label, dim in (("housing bore", "housing"), ("journal", "journal"), ("shell wall", "shell"))]
+    samples = list(record["outside"])
+    shares = pd.DataFrame({
+        "design sample": samples,
+        f"{start} [ppm]": [f"{1e6 * record['start_outside'].get(k, np.nan):.1f}" for k in samples],
+        f"{name} [ppm]": [f"{1e6 * record['outside'][k]:.1f}" for k in samples],
+    })
+
+    def outcome(scheme):
+        row = ranking.loc[scheme]
+        return (f"rank {row['rank']}, {_fmt_ci(row.outside_window_ppm, row.outside_window_ppm_ci, 1)} ppm outside "
+                f"the window{'' if row.outside_window_source == 'counted' else ' †'}")
+
+    lines = [
+        f"`{name}` was designed for this engine and window by `stackup.design` before the study "
+        f"({record['evaluations']:,} candidate limit sets, {record['seconds']:.0f} s), starting from `{start}`, the "
+        "ISO scheme with the lowest objective on the design sample. The study above then judged it on its own "
+        f"engines like every other scheme: {outcome(name)}"
+        + (f", against {outcome(start)} for `{start}`." if start in ranking.index else
+           f" (`{start}` is not among the schemes compared here)."),
+        "",
+        "What changed (grade limits in µm from the lower drawing limit of each dimension):", "",
+        markdown_table(pd.DataFrame(rows)), "",
+    ]
+    lines += ["Share outside the window on the design sample (the designer's own engines, common random numbers), "
+              "nominal and under each declared scenario:", "", markdown_table(shares), "",
+              "Why, in the designer's words (also the comments of the scheme text stored in the dataset's "
+              "`input_files`):", "", "```text", *record["notes"], "```"]
+    return _section("Designed scheme", *lines)
 
 
 def _ranking_section(ds, ranking, scenarios):
