@@ -95,7 +95,9 @@ class Table:
         self.valid.append(name)
         if name not in self.data:
             if required:
-                raise ValueError(f"{self._at(name)}: missing")
+                near = difflib.get_close_matches(name, [str(k) for k in self.data], n=1)
+                hint = f" (is {near[0]!r} a misspelling of it?)" if near else ""
+                raise ValueError(f"{self._at(name)}: missing{hint}")
             return default
         return self.data[name]
 
