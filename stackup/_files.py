@@ -13,6 +13,7 @@ read, listing the valid ones, so a typo never runs silently with a default.
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from pathlib import Path
@@ -94,7 +95,9 @@ class Table:
         self.valid.append(name)
         if name not in self.data:
             if required:
-                raise ValueError(f"{self._at(name)}: missing")
+                near = difflib.get_close_matches(name, [str(k) for k in self.data], n=1)
+                hint = f" (is {near[0]!r} a misspelling of it?)" if near else ""
+                raise ValueError(f"{self._at(name)}: missing{hint}")
             return default
         return self.data[name]
 
@@ -133,6 +136,15 @@ class Table:
         if below or above:
             lb, rb = "(" if lo_open else "[", ")" if hi_open else "]"
             raise ValueError(f"{self._at(name)}: {value:g}{unit} is outside the valid range {lb}{lo:g}, {hi:g}{rb}{unit}")
+        return value
+
+    def flag(self, name, default=None, *, required=False):
+        """A true/false value (a number or the text "false" is refused, never read as true)."""
+        value = self.get(name, default, required=required)
+        if value is None:
+            return None
+        if not isinstance(value, bool):
+            raise ValueError(f"{self._at(name)}: {value!r} is {_type_name(value)}, not true/false")
         return value
 
     def integer(self, name, default=None, *, required=False, lo=0, hi=10**12):
@@ -188,8 +200,11 @@ class Table:
         if unknown:
             where = f"{self.where}, key {self.path}" if self.path else self.where
             plural = "s" if len(unknown) > 1 else ""
+            valid = sorted(set(self.valid))
+            near = [m for k in unknown for m in difflib.get_close_matches(str(k), valid, n=1)]
+            hint = f"; did you mean {', '.join(map(repr, near))}?" if near else ""
             raise ValueError(f"{where}: unknown key{plural} {', '.join(map(repr, unknown))}; valid keys: "
-                             f"{', '.join(sorted(set(self.valid)))}")
+                             f"{', '.join(valid)}{hint}")
 
 
 def units_of(table):

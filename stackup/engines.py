@@ -287,6 +287,22 @@ def load_engine(name_or_path, *, files=None):
     return _engine(Table(parse_toml(files["text"], where=where), where), name=files["name"], extra=files["extra"])
 
 
+def _numbers(t, name, *, required=False, default=None):
+    """A list of numbers (or of lists of numbers) of table ``t`` as read; text, true/false and tables refused."""
+    value = t.get(name, default, required=required)
+    if value is None:
+        return None
+
+    def ok(v, depth):
+        if isinstance(v, list) and depth < 2:
+            return all(ok(x, depth + 1) for x in v)
+        return depth > 0 and isinstance(v, (int, float)) and not isinstance(v, bool)
+
+    if not ok(value, 0):
+        raise ValueError(f"{t.where}, key {t.key(name)}: {value!r} is not a list of numbers")
+    return value
+
+
 def _dimension(top, key, *, scale, units, plausible, what, required=True):
     """A part's dimension: drawing limits, process, gauge, shared share, form error, bolt scatter, source."""
     t = top.table(key, required=required)
@@ -323,7 +339,7 @@ def _engine(top, *, name, extra):
     bearings = top.integer("main_bearings", required=True, lo=1, hi=30)
     shell = top.table("shell_wall")
     mode = shell.text("supply", "to-order", options=("to-order", "sorted"))
-    process = dict(shell.get("process", {"distribution": "normal", "cpk": 1.33}))
+    process = shell.table("process").data if "process" in shell else {"distribution": "normal", "cpk": 1.33}
     sigma = shell.length("sigma", 1e-6 / scale, **length, plausible=PLAUSIBLE["wall_sigma"],
                          what="shell wall process standard deviation")
     supply = ShellSupply(
@@ -472,7 +488,7 @@ def _oil_feed(top, *, scale, units, bearing_length):
     if not source.strip():
         raise ValueError(f"{key}.source: empty; say where the numbers come from")
     if kind == "groove":
-        arc = t.get("groove_arc", [90.0, 270.0])
+        arc = _numbers(t, "groove_arc", default=[90.0, 270.0])
         arc = check.finite(f"{key}.groove_arc", arc)
         if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
             raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
@@ -522,9 +538,11 @@ def _targets(top, *, scale, units, journal):
                        what="operating clearance", increasing=True)
     if window is not None:
         out["clearance_window"] = tuple(window)
-    ratio = t.get("relative_clearance")
+    ratio = _numbers(t, "relative_clearance")
     if ratio is not None:
         # psi = C / D of the journal's nominal size (its lower drawing limit)
+        if len(ratio) != 2:
+            raise ValueError(f"{key}.relative_clearance: {ratio!r} is not a [lower, upper] pair")
         lo, hi = check.limits(f"{key}.relative_clearance", *ratio, unit="")
         if lo <= 0 or hi >= 0.01:
             raise ValueError(f"{key}.relative_clearance: [{lo!r}, {hi!r}] is not a clearance ratio C/D in (0, 0.01) "
@@ -566,7 +584,7 @@ def _crank(top, *, scale, units, bearings, extra):
         trace = read_pressure_trace(io.StringIO(extra[trace_file]), name=trace_file)
     combustion = Combustion(compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=50.0, lo_open=True),
                             peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa"))
-    throws = tuple(float(a) for a in check.finite(f"{key}.throw_angles", t.get("throw_angles", required=True)))
+    throws = tuple(float(a) for a in check.finite(f"{key}.throw_angles", _numbers(t, "throw_angles", required=True)))
     order = t.get("firing_order", required=True)
     if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
         raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")
@@ -575,7 +593,7 @@ def _crank(top, *, scale, units, bearings, extra):
         raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
     spans = np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
                                what="crankshaft span"))
-    inertia = check.positive(f"{key}.section_inertia", t.get("section_inertia", required=True)) * scale**4
+    inertia = check.positive(f"{key}.section_inertia", _numbers(t, "section_inertia", required=True)) * scale**4
     if inertia.shape not in ((cylinders,), (cylinders, 2)):
         raise ValueError(f"{key}.section_inertia: shape {inertia.shape}; give ({cylinders},) or ({cylinders}, 2)")
     if np.any((inertia < 1e-10) | (inertia > 1e-1)):  # a 10 mm to a 1 m steel journal
