@@ -49,6 +49,8 @@ class _Log:
 
 
 def _compare(args, state):
+    import numpy as np
+
     import stackup
 
     from .engines import load_engine
@@ -88,12 +90,13 @@ def _compare(args, state):
         staged.discard()
         raise
     state.stage, state.saved = "", f"{out} was written"
-    ds = result.dataset
+    ds = saved.dataset
     print(f"{n:,} engines x {ds.sizes['bearing']} bearings x {ds.sizes['scheme']} schemes in "
           f"{time.perf_counter() - log.start:.1f} s")
     for name, row in clearance_summary(ds).iterrows():
-        print(f"  {name:<14} mean {row.mean_um:6.2f} um  std {row.std_um:5.2f} um  "
-              f"outside stated {row.outside_stated_ppm:9.0f} ppm")
+        stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
+                  "        — (no stated range)")
+        print(f"  {name:<20} mean {row.mean_um:6.2f} um  std {row.std_um:5.2f} um  outside stated {stated}")
     print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")
     return 0
 

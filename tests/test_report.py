@@ -124,3 +124,19 @@ def test_the_designed_scheme_is_compared_beside_the_others_and_explained(compari
     assert f"starting from `{design['start']}`" in section and "| housing bore |" in section
     assert "| gauge repeatability 2 µm |" not in section or "design sample" in section
     assert "What changed" in section and "```text" in section
+
+
+def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
+    from stackup.study import Study
+    from stackup.study.inputs import scheme_text
+
+    text = "\n".join(line for line in scheme_text("iso13778-4").splitlines() if not line.startswith("stated_clearance"))
+    path = tmp_path / "unstated.toml"
+    path.write_text(text.replace('name = "iso13778-4"', 'name = "unstated"'))
+    ds = Study(schemes=(str(path), "iso13778-3"), n_engines=300, mechanics_engines=0, progress=False,
+               pilot_engines=1000).run()
+    summary = clearance_summary(ds)
+    assert np.isnan(summary.outside_stated_ppm["unstated"]) and np.isfinite(summary.outside_stated_ppm["iso13778-3"])
+    report = write_report(ds, tmp_path / "report").read_text()
+    row = next(line for line in report.splitlines() if line.startswith("| unstated | — (none stated) |"))
+    assert row.rstrip(" |").endswith("—")

@@ -34,6 +34,8 @@ SECTIONS = ("Methods and assumptions", "Limits of validity", "Ranking", "Designe
 
 
 def _fmt_ci(value, ci, digits=1):
+    if not np.isfinite(value):
+        return "—"
     return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
 
 
@@ -240,7 +242,8 @@ def _clearance_section(ds, summary, out):
     figures.clearance_histogram(ds, out / "clearance_histogram.png")
     table = pd.DataFrame({
         "scheme": summary.index,
-        "stated [µm]": [f"{a:.0f}–{b:.0f}" for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
+        "stated [µm]": [f"{a:.0f}–{b:.0f}" if np.isfinite(a) else "— (none stated)"
+                        for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
         "worst case [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(summary.worst_case_min_um, summary.worst_case_max_um)],
         "mean [µm]": summary.mean_um.map("{:.2f}".format),
         "std [µm]": summary.std_um.map("{:.2f}".format),

@@ -109,6 +109,8 @@ def clearance_summary(ds):
             std = float(c.std(ddof=1)) if c.size > 1 else np.nan
             substituted = int(np.count_nonzero(d.shell_option.values > 0))
         share, share_lo, share_hi = proportion_ci(outside, n)
+        if not (np.isfinite(lo_stated) and np.isfinite(hi_stated)):  # the scheme states no range: nothing to count
+            share = share_lo = share_hi = np.nan
         made = int(d.shells_made.sum()) + int(d.shells_scrapped)
         row = {
             "scheme": str(name),
