@@ -206,7 +206,8 @@ def _ranking_section(ds, ranking, scenarios):
             table["worst scenario: Δ life median [h]"] = [
                 f"{v:+.3g} ({name})" if isinstance(name, str) else "—"
                 for v, name in zip(ranking.worst_life_median_h, ranking.worst_life_median_h_scenario)]
-    rule = (f"Operating-clearance design window {window[0] * 1e6:.0f}–{window[1] * 1e6:.0f} µm (the engine's). "
+    whose = "the study's" if json.loads(ds.attrs["study"]).get("window") else "the engine's"
+    rule = (f"Operating-clearance design window {prose._um_edge(window[0])}–{prose._um_edge(window[1])} µm ({whose}). "
             f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.")
     if scenarios:
         rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "

@@ -192,7 +192,6 @@ FIT_FIELDS = {
     "contact_pressure": "contact_pressure",
     "shell_stress": "shell_stress",
     "housing_swell": "housing_swell",
-    "bore_in_service": "bore_in_service",
     "clearance_operating": "clearance",
 }
 #: Press-fit checks over the declared temperatures: dataset name -> PressFitExtremes field.
