@@ -125,6 +125,8 @@ def test_the_designed_scheme_is_compared_beside_the_others_and_explained(compari
     assert f"starting from `{design['start']}`" in section and "| housing bore |" in section
     assert "| gauge repeatability 2 µm |" not in section or "design sample" in section
     assert "What changed" in section and "```text" in section
+    page = (tmp_path / "report.html").read_text()
+    assert "<pre>Scheme designed by stackup" in page  # the reasons as a text block, not one paragraph per line
 
 
 def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):

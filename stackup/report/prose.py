@@ -293,8 +293,8 @@ def _life_method(ds, study):
                "the cycle mean allows)" if film == "cycle-mean" else " (a comparison: the paper implies the cycle mean)")
             + f"; critical film h_lim,cr = {wear['critical_film_m'] * UM:.2f} µm from the journal's and the shell's "
             f"roughness (Rz {wear['journal_rz_m'] * UM:.2f} + {wear['shell_rz_m'] * UM:.2f} µm, eq. 3; "
-            f"{wear['roughness_source'].strip()}), limiting wear {wear['wear_limit_m'] * UM:.0f} µm and wear speed "
-            f"{wear['wear_rate_m_per_s']:.0e} m/s ({wear['wear_source'].strip()}). Method 2 (eqs. 6-7): a wear chart "
+            f"{' '.join(wear['roughness_source'].split())}), limiting wear {wear['wear_limit_m'] * UM:.0f} µm and wear speed "
+            f"{wear['wear_rate_m_per_s']:.0e} m/s ({' '.join(wear['wear_source'].split())}). Method 2 (eqs. 6-7): a wear chart "
             "over the bearing surface where the film is below h_lim,cr, with the asperity contact pressure of "
             "Greenwood and Tripp. An engine's life is that of its weakest bearing.")
 
