@@ -100,17 +100,18 @@ def _locate(nodes, x):
 
 
 @njit(cache=True)
-def table_lookup(table, eps_nodes, eps, alpha):
+def table_lookup(table, stretched, eps, alpha):
     """Finite-length correction at (eps, alpha) from ``table`` (n_eps, n_alpha, 3).
 
     The table holds the log force ratio, the turn [rad] and the log peak-pressure
-    ratio over eps_nodes and alpha in [0, pi] (uniform); the turn is odd in alpha.
+    ratio over ``stretched`` nodes -ln(1 - eps) (the corrections are nearly linear
+    in it near eps = 1) and alpha in [0, pi] (uniform); the turn is odd in alpha.
     Returns (log ratio, turn, d log ratio/d alpha, d turn/d alpha, log peak ratio).
     """
     n_a = table.shape[1]
     a = abs(alpha)
     sign = 1.0 if alpha >= 0.0 else -1.0
-    i, t = _locate(eps_nodes, eps)
+    i, t = _locate(stretched, -math.log1p(-eps))
     step = math.pi / (n_a - 1)
     j = min(int(a / step), n_a - 2)
     u = a / step - j
@@ -131,7 +132,7 @@ def table_lookup(table, eps_nodes, eps, alpha):
 
 
 @njit(cache=True)
-def squeeze_velocity(eps, w_r, w_t, alpha, table, eps_nodes, finite):
+def squeeze_velocity(eps, w_r, w_t, alpha, table, stretched, finite):
     """Squeeze velocity (|v|, direction alpha) whose film force equals the load (w_r, w_t).
 
     Line-of-centres frame. Newton on the direction: the force turns monotonically
@@ -158,7 +159,7 @@ def squeeze_velocity(eps, w_r, w_t, alpha, table, eps_nodes, finite):
         slope = (rr * tt - rt * rt) / f2
         d_size = (f_r * fp_r + f_t * fp_t) / size
         if finite:
-            log_ratio, turn, d_log_ratio, d_turn, _ = table_lookup(table, eps_nodes, eps, alpha)
+            log_ratio, turn, d_log_ratio, d_turn, _ = table_lookup(table, stretched, eps, alpha)
             ratio = math.exp(log_ratio)
             ct = math.cos(turn)
             st = math.sin(turn)
@@ -182,7 +183,7 @@ def squeeze_velocity(eps, w_r, w_t, alpha, table, eps_nodes, finite):
 
 
 @njit(cache=True)
-def rate(x0, x1, w0, w1, alpha, limit, table, eps_nodes, finite):
+def rate(x0, x1, w0, w1, alpha, limit, table, stretched, finite):
     """d xi / d tau at position (x0, x1) under load (w0, w1), engine frame.
 
     d xi/d tau = v + (1/2) k x xi (journal turning at +1, bearing fixed).
@@ -198,7 +199,7 @@ def rate(x0, x1, w0, w1, alpha, limit, table, eps_nodes, finite):
     eps_film = min(eps, limit)
     w_r = w0 * e0 + w1 * e1
     w_t = -w0 * e1 + w1 * e0
-    speed, alpha, ok = squeeze_velocity(eps_film, w_r, w_t, alpha, table, eps_nodes, finite)
+    speed, alpha, ok = squeeze_velocity(eps_film, w_r, w_t, alpha, table, stretched, finite)
     v_r = speed * math.cos(alpha)
     v_t = speed * math.sin(alpha)
     v0 = v_r * e0 - v_t * e1
@@ -276,7 +277,7 @@ def _load_at(w, tau, k, kn, t):
 
 
 @njit(cache=True)
-def _orbit(w, tau, limit, tolerance, max_cycles, table, eps_nodes, finite, xi, v, alpha_out):
+def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v, alpha_out):
     """One bearing's periodic orbit from the bearing centre, by the explicit midpoint rule.
 
     Laps of the cycle at two angles per step until the journal comes back to
@@ -324,7 +325,7 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, eps_nodes, finite, xi, v
         h = tau[kn] - tau[k]
         guess = _wrap(alpha + _wrap(alpha - alpha_last))  # the squeeze direction turns smoothly: extrapolate
         alpha_last = alpha
-        a0, a1, va, vb, alpha, ok1 = rate(x0, x1, w[k, 0], w[k, 1], guess, limit, table, eps_nodes, finite)
+        a0, a1, va, vb, alpha, ok1 = rate(x0, x1, w[k, 0], w[k, 1], guess, limit, table, stretched, finite)
         xi[k, 0] = x0
         xi[k, 1] = x1
         v[k, 0] = va
@@ -334,7 +335,7 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, eps_nodes, finite, xi, v
         thinnest = max(thinnest, math.hypot(x0, x1))
         wm0, wm1 = _load_at(w, tau, k, kn, tau[k] + 0.5 * h)
         b0, b1, _, _, alpha_mid, ok2 = rate(x0 + 0.5 * h * a0, x1 + 0.5 * h * a1, wm0, wm1, _wrap(alpha + turn_mid),
-                                            limit, table, eps_nodes, finite)
+                                            limit, table, stretched, finite)
         turn_mid = _wrap(alpha_mid - alpha)
         x0 += h * b0
         x1 += h * b1
@@ -363,7 +364,7 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, eps_nodes, finite, xi, v
 
 
 @njit(cache=True, parallel=True)
-def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, eps_nodes, ld, finite, xi, v, peak, status, cycles):
+def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld, finite, xi, v, peak, status, cycles):
     """Orbits of many bearings (prange over bearings).
 
     w (B, n, 2) dimensionless loads at times tau[:n] (tau (n+1,), tau[n] the cycle's end); ld (B,) L/D of each bearing (finite tier);
@@ -380,7 +381,7 @@ def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, eps_nodes, ld
         else:
             table = tables[0]
         alpha = np.empty(n)
-        s, c = _orbit(w[b], tau, limit, tolerance, max_cycles, table, eps_nodes, finite, xi[b], v[b], alpha)
+        s, c = _orbit(w[b], tau, limit, tolerance, max_cycles, table, stretched, finite, xi[b], v[b], alpha)
         status[b] = s
         cycles[b] = c
         phi = 0.0
@@ -388,5 +389,5 @@ def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, eps_nodes, ld
             eps = min(math.hypot(xi[b, k, 0], xi[b, k, 1]), limit)
             g, phi = peak_factor(eps, alpha[k], phi)
             if finite:
-                g *= math.exp(table_lookup(table, eps_nodes, eps, alpha[k])[4])
+                g *= math.exp(table_lookup(table, stretched, eps, alpha[k])[4])
             peak[b, k] = g * math.hypot(v[b, k, 0], v[b, k, 1])

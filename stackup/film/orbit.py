@@ -188,14 +188,14 @@ class Orbit:
 def mobility_table():
     """The finite-length correction of the short-bearing squeeze force (see ``studies/film_mobility_table.py``).
 
-    Returns (length_over_diameter (n_ld,), eccentricity (n_eps,), table (n_ld, n_eps, n_alpha, 3)):
+    Returns (length_over_diameter (n_ld,), -ln(1 - eccentricity) (n_eps,), table (n_ld, n_eps, n_alpha, 3)):
     log force ratio, turn [rad] and log peak-pressure ratio of the Reynolds tier to the
     short bearing, over squeeze directions alpha in [0, pi] (uniform).
     """
     path = resources.files("stackup") / "data" / "film_mobility_table.npz"
     with np.load(path) as data:
         table = np.stack([data["log_force_ratio"], data["turn"], data["log_peak_ratio"]], axis=-1)
-        return (np.ascontiguousarray(data["length_over_diameter"]), np.ascontiguousarray(data["eccentricity"]),
+        return (np.ascontiguousarray(data["length_over_diameter"]), -np.log1p(-data["eccentricity"]),
                 np.ascontiguousarray(table))
 
 
@@ -299,19 +299,19 @@ def _mobility(loads, angle, *, finite, cycles, radius, length, radial_clearance,
     tau = np.radians(np.append(angle, angle[0] + 720.0) - angle[0])
     ld = np.ascontiguousarray((length / (2 * radius)).reshape(-1), dtype=float)
     if finite:
-        ld_nodes, eps_nodes, tables = mobility_table()
+        ld_nodes, stretched, tables = mobility_table()
         if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
             raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the mobility-finite "
                              f"table [{ld_nodes[0]}, {ld_nodes[-1]}]; use method='reynolds-transient'")
     else:
-        ld_nodes, eps_nodes, tables = _short_table()
+        ld_nodes, stretched, tables = _short_table()
     m = w_bar.shape[0]
     xi = np.empty((m, n, 2))
     v = np.empty((m, n, 2))
     peak = np.empty((m, n))
     status = np.empty(m, np.int8)
     used = np.empty(m)
-    _kernel.orbits(w_bar, tau, ECCENTRICITY_LIMIT, PERIODIC, cycles, tables, ld_nodes, eps_nodes, ld, finite,
+    _kernel.orbits(w_bar, tau, ECCENTRICITY_LIMIT, PERIODIC, cycles, tables, ld_nodes, stretched, ld, finite,
                    xi, v, peak, status, used)
     xi = xi.reshape(*lead, n, 2)
     v = v.reshape(*lead, n, 2)
@@ -339,9 +339,9 @@ def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity,
         eps = np.minimum(film.eccentricity, ECCENTRICITY_LIMIT)
         field_peak = 0.5 * eps * _peak(eps, np.full(eps.shape, -0.5 * np.pi))  # v_s = (1/2) k x xi: |v| = eps/2
         if steady == "finite":
-            ld_nodes, eps_nodes, tables = mobility_table()
+            ld_nodes, stretched, tables = mobility_table()
             field_peak = field_peak * _table_peak_ratio(np.broadcast_to(l / (2 * r), eps.shape), eps, ld_nodes,
-                                                        eps_nodes, tables)
+                                                        stretched, tables)
         field_peak = 1.5 * mu * w * (l / c) ** 2 * field_peak
     direction = np.arctan2(loads[..., 1], loads[..., 0]) + film.attitude_angle
     ecc = np.where(magnitude > 0, film.eccentricity, 0.0)
@@ -356,12 +356,12 @@ def _peak(eps, alpha):
     return out
 
 
-def _table_peak_ratio(ld, eps, ld_nodes, eps_nodes, tables):
+def _table_peak_ratio(ld, eps, ld_nodes, stretched, tables):
     out = np.empty(np.shape(eps))
     for idx in np.ndindex(out.shape):
         i, t = _kernel._locate(ld_nodes, float(ld[idx]))
         table = (1 - t) * tables[i] + t * tables[i + 1]
-        out[idx] = np.exp(_kernel.table_lookup(table, eps_nodes, float(eps[idx]), -0.5 * np.pi)[4])
+        out[idx] = np.exp(_kernel.table_lookup(table, stretched, float(eps[idx]), -0.5 * np.pi)[4])
     return out
 
 
