@@ -21,7 +21,8 @@ at the supply pressure (full of oil), solved per step by Gauss-Seidel with the
 Ausas et al. switching between pressure and fill. The journal is massless:
 at each step its centre :math:`\mathbf x_{n+1}` is found by a Broyden iteration so that
 the film force equals the load (each residual one field solve, warm-started);
-the tilt is imposed. Cycles are repeated from the ``mobility-finite`` orbit's
+the tilt is imposed; each step starts from the ``mobility-finite`` tier's
+prediction. Cycles are repeated from the ``mobility-finite`` orbit's
 position until the orbit closes. With ``cavitation="reynolds"`` the fill stays 1
 and :math:`\bar p \ge 0` is a projection (Swift-Stieber, not mass-conserving): the
 finite-length counterpart of the mobility tiers' film.
@@ -129,7 +130,7 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
     -------
     stackup.film.orbit.Orbit
     """
-    from .orbit import ECCENTRICITY_LIMIT, Orbit, orbit
+    from .orbit import ECCENTRICITY_LIMIT, Orbit, mobility_table, orbit
 
     check.one_of("cavitation", cavitation, CAVITATION)
     if time_order not in (1, 2):
@@ -143,12 +144,13 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         try:
             seed = orbit(loads, crank_angle, diameter=2 * radius, length=length, clearance=2 * radial_clearance,
                          viscosity=viscosity, speed=speed, method="mobility-finite", tilt=tilt)
-        except (ValueError, FileNotFoundError):
+        except ValueError:
             seed = orbit(loads, crank_angle, diameter=2 * radius, length=length, clearance=2 * radial_clearance,
                          viscosity=viscosity, speed=speed, method="mobility", tilt=tilt)
         start = seed.position[..., 0, :]
     start = np.broadcast_to(start, (*lead, 2))
     out = {k: np.empty((*lead, n)) for k in ("peak", "torque", "flow")}
+    ld_nodes, stretched, tables = mobility_table()
     position = np.empty((*lead, n, 2))
     status = np.empty(lead, np.int8)
     used = np.empty(lead)
@@ -159,8 +161,12 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         film = _Film(length_over_radius=l / r, clearance_over_radius=c / r, n_theta=n_theta, n_z=n_z,
                      feed_angle=feed_angle, feed_width=FEED_WIDTH, feed_length_share=FEED_LENGTH_SHARE,
                      feed_pressure=feed_pressure / unit_pressure)
+        ld = l / (2 * r)
+        finite = ld_nodes[0] <= ld <= ld_nodes[-1]
+        i, t = _mobility._locate(ld_nodes, ld)
+        table = (1 - t) * tables[i] + t * tables[i + 1]
         result = _bearing_orbit(film, loads[idx] / unit_force, tau, tilt[idx], start[idx] / c, cycles,
-                                cavitation == "elrod-adams", time_order, ECCENTRICITY_LIMIT, l / r)
+                                cavitation == "elrod-adams", time_order, ECCENTRICITY_LIMIT, table, stretched, finite)
         xi, peak, friction, flow, status[idx], used[idx] = result
         position[idx] = xi * c
         out["peak"][idx] = peak * unit_pressure
@@ -175,8 +181,12 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
                  np.asarray(speed, dtype=float))
 
 
-def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order, limit, length_over_radius):
-    """Periodic orbit of one bearing; dimensionless loads w (n, 2). Returns per-angle arrays, status, cycles."""
+def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order, limit, table, stretched, finite):
+    """Periodic orbit of one bearing; dimensionless loads w (n, 2). Returns per-angle arrays, status, cycles.
+
+    Each step: predict the centre with the mobility tier's rate (``table``), then
+    solve the force balance by damped Newton with Broyden updates.
+    """
     n = w.shape[0]
     shape = (film.theta.size, film.z.size)
     p = np.zeros(shape)
@@ -186,14 +196,13 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
     xi = np.array(xi0, dtype=float)
     h = film.thickness(xi, tilt[0])[0]
     content = [fill * h]  # film content g h of the latest steps
-    xi_hist = [xi.copy()]
     dtau_prev = None
     jac = None
+    alpha = -0.5 * np.pi
     record = np.empty((n, 2))
     peak = np.empty(n)
     friction = np.empty(n)
     flow = np.empty(n)
-    thinnest_last = None
     for cycle in range(1, cycles + 1):
         start = xi.copy()
         thinnest = 0.0
@@ -208,11 +217,9 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
                 r = dtau / dtau_prev
                 a0, a1, a2 = (1 + 2 * r) / (1 + r), 1 + r, r * r / (1 + r)
                 history = 12 * (a1 * content[-1] - a2 * content[-2]) / dtau
-                predicted = xi + (xi - xi_hist[-2]) * r
             else:
                 a0 = 1.0
                 history = 12 * content[-1] / dtau
-                predicted = xi.copy()
             c_time = 12 * a0 / dtau
             gamma = tilt[kn]
             target = w[kn]
@@ -225,58 +232,108 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
                     raise RuntimeError("field solve did not converge")
                 return film.force(p) - target, hh
 
-            if jac is None:
-                jac = _short_jacobian(predicted, target, length_over_radius, a0 / dtau)
-            x = _inside(predicted, limit)
+            predicted, alpha = _predict(xi, w[k], 0.5 * (w[k] + target), dtau, alpha, limit, table, stretched, finite)
             try:
-                f, hh = residual(x)
-                for _ in range(MAX_BROYDEN):
-                    if np.linalg.norm(f) <= FORCE_TOLERANCE * scale:
-                        break
-                    step = -np.linalg.solve(jac, f)
-                    x_new = _inside(x + step, limit)
-                    step = x_new - x
-                    f_new, hh = residual(x_new)
-                    # Broyden's good update of the Jacobian (carried on to the next step)
-                    jac = jac + np.outer(f_new - f - jac @ step, step) / max(step @ step, 1e-300)
-                    x, f = x_new, f_new
-                else:
-                    return record, peak, friction, flow, 3, cycle
+                x, h, jac = _force_balance(residual, predicted, jac, limit, FORCE_TOLERANCE * scale)
             except (RuntimeError, np.linalg.LinAlgError):
-                return record, peak, friction, flow, 3, cycle
+                return _failed(record, peak, friction, flow, k, cycle)
             if np.hypot(*x) >= limit * (1 - 1e-12):
                 collapsed = True
             xi = x
-            h = hh
             content = [content[-1], fill * h]
-            xi_hist = [xi_hist[-1], xi.copy()]
             dtau_prev = dtau
         film_left = 1 - (limit if collapsed else thinnest)
         closure = float(np.hypot(*(xi - start)))
         if cycle > 1 and closure <= PERIODIC * film_left:
             return record, peak, friction, flow, (2 if collapsed else 0), cycle
-        thinnest_last = thinnest
     return record, peak, friction, flow, (2 if collapsed else 1), cycles
+
+
+def _predict(xi, w0, w_mid, dtau, alpha, limit, table, stretched, finite):
+    """Centre at the end of the step by the mobility tier's midpoint rule (a starting point for the balance)."""
+    a0, a1, _, _, alpha, _ = _mobility.rate(xi[0], xi[1], w0[0], w0[1], alpha, limit, table, stretched, finite)
+    b0, b1, _, _, _, _ = _mobility.rate(xi[0] + 0.5 * dtau * a0, xi[1] + 0.5 * dtau * a1, w_mid[0], w_mid[1], alpha,
+                                        limit, table, stretched, finite)
+    return _inside(xi + dtau * np.array([b0, b1]), limit), alpha
+
+
+def _force_balance(residual, x, jac, limit, tolerance):
+    """Centre x where the film force balances the load: damped Newton with Broyden updates.
+
+    Steps are damped by Deuflhard's natural monotonicity test (the next Newton
+    correction, with the same Jacobian, must shrink), which is blind to the
+    scaling of the force components: the film is far stiffer along the line
+    of centres than across it. A stale Jacobian is replaced by differences;
+    where even that makes no progress (the force has a kink where a starved
+    film fills), Levenberg-Marquardt takes over. Returns (x, film thickness at x, Jacobian); the field is left at x.
+    """
+    f, h = residual(x)
+    if jac is None:
+        jac = _difference_jacobian(residual, x, f)
+        f, h = residual(x)
+    fresh = False  # the Jacobian is a difference Jacobian at x
+    for _ in range(MAX_BROYDEN):
+        if np.linalg.norm(f) <= tolerance:
+            return x, h, jac
+        step = -np.linalg.solve(jac, f)
+        size = np.linalg.norm(step)
+        damping = 1.0
+        accepted = False
+        while damping >= 1.0 / 32:
+            trial = _inside(x + damping * step, limit)
+            f_trial, h_trial = residual(trial)
+            if np.linalg.norm(f_trial) <= tolerance or \
+                    np.linalg.norm(np.linalg.solve(jac, f_trial)) <= (1 - damping / 4) * size:
+                accepted = True
+                break
+            damping /= 2
+        if accepted:
+            taken = trial - x
+            # Broyden's good update (the Jacobian carries on to the next step)
+            jac = jac + np.outer(f_trial - f - jac @ taken, taken) / max(taken @ taken, 1e-300)
+            x, f, h = trial, f_trial, h_trial
+            fresh = False
+        elif fresh:
+            return _least_squares_balance(residual, x, tolerance)
+        else:
+            jac = _difference_jacobian(residual, x, f)
+            f, h = residual(x)  # the field back at x
+            fresh = True
+    return _least_squares_balance(residual, x, tolerance)
+
+
+def _least_squares_balance(residual, x, tolerance):
+    """Fallback where the force has a kink (a starved film filling up): Levenberg-Marquardt (MINPACK)."""
+    from scipy import optimize
+
+    solution = optimize.root(lambda y: residual(y)[0], x, method="lm", options={"xtol": 1e-12, "ftol": 1e-14})
+    f, h = residual(solution.x)
+    if not np.linalg.norm(f) <= tolerance:
+        raise RuntimeError("force balance: Levenberg-Marquardt did not balance the load")
+    return solution.x, h, _difference_jacobian(residual, solution.x, f)
+
+
+def _failed(record, peak, friction, flow, k, cycle):
+    """Status 'failed': angles from k on were not solved in this cycle and carry NaN (flagged by the status)."""
+    for a in (record, peak, friction, flow):
+        a[k:] = np.nan
+    return record, peak, friction, flow, 3, cycle
+
+
+def _difference_jacobian(residual, x, f):
+    """Forward-difference Jacobian of the force balance (two field solves)."""
+    delta = 1e-4 * max(1 - float(np.hypot(*x)), 1e-3)
+    jac = np.empty((2, 2))
+    for i in range(2):
+        e = np.zeros(2)
+        e[i] = delta
+        jac[:, i] = (residual(x + e)[0] - f) / delta
+    return jac
 
 
 def _inside(x, limit):
     e = float(np.hypot(*x))
     return x * (limit / e) if e > limit else x
-
-
-def _short_jacobian(xi, load, length_over_radius, rate):
-    """d force / d xi_{n+1} of the short bearing (a starting guess for Broyden): L^3 G (rate I - K/2)."""
-    eps = min(float(np.hypot(*xi)), 0.99)
-    e_r = xi / eps if eps > 0 else np.array([1.0, 0.0])
-    e_t = np.array([-e_r[1], e_r[0]])
-    w_r, w_t = load @ e_r, load @ e_t
-    _, alpha, _ = _mobility.squeeze_velocity(eps, w_r, w_t, -0.5 * np.pi, np.zeros((2, 2, 3)), np.array([0.0, 1.0]),
-                                             False)
-    rr, rt, tt = _mobility.short_matrix(eps, alpha)
-    frame = np.stack([e_r, e_t], axis=1)
-    g = frame @ np.array([[rr, rt], [rt, tt]]) @ frame.T
-    turn = np.array([[0.0, -1.0], [1.0, 0.0]])
-    return length_over_radius**3 * g @ (rate * np.eye(2) - 0.5 * turn)
 
 
 def _outputs(film, p, fill, h):
