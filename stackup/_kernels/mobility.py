@@ -139,7 +139,8 @@ def squeeze_velocity(eps, w_r, w_t, alpha, table, stretched, finite):
     with alpha (d angle/d alpha = det G / |G u|^2 > 0, since dG/d alpha u = 0), its
     magnitude scales with |v|. Once a step is below 1e-3 rad the next error is
     about 1e-6 rad (quadratic convergence): the step is taken and |F| corrected to
-    first order instead of evaluating again. Returns (speed, alpha, ok).
+    first order instead of evaluating again, which balances the load to about
+    1e-5 (the midpoint rule's own error is 5e-4). Returns (speed, alpha, ok).
     """
     w = math.hypot(w_r, w_t)
     if w == 0.0:

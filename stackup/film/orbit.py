@@ -54,9 +54,12 @@ orbit and reports the edge film geometrically,
 carries the tilt in its film.
 
 Status per bearing (:data:`STATUS`): ``periodic``; ``not_periodic`` (the orbit had not
-closed within ``cycles``); ``collapsed`` (the journal reached :data:`ECCENTRICITY_LIMIT`:
-the film is held there, a film collapse, e.g. a load turning at half the shaft
-speed); ``failed`` (the film solve failed). Never a silent NaN.
+closed within ``cycles``); ``collapsed`` (the journal reached :data:`ECCENTRICITY_LIMIT`,
+or its film thinned cycle after cycle: a film collapse, e.g. a load turning at
+half the shaft speed; the film is reported where it was held); ``failed`` (the
+film solve failed; angles not solved are NaN); ``edge_contact`` (a periodic
+orbit whose tilted journal brings an edge to the limit: the edge film is held at
+:math:`c(1 - \varepsilon_{lim})`). Never a silent NaN.
 
 References
 ----------
@@ -90,8 +93,8 @@ TIERS = {
     "reynolds-transient": ("reynolds-transient", None),
 }
 METHODS = ("quasi-static", *TIERS)
-#: Status codes of an orbit (CF flag_values 0..3 with these flag_meanings).
-STATUS = ("periodic", "not_periodic", "collapsed", "failed")
+#: Status codes of an orbit (CF flag_values 0..4 with these flag_meanings).
+STATUS = ("periodic", "not_periodic", "collapsed", "failed", "edge_contact")
 #: The orbit is periodic when the journal returns after a cycle to within this share of the thinnest film.
 PERIODIC = 1e-3
 #: Largest eccentricity a journal reaches; a film held there has collapsed.
@@ -199,6 +202,36 @@ def mobility_table():
                 np.ascontiguousarray(table))
 
 
+@lru_cache(maxsize=1)
+def cycle_tier_errors():
+    """Measured cost and film error of each cycle tier against ``reynolds-transient``.
+
+    From ``stackup/data/film_cycle_errors.toml``, written by
+    ``studies/film_speed_vs_error.py`` on the built-in engines' bearings: per tier
+    ``seconds`` (one bearing's cycle on one core), ``h_min`` and ``h_min_mean``
+    (largest relative error of the cycle minimum and of the cycle mean of the
+    minimum film over the bearings measured).
+    """
+    import tomllib
+
+    with open(resources.files("stackup") / "data" / "film_cycle_errors.toml", "rb") as f:
+        return tomllib.load(f)["tiers"]
+
+
+def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean")):
+    """The cheapest cycle tier whose measured film errors (``measures``) are all within ``max_error`` [-].
+
+    Like :func:`stackup.film.cheapest_tier` for the steady tiers; the reference
+    ``reynolds-transient`` (error 0) when no cheaper tier qualifies.
+    """
+    max_error = float(check.positive("max_error", max_error, allow_zero=True))
+    errors = cycle_tier_errors()
+    for name in measures:
+        check.one_of("measures", name, ("h_min", "h_min_mean", "p_max", "p_max_mean", "friction_power"))
+    ranked = sorted(errors, key=lambda t: errors[t]["seconds"])
+    return next((t for t in ranked if all(errors[t][m] <= max_error for m in measures)), "reynolds-transient")
+
+
 def _short_table():
     return np.array([1.0, 2.0]), np.array([0.0, 1.0]), np.zeros((1, 2, 2, 3))
 
@@ -277,17 +310,23 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
                                                                 cycles=cycles, **geometry)
     ecc = np.linalg.norm(position, axis=-1) / c[..., None]
     h_min = c[..., None] * (1 - ecc)
-    return Orbit(h_min, _edge_film(position, tilt, width, c, h_min), ecc, position, p_max, torque, flow, status,
-                 used, omega)
+    h_edge, status = edge_film(position, tilt, width, c, h_min, status)
+    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, omega)
 
 
-def _edge_film(position, tilt, width, c, h_min):
-    """Thinnest film over the width when the journal axis is tilted: at one of the two edges."""
+def edge_film(position, tilt, width, c, h_min, status):
+    """Thinnest film over the width of a tilted journal (at an edge), held at the limit where an edge touches.
+
+    Returns (edge film (..., angles) [m], status with ``edge_contact`` where a periodic orbit's edge touched).
+    """
     if tilt is None:
-        return h_min
+        return h_min, status
     half = 0.5 * width[..., None, None] * tilt
     reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
-    return np.minimum(h_min, c[..., None] - reach)
+    floor = (c * (1 - ECCENTRICITY_LIMIT))[..., None]
+    touching = c[..., None] - reach < floor
+    status = np.where((status == 0) & touching.any(axis=-1), STATUS.index("edge_contact"), status).astype(np.int8)
+    return np.maximum(np.minimum(h_min, c[..., None] - reach), floor), status
 
 
 def _mobility(loads, angle, *, finite, cycles, radius, length, radial_clearance, viscosity, speed):

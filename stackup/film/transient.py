@@ -130,7 +130,7 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
     -------
     stackup.film.orbit.Orbit
     """
-    from .orbit import ECCENTRICITY_LIMIT, Orbit, mobility_table, orbit
+    from .orbit import ECCENTRICITY_LIMIT, Orbit, edge_film, mobility_table, orbit
 
     check.one_of("cavitation", cavitation, CAVITATION)
     if time_order not in (1, 2):
@@ -174,9 +174,7 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         out["flow"][idx] = flow * w * r**2 * c / 12
     ecc = np.linalg.norm(position, axis=-1) / radial_clearance[..., None]
     h_min = radial_clearance[..., None] * (1 - ecc)
-    half = 0.5 * length[..., None, None] * tilt
-    reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
-    h_edge = np.minimum(h_min, radial_clearance[..., None] - reach)
+    h_edge, status = edge_film(position, tilt, length, radial_clearance, h_min, status)
     return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
                  np.asarray(speed, dtype=float))
 
