@@ -20,6 +20,7 @@ Writes reports/film_speed_vs_error.md (about 40 min on 2 cores, mostly the trans
 from __future__ import annotations
 
 import argparse
+import multiprocessing
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -53,15 +54,18 @@ def summary(result):
     return {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in out.items()}
 
 
-def _transient(job):
-    """One transient run in a worker: (engine, bearing, options) -> summary and seconds."""
+def _slow_tier(job):
+    """One slow run in a worker: (engine, bearing, options) -> summary and seconds.
+
+    Options: ``method`` (default reynolds-transient), ``step`` of the crank angle, ``tilt``, and the
+    transient tier's own options.
+    """
     name, bearing, options = job
     numba.set_num_threads(1)
     case = engine_case(name, step=options.pop("step", 1.0))
-    tilt = options.pop("tilt", None)
+    method = options.pop("method", "reynolds-transient")
     t0 = time.perf_counter()
-    result = orbit(case.loads[bearing], case.crank_angle, **case.geometry(bearing), method="reynolds-transient",
-                   tilt=tilt, **options)
+    result = orbit(case.loads[bearing], case.crank_angle, **case.geometry(bearing), method=method, **options)
     return summary(result), time.perf_counter() - t0
 
 
@@ -108,12 +112,6 @@ def cheap_tiers(cases):
             runs.append(summary(call()))
         out[tier] = {k: np.concatenate([r[k] for r in runs]) for k in runs[0]}
         seconds[tier] = float(np.mean(seconds[tier]))
-    runs = []
-    t0 = time.perf_counter()
-    for case in cases.values():
-        runs.append(summary(orbit(case.loads, case.crank_angle, **case.geometry(), method="quasi-static-reynolds")))
-    seconds["quasi-static-reynolds"] = (time.perf_counter() - t0) / sum(c.loads.shape[0] for c in cases.values())
-    out["quasi-static-reynolds"] = {k: np.concatenate([r[k] for r in runs]) for k in runs[0]}
     return out, seconds
 
 
@@ -150,6 +148,7 @@ def main(argv=None):
     # the transient runs first, in worker processes, while this process times the cheap tiers
     jobs = [(name, b, {}) for name in ENGINES for b in range(n_bearings[name])]
     jobs += [(name, b, {"cavitation": "reynolds"}) for name in ENGINES for b in range(n_bearings[name])]
+    jobs += [(name, b, {"method": "quasi-static-reynolds"}) for name in ENGINES for b in range(n_bearings[name])]
     checks = {"1440 steps": ("iso-example", 1, {"step": 0.5}), "grid 270 x 31": ("iso-example", 1,
                                                                                    {"n_theta": 270, "n_z": 31}),
               "feed 0.3 MPa": ("iso-example", 1, {"feed_pressure": 0.3e6}),
@@ -163,7 +162,8 @@ def main(argv=None):
             tilt = np.tile(direction * offset / (case.length / 2), (case.crank_angle.size, 1))
             tilt_jobs[(name, offset)] = tilt
     all_jobs = jobs + list(checks.values()) + [(n, 1, {"tilt": t}) for (n, _), t in tilt_jobs.items()]
-    # the cheap tiers are timed first, alone on the machine; then the transient runs in worker processes
+    # the cheap tiers are timed first, alone on the machine; then the slow runs in worker processes
+    # (spawned: numba's OpenMP threads do not survive a fork)
     timing = steady_timing(cases["iso-example"])
     out, seconds = cheap_tiers(cases)
     tilt_cheap = {}
@@ -171,18 +171,20 @@ def main(argv=None):
         case = cases[name]
         tilt_cheap[(name, offset)] = summary(orbit(case.loads[1], case.crank_angle, **case.geometry(1),
                                                    method="mobility-finite", tilt=tilt))
-    with ProcessPoolExecutor(args.workers) as pool:
-        results = list(pool.map(_transient, [(n, b, dict(o)) for n, b, o in all_jobs]))
+    with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        results = list(pool.map(_slow_tier, [(n, b, dict(o)) for n, b, o in all_jobs]))
     n_main = sum(n_bearings.values())
-    ref_runs, ss_runs = results[:n_main], results[n_main:2 * n_main]
-    check_runs = dict(zip(checks, results[2 * n_main:2 * n_main + len(checks)]))
-    tilt_ref = dict(zip(tilt_jobs, results[2 * n_main + len(checks):]))
+    ref_runs, ss_runs, qs_runs = results[:n_main], results[n_main:2 * n_main], results[2 * n_main:3 * n_main]
+    check_runs = dict(zip(checks, results[3 * n_main:3 * n_main + len(checks)]))
+    tilt_ref = dict(zip(tilt_jobs, results[3 * n_main + len(checks):]))
 
     def stack(runs):
         return {k: np.array([r[0][k] for r in runs]).reshape(-1) for k in runs[0][0]}
 
     reference = stack(ref_runs)
     out["reynolds-transient, Swift-Stieber"] = stack(ss_runs)
+    out["quasi-static-reynolds"] = stack(qs_runs)
+    seconds["quasi-static-reynolds"] = float(np.mean([r[1] for r in qs_runs]))
     seconds["reynolds-transient"] = float(np.mean([r[1] for r in ref_runs]))
     seconds["reynolds-transient, Swift-Stieber"] = float(np.mean([r[1] for r in ss_runs]))
     write_errors(out, seconds, reference)
@@ -223,7 +225,8 @@ def main(argv=None):
         "`reynolds-transient` (finite-difference Reynolds equation with squeeze, Elrod-Adams mass-conserving "
         "cavitation, feed hole on the block side at ambient pressure, massless journal integrated by BDF2 to a "
         "periodic orbit). Relative error of each tier per bearing: mean and worst over the "
-        f"{n_main} bearings; time of one bearing's cycle on one core (the cheap tiers best of 5).",
+        f"{n_main} bearings; time of one bearing's cycle on one core (the cheap tiers best of 5, alone; the "
+        "Reynolds tiers once each, two at a time on the two cores).",
         "",
         "| tier | time per bearing-cycle [s] | ratio to mobility | cycle-min h_min: mean / worst | "
         "cycle-mean h_min: mean / worst | sup p_max: worst | p*_max: worst | N*: worst |",

@@ -14,6 +14,7 @@ Writes reports/rozhdestvensky_table2.md.
 from __future__ import annotations
 
 import argparse
+import multiprocessing
 import time
 from concurrent.futures import ProcessPoolExecutor
 
@@ -61,7 +62,7 @@ def main(argv=None):
     case = engine_case("rozhdestvensky-4", clearance=CLEARANCE)
     n = case.loads.shape[0]
     results = {tier: orbit(case.loads, case.crank_angle, **case.geometry(), method=tier) for tier in TIERS[:-1]}
-    with ProcessPoolExecutor(args.workers) as pool:
+    with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
         transient = list(pool.map(_transient, range(n)))
     rows = {tier: [row(results[tier], case.crank_angle, k) for k in range(n)] for tier in TIERS[:-1]}
     rows["reynolds-transient"] = [row(r, case.crank_angle, 0) for r, _ in transient]
