@@ -245,7 +245,7 @@ def resolve(method, steady_method="finite"):
 
 
 def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, speed, method="mobility",
-          steady_method="finite", tilt=None, cycles=20, **transient_options):
+          steady_method="finite", tilt=None, cycles=None, **transient_options):
     """Film over the engine cycle of dynamically loaded bearings.
 
     Parameters
@@ -269,8 +269,9 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
         Slope of the journal axis relative to the bearing axis [rad], per
         component of the engine frame (the journal centre at axial position
         :math:`z` from the mid-plane is :math:`\\mathbf x + z\\boldsymbol\\gamma`).
-    cycles : int
-        Most cycles a dynamic tier integrates to reach a periodic orbit.
+    cycles : int, optional
+        Most cycles a dynamic tier integrates to reach a periodic orbit
+        (default 20 for the mobility tiers, 8 for ``"reynolds-transient"``).
     **transient_options
         Grid and cavitation options of ``"reynolds-transient"``
         (:func:`stackup.film.transient.transient_orbit`).
@@ -292,6 +293,8 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     c = np.broadcast_to(check.positive("clearance", clearance) / 2, lead)
     mu = np.broadcast_to(check.positive("viscosity", viscosity), lead)
     omega = np.broadcast_to(check.positive("speed", speed), lead)
+    if cycles is None:
+        cycles = 8 if kind == "reynolds-transient" else 20
     cycles = check.integer("cycles", cycles, minimum=1)
     if tilt is not None:
         tilt = np.broadcast_to(check.finite("tilt", tilt), loads.shape)

@@ -135,6 +135,10 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
     check.one_of("cavitation", cavitation, CAVITATION)
     if time_order not in (1, 2):
         raise ValueError(f"time_order: {time_order!r} is not one of 1, 2")
+    n_theta = check.integer("n_theta", n_theta, minimum=24)
+    n_z = check.integer("n_z", n_z, minimum=5)
+    feed_pressure = float(check.positive("feed_pressure", feed_pressure, allow_zero=True))
+    feed_angle = float(check.finite("feed_angle", feed_angle))
     lead = loads.shape[:-2]
     n = crank_angle.size
     tau = np.radians(np.append(crank_angle, crank_angle[0] + 720.0) - crank_angle[0])
