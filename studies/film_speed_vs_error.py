@@ -20,7 +20,10 @@ Writes reports/film_speed_vs_error.md (about 40 min on 2 cores, mostly the trans
 from __future__ import annotations
 
 import argparse
+import functools
+import hashlib
 import multiprocessing
+import pickle
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -44,6 +47,8 @@ QUANTITIES = {  # name: (Orbit attribute, what it is)
     "p_max_mean": ("p_max_mean", "cycle mean of the peak pressure"),
     "friction_power": ("friction_power_mean", "cycle mean of the friction power"),
 }
+#: Edge offsets (L/2 times the tilt) of the tilt cases [m]: below the films of micrometres the bearings carry.
+TILT_OFFSETS = (0.5e-6, 1e-6, 2e-6)
 ERRORS_FILE = Path(__file__).resolve().parents[1] / "stackup" / "data" / "film_cycle_errors.toml"
 
 
@@ -54,13 +59,28 @@ def summary(result):
     return {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in out.items()}
 
 
-def _slow_tier(job):
+def _job_key(job):
+    name, bearing, options = job
+    parts = [f"{k}={hashlib.sha1(np.ascontiguousarray(v).tobytes()).hexdigest() if isinstance(v, np.ndarray) else v}"
+             for k, v in sorted(options.items())]
+    return hashlib.sha1(f"{stackup.__version__}|{name}|{bearing}|{'|'.join(parts)}".encode()).hexdigest()
+
+
+def _slow_tier(job, cache=None):
     """One slow run in a worker: (engine, bearing, options) -> summary and seconds.
 
     Options: ``method`` (default reynolds-transient), ``step`` of the crank angle, ``tilt``, and the
-    transient tier's own options.
+    transient tier's own options. With a ``cache`` folder, a run done before is read back.
     """
+    if cache is not None:
+        path = Path(cache) / f"{_job_key(job)}.pkl"
+        if path.exists():
+            return pickle.loads(path.read_bytes())
+        result = _slow_tier(job)
+        path.write_bytes(pickle.dumps(result))
+        return result
     name, bearing, options = job
+    options = dict(options)
     numba.set_num_threads(1)
     case = engine_case(name, step=options.pop("step", 1.0))
     method = options.pop("method", "reynolds-transient")
@@ -141,7 +161,10 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--out", default="reports/film_speed_vs_error.md")
+    parser.add_argument("--cache", help="folder keeping each slow run, so a rerun redoes only what changed")
     args = parser.parse_args(argv)
+    if args.cache:
+        Path(args.cache).mkdir(parents=True, exist_ok=True)
 
     cases = {name: engine_case(name) for name in ENGINES}
     n_bearings = {name: c.loads.shape[0] for name, c in cases.items()}
@@ -158,7 +181,7 @@ def main(argv=None):
         case = cases[name]
         peak = np.argmax(np.linalg.norm(case.loads[1], axis=-1))
         direction = case.loads[1, peak] / np.linalg.norm(case.loads[1, peak])
-        for offset in (1e-6, 2e-6, 4e-6):  # edge offset L/2 * tilt in the plane of the peak load
+        for offset in TILT_OFFSETS:  # edge offset L/2 * tilt in the plane of the peak load
             tilt = np.tile(direction * offset / (case.length / 2), (case.crank_angle.size, 1))
             tilt_jobs[(name, offset)] = tilt
     all_jobs = jobs + list(checks.values()) + [(n, 1, {"tilt": t}) for (n, _), t in tilt_jobs.items()]
@@ -172,7 +195,7 @@ def main(argv=None):
         tilt_cheap[(name, offset)] = summary(orbit(case.loads[1], case.crank_angle, **case.geometry(1),
                                                    method="mobility-finite", tilt=tilt))
     with ProcessPoolExecutor(args.workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-        results = list(pool.map(_slow_tier, [(n, b, dict(o)) for n, b, o in all_jobs]))
+        results = list(pool.map(functools.partial(_slow_tier, cache=args.cache), all_jobs))
     n_main = sum(n_bearings.values())
     ref_runs, ss_runs, qs_runs = results[:n_main], results[n_main:2 * n_main], results[2 * n_main:3 * n_main]
     check_runs = dict(zip(checks, results[3 * n_main:3 * n_main + len(checks)]))
@@ -301,7 +324,7 @@ def main(argv=None):
     for (name, offset), (res, _) in tilt_ref.items():
         cheap = tilt_cheap[(name, offset)]
         untilted = reference["h_min"][k_ref[name]]
-        lines.append(f"| {name} | {1e6 * offset:.0f} | {1e6 * res['h_min'][0]:.2f} / {1e6 * res['h_min_edge'][0]:.2f} | "
+        lines.append(f"| {name} | {1e6 * offset:.1f} | {1e6 * res['h_min'][0]:.2f} / {1e6 * res['h_min_edge'][0]:.2f} | "
                      f"{1e6 * cheap['h_min'][0]:.2f} / {1e6 * cheap['h_min_edge'][0]:.2f} | "
                      f"{100 * relative(cheap['h_min_edge'][0], res['h_min_edge'][0]):+.1f} % | "
                      f"{100 * (1 - res['h_min_edge'][0] / untilted):.0f} % |")

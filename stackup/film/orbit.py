@@ -1,6 +1,7 @@
 r"""Dynamically loaded bearings over the engine cycle: the journal orbit, its film and pressure.
 
-Tiers of :func:`orbit` (``method``), cheapest first:
+Tiers of :func:`orbit` (``method``); their measured costs and errors are in
+``reports/film_speed_vs_error.md`` and :func:`cheapest_cycle_tier` picks from them:
 
 ``"quasi-static"`` (``"quasi-static-short"``, ``"quasi-static-finite"``, ``"quasi-static-reynolds"``)
     Each crank angle as a steady load on a steady tier (``steady_method``):
@@ -12,7 +13,10 @@ Tiers of :func:`orbit` (``method``), cheapest first:
 ``"mobility-finite"``
     The same orbit with the short-bearing force scaled and turned by a
     finite-length correction tabulated from the Reynolds tier with squeeze
-    (``stackup/data/film_mobility_table.npz``, ``studies/film_mobility_table.py``).
+    (``stackup/data/film_mobility_table.npz``, ``studies/film_mobility_table.py``:
+    L/D 0.15-1, eccentricity up to the limit, every squeeze direction; the
+    peak pressure corrected the same way). The quasi-static ``finite`` tier's
+    peak pressure uses the same table at the steady squeeze direction.
 ``"reynolds-transient"``
     The reference: the finite-difference Reynolds equation with squeeze and
     mass-conserving (Elrod-Adams, JFO) cavitation, the journal centre integrated

@@ -73,7 +73,8 @@ class _Film:
     """Grid and dimensionless film of one bearing."""
 
     def __init__(self, *, length_over_radius, clearance_over_radius, n_theta, n_z, feed_angle, feed_width,
-                 feed_length_share, feed_pressure):
+                 feed_length_share, feed_pressure, limit=0.995):
+        self.limit = limit
         self.theta = 2 * np.pi * np.arange(n_theta) / n_theta
         self.dtheta = 2 * np.pi / n_theta
         self.z = np.linspace(-length_over_radius / 2, length_over_radius / 2, n_z)
@@ -95,11 +96,16 @@ class _Film:
         self.weights[[0, -1]] = self.dz / 2
 
     def thickness(self, xi, gamma):
-        """h at the nodes, h and h^3 at the east faces, h^3 at the north faces (centre xi [c], tilt gamma [rad])."""
+        """h at the nodes, h and h^3 at the east faces, h^3 at the north faces (centre xi [c], tilt gamma [rad]).
+
+        Where a tilted journal's edge would reach the wall the film is held at the
+        thinnest film the tiers allow (the orbit reports that as ``edge_contact``).
+        """
         t = self.tilt_scale * gamma
-        h = 1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z[None, :]
-        h_e = 1.0 - (xi @ self.n_east)[:, None] - (t @ self.n_east)[:, None] * self.z[None, :]
-        h_n = 1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z_north[None, :]
+        floor = 1.0 - self.limit
+        h = np.maximum(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z[None, :], floor)
+        h_e = np.maximum(1.0 - (xi @ self.n_east)[:, None] - (t @ self.n_east)[:, None] * self.z[None, :], floor)
+        h_n = np.maximum(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z_north[None, :], floor)
         return h, h_e, h_e**3, h_n**3
 
     def force(self, p):
@@ -164,7 +170,7 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         unit_pressure = mu * w * r**2 / c**2
         film = _Film(length_over_radius=l / r, clearance_over_radius=c / r, n_theta=n_theta, n_z=n_z,
                      feed_angle=feed_angle, feed_width=FEED_WIDTH, feed_length_share=FEED_LENGTH_SHARE,
-                     feed_pressure=feed_pressure / unit_pressure)
+                     feed_pressure=feed_pressure / unit_pressure, limit=ECCENTRICITY_LIMIT)
         ld = l / (2 * r)
         finite = ld_nodes[0] <= ld <= ld_nodes[-1]
         i, t = _mobility._locate(ld_nodes, ld)
