@@ -150,3 +150,22 @@ def test_an_orbit_that_has_not_settled_is_flagged_not_periodic():
     dyn = orbit(turning_load(50.0, 0.0) + [0.0, 30.0], ANGLE, **GEOMETRY, method="mobility", cycles=2)
     assert dyn.status == STATUS.index("not_periodic")
     assert np.all((dyn.h_min > 0) & (dyn.h_min < 30e-6)) and dyn.cycles < 4
+
+
+def test_cheapest_cycle_tier_follows_the_measured_errors():
+    from stackup.film.orbit import cheapest_cycle_tier, cycle_tier_errors
+
+    errors = cycle_tier_errors()
+    fastest = min(errors, key=lambda t: errors[t]["seconds"])
+    assert cheapest_cycle_tier(10.0) == fastest
+    assert cheapest_cycle_tier(0.0) == "reynolds-transient"
+    seconds = [errors[cheapest_cycle_tier(e)]["seconds"] for e in (0.0, 0.01, 0.03, 0.1, 0.3, 1.0)]
+    assert seconds == sorted(seconds, reverse=True)  # a looser tolerance never costs more
+    for e in (0.02, 0.05, 0.2):
+        for reference in ("mass-conserving", "swift-stieber"):
+            tier = cheapest_cycle_tier(e, reference=reference)
+            table = errors[tier] if reference == "mass-conserving" else errors[tier]["swift-stieber"]
+            assert table["h_min"] <= e and table["h_min_mean"] <= e
+    for method in errors:  # every measured tier is a method of orbit
+        orbit(np.tile([1e3, 0.0], (4, 1)), np.arange(0.0, 720.0, 180.0), **GEOMETRY, method=method,
+              **({"n_theta": 24, "n_z": 5, "cycles": 1} if method == "reynolds-transient" else {}))
