@@ -2,8 +2,10 @@
 
 __version__ = "0.1.0"
 
+from . import design  # noqa: E402
 from .plan import plan  # noqa: E402
 from .rank import rank  # noqa: E402
 from .study import Study  # noqa: E402
+from .study.compare import Comparison, compare  # noqa: E402
 
-__all__ = ["Study", "plan", "rank", "__version__"]
+__all__ = ["Comparison", "Study", "compare", "plan", "rank", "__version__"]

@@ -76,3 +76,15 @@ def integer(field, value, *, minimum=None):
     if minimum is not None and value < minimum:
         raise ValueError(f"{field}: {value} is not valid; must be >= {minimum}")
     return value
+
+
+def clearance_window(field, window):
+    """A design window of the operating clearance as (lower, upper) in m, or a ValueError saying why not."""
+    try:
+        lo, hi = (float(v) for v in window)
+    except (TypeError, ValueError):
+        raise ValueError(f"{field}: {window!r} is not a (lower, upper) pair of clearances in m") from None
+    if not 0.0 < lo < hi < 1e-3:
+        raise ValueError(f"{field}: ({lo!r}, {hi!r}) m is not a clearance window; give 0 < lower < upper < 1 mm "
+                         "in metres, e.g. (45e-6, 65e-6)")
+    return lo, hi

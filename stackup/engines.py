@@ -2,8 +2,16 @@
 
 An engine file (TOML, lengths in mm) names its number of main bearings and,
 per dimension, the drawing limits, the process, the gauge and the share of
-variance common to one block or crankshaft. Built-in engines ship in
-``stackup/data/engines``; a user's file works the same way, by path.
+variance common to one block or crankshaft (journals also their form error and
+how it is read, housing bores their bolt-tension scatter). ``[press_fit]``
+holds the housing ring, materials and shell lining, the checking block, the
+temperatures the fit is checked at (``cold_temperature``,
+``assembly_temperature``, ``temperature`` for the clearance,
+``hot_temperature``) and the source of the crush height;
+``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
+operating-clearance window (absolute, or ``relative_clearance`` C/D of the
+journal) with its source. Built-in engines ship in ``stackup/data/engines``;
+a user's file works the same way, by path.
 """
 
 from __future__ import annotations
@@ -20,16 +28,52 @@ from . import _validate as check
 from . import materials
 from .crank import BellakhdharLaw
 from .film import oil as film_oil
+from .film.heat import FEEDS, OilFeed
 from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
-from .tolerances import Dimension, gauge_from_spec, process_from_spec
+from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
 
 
 @dataclass(frozen=True)
+class PressFitLimits:
+    """Design limits of the press fit, with their source.
+
+    Attributes
+    ----------
+    contact_pressure_min : float
+        Least contact pressure between shell backs and housing bore at any
+        declared temperature [Pa] (no spinning, no fretting, heat transfer).
+    shell_stress_max : float
+        Largest steel-equivalent compression of the shell wall at any
+        declared temperature [Pa] (no inward protrusion at the joint faces).
+    source : str
+    """
+
+    contact_pressure_min: float
+    shell_stress_max: float
+    source: str
+
+
+#: Limits of an engine file without ``[press_fit.limits]``: the lenient end
+#: of Kopeliovich's pressure range and the middle of his stress range.
+KOPELIOVICH_LIMITS = PressFitLimits(
+    contact_pressure_min=8e6, shell_stress_max=450e6,
+    source="Kopeliovich, Crush height of engine bearings, sec. 2: contact pressure commonly not less than "
+           "8-10 MPa; compression stress not above 400-500 MPa depending on the application (defaults: 8 MPa, "
+           "450 MPa)")
+
+
+@dataclass(frozen=True)
 class PressFitSpec:
-    """How the shells sit in the housing: keyword arguments of :func:`stackup.fit.press_fit` [SI]."""
+    """How the shells sit in the housing, at which temperatures it is checked, and against which limits [SI].
+
+    :meth:`kwargs` gives the keyword arguments of :func:`stackup.fit.press_fit`
+    at the operating temperature (the clearance), :meth:`extremes_kwargs`
+    those of :func:`stackup.fit.press_fit_extremes` over :attr:`temperatures`
+    (the stress and pressure checks).
+    """
 
     housing_outer: float
     housing_material: str
@@ -39,10 +83,30 @@ class PressFitSpec:
     check_bore: float
     check_stress: float
     assembly_temperature: float
-    temperature: float
+    temperature: float  # operating temperature: the clearance [degC]
+    lining_thickness: float = 0.0
+    lining_material: str | None = None
+    cold_temperature: float | None = None  # coldest state checked (cold start) [degC]; None: the assembly's
+    hot_temperature: float | None = None  # hottest state checked [degC]; None: the operating temperature
+    limits: PressFitLimits = KOPELIOVICH_LIMITS
+    crush_source: str = ""
+
+    _FIT = ("housing_outer", "housing_material", "shell_material", "journal_material", "length", "check_bore",
+            "check_stress", "assembly_temperature", "lining_thickness", "lining_material")
 
     def kwargs(self):
-        return dict(self.__dict__)
+        """Keyword arguments of :func:`stackup.fit.press_fit` at the operating temperature."""
+        return {**{name: getattr(self, name) for name in self._FIT}, "temperature": self.temperature}
+
+    @property
+    def temperatures(self):
+        """Temperatures the press fit is checked at [degC], coldest first: cold start, assembly, operating, hot."""
+        declared = (self.cold_temperature, self.assembly_temperature, self.temperature, self.hot_temperature)
+        return tuple(sorted({float(t) for t in declared if t is not None}))
+
+    def extremes_kwargs(self):
+        """Keyword arguments of :func:`stackup.fit.press_fit_extremes` over :attr:`temperatures`."""
+        return {**{name: getattr(self, name) for name in self._FIT}, "temperatures": self.temperatures}
 
 
 @dataclass(frozen=True)
@@ -95,6 +159,37 @@ class CrankSpec:
 
 
 @dataclass(frozen=True)
+class WearSpec:
+    """Surfaces and wear of the main bearings, for the resource of Levanov et al. (2015) [SI].
+
+    ``critical_film`` is :math:`h_{lim,cr}`, at least the sum of the
+    roughnesses :math:`R_{z1} + R_{z2}` (eq. 3; the sum unless the file gives a
+    larger value); ``journal_rq`` and ``shell_rq`` are the RMS roughnesses of
+    the asperity contact (method 2), ``lining_material`` the shell's running
+    layer (:mod:`stackup.materials`).
+    """
+
+    journal_rz: float  # [m]
+    shell_rz: float  # [m]
+    journal_rq: float  # [m]
+    shell_rq: float  # [m]
+    critical_film: float  # h_lim,cr [m]
+    wear_limit: float  # limiting wear [m]
+    wear_rate: float  # wear speed gamma [m/s]
+    lining_material: str
+    roughness_source: str
+    wear_source: str
+
+
+#: Used when an engine file has no [wear] table: the paper's diesel (h_lim,cr = 1.9 um split between the surfaces).
+DEFAULT_WEAR = WearSpec(
+    journal_rz=0.8e-6, shell_rz=1.1e-6, journal_rq=0.2e-6, shell_rq=0.3e-6, critical_film=1.9e-6, wear_limit=30e-6,
+    wear_rate=1e-13, lining_material="aluminium",
+    roughness_source="default: h_lim,cr = 1.9 um of Levanov et al. 2015 split as journal Rz 0.8 um, shell Rz 1.1 um",
+    wear_source="default: Levanov et al. 2015, sec. 4 (30 um, 1e-13 m/s)")
+
+
+@dataclass(frozen=True)
 class Engine:
     """An engine's main bearings: how many, and how their parts are made."""
 
@@ -108,7 +203,15 @@ class Engine:
     press_fit: PressFitSpec
     crank: CrankSpec | None = None
     clearance_window: tuple = (0.0, np.inf)  # design window of the operating clearance [m]
+    clearance_window_source: str = ""
     life_target: float = 1000.0 * 3600.0  # [s]
+    wear: WearSpec = DEFAULT_WEAR  # surfaces and wear limits of the main bearings
+    oil_feed: OilFeed | None = None  # how the oil enters each main bearing (stackup.film.heat)
+
+    @property
+    def press_fit_limits(self):
+        """The engine's press-fit design limits with their source (:class:`PressFitLimits`)."""
+        return self.press_fit.limits
 
 
 def _builtin_dir():
@@ -150,7 +253,17 @@ def load_engine(name_or_path):
         process = process_from_spec(table.get("process", {}), lo=lo, hi=hi, scale=scale, field=f"{where}, key {key}.process")
         gauge = gauge_from_spec(table.get("gauge"), scale=scale, field=f"{where}, key {key}.gauge")
         shared = float(check.in_range(f"{where}, key {key}.shared", table.get("shared", 0.0), 0.0, 1.0, hi_open=True))
-        return Dimension(key, lo, hi, process, gauge, shared)
+        form = form_from_spec(table.get("form"), scale=scale, field=f"{where}, key {key}.form")
+        if form is not None:
+            # the gauge's readings are those of the form's planes and directions, averaged
+            if "readings" in (table.get("gauge") or {}) and gauge.readings != form.readings:
+                raise ValueError(f"{where}, key {key}.gauge.readings: {gauge.readings} readings, but the form is read "
+                                 f"in {form.readings} (planes x directions)")
+            gauge = replace(gauge, readings=form.readings, combine="mean")
+        bolt = float(check.positive(f"{where}, key {key}.bolt_scatter", table.get("bolt_scatter", 0.0),
+                                    allow_zero=True)) * scale
+        return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt,
+                         source=str(table.get("source", "")))
 
     shell = dict(data.get("shell_wall", {}))
     key = f"{where}, key shell_wall"
@@ -182,12 +295,19 @@ def load_engine(name_or_path):
         value = fit_table.pop(name, None)
         return default if value is None else float(check.positive(f"{key}.{name}", value)) * scale
 
-    def temperature(name):
-        return float(check.in_range(f"{key}.{name}", fit_table.pop(name, 20.0), -60.0, 300.0, unit=" degC"))
+    def temperature(name, default=20.0):
+        value = fit_table.pop(name, default)
+        return None if value is None else float(check.in_range(f"{key}.{name}", value, -60.0, 300.0, unit=" degC"))
 
-    def material(name):
-        return materials.get(fit_table.pop(name, "steel")).name
+    def material(name, default="steel"):
+        value = fit_table.pop(name, default)
+        return None if value is None else materials.get(value).name
 
+    lining_thickness = float(check.positive(f"{key}.lining_thickness", fit_table.pop("lining_thickness", 0.0),
+                                            allow_zero=True)) * scale
+    lining_material = material("lining_material", None)
+    if lining_thickness > 0 and lining_material is None:
+        raise ValueError(f"{key}.lining_material: missing; a lining_thickness > 0 needs the lining's material")
     spec = PressFitSpec(
         housing_outer=length("housing_outer"),
         housing_material=material("housing_material"),
@@ -199,32 +319,156 @@ def load_engine(name_or_path):
                                           lo_open=True, unit=" Pa")),
         assembly_temperature=temperature("assembly_temperature"),
         temperature=temperature("temperature"),
+        lining_thickness=lining_thickness,
+        lining_material=lining_material,
+        cold_temperature=temperature("cold_temperature", None),
+        hot_temperature=temperature("hot_temperature", None),
+        limits=_limits(fit_table.pop("limits", None), f"{key}.limits"),
+        crush_source=str(fit_table.pop("crush_height_source", "")),
     )
     if fit_table:
         raise ValueError(f"{key}: unknown key(s) {sorted(fit_table)}")
     if spec.housing_outer <= bore.hi:
         raise ValueError(f"{key}.housing_outer: {spec.housing_outer / scale!r} {units} is not above the housing bore")
+    if spec.cold_temperature is not None and spec.cold_temperature > spec.assembly_temperature:
+        raise ValueError(f"{key}.cold_temperature: {spec.cold_temperature!r} degC is above the assembly temperature "
+                         f"{spec.assembly_temperature!r} degC; the coldest state checked is the colder of the two")
+    if spec.hot_temperature is not None and spec.hot_temperature < spec.temperature:
+        raise ValueError(f"{key}.hot_temperature: {spec.hot_temperature!r} degC is below the operating temperature "
+                         f"{spec.temperature!r} degC")
+    journal = dimension("journal_d")
     return Engine(
         name=str(data.get("name", path.stem)),
         title=str(data.get("title", "")),
         source=str(data.get("source", "")),
         main_bearings=bearings,
         housing_bore=bore,
-        journal_d=dimension("journal_d"),
+        journal_d=journal,
         shell_wall=supply,
         press_fit=spec,
         crank=_crank(data, where, scale, bearings, path.parent) if "crank" in data else None,
-        **_targets(data, where, scale, units),
+        **_targets(data, where, scale, units, journal),
+        wear=_wear(data, where, scale),
+        oil_feed=_oil_feed(data, where, scale, spec.length),
     )
 
 
-def _targets(data, where, scale, units):
+def _wear(data, where, scale):
+    """The [wear] table: roughness (Rz, Rq) of journal and shell, lining, limiting wear and wear speed."""
+    if "wear" not in data:
+        return DEFAULT_WEAR
+    table = dict(data["wear"])
+    key = f"{where}, key wear"
+
+    def length(name):
+        if name not in table:
+            raise ValueError(f"{key}: missing '{name}'")
+        return float(check.positive(f"{key}.{name}", table.pop(name))) * scale
+
+    def text(name):
+        value = table.pop(name, "")
+        if not isinstance(value, str) or not value.strip():
+            raise ValueError(f"{key}: missing '{name}' (where the numbers come from)")
+        return value
+
+    rz1, rz2, rq1, rq2 = (length(n) for n in ("journal_rz", "shell_rz", "journal_rq", "shell_rq"))
+    for rz, rq, part in ((rz1, rq1, "journal"), (rz2, rq2, "shell")):
+        if rq >= rz:
+            raise ValueError(f"{key}.{part}_rq: {rq / scale!r} is not below {part}_rz {rz / scale!r}")
+    critical = rz1 + rz2
+    if "critical_film" in table:
+        given = length("critical_film")
+        if given < critical * (1 - 1e-12):
+            raise ValueError(f"{key}.critical_film: {given / scale!r} is below journal_rz + shell_rz = "
+                             f"{critical / scale!r} (Levanov et al. 2015, eq. 3: h_lim,cr > Rz1 + Rz2)")
+        critical = given
+    spec = WearSpec(journal_rz=rz1, shell_rz=rz2, journal_rq=rq1, shell_rq=rq2, critical_film=critical,
+                    wear_limit=length("wear_limit"), wear_rate=length("wear_rate"),
+                    lining_material=materials.get(table.pop("lining_material", "aluminium")).name,
+                    roughness_source=text("roughness_source"), wear_source=text("wear_source"))
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    return spec
+
+
+#: Groove width of the default feed, as a share of the bearing length.
+_DEFAULT_GROOVE_SHARE = 0.15
+
+
+def _oil_feed(data, where, scale, bearing_length):
+    """The [oil_feed] table: supply pressure [Pa] and the groove or hole (angles in deg, lengths in file units)."""
+    if "oil_feed" not in data:
+        return OilFeed("groove", 0.3e6, (0.5 * np.pi, 1.5 * np.pi), _DEFAULT_GROOVE_SHARE * bearing_length,
+                       source="default: 0.3 MPa into a 180 deg groove in the upper shell, 15 % of the bearing wide")
+    table = dict(data["oil_feed"])
+    key = f"{where}, key oil_feed"
+    kind = check.one_of(f"{key}.feed", table.pop("feed", None), FEEDS)
+    pressure = float(check.in_range(f"{key}.supply_pressure", table.pop("supply_pressure", None) or 0.0, 0.0, 2e7,
+                                    lo_open=True, unit=" Pa"))
+    source = table.pop("source", "")
+    if not isinstance(source, str) or not source.strip():
+        raise ValueError(f"{key}: missing 'source' (where the numbers come from)")
+    if kind == "groove":
+        arc = check.finite(f"{key}.groove_arc", table.pop("groove_arc", [90.0, 270.0]))
+        if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
+            raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
+                             f"start < end <= start + 360")
+        width = float(check.positive(f"{key}.groove_width", table.pop("groove_width", 0.0))) * scale
+        if width >= bearing_length:
+            raise ValueError(f"{key}.groove_width: {width / scale!r} is not below the bearing length")
+        feed = OilFeed(kind, pressure, tuple(float(a) for a in np.radians(arc)), width, source=source)
+    else:
+        diameter = float(check.positive(f"{key}.hole_diameter", table.pop("hole_diameter", 0.0))) * scale
+        if diameter >= bearing_length / 2:
+            raise ValueError(f"{key}.hole_diameter: {diameter / scale!r} is not below half the bearing length")
+        angle = float(check.finite(f"{key}.hole_angle", table.pop("hole_angle", 180.0)))
+        feed = OilFeed(kind, pressure, hole_angle=float(np.radians(angle)), hole_diameter=diameter, source=source)
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    return feed
+
+
+def _limits(table, key):
+    """Press-fit design limits from ``[press_fit.limits]`` (Pa, with their source); Kopeliovich's if absent."""
+    if table is None:
+        return KOPELIOVICH_LIMITS
+    table = dict(table)
+    for name in ("contact_pressure_min", "shell_stress_max", "source"):
+        if name not in table:
+            raise ValueError(f"{key}: missing '{name}' (limits in Pa, with the source they come from)")
+    limits = PressFitLimits(
+        contact_pressure_min=float(check.positive(f"{key}.contact_pressure_min", table.pop("contact_pressure_min"))),
+        shell_stress_max=float(check.positive(f"{key}.shell_stress_max", table.pop("shell_stress_max"))),
+        source=str(table.pop("source")),
+    )
+    if table:
+        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    if not (1e5 <= limits.contact_pressure_min <= 100e6 and 10e6 <= limits.shell_stress_max <= 2e9):
+        raise ValueError(f"{key}: contact_pressure_min {limits.contact_pressure_min!r} Pa, shell_stress_max "
+                         f"{limits.shell_stress_max!r} Pa; give the limits in Pa (e.g. 10e6 and 400e6)")
+    return limits
+
+
+def _targets(data, where, scale, units, journal):
+    """Design window of the operating clearance (absolute, or relative to the journal) and life target."""
     table = dict(data.get("targets", {}))
     key = f"{where}, key targets"
     out = {}
+    forms = [k for k in ("operating_clearance", "relative_clearance") if k in table]
+    if len(forms) > 1:
+        raise ValueError(f"{key}: give either operating_clearance or relative_clearance, not both")
     if "operating_clearance" in table:
         lo, hi = check.limits(f"{key}.operating_clearance", *table.pop("operating_clearance"), unit=units)
         out["clearance_window"] = (lo * scale, hi * scale)
+    if "relative_clearance" in table:
+        # psi = C / D of the journal's nominal size (its lower drawing limit)
+        lo, hi = check.limits(f"{key}.relative_clearance", *table.pop("relative_clearance"), unit="")
+        if lo <= 0 or hi >= 0.01:
+            raise ValueError(f"{key}.relative_clearance: [{lo!r}, {hi!r}] is not a clearance ratio C/D in (0, 0.01) "
+                             "(write 1 per mille as 0.001)")
+        out["clearance_window"] = (lo * journal.lo, hi * journal.lo)
+    if "clearance_source" in table:
+        out["clearance_window_source"] = str(table.pop("clearance_source"))
     if "life_hours" in table:
         out["life_target"] = float(check.positive(f"{key}.life_hours", table.pop("life_hours"))) * 3600.0
     if table:

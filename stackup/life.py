@@ -1,26 +1,31 @@
 r"""Bearing resource (wear life) from the oil film: the two methods of Levanov et al. (2015).
 
-Method 1 (Rumb's dependence) from the minimum film thickness:
+Method 1 (Rumb's dependence, eqs. 4-5) from the minimum film thickness:
 
 .. math:: R = \left(\frac{\Delta h_{lim}}{\gamma}\right)^{1/\beta_1}, \qquad
-          \beta_1 = 1 + \left(\frac{h_{min}}{h_{lim,cr}}\right)^{n_I}
+          \beta_1 = 1 + \left(\frac{\bar h_{min}}{h_{lim,cr}}\right)^{n_I}
 
-with limiting wear :math:`\Delta h_{lim}` [m], wear speed :math:`\gamma` [m/s],
-critical film :math:`h_{lim,cr} = R_{z1} + R_{z2}` (1.9 um in the paper) and
-:math:`n_I` between -2.0 and -2.5; :math:`R` in seconds as the paper's
-formula gives it (a thick film, :math:`\beta_1 \to 1`, gives
-:math:`\Delta h_{lim}/\gamma`; a vanishing film gives 1 s).
+with limiting wear :math:`\Delta h_{lim}` [m], wear speed :math:`\gamma` [m/s]
+and :math:`R` in seconds. The film the paper feeds is :math:`\bar h_{min}`, the
+average over the loading cycle of the minimum film thickness: the paper lists
+both the minimum and the average minimum film among a bearing's
+characteristics (sec. 2), and its results pair films of 5.3-8.6 um with
+shares of the cycle in boundary friction of 5-17 % (Table 1; Table 2 pairs
+5.7-8.1 um with 8.8-14.8 %). A film below :math:`h_{lim,cr}` = 1.9 um during
+5-17 % of the cycle cannot have a cycle minimum of 5 um, so those films are
+cycle averages. :func:`cycle_film` gives either statistic by name; the cycle
+minimum (``"cycle-minimum"``) gives lives of hours for any bearing that
+touches boundary friction at all and is kept only as a comparison.
 
-Method 2 (molecular-mechanical friction and fatigue wear) accumulates wear only
-where :math:`h_{min} < h_{lim,cr}`: per step the conditional wear depth
-:math:`\delta = I_h\,2\beta_c R_b` with the wear intensity :math:`I_h = k\,p^m`
-(:math:`k = 7\cdot10^{-12}` 1/Pa, :math:`m = 0.0511`), the contact pressure
-:math:`p` and the contact half-angle :math:`\beta_c`; the wear rate
-:math:`\gamma` is the wear per cycle over the cycle time and
-:math:`R = \Delta h_{lim}/\gamma`.
+The critical film comes from the surfaces (eq. 3): :math:`h_{lim,cr} > R_{z1} + R_{z2}`
+(:func:`critical_film`).
 
-:math:`\alpha`, the share of the cycle with :math:`h_{min} < h_{lim,cr}`,
-flags scuffing risk above 20 %.
+Method 2 (molecular-mechanical friction and fatigue wear, eqs. 6-7) builds a
+wear chart over the bearing surface where the film is below :math:`h_{lim,cr}`:
+:func:`levanov_method2`.
+
+:math:`\alpha`, the share of the cycle with :math:`h_{min} < h_{lim,cr}`
+(:func:`alpha`), flags scuffing risk above 20 %.
 
 References
 ----------
@@ -36,108 +41,438 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _validate as check
+from .contact import TYPICAL_ASPERITIES, greenwood_tripp
+from .stats import proportion_ci, quantile_ci
 
-#: Above this share of the cycle in boundary friction the scuffing probability rises sharply (Levanov et al.).
-ALPHA_SCUFFING = 0.20
+
+@dataclass(frozen=True)
+class LevanovParameters:
+    """Constants of Levanov et al. (2015), with the paper's values.
+
+    Attributes
+    ----------
+    n : float
+        Exponent :math:`n_I` of eq. 5 [-]; the paper gives -2.0 to -2.5
+        (obtained by the inverse task from a 10 000 h resource). -2.0, the
+        end of the range that gives the shorter life, is taken.
+    wear_limit : float
+        Limiting wear :math:`\\Delta h_{lim}` of the paper's diesel [m] (sec. 4: 30e-6 m).
+    wear_rate : float
+        Wear speed :math:`\\gamma` [m/s] (sec. 4: 1e-13 m/s, from its ref. [3]).
+    critical_film : float
+        :math:`h_{lim,cr}` of the paper's diesel connecting-rod bearing [m] (sec. 4: 1.9e-6 m).
+    k : float
+        Constant of the linear wear intensity :math:`I_h = k p^m`, eq. 7 [1/Pa] (7e-12).
+    m : float
+        Exponent of eq. 7 [-] (0.0511), from "roller-pad" tests.
+    alpha_scuffing : float
+        Share of the cycle in boundary friction above which the probability of
+        scuffing rises sharply [-] (sec. 2: 20 %).
+    source : str
+    """
+
+    n: float = -2.0
+    wear_limit: float = 30e-6
+    wear_rate: float = 1e-13
+    critical_film: float = 1.9e-6
+    k: float = 7e-12
+    m: float = 0.0511
+    alpha_scuffing: float = 0.20
+    source: str = ("Levanov, Zadorozhnaya, Mukhortov, Eschiganov, Tribology in Industry 37 (2015) 360-365: "
+                   "sec. 2 (20 %), sec. 4 (n_I, wear limit, wear speed, h_lim,cr, k, m)")
+
+
+#: The one parameter set of Levanov et al. (2015).
+LEVANOV_2015 = LevanovParameters()
+#: Above this share of the cycle in boundary friction the scuffing probability rises sharply.
+ALPHA_SCUFFING = LEVANOV_2015.alpha_scuffing
+#: Statistics of the minimum film over the cycle that :func:`cycle_film` gives.
+FILM_STATISTICS = ("cycle-mean", "cycle-minimum")
 
 
 @dataclass(frozen=True)
 class Life:
-    """Bearing resource.
+    """Bearing resource by method 1.
 
     Attributes
     ----------
     beta : numpy.ndarray
-        Index :math:`\\beta_1` of method 1 [-] (NaN for method 2).
+        Index :math:`\\beta_1` [-].
     life : numpy.ndarray
         Resource [s].
-    wear_rate : numpy.ndarray
-        Wear speed used [m/s].
+    film : numpy.ndarray
+        Film thickness the resource was computed from [m].
     """
 
     beta: np.ndarray
     life: np.ndarray
-    wear_rate: np.ndarray
+    film: np.ndarray
 
     @property
     def life_hours(self):
+        """Resource [h]."""
         return self.life / 3600.0
 
 
-def levanov_method1(h_min, *, h_lim_cr=1.9e-6, n=-2.0, wear_limit=30e-6, wear_rate=1e-13):
+def critical_film(journal_roughness, shell_roughness):
+    """Critical film thickness [m] of eq. 3, :math:`h_{lim,cr} = R_{z1} + R_{z2}`.
+
+    Parameters
+    ----------
+    journal_roughness, shell_roughness : array_like
+        Roughness :math:`R_z` of the journal and of the shell's running surface [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The lower bound of eq. 3 (the film must be thicker than the sum of the
+        roughnesses for the hydrodynamic regime) [m].
+    """
+    rz1 = check.positive("journal_roughness", journal_roughness)
+    rz2 = check.positive("shell_roughness", shell_roughness)
+    return rz1 + rz2
+
+
+def cycle_film(h_min_history, *, statistic="cycle-mean", axis=-1):
+    """The film of method 1 from the minimum film at each step of one cycle.
+
+    Parameters
+    ----------
+    h_min_history : array_like (..., steps, ...)
+        Minimum film thickness at equal steps of one cycle [m].
+    statistic : {"cycle-mean", "cycle-minimum"}
+        ``"cycle-mean"``: :math:`\\bar h_{min}`, the film Levanov et al. feed
+        method 1 (see the module notes); ``"cycle-minimum"``: the thinnest
+        film of the cycle, a comparison only.
+    axis : int
+        Axis of the steps.
+
+    Returns
+    -------
+    numpy.ndarray
+        [m], the steps' axis removed.
+    """
+    check.one_of("statistic", statistic, FILM_STATISTICS)
+    h = check.positive("h_min_history", h_min_history, allow_zero=True)
+    return h.mean(axis=axis) if statistic == "cycle-mean" else h.min(axis=axis)
+
+
+def levanov_method1(h_min, *, h_lim_cr, wear_limit, wear_rate, n=LEVANOV_2015.n):
     """Resource from the minimum film thickness (Levanov et al. 2015, method 1, eqs. 4-5).
 
     Parameters
     ----------
     h_min : array_like
-        Minimum film thickness [m], > 0 (e.g. the minimum over the engine cycle).
-    h_lim_cr : float
-        Critical film thickness, the sum of the surface roughnesses [m].
-    n : float
-        Exponent :math:`n_I` [-] (-2.0 to -2.5 in the paper).
-    wear_limit : float
+        Film thickness [m], >= 0: :math:`\\bar h_{min}`, the cycle average of
+        the minimum film, as the paper uses it (:func:`cycle_film`).
+    h_lim_cr : array_like
+        Critical film thickness [m] (:func:`critical_film`).
+    wear_limit : array_like
         Limiting wear :math:`\\Delta h_{lim}` [m].
-    wear_rate : float
+    wear_rate : array_like
         Wear speed :math:`\\gamma` [m/s].
+    n : float
+        Exponent :math:`n_I` [-], < 0.
 
     Returns
     -------
     Life
-        ``beta`` and ``life`` [s], broadcast over ``h_min``.
+        ``beta`` and ``life`` [s], broadcast over the inputs. A thick film
+        (:math:`\\beta_1 \\to 1`) gives :math:`\\Delta h_{lim}/\\gamma`; a
+        vanishing film gives 1 s.
+
+    Notes
+    -----
+    .. math:: R = \\left(\\frac{\\Delta h_{lim}}{\\gamma}\\right)^{1/\\beta_1}, \\qquad
+              \\beta_1 = 1 + \\left(\\frac{h_{min}}{h_{lim,cr}}\\right)^{n_I}
+
+    evaluated in log space, so neither a vanishing film nor a large exponent overflows.
     """
-    h_min = check.positive("h_min", h_min)
+    h_min = check.positive("h_min", h_min, allow_zero=True)
     h_lim_cr = check.positive("h_lim_cr", h_lim_cr)
-    n = check.finite("n", n)
     wear_limit = check.positive("wear_limit", wear_limit)
     wear_rate = check.positive("wear_rate", wear_rate)
-    # (h/h_cr)^n in log space: no overflow for a vanishing film
-    with np.errstate(over="ignore"):
+    n = check.finite("n", n)
+    if np.any(n >= 0):
+        raise ValueError(f"n: {float(np.max(n))!r} is not valid; must be < 0 (the paper: -2.0 to -2.5)")
+    with np.errstate(divide="ignore", over="ignore"):
         beta = 1.0 + np.exp(n * (np.log(h_min) - np.log(h_lim_cr)))
     life = np.exp((np.log(wear_limit) - np.log(wear_rate)) / beta)
-    return Life(beta, life, np.broadcast_to(wear_rate, np.shape(life)).astype(float))
+    return Life(beta, life, np.broadcast_to(h_min, np.shape(life)))
 
 
-def alpha(h_min_history, *, h_lim_cr=1.9e-6, axis=-1):
+def alpha(h_min_history, *, h_lim_cr, axis=-1):
     """Share of the cycle [-] with the film below ``h_lim_cr`` [m], over ``axis`` (equal steps)."""
     h = check.finite("h_min_history", h_min_history)
-    check.positive("h_lim_cr", h_lim_cr)
-    return np.mean(h < h_lim_cr, axis=axis)
+    h_lim_cr = check.positive("h_lim_cr", h_lim_cr)
+    return np.mean(h < np.expand_dims(h_lim_cr, axis) if np.ndim(h_lim_cr) else h < h_lim_cr, axis=axis)
 
 
-def levanov_method2(h_min_history, contact_pressure, contact_half_angle, *, bearing_radius, cycle_time,
-                    h_lim_cr=1.9e-6, k=7e-12, m=0.0511, wear_limit=30e-6, axis=-1):
-    """Resource from wear accumulated where the film is below the critical thickness (method 2, eqs. 6-7).
+def engine_life(bearing_life, *, axis=-1):
+    """Life of an engine [s]: that of its weakest bearing (minimum over ``axis``; NaN stays NaN)."""
+    return np.min(np.asarray(bearing_life, dtype=float), axis=axis)
+
+
+@dataclass(frozen=True)
+class LifeSummary:
+    """Life statistics of a sample of bearings or engines, each ``(estimate, lower, upper)``.
+
+    Attributes
+    ----------
+    b10 : tuple
+        10 % quantile of the life [s] with its 95 % interval.
+    median : tuple
+        Median life [s] with its 95 % interval.
+    share_below_target : tuple
+        Share of the sample with a life below the target [-] with its 95 %
+        (Clopper-Pearson) interval.
+    count : int
+        Sample size (NaN values left out).
+    """
+
+    b10: tuple
+    median: tuple
+    share_below_target: tuple
+    count: int
+
+
+def life_summary(life, *, target, confidence=0.95):
+    """B10, median and the share below ``target`` of a sample of lives, with intervals.
 
     Parameters
     ----------
-    h_min_history : array_like (..., steps)
-        Minimum film thickness at each step of one cycle [m].
-    contact_pressure : array_like (..., steps)
-        Asperity contact pressure at each step [Pa] (used where the film is below ``h_lim_cr``).
-    contact_half_angle : array_like (..., steps)
-        Contact half-angle :math:`\\beta_c` at each step [rad].
-    bearing_radius : float
-        Bearing radius :math:`R_b` [m].
-    cycle_time : float
-        Duration of one cycle [s] (a four-stroke cycle: 2 revolutions).
-    h_lim_cr, k, m, wear_limit : float
-        Critical film [m], wear constant [1/Pa], exponent [-], limiting wear [m].
+    life : array_like
+        Lives [s] (any shape; NaN, e.g. engines the stage did not run on, are
+        left out; an infinite life is a life without wear).
+    target : float
+        Life target [s] (the engine file's ``[targets] life_hours``).
+    confidence : float
+        Level of the intervals.
 
     Returns
     -------
-    Life
-        ``life`` [s] and ``wear_rate`` [m/s]; an infinite life where the film never drops below ``h_lim_cr``.
+    LifeSummary
     """
-    h = check.finite("h_min_history", h_min_history)
-    p = check.positive("contact_pressure", contact_pressure, allow_zero=True)
-    beta_c = check.in_range("contact_half_angle", contact_half_angle, 0.0, np.pi)
-    radius = check.positive("bearing_radius", bearing_radius)
-    cycle_time = check.positive("cycle_time", cycle_time)
-    check.positive("k", k)
-    wear_limit = check.positive("wear_limit", wear_limit)
-    boundary = h < h_lim_cr
-    depth = np.where(boundary, k * p**m * 2.0 * beta_c * radius, 0.0)
-    rate = np.sum(depth, axis=axis) / cycle_time
+    x = np.asarray(life, dtype=float).ravel()
+    x = x[~np.isnan(x)]
+    target = float(check.positive("target", target))
+    below = proportion_ci(np.count_nonzero(x < target), x.size, confidence=confidence)
+    # an infinite life (no wear) stands in as the largest float, so quantiles between two of them stay infinite
+    top = np.finfo(float).max
+    finite = np.minimum(x, top)
+
+    def quantile(q):
+        return tuple(np.inf if v >= top else v for v in quantile_ci(finite, q, confidence=confidence))
+
+    return LifeSummary(quantile(0.10), quantile(0.5), below, int(x.size))
+
+
+@dataclass(frozen=True)
+class WearChart:
+    """Wear chart of the bearing surface and the resource by method 2.
+
+    Attributes
+    ----------
+    position_angle : numpy.ndarray (positions,)
+        Angle of each point of the chart on the bearing surface, engine-fixed
+        frame as the journal position (0 along the first axis) [rad].
+    wear_per_cycle : numpy.ndarray (..., positions)
+        Wear depth one cycle adds at each point [m].
+    wear_rate : numpy.ndarray (...)
+        Wear speed of the deepest point [m/s].
+    deepest_angle : numpy.ndarray (...)
+        Angle of the deepest point [rad] (NaN without wear).
+    life : numpy.ndarray (...)
+        Time for the deepest point to reach the limiting wear [s]; infinite
+        where the film never drops below the critical film.
+    alpha : numpy.ndarray (...)
+        Share of the cycle with the minimum film below the critical film [-].
+    contact_pressure_max : numpy.ndarray (...)
+        Largest asperity contact pressure inside the contact zone over the cycle [Pa] (0 without contact).
+    """
+
+    position_angle: np.ndarray
+    wear_per_cycle: np.ndarray
+    wear_rate: np.ndarray
+    deepest_angle: np.ndarray
+    life: np.ndarray
+    alpha: np.ndarray
+    contact_pressure_max: np.ndarray
+
+    @property
+    def life_hours(self):
+        """Resource [h]."""
+        return self.life / 3600.0
+
+
+#: Points of the wear chart around the bearing (0.5 deg apart).
+CHART_POINTS = 720
+#: Film rows (crank angle x bearing) handled at once by :func:`levanov_method2`, to bound memory.
+_BLOCK = 4096
+
+
+def _step_revolutions(crank_angle):
+    """Journal revolutions each crank-angle sample stands for (periodic mid-point rule over 720 deg)."""
+    a = check.finite("crank_angle", crank_angle)
+    if a.ndim != 1 or a.size < 2 or np.any(np.diff(a) <= 0) or a[-1] - a[0] >= 720.0:
+        raise ValueError("crank_angle: must be 1-D, increase and span less than 720 deg")
+    after = np.diff(np.append(a, a[0] + 720.0))
+    return 0.5 * (after + np.roll(after, 1)) / 360.0
+
+
+def _prepare(lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit):
+    revolutions = _step_revolutions(crank_angle)
+    speed = check.positive("speed", speed)
+    per_bearing = [np.broadcast_to(check.positive(name, value), lead).ravel()
+                   for name, value in (("bearing_radius", bearing_radius), ("h_lim_cr", h_lim_cr),
+                                       ("roughness", roughness), ("contact_modulus", contact_modulus),
+                                       ("wear_limit", wear_limit))]
+    cycle_time = np.broadcast_to(4 * np.pi / speed, lead).ravel()
+    return revolutions, per_bearing, cycle_time
+
+
+def _accumulate(h, rows, steps, wear, peak, *, revolutions, radius, h_cr, sigma, modulus, k, m, asperities):
+    """Add eq. 6 for the film rows ``h`` (M, positions) of bearings ``rows`` at steps ``steps`` into ``wear``."""
+    n = h.shape[1]
+    zone = h < h_cr[rows][:, None]
+    half_angle = zone.sum(axis=1) * (np.pi / n)  # beta_c: half the arc below the critical film
+    r, j = np.nonzero(zone)
+    pressure = greenwood_tripp(h[r, j], roughness=sigma[rows][r], contact_modulus=modulus[rows][r],
+                               asperities=asperities)
+    depth = k * pressure**m * 2.0 * half_angle[r] * radius[rows][r] * revolutions[steps][r]
+    wear += np.bincount(rows[r] * n + j, weights=depth, minlength=wear.size).reshape(wear.shape)
+    np.maximum.at(peak, rows[r], pressure)
+
+
+def _chart(wear, peak, below, lead, revolutions, cycle_time, wear_limit, angles):
+    per_cycle = wear.reshape(*lead, angles.size)
+    deepest = wear.max(axis=1)
+    rate = deepest / cycle_time
     with np.errstate(divide="ignore"):
         life = np.where(rate > 0, wear_limit / np.where(rate > 0, rate, 1.0), np.inf)
-    return Life(np.full(np.shape(life), np.nan), life, rate)
+    where = np.where(deepest > 0, angles[np.argmax(wear, axis=1)], np.nan)
+    share = below @ revolutions / revolutions.sum()
+    return WearChart(angles, per_cycle, rate.reshape(lead), where.reshape(lead), life.reshape(lead),
+                     share.reshape(lead), peak.reshape(lead))
+
+
+def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_radius, h_lim_cr, roughness,
+                    contact_modulus, wear_limit, k=LEVANOV_2015.k, m=LEVANOV_2015.m, asperities=TYPICAL_ASPERITIES,
+                    points=CHART_POINTS):
+    r"""Wear chart and resource from the journal orbit (Levanov et al. 2015, method 2, eqs. 6-7).
+
+    Parameters
+    ----------
+    position : array_like (..., angles, 2)
+        Journal centre relative to the bearing centre at each crank angle [m]
+        (:attr:`stackup.film.orbit.Orbit.position`, or
+        :func:`stackup.film.journal_position` for a quasi-static film). The
+        film around the bearing is :math:`h(\theta) = c - \mathbf x\cdot(\cos\theta, \sin\theta)`.
+    radial_clearance : array_like (...)
+        Radial clearance :math:`c` [m].
+    crank_angle : array_like (angles,)
+        Crank angles [deg] of one cycle (720 deg), increasing; steps may be unequal.
+    speed : float or array_like (...)
+        Crankshaft angular speed [rad/s]; the cycle lasts :math:`4\pi/\omega`.
+    bearing_radius : array_like (...)
+        :math:`R_b` [m].
+    h_lim_cr : array_like (...)
+        Critical film [m] (:func:`critical_film`); the chart grows only where the film is thinner.
+    roughness : array_like (...)
+        Composite RMS roughness of journal and shell [m] (:func:`stackup.contact.composite_roughness`).
+    contact_modulus : array_like (...)
+        :math:`E^*` of journal and shell lining [Pa] (:func:`stackup.contact.contact_modulus`).
+    wear_limit : array_like (...)
+        Limiting wear :math:`\Delta h_{lim}` [m].
+    k, m : float
+        Wear intensity constants of eq. 7 [1/Pa], [-].
+    asperities : stackup.contact.AsperityParameters
+    points : int
+        Points of the chart around the bearing.
+
+    Returns
+    -------
+    WearChart
+
+    Notes
+    -----
+    At each crank angle :math:`\varphi` the contact zone is the arc where
+    :math:`h < h_{lim,cr}`, of half-angle :math:`\beta_c`; inside it the
+    asperities carry the Greenwood-Tripp pressure :math:`p(\varphi, \beta)`
+    (:mod:`stackup.contact`) and wear with the linear intensity
+    :math:`I_h = k\,p^m` (eq. 7). Eq. 6,
+
+    .. math:: \delta(\varphi, \beta) = I_h(\varphi, \beta)\,2\beta_c R_b,
+
+    is the depth one pass of the contact arc (a sliding distance
+    :math:`2\beta_c R_b`) wears; the journal passes once per revolution, so a
+    crank-angle step :math:`\Delta\varphi` adds
+    :math:`\delta\,\Delta\varphi/2\pi` and the chart is the integral over
+    the cycle, :math:`\oint \delta\,d\varphi/2\pi`: it converges as the
+    step shrinks instead of growing with the step count. The wear speed is
+    the deepest point's depth per cycle over the cycle time, and the resource
+    the time for it to reach :math:`\Delta h_{lim}`. Counting the sliding of
+    the journal past a fixed point of the bearing instead (a distance
+    :math:`2\pi R_b` per revolution) would make the wear larger by
+    :math:`\pi/\beta_c`; eq. 6 is kept as the paper writes it.
+    """
+    x = check.finite("position", position)
+    if x.ndim < 2 or x.shape[-1] != 2:
+        raise ValueError(f"position: shape {x.shape} is not valid; expected (..., angles, 2)")
+    lead, count = x.shape[:-2], int(np.prod(x.shape[:-2], dtype=int))
+    revolutions, (radius, h_cr, sigma, modulus, limit), cycle_time = _prepare(
+        lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit)
+    if revolutions.size != x.shape[-2]:
+        raise ValueError(f"position: {x.shape[-2]} angles, crank_angle has {revolutions.size}")
+    c = np.broadcast_to(check.positive("radial_clearance", radial_clearance), lead).ravel()
+    check.integer("points", points, minimum=8)
+    x = x.reshape(count, -1, 2)
+    angles = 2 * np.pi * np.arange(points) / points
+    normal = np.stack([np.cos(angles), np.sin(angles)])  # (2, points)
+    below = c[:, None] - np.linalg.norm(x, axis=-1) < h_cr[:, None]  # (bearings, angles)
+    wear = np.zeros((count, points))
+    peak = np.zeros(count)
+    rows, steps = np.nonzero(below)
+    for start in range(0, rows.size, _BLOCK):
+        r, s = rows[start:start + _BLOCK], steps[start:start + _BLOCK]
+        h = c[r, None] - x[r, s] @ normal
+        _accumulate(h, r, s, wear, peak, revolutions=revolutions, radius=radius, h_cr=h_cr, sigma=sigma,
+                    modulus=modulus, k=k, m=m, asperities=asperities)
+    return _chart(wear, peak, below, lead, revolutions, cycle_time, limit, angles)
+
+
+def levanov_method2_field(film_thickness, *, crank_angle, speed, bearing_radius, h_lim_cr, roughness,
+                          contact_modulus, wear_limit, k=LEVANOV_2015.k, m=LEVANOV_2015.m,
+                          asperities=TYPICAL_ASPERITIES):
+    r"""Method 2 from a film thickness field around the bearing (e.g. a Reynolds tier's film).
+
+    Parameters
+    ----------
+    film_thickness : array_like (..., angles, points)
+        Film thickness at each crank angle and at ``points`` equally spaced
+        angles :math:`2\pi j/\mathrm{points}` around the bearing [m].
+    crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit, k, m, asperities :
+        As :func:`levanov_method2`.
+
+    Returns
+    -------
+    WearChart
+    """
+    h = check.finite("film_thickness", film_thickness)
+    if h.ndim < 2:
+        raise ValueError(f"film_thickness: shape {h.shape} is not valid; expected (..., angles, points)")
+    lead, count, points = h.shape[:-2], int(np.prod(h.shape[:-2], dtype=int)), h.shape[-1]
+    revolutions, (radius, h_cr, sigma, modulus, limit), cycle_time = _prepare(
+        lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit)
+    if revolutions.size != h.shape[-2]:
+        raise ValueError(f"film_thickness: {h.shape[-2]} angles, crank_angle has {revolutions.size}")
+    h = h.reshape(count, revolutions.size, points)
+    below = h.min(axis=-1) < h_cr[:, None]
+    wear = np.zeros((count, points))
+    peak = np.zeros(count)
+    rows, steps = np.nonzero(below)
+    for start in range(0, rows.size, _BLOCK):
+        r, s = rows[start:start + _BLOCK], steps[start:start + _BLOCK]
+        _accumulate(h[r, s], r, s, wear, peak, revolutions=revolutions, radius=radius, h_cr=h_cr, sigma=sigma,
+                    modulus=modulus, k=k, m=m, asperities=asperities)
+    return _chart(wear, peak, below, lead, revolutions, cycle_time, limit, 2 * np.pi * np.arange(points) / points)

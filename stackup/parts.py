@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -38,11 +38,18 @@ class BlockParts:
 
 @dataclass(frozen=True)
 class ShellNormals:
-    """Standard normals of the shells made in one lot: wall, wall gauge and crush height."""
+    """Random numbers of the shells made in one lot: normals of wall, wall gauge and crush height, and the order.
+
+    ``order`` (uniform keys, optional) is the order in which a lot's shells
+    reach the bins: a lot made to order is produced grade after grade, but its
+    shells are sorted into bins that mix them, so the shells a bin gives out
+    first are not those aimed at one grade. None keeps production order.
+    """
 
     size: np.ndarray
     gauge: np.ndarray
     crush: np.ndarray
+    order: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -83,7 +90,13 @@ def draw_lot(engine, rng, n_engines, sampler="mc"):
 
     The order of draws is fixed: block normals, bore normals, bore gauge,
     crankshaft normals, journal normals, journal gauge, shell normals, shell
-    gauge, shell crush, bore offsets, journal eccentricities.
+    gauge, shell crush, bore offsets, journal eccentricities; then, only for
+    an engine that has them, bore form errors, journal form errors and the
+    bolt-tension scatter of the bores.
+
+    Readings see each part's form error as read (:class:`stackup.tolerances.FormError`);
+    ``housing_bore`` is the bore at assembly: the bore read plus its change
+    from bolting the cap again (``bolt_scatter``).
 
     Misalignment: each component of a bore offset is normal with standard
     deviation coaxiality / 8 (the centre stays inside the coaxiality zone of
@@ -116,11 +129,19 @@ def draw_lot(engine, rng, n_engines, sampler="mc"):
         z_ecc = z[:, 2 + 6 * b:].reshape(n_engines, b, 2)
     bore_offset = coaxiality / 8 * z_offset
     eccentricity = runout / 8 * z_ecc
+    # Drawn after the layout above, and only for engines that have them, so every other engine's
+    # streams stay as they were (pseudo-random also under "qmc"): form errors, bolt-tension scatter.
+    z_form_bore = rng.standard_normal((n_engines, b, 3)) if hb.form is not None else None
+    z_form_journal = rng.standard_normal((n_engines, b, 3)) if jd.form is not None else None
+    z_bolt = rng.standard_normal((n_engines, b)) if hb.bolt_scatter else None
+    shells = replace(shells, order=rng.random(n_shells))
 
     bore = hb.true_sizes(z_block, z_bore)
-    bore_reading = hb.gauge.read(bore, g_bore)
+    bore_reading = hb.read(bore, g_bore, z_form_bore)
+    if z_bolt is not None:  # bolted again at assembly: the bore the shells see is not the one read
+        bore = bore + hb.bolt_scatter * z_bolt
     journal = jd.true_sizes(z_crank, z_journal)
-    journal_reading = jd.gauge.read(journal, g_journal)
+    journal_reading = jd.read(journal, g_journal, z_form_journal)
     parts = BlockParts(
         housing_bore=bore,
         housing_reading=bore_reading,
@@ -202,14 +223,18 @@ class ShellSupply:
     def spill(self, scheme):
         r"""Probability that a shell aimed at grade g is read into grade g' (g', g).
 
-        The reading of a shell aimed at centre :math:`m_g` is normal with
-        :math:`s = \sqrt{\sigma^2 + \sigma_{gauge}^2}` (resolution ignored),
+        The reading of a shell aimed at centre :math:`m_g` is taken as normal
+        with the mean and spread of wall plus gauge error,
+        :math:`m_g + \mu_{gauge}` and :math:`s = \sqrt{\sigma^2 + \sigma_{gauge}^2}`
+        (resolution ignored; the larger of two readings has
+        :math:`\mu_{gauge} = 0.56\,\sigma_r`, :math:`\sigma_{gauge} = 0.83\,\sigma_r`),
         so :math:`P_{g'g} = \Phi((b_{g'} - m_g)/s) - \Phi((a_{g'} - m_g)/s)`
         over the reading range :math:`[a_{g'}, b_{g'})` of grade g'.
         """
-        s = np.hypot(self.sigma, self.gauge.repeatability)
+        bias, spread = self.gauge.noise_moments()
+        s = np.hypot(self.sigma, spread)
         lo, hi = scheme.shell.bins()
-        m = self._aim(scheme)
+        m = self._aim(scheme) + bias
         return special.ndtr((hi[:, None] - m[None, :]) / s) - special.ndtr((lo[:, None] - m[None, :]) / s)
 
     def aim_share(self, scheme, demand_share):
@@ -235,6 +260,8 @@ class ShellSupply:
             centre = self._aim(scheme)
             quantity = apportion(aim_share, normals.size.size)
             wall = np.repeat(centre, quantity) + self.sigma * normals.size
+            if normals.order is not None:  # made grade after grade, mixed in the bins
+                wall = wall[np.argsort(normals.order, kind="stable")]
         reading = self.gauge.read(wall, normals.gauge)
         crush = self.crush.process.from_normal(normals.crush)
         grade = np.where(self.crush.outside(crush), -1, scheme.shell.classify(reading))

@@ -33,11 +33,13 @@ import xarray as xr
 from scipy import stats
 
 from . import _validate as check
-from ._random import PILOT_KEY, lot_generator, seed_sequence
+from ._random import lot_generator, seed_sequence
 from .assembly import shell_demand_per_engine
 from .engines import load_engine
 from .parts import draw_lot
 from .schemes import load as load_scheme
+from .stats import mean_half_width
+from .study.pilot import pilot_parts, shell_plan
 
 
 def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_engines=None, sample_engines=20_000,
@@ -81,25 +83,17 @@ def plan(scheme, processes="iso-example", *, volume, service_level=0.99, lot_eng
     lot = engine.shell_wall.lot_engines if lot_engines is None else check.integer("lot_engines", lot_engines, minimum=1)
     n = check.integer("sample_engines", sample_engines, minimum=100)
     check.one_of("part", part, ("shell", "housing", "journal"))
-    root = seed_sequence(seed)
-    parts, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), n)
+    parts = pilot_parts(engine, seed, n)
     if part != "shell":
         return _graded_parts(scheme, engine, parts, part, volume)
-    per_engine = shell_demand_per_engine(scheme, parts).astype(float)
+    shells = shell_plan(engine, scheme, parts)
+    per_engine = shells.demand_per_engine.astype(float)
     mean = per_engine.mean(axis=0)
     sd = per_engine.std(axis=0, ddof=1)
-    half = 1.96 * sd / np.sqrt(n)
-
+    half = mean_half_width(per_engine, axis=0)
     supply = engine.shell_wall
-    if supply.mode == "to-order":
-        aim = supply.aim_share(scheme, mean)
-        landing = supply.spill(scheme) @ aim  # share of production read into each grade (the rest is scrap)
-    else:
-        dim = supply.dimension(scheme)
-        lo, hi = scheme.shell.bins()
-        spread = np.hypot(dim.process.std, supply.gauge.repeatability)
-        landing = stats.norm.cdf(hi, dim.process.mean, spread) - stats.norm.cdf(lo, dim.process.mean, spread)
-        aim = np.full(mean.shape, np.nan)
+    landing = shells.landing  # share of production read into each grade (the rest is scrap)
+    aim = shells.aim if shells.aim is not None else np.full(mean.shape, np.nan)
     made = supply.shells_per_lot(volume * engine.main_bearings)
     z = stats.norm.ppf(service_level)
     safety = z * sd * np.sqrt(lot)
@@ -138,7 +132,7 @@ def _from_dataset(ds, *, volume, service_level, lot_engines):
             per_engine = (np.sum(d.shell_upper_grade.values[built] == g, axis=1)
                           + np.sum(d.shell_lower_grade.values[built] == g, axis=1))
             mean, sd = per_engine.mean(), per_engine.std(ddof=1)
-            half = 1.96 * sd / np.sqrt(per_engine.size)
+            half = mean_half_width(per_engine)
             share = float(d.shells_made.sel(shell_grade=g)) / made_total
             made = made_total / d.sizes["engine"] * volume * share
             rows.append({"scheme": str(name), "grade": str(g), "demand_per_1000": 1000 * mean,
@@ -161,7 +155,7 @@ def _graded_parts(scheme, engine, parts, part, volume):
     per_engine = np.stack([np.sum(index == g, axis=1) for g in range(len(grades.labels))], axis=1).astype(float)
     n, b = index.shape
     mean = per_engine.mean(axis=0)
-    half = 1.96 * per_engine.std(axis=0, ddof=1) / np.sqrt(n)
+    half = mean_half_width(per_engine, axis=0)
     frame = pd.DataFrame({
         "grade": list(grades.labels),
         "share": mean / b,
@@ -248,8 +242,7 @@ def optimise_supply(scheme, processes="iso-example", *, volume, shortage_cost=10
     scheme = load_scheme(scheme)
     volume = check.integer("volume", volume, minimum=1)
     check.positive("shortage_cost", shortage_cost)
-    root = seed_sequence(seed)
-    parts, _ = draw_lot(engine, lot_generator(root, PILOT_KEY), check.integer("sample_engines", sample_engines, minimum=100))
+    parts = pilot_parts(engine, seed, check.integer("sample_engines", sample_engines, minimum=100))
     demand = _preferred_pair_demand(scheme, parts) * volume / parts.housing_bore.shape[0]
     supply_spec = engine.shell_wall
     dim = supply_spec.dimension(scheme)

@@ -23,7 +23,8 @@ import pandas as pd
 
 from .assembly import ASSEMBLED, SHELL_STOCKOUT
 from .life import ALPHA_SCUFFING
-from .stats import proportion_ci, quantile_ci
+from .stats import Z95, proportion_ci, quantile_ci
+from .study.schema import flag
 
 #: (column, better) in order of precedence: share outside the clearance window,
 #: share of bearings in boundary friction above the scuffing limit, median life.
@@ -43,20 +44,41 @@ def _clearance_metrics(d, window):
             np.count_nonzero(d.status.values == SHELL_STOCKOUT))
 
 
-def _scheme_metrics(d, window, h_lim_cr):
+#: Fewest bearings counted outside the window for the count to decide; below it a tail estimate does, if given.
+MIN_COUNTED = 20
+
+
+def _outside(counted, assembled, tail):
+    """Share outside the window [ppm] with its 95 % interval and where it comes from."""
+    if counted < MIN_COUNTED and tail is not None and np.all(np.isfinite(tail.tail_share.values)):
+        share = float(tail.tail_share.sum())
+        se = tail.tail_standard_error.values
+        if np.all(np.isfinite(se)):
+            half = Z95 * float(np.hypot(*se))
+            return share * 1e6, (max(share - half, 0.0) * 1e6, (share + half) * 1e6), "subset simulation"
+        # a side no sample reached: its upper bound; the bounds add
+        bounds = tail.tail_interval.values.sum(axis=0)
+        return share * 1e6, (bounds[0] * 1e6, bounds[1] * 1e6), "subset simulation"
+    share, lo, hi = proportion_ci(counted, assembled)
+    return share * 1e6, (lo * 1e6, hi * 1e6), "counted"
+
+
+def _scheme_metrics(d, window, h_lim_cr, tail=None):
     bearings, mean, std, outside, assembled, stockouts = _clearance_metrics(d, window)
-    outside = proportion_ci(outside, assembled)
+    outside_ppm, outside_ci, source = _outside(outside, assembled, tail)
     row = {
         "bearings": bearings,
         "clearance_mean_um": mean * 1e6,
         "clearance_std_um": std * 1e6,
-        "outside_window_ppm": outside[0] * 1e6,
-        "outside_window_ppm_ci": (outside[1] * 1e6, outside[2] * 1e6),
+        "outside_window_ppm": outside_ppm,
+        "outside_window_ppm_ci": outside_ci,
+        "outside_window_counted": int(outside),
+        "outside_window_source": source,
         "stockout_ppm": 1e6 * float(stockouts) / bearings,
         "shell_grades": int(d.grade_in_scheme.values.sum()),
         "surplus_pct": 100.0 * float(d.shells_left.sum()) / max(float(d.shells_made.sum()), 1.0),
     }
-    done = d.crank_status.values == 0
+    done = d.crank_status.values == flag(d.crank_status, "converged")
     if done.any() and "h_min" in d:
         h = d.h_min.values[done].ravel()
         a = d.alpha.values[done].ravel()
@@ -89,7 +111,17 @@ def _beats(a, b):
     return 0
 
 
-def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
+def _counted_window(ds):
+    """The dataset's design window (lower, upper) [m]; one window even where concatenation spread it over schemes."""
+    window = ds.clearance_window
+    spread = [d for d in window.dims if d != "bound"]
+    first = window.isel({d: 0 for d in spread})
+    if not bool((window == first).all()):
+        raise ValueError("clearance_window: the schemes of this dataset were counted against different windows")
+    return tuple(float(v) for v in first.values)
+
+
+def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
     """Schemes of a study dataset ranked by robustness.
 
     Parameters
@@ -102,12 +134,17 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
         The same schemes under declared scenarios (process mean shift, gauge
         error, misalignment, ...); adds, per metric, the worst change over the
         scenarios against ``ds`` (``worst_<metric>``) and the scenario that
-        gives it.
+        gives it (counted shares against counted shares).
+    tails : xarray.Dataset, optional
+        Tail estimates of the shares beyond each window edge
+        (:func:`stackup.study.compare.tails_dataset`, for the dataset's
+        window): a scheme with fewer than :data:`MIN_COUNTED` bearings counted
+        outside the window is ranked on them (``outside_window_source``).
     window : (float, float), optional
         Design window of the operating clearance [m]; default the engine's
-        (``ds.attrs["clearance_window"]``).
-    h_lim_cr : float
-        Critical film thickness [m].
+        (the dataset's ``clearance_window``).
+    h_lim_cr : float, optional
+        Critical film thickness [m]; default the engine's (the dataset's ``critical_film``).
 
     Returns
     -------
@@ -115,14 +152,22 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
         One row per scheme, sorted by rank; ``rank`` (ties share a rank) and
         the metrics with their 95 % intervals (``*_ci`` columns).
     """
-    counted = tuple(ds.attrs["clearance_window"])
+    counted = _counted_window(ds)
+    h_lim_cr = float(ds.critical_film.max()) if h_lim_cr is None else float(h_lim_cr)
     window = counted if window is None else tuple(window)
     if len(window) != 2 or not window[0] < window[1]:
         raise ValueError(f"window: {window!r} is not a (lower, upper) clearance window in m")
     if ds.attrs.get("kept") == "summaries" and not np.allclose(window, counted, rtol=0, atol=1e-12):
         raise ValueError(f"window: {window!r} m differs from {counted!r} m, the window the summaries count; "
                          "rank a study that keeps every engine, or run the study with that window")
-    rows = {str(s): _scheme_metrics(ds.sel(scheme=s), window, h_lim_cr) for s in ds.scheme.values}
+    if tails is not None and not np.allclose(tails.attrs["window"], window, rtol=0, atol=1e-12):
+        raise ValueError(f"tails: estimated for the window {tails.attrs['window']!r} m, not {window!r} m")
+
+    def tail(s):
+        return tails.sel(scheme=s) if tails is not None and s in tails.scheme.values else None
+
+    rows = {str(s): _scheme_metrics(ds.sel(scheme=s), window, h_lim_cr, tail(str(s))) for s in ds.scheme.values}
+    counted = {str(s): _scheme_metrics(ds.sel(scheme=s), window, h_lim_cr) for s in ds.scheme.values}
     frame = pd.DataFrame.from_dict(rows, orient="index")
     frame.index.name = "scheme"
     names = list(frame.index)
@@ -134,7 +179,7 @@ def rank(ds, *, scenarios=None, window=None, h_lim_cr=1.9e-6):
             changes = {}
             for label, other in scenarios.items():
                 alt = {str(s): _scheme_metrics(other.sel(scheme=s), window, h_lim_cr) for s in other.scheme.values}
-                changes[label] = pd.Series({s: alt[s].get(column, np.nan) - rows[s][column] for s in names})
+                changes[label] = pd.Series({s: alt[s].get(column, np.nan) - counted[s][column] for s in names})
             table = pd.DataFrame(changes).dropna(axis=1, how="all")  # scenarios without this metric
             if table.empty:
                 continue

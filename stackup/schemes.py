@@ -244,6 +244,7 @@ class Scheme:
     shell: GradeSet
     cell_pairs: np.ndarray  # (journal grades, housing grades, 2): preferred (upper, lower) shell indices
     alternatives: dict  # (upper, lower) -> tuple of (upper, lower), in order of preference
+    notes: tuple = ()  # lines :meth:`to_toml` writes as comments at the top of the file (not data)
 
     def __repr__(self):
         return f"Scheme({self.name!r}, {self.title!r})"
@@ -337,6 +338,21 @@ class Scheme:
         u, l = self.pair_indices(hi, ji)
         labels = np.array((*self.shell.labels, ""))
         return labels[u], labels[l]
+
+    def to_toml(self, path):
+        """Write the scheme as a TOML file that :func:`load` reads back identically.
+
+        Lengths are written in mm to the nanometre (the step at which schemes
+        compare readings), so every grade limit, class, read-out step and
+        pairing comes back as the same number; the pairing is written from
+        the resolved cells (a ``table``, or a ``matrix`` with ``letters`` for
+        fine classes), whatever form the scheme was read from. ``notes`` are
+        written as comments at the top; comments are not data, so a scheme
+        read back has none. Returns the path.
+        """
+        path = Path(path)
+        path.write_text(_toml_text(self))
+        return path
 
     def clearance_limits(self):
         r"""Worst-case nominal diametral clearance (c_min, c_max) [m], without housing swell.
@@ -471,6 +487,75 @@ def load(name_or_path):
     except tomllib.TOMLDecodeError as err:
         raise ValueError(f"{where}: not valid TOML ({err})") from None
     return _from_dict(data, where=where, path=str(path))
+
+
+def from_dict(data, *, path=""):
+    """A scheme from the table a scheme file holds (see the module docstring), e.g. built by a program."""
+    return _from_dict(data, where=f"scheme {data.get('name', path or 'table')!r}", path=str(path))
+
+
+def _mm(value):
+    """A length [m] as the shortest decimal of whole nanometres in mm (exact on read-back)."""
+    return repr(int(_snap(value)) / 1e6)
+
+
+def _toml_text(scheme):
+    """The TOML text of ``scheme`` (lengths in mm); see :meth:`Scheme.to_toml`."""
+    import json
+
+    def text(value):
+        return json.dumps(str(value), ensure_ascii=False)  # a JSON string is a valid TOML basic string
+
+    lines = [f"# {line}".rstrip() for note in scheme.notes for line in str(note).splitlines()]
+    lines += [f"name = {text(scheme.name)}", f"title = {text(scheme.title)}", f"source = {text(scheme.source)}",
+              'units = "mm"']
+    if scheme.stated_clearance is not None:
+        lines.append(f"stated_clearance = [{_mm(scheme.stated_clearance[0])}, {_mm(scheme.stated_clearance[1])}]")
+    for dim in ("housing", "journal", "shell"):
+        grades = getattr(scheme, dim)
+        lines += ["", f"[{dim}]", f"limits = [{_mm(grades.limits[0])}, {_mm(grades.limits[1])}]"]
+        if grades.fine:
+            start, step = int(grades._edges[0]), int(grades._edges[1] - grades._edges[0]) if len(grades._edges) > 1 \
+                else int(grades._top - grades._edges[0])
+            lines.append(f"classes = {{ start = {start / 1e6!r}, stop = {int(grades._edges[-1]) / 1e6!r}, "
+                         f"step = {step / 1e6!r} }}")
+        elif grades.graded:
+            cells = ", ".join(f"{text(lab)} = [{_mm(lo)}, {_mm(hi)}]" for lab, lo, hi in zip(grades.labels, grades.lo, grades.hi))
+            lines.append(f"grades = {{ {cells} }}")
+            lo, hi = _snap(grades.lo[grades._order]), _snap(grades.hi[grades._order])
+            if np.any(lo[1:] < hi[:-1]):
+                lines.append("overlap = true")
+        if grades.resolution:
+            lines.append(f"resolution = {_mm(grades.resolution)}")
+    shells = scheme.shell.labels
+
+    def pair(code):
+        return text(f"{shells[code[0]]}+{shells[code[1]]}")
+
+    lines += ["", "[pairing]"]
+    if (scheme.housing.fine or scheme.journal.fine) and len(set(map(tuple, scheme.cell_pairs.reshape(-1, 2)))) <= len(_LETTERS):
+        letters = {}
+        for code in map(tuple, scheme.cell_pairs.reshape(-1, 2)):
+            letters.setdefault(code, _LETTERS[len(letters)])
+        lines.append("matrix = [")
+        lines += [f'    "{"".join(letters[tuple(c)] for c in row)}",' for row in scheme.cell_pairs]
+        lines += ["]", "", "[pairing.letters]"]
+        lines += [f"{letter} = {pair(code)}" for code, letter in letters.items()]
+    elif scheme.cell_pairs.shape[:2] == (1, 1):
+        lines.append(f"all = {pair(scheme.cell_pairs[0, 0])}")
+    else:
+        lines[-1] = "[pairing.table]"
+        for j, jl in enumerate(scheme.journal.labels):
+            cells = ", ".join(f"{text(hl)} = {pair(scheme.cell_pairs[j, h])}" for h, hl in enumerate(scheme.housing.labels))
+            lines.append(f"{text(jl)} = {{ {cells} }}")
+    if scheme.alternatives:
+        lines += ["", "[pairing.alternatives]"]
+        lines += [f"{pair(key)} = [{', '.join(pair(a) for a in alts)}]" for key, alts in scheme.alternatives.items()]
+    return "\n".join(lines) + "\n"
+
+
+#: Letters of the pairs of a matrix written by :meth:`Scheme.to_toml`, in order of first use.
+_LETTERS = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
 
 def _from_dict(data, *, where, path):

@@ -1,19 +1,34 @@
-r"""Which inputs drive the operating clearance and the film: regression-based sensitivity.
+r"""Which inputs drive the operating clearance, the film and the life: variance-based and regression views.
 
-For an output :math:`y` and inputs :math:`x_k` of the same bearings, the
-standardised regression coefficients :math:`\mathrm{SRC}_k = b_k\,\sigma_{x_k}/\sigma_y`
-of the least-squares fit :math:`y \approx b_0 + \sum_k b_k x_k` give each
-input's first-order share of the variance, :math:`\mathrm{SRC}_k^2`, when
-the inputs are independent and the model is near linear; the fit's
-:math:`R^2` says how much of the variance the linear model explains (the rest
-is interaction and nonlinearity, e.g. grading steps). Intervals come from a
-bootstrap over bearings. This is the contributor chart tolerance-analysis
-tools show.
+:func:`sobol` answers "what should I tighten?": first-order and total Sobol
+indices of the root inputs (housing bore, journal, each gauge's error, shell
+wall, crush height, process mean shifts, misalignment), each sample drawn
+through the real chain (grading, pairing, the shell taken from its grade's
+bin, press fit, and for the film and life the crankshaft and the oil film;
+:mod:`stackup.study.roots`), with SALib's Saltelli sampling and Jansen
+estimators and bootstrap intervals. The first-order index :math:`S_1` is the
+share of the output's variance that fixing one input alone would remove; the
+total index :math:`S_T` also counts its interactions (grading couples the
+gauge errors with the sizes: a reading near a grade boundary), so
+:math:`\sum S_1 < 1` measures how much of the spread comes from grading.
+
+:func:`contributions` is the cheap view on a study dataset: standardised
+regression coefficients :math:`\mathrm{SRC}_k = b_k\,\sigma_{x_k}/\sigma_y`
+of the bearing's measured inputs, whose squares are first-order shares when
+the model is near linear (read them with the fit's :math:`R^2`); in selective
+assembly the shells are chosen from the measured sizes, so these inputs are
+correlated and the regression answers another question than Sobol's.
 
 References
 ----------
 .. [1] Saltelli, A. et al., *Global Sensitivity Analysis: The Primer*, Wiley,
-   2008, sec. 1.2.5 (standardised regression coefficients).
+   2008, sec. 1.2.5 (standardised regression coefficients) and ch. 4.
+.. [2] Saltelli, A., Annoni, P., Azzini, I., Campolongo, F., Ratto, M.,
+   Tarantola, S., "Variance based sensitivity analysis of model output.
+   Design and estimator for the total sensitivity index", Comput. Phys.
+   Commun. 181 (2010) 259-270.
+.. [3] Herman, J., Usher, W., "SALib: An open-source Python library for
+   Sensitivity Analysis", J. Open Source Softw. 2 (2017) 97.
 """
 
 from __future__ import annotations
@@ -21,6 +36,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from . import _validate as check
 from ._random import as_generator
 from .assembly import ASSEMBLED
 
@@ -59,6 +75,8 @@ def contributions(ds, scheme, *, output="clearance_operating", within_bearing=Tr
     through the choice of shells and shows there.
     """
     d = ds.sel(scheme=scheme)
+    if "mech_engine" in d[output].dims:  # a result of the mechanical chain: its engines only
+        d = d.isel(engine=d.mech_engine.values).drop_vars("mech_engine").rename({"mech_engine": "engine"})
     y = d[output].values
     ok = (d.status.values == ASSEMBLED) & np.isfinite(y)
     columns = [np.array(INPUTS[k](d), dtype=float) for k in INPUTS]
@@ -102,3 +120,167 @@ def contributions(ds, scheme, *, output="clearance_operating", within_bearing=Tr
     frame.attrs.update({"r2": float(r2), "bearings": int(y.size), "output": output, "scheme": str(scheme),
                         "within_bearing": within_bearing})
     return frame
+
+
+#: Outputs :func:`sobol` can analyse: name -> how one engine's sample gives it (see there).
+SOBOL_OUTPUTS = ("clearance_operating", "h_min", "life")
+#: Default Saltelli base sample per output (evaluations: n * (groups + 2) engines).
+SOBOL_N = {"clearance_operating": 2048, "h_min": 128, "life": 128}
+
+
+def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scenario=None, mean_shift=0.0, bearing=1,
+          crank_angle_step=4.0, crank_method="bearing-law", film_method="finite", pilot_engines=20_000,
+          bootstrap=200, return_all=False):
+    """First-order and total Sobol indices of the root inputs, through the real chain, with 95 % intervals.
+
+    Parameters
+    ----------
+    engine, scheme : str, path or loaded object
+    output : {"clearance_operating", "h_min", "life"}
+        The operating clearance of main bearing ``bearing``; the engine's
+        smallest cycle-minimum film; the engine's life (its weakest bearing).
+    n : int, optional
+        Saltelli base sample, a power of two (default :data:`SOBOL_N`); the
+        chain runs on ``n * (groups + 2)`` engines.
+    seed : int
+        Scrambling of the Sobol points and the bootstrap.
+    scenario : dict, optional
+        A disturbance of the engine (:mod:`stackup.scenarios`).
+    mean_shift : float
+        Half-range of the process mean shifts of the bore and the journal,
+        uniform, in process standard deviations [-]; 0 (default) leaves them
+        out (the declared scenarios shift the means by one standard
+        deviation), > 0 adds the two inputs.
+    bearing : int
+        Main-bearing position of the clearance output (1-based).
+    crank_angle_step, crank_method, film_method :
+        The mechanical chain's grid and tiers (film and life outputs).
+    pilot_engines : int
+        Pilot sample the shell plan comes from (as in a study).
+    bootstrap : int
+        Resamples for the intervals.
+    return_all : bool
+        Return a dict of every output the same sample gives (the film and the
+        life come from one run of the mechanical chain).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per root input (:data:`stackup.study.roots.GROUPS` that act
+        on the output), columns ``S1``, ``S1_lo``, ``S1_hi``, ``ST``,
+        ``ST_lo``, ``ST_hi``; ``attrs`` hold the output, its mean and
+        standard deviation, the engines evaluated and the share of samples
+        not assembled (graded at the limits).
+    """
+    from ._random import seed_sequence
+    from .engines import load_engine
+    from .scenarios import apply as apply_scenario
+    from .schemes import load as load_scheme
+    from .study.pilot import pilot_parts, shell_plan
+    from .study.roots import RootModel
+
+    check.one_of("output", output, SOBOL_OUTPUTS)
+    engine = apply_scenario(load_engine(engine), scenario)
+    scheme = load_scheme(scheme)
+    if output != "clearance_operating" and engine.crank is None:
+        raise ValueError(f"output: {output!r} needs the engine's [crank] section, which {engine.name} has not")
+    n = SOBOL_N[output] if n is None else check.integer("n", n, minimum=8)
+    if n & (n - 1):
+        raise ValueError(f"n: {n} is not a power of two (Sobol points balance at powers of two)")
+    bearing = check.integer("bearing", bearing, minimum=1)
+    if bearing > engine.main_bearings:
+        raise ValueError(f"bearing: {bearing} is not one of 1..{engine.main_bearings}")
+    seed_sequence(seed)
+    mean_shift = float(check.in_range("mean_shift", mean_shift, 0.0, 6.0))
+    left_out = {"misalignment"} if output == "clearance_operating" else set()
+    if mean_shift == 0.0:
+        left_out |= {"bore process mean", "journal process mean"}
+    model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
+                      mean_shift=mean_shift)
+    groups = tuple(g for g in model.groups if g not in left_out)
+    names, owners = model.columns(groups)
+    outputs = (output,) if output == "clearance_operating" else ("h_min", "life")
+    frames = sobol_indices(
+        lambda u: _sobol_outputs(model, u, groups, outputs, bearing - 1, crank_angle_step, crank_method, film_method),
+        owners, n=n, seed=seed, bootstrap=bootstrap, outputs=outputs)
+    for name, frame in frames.items():
+        frame.attrs.update({"output": name, "scheme": scheme.name, "engine": engine.name})
+    return frames[output] if not return_all else frames
+
+
+def sobol_indices(evaluate, groups, *, n, seed=0, bootstrap=200, max_missing=0.01, outputs=None):
+    """Sobol indices of a function of independent uniform inputs, by group, with 95 % bootstrap intervals.
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(u)`` with ``u`` (samples, inputs) uniform on [0, 1)
+        returns the output (samples,); NaN where it cannot be evaluated.
+    groups : sequence of str
+        The group of each input (an input alone is a group of its own name).
+    n : int
+        Saltelli base sample (a power of two); ``evaluate`` sees
+        ``n * (groups + 2)`` samples.
+    max_missing : float
+        Largest share of NaN outputs accepted; they are replaced by the mean
+        of the others (their share is in the attrs).
+    outputs : sequence of str, optional
+        Names of several outputs ``evaluate`` returns at once (samples,
+        outputs); then a dict of frames by name is returned.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per group: ``S1``, ``S1_lo``, ``S1_hi``, ``ST``, ``ST_lo``, ``ST_hi``.
+    """
+    from SALib.sample import sobol as saltelli
+
+    names = [f"x{k}" for k in range(len(groups))]
+    problem = {"num_vars": len(names), "names": names, "bounds": [[0.0, 1.0]] * len(names), "groups": list(groups)}
+    u = saltelli.sample(problem, n, calc_second_order=False, scramble=True, seed=seed)
+    values = np.asarray(evaluate(u), dtype=float)
+    if outputs is not None:
+        return {name: _analyse(problem, values[:, k], groups, u, seed, bootstrap, max_missing)
+                for k, name in enumerate(outputs)}
+    return _analyse(problem, values, groups, u, seed, bootstrap, max_missing)
+
+
+def _analyse(problem, y, groups, u, seed, bootstrap, max_missing):
+    from SALib.analyze import sobol as analyse
+
+    n = u.shape[0] // (len(dict.fromkeys(groups)) + 2)
+    missing = ~np.isfinite(y)
+    if missing.mean() > max_missing:
+        raise ValueError(f"{missing.mean():.1%} of the samples could not be evaluated (not graded or the chain "
+                         "failed); the indices would be meaningless")
+    y = np.where(missing, np.nanmean(y), y)
+    result = analyse.analyze(problem, y, calc_second_order=False, num_resamples=bootstrap, conf_level=0.95,
+                             seed=seed)
+    frame = pd.DataFrame({
+        "S1": result["S1"], "S1_lo": result["S1"] - result["S1_conf"], "S1_hi": result["S1"] + result["S1_conf"],
+        "ST": result["ST"], "ST_lo": result["ST"] - result["ST_conf"], "ST_hi": result["ST"] + result["ST_conf"],
+    }, index=pd.Index(list(dict.fromkeys(groups)), name="input"))
+    frame.attrs.update({"n": n, "evaluations": int(u.shape[0]), "mean": float(np.mean(y)), "std": float(np.std(y)),
+                        "not_evaluated_share": float(missing.mean()), "method": "Saltelli sampling, Jansen "
+                        "estimators (SALib)"})
+    return frame
+
+
+def _sobol_outputs(model, u, groups, outputs, bearing, crank_angle_step, crank_method, film_method):
+    """The outputs of each sampled engine (samples, outputs) (see :func:`sobol`)."""
+    engines = model.engines(u, groups=groups)
+    if outputs == ("clearance_operating",):
+        return engines["clearance_operating"][:, bearing, None]
+    from .study.chain import mechanical_chain
+
+    values = np.full((u.shape[0], len(outputs)), np.nan)
+    ok = np.all(np.isfinite(engines["clearance_operating"]), axis=1)
+    mech = mechanical_chain(model.engine, clearance=engines["clearance_operating"][ok],
+                            journal_d=engines["journal_d"][ok], bore_offset=engines["bore_offset"][ok],
+                            journal_eccentricity=engines["journal_eccentricity"][ok],
+                            crank_angle=np.arange(0.0, 720.0, crank_angle_step), crank_method=crank_method,
+                            film_method=film_method)
+    converged = mech["crank_status"] == 0
+    for k, name in enumerate(outputs):
+        values[np.flatnonzero(ok)[converged], k] = mech[name][converged].min(axis=1)  # the engine's weakest bearing
+    return values

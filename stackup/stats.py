@@ -47,3 +47,18 @@ def quantile_ci(values, q, *, confidence=0.95):
     lower = x[lo_rank - 1] if lo_rank >= 1 else -np.inf
     upper = x[hi_rank - 1] if hi_rank <= n else np.inf
     return float(np.quantile(x, q)), float(lower), float(upper)
+
+
+#: Two-sided 95 % quantile of the standard normal, as the project has always rounded it.
+Z95 = 1.96
+
+
+def mean_half_width(values, axis=None):
+    """Half-width [units of ``values``] of the normal-approximation 95 % interval of a mean.
+
+    :math:`1.96\\,s/\\sqrt{n}` with the sample standard deviation :math:`s`
+    of the ``n`` values along ``axis`` (all values if None).
+    """
+    values = np.asarray(values, dtype=float)
+    n = values.size if axis is None else values.shape[axis]
+    return Z95 * values.std(axis=axis, ddof=1) / np.sqrt(n)

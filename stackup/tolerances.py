@@ -172,20 +172,20 @@ class Mixture(_TabulatedQuantile):
 
     @property
     def mean(self):
-        return float(sum(w * _mean(c) for w, c in zip(self.weights, self.components)))
+        return float(sum(w * process_mean(c) for w, c in zip(self.weights, self.components)))
 
     @property
     def std(self):
         m = self.mean
-        second = sum(w * (c.std**2 + (_mean(c) - m) ** 2) for w, c in zip(self.weights, self.components))
+        second = sum(w * (c.std**2 + (process_mean(c) - m) ** 2) for w, c in zip(self.weights, self.components))
         return float(np.sqrt(second))
 
     def cdf(self, x):
         return sum(w * c.cdf(x) for w, c in zip(self.weights, self.components))
 
     def _support(self):
-        lows = [_mean(c) - 10.0 * c.std for c in self.components]
-        highs = [_mean(c) + 10.0 * c.std for c in self.components]
+        lows = [process_mean(c) - 10.0 * c.std for c in self.components]
+        highs = [process_mean(c) + 10.0 * c.std for c in self.components]
         return min(lows), max(highs)
 
     def shifted(self, delta):
@@ -237,7 +237,8 @@ class ToolWear(_TabulatedQuantile):
         return replace(self, start=self.start + delta, end=self.end + delta)
 
 
-def _mean(process):
+def process_mean(process):
+    """Mean [m] of a process object (normal, truncated normal, uniform, mixture, tool wear)."""
     if isinstance(process, Uniform):
         return 0.5 * (process.lo + process.hi)
     if isinstance(process, TruncatedNormal):
@@ -247,7 +248,7 @@ def _mean(process):
 
 @dataclass(frozen=True)
 class Gauge:
-    """How a size is read: bias, repeatability, resolution and temperature.
+    r"""How a size is read: bias, repeatability, resolution and temperature.
 
     Parameters
     ----------
@@ -263,6 +264,12 @@ class Gauge:
     expansion_mismatch : float
         Thermal expansion of the part minus that of the gauge master [1/K];
         the reading grows by ``size * expansion_mismatch * (temperature - 20)``.
+    readings : int
+        Readings taken of each part, each with its own repeatability error.
+    combine : {"mean", "max"}
+        How the readings make the part's reading: their mean (noise
+        :math:`\sigma/\sqrt{k}`), or the largest (ISO 13778's measurement note
+        for the shell wall: the larger of two readings).
     """
 
     bias: float = 0.0
@@ -270,6 +277,8 @@ class Gauge:
     resolution: float = 0.0
     temperature: float = 20.0
     expansion_mismatch: float = 0.0
+    readings: int = 1
+    combine: str = "mean"
 
     def __post_init__(self):
         check.finite("gauge bias", self.bias)
@@ -277,13 +286,108 @@ class Gauge:
         check.positive("gauge resolution", self.resolution, allow_zero=True)
         check.in_range("gauge temperature", self.temperature, -50.0, 200.0, unit=" degC")
         check.finite("gauge expansion_mismatch", self.expansion_mismatch)
+        check.integer("gauge readings", self.readings, minimum=1)
+        check.one_of("gauge combine", self.combine, COMBINE)
+
+    def noise(self, z):
+        r"""Repeatability error of the combined reading [m] from one standard normal per part.
+
+        The mean of :math:`k` readings is normal with :math:`\sigma/\sqrt{k}`.
+        The largest of :math:`k` independent normal readings has the CDF
+        :math:`\Phi(x)^k`, so it is drawn exactly from one normal :math:`z` as
+        :math:`\Phi^{-1}(\Phi(z)^{1/k})` (inverse transform; one normal per
+        part keeps the random streams of every reading rule the same).
+        """
+        z = np.asarray(z, dtype=float)
+        if self.readings == 1:
+            return self.repeatability * z
+        if self.combine == "mean":
+            return self.repeatability / np.sqrt(self.readings) * z
+        return self.repeatability * special.ndtri(np.exp(special.log_ndtr(z) / self.readings))
+
+    def noise_moments(self):
+        """Mean and standard deviation of the combined reading's repeatability error [m]."""
+        if self.readings == 1 or self.combine == "mean":
+            return 0.0, self.repeatability / np.sqrt(self.readings)
+        # moments of the largest of k standard normals, by quadrature of its density k phi Phi^(k-1)
+        x = np.linspace(-10.0, 10.0, 20001)
+        density = self.readings * stats.norm.pdf(x) * special.ndtr(x) ** (self.readings - 1)
+        mean = np.trapezoid(x * density, x)
+        std = np.sqrt(np.trapezoid((x - mean) ** 2 * density, x))
+        return self.repeatability * mean, self.repeatability * std
 
     def read(self, true_size, z):
         """Reading of parts of true size ``true_size`` [m], given standard normals ``z``."""
-        reading = true_size + self.bias + self.repeatability * z
+        reading = true_size + self.bias + self.noise(z)
         if self.expansion_mismatch:
             reading = reading + true_size * self.expansion_mismatch * (self.temperature - 20.0)
         return quantize(reading, self.resolution)
+
+
+#: How several readings of one part make its reading.
+COMBINE = ("mean", "max")
+
+
+@dataclass(frozen=True)
+class FormError:
+    r"""Ovality and taper of round parts (journals), and where they are read.
+
+    Each part has a two-lobe ovality :math:`o` (largest minus smallest
+    diameter around the circumference) uniform in [0, ``ovality``] at a
+    uniform angle, and a linear taper :math:`\tau` (diameter difference end to
+    end) uniform in [-``taper``, ``taper``]:
+
+    .. math:: d(x, \theta) = \bar d + \frac{o}{2}\cos 2(\theta - \theta_0) + \tau\,(x - 1/2)
+
+    with :math:`x` the axial position as a share of the width and
+    :math:`\bar d` the mean diameter (the size the clearance sees). The
+    reading is the mean over ``planes`` and ``directions`` (equally spaced
+    over 180 deg), so its form error is
+
+    .. math:: e = \frac{o}{2}\,\overline{\cos 2(\theta_k - \theta_0)} + \tau\,(\bar x - 1/2):
+
+    one 2-point reading sees up to :math:`o/2` of ovality; two directions
+    90 deg apart cancel it; planes placed symmetrically cancel the taper
+    (ISO 13778's note: journals may need several readings, axial and
+    circumferential, to get their mean diameter).
+
+    Parameters
+    ----------
+    ovality, taper : float
+        Form tolerances [m] (the largest ovality and taper a part has).
+    planes : tuple of float
+        Axial reading positions, shares of the width in [0, 1].
+    directions : int
+        Reading directions per plane.
+    """
+
+    ovality: float
+    taper: float
+    planes: tuple = (0.5,)
+    directions: int = 1
+
+    def __post_init__(self):
+        check.positive("form ovality", self.ovality, allow_zero=True)
+        check.positive("form taper", self.taper, allow_zero=True)
+        planes = check.in_range("form planes", self.planes, 0.0, 1.0)
+        if planes.ndim != 1 or planes.size == 0:
+            raise ValueError(f"form planes: {self.planes!r} is not a list of axial positions in [0, 1]")
+        check.integer("form directions", self.directions, minimum=1)
+
+    @property
+    def readings(self):
+        """Readings per part: planes times directions."""
+        return len(self.planes) * self.directions
+
+    def reading_error(self, z):
+        """Form error of the (mean) reading [m] from standard normals ``z`` (..., 3): ovality, angle, taper."""
+        u = special.ndtr(np.asarray(z, dtype=float))
+        ovality = self.ovality * u[..., 0]
+        angle = np.pi * u[..., 1]
+        taper = self.taper * (2.0 * u[..., 2] - 1.0)
+        steps = np.pi * np.arange(self.directions) / self.directions
+        seen = np.mean(np.cos(2.0 * (angle[..., None] + steps)), axis=-1)
+        return 0.5 * ovality * seen + taper * (float(np.mean(self.planes)) - 0.5)
 
 
 def quantize(value, step):
@@ -311,6 +415,17 @@ class Dimension:
         Share of the process variance common to one group of parts (the bores
         of one block, bored in one set-up; the journals of one crankshaft)
         [-], in [0, 1). It is the intra-group correlation of the true sizes.
+    form : FormError or None
+        Form error of round parts and where they are read (journals).
+    bolt_scatter : float
+        Housing bores: standard deviation of the change of the bore between
+        its reading and assembly [m]. The bore is machined and read with the
+        cap bolted; at assembly it is bolted again, and the scatter of the
+        bolt preload (torque tightening: a tightening factor of 1.4-1.6,
+        VDI 2230) changes the bore by that share of its response to the
+        preload. 0: the bore at assembly is the bore read.
+    source : str
+        Where the limits and process come from.
     """
 
     name: str
@@ -319,10 +434,23 @@ class Dimension:
     process: object
     gauge: Gauge = Gauge()
     shared: float = 0.0
+    form: FormError | None = None
+    bolt_scatter: float = 0.0
+    source: str = ""
 
     def __post_init__(self):
         check.limits(self.name, self.lo, self.hi)
         check.in_range(f"{self.name} shared", self.shared, 0.0, 1.0, hi_open=True)
+        check.positive(f"{self.name} bolt_scatter", self.bolt_scatter, allow_zero=True)
+
+    def read(self, true_size, z_gauge, z_form=None):
+        """Readings [m] of parts of true (mean) size ``true_size``: form error, then the gauge.
+
+        ``z_form`` (..., 3) standard normals are needed when the dimension has a form error.
+        """
+        if self.form is not None:
+            true_size = true_size + self.form.reading_error(z_form)
+        return self.gauge.read(true_size, z_gauge)
 
     def true_sizes(self, z_group, z_part):
         """True sizes [m] of parts ``z_part`` (groups, parts) with group normals ``z_group`` (groups,)."""
@@ -411,10 +539,28 @@ def process_from_spec(spec, *, lo, hi, scale, field):
     return process.shifted(shift) if shift else process
 
 
+def form_from_spec(spec, *, scale, field):
+    """Build a :class:`FormError` from a TOML table (lengths in file units times ``scale``), or None."""
+    if spec is None:
+        return None
+    spec = dict(spec)
+    known = {"ovality", "taper", "planes", "directions"}
+    unknown = set(spec) - known
+    if unknown:
+        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    try:
+        return FormError(ovality=float(check.finite(f"{field}.ovality", spec.get("ovality", 0.0))) * scale,
+                         taper=float(check.finite(f"{field}.taper", spec.get("taper", 0.0))) * scale,
+                         planes=tuple(float(x) for x in spec.get("planes", (0.5,))),
+                         directions=spec.get("directions", 1))
+    except ValueError as err:
+        raise ValueError(f"{field}: {err}") from None
+
+
 def gauge_from_spec(spec, *, scale, field):
     """Build a :class:`Gauge` from a TOML table (lengths in file units times ``scale``)."""
     spec = dict(spec or {})
-    known = {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch"}
+    known = {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings", "combine"}
     unknown = set(spec) - known
     if unknown:
         raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")

@@ -8,8 +8,8 @@ import numpy as np
 
 from stackup.crank import reactions, support_slopes
 from stackup.engines import load_engine
-from stackup.film import oil as oils
-from stackup.film import tiers
+from stackup.film.cycle import HEAT_STEP
+from stackup.film.heat import heat_balance
 
 
 @dataclass(frozen=True)
@@ -26,6 +26,7 @@ class Case:
     viscosity: np.ndarray  # (bearings,) effective [Pa s]
     temperature: np.ndarray  # (bearings,) effective [degC]
     speed: float  # [rad/s]
+    feed: object  # the engine's stackup.film.heat.OilFeed
 
     def geometry(self, bearings=slice(None)):
         """Keyword arguments of stackup.film.orbit.orbit for the chosen bearings."""
@@ -38,7 +39,7 @@ def engine_case(name, *, clearance=None, bore_offset=None, journal_eccentricity=
 
     clearance: diametral operating clearance [m], default the middle of the engine's window;
     bore_offset, journal_eccentricity: (bearings, 2) [m]. Effective viscosity from the
-    isothermal heat balance at each bearing's cycle-mean load (short-bearing friction and
+    heat balance of the study chain (stackup.film.heat, finite tier, feed and side
     flow), as the study chain does.
     """
     engine = load_engine(name)
@@ -58,14 +59,9 @@ def engine_case(name, *, clearance=None, bore_offset=None, journal_eccentricity=
     slopes = support_slopes(pins, r.displacements, spans=spec.spans, EI=spec.ei)
     loads = np.moveaxis(r.reactions, 0, 1)
     diameter = 0.5 * (engine.journal_d.lo + engine.journal_d.hi)
-    mean_load = np.linalg.norm(loads, axis=-1).mean(axis=-1)
-    kw = dict(radius=diameter / 2, length=spec.bearing_width, radial_clearance=clearance / 2, speed=spec.speed)
-
-    def heat(mu):
-        eps, phi = tiers.short(mean_load, viscosity=mu, **kw)
-        _, torque, flow = tiers.film_quantities(eps, phi, mean_load, viscosity=mu, **kw)
-        return torque * spec.speed, flow
-
-    temperature, mu = oils.effective_temperature(spec.oil, np.full(n, spec.oil_supply_temperature), heat)
-    return Case(name, angle, loads, np.moveaxis(slopes, 0, 1), diameter, spec.bearing_width, clearance, mu,
-                temperature, spec.speed)
+    # the study chain's quasi-static heat balance (feed and side flow) on a 4 deg subsample
+    heat = heat_balance(loads[:, ::max(1, int(round(HEAT_STEP / step)))], diameter=diameter,
+                        length=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
+                        supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed, method="finite")
+    return Case(name, angle, loads, np.moveaxis(slopes, 0, 1), diameter, spec.bearing_width, clearance,
+                heat.viscosity, heat.temperature, spec.speed, engine.oil_feed)

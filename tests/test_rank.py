@@ -29,7 +29,7 @@ def test_ranking_is_reproducible_with_a_seed(study):
 def test_a_strictly_better_scheme_ranks_first(study):
     best = study.copy(deep=True)
     i = list(best.scheme.values).index("iso13778-1")  # the worst for this window, made the best
-    centre = np.mean(best.attrs["clearance_window"])
+    centre = float(best.clearance_window.mean())
     ok = best.status.values[i] == 0
     best["clearance_operating"].values[i][ok] = centre
     best["alpha"].values[i] = np.where(np.isfinite(best.alpha.values[i]), 0.0, np.nan)
@@ -95,3 +95,23 @@ def test_summaries_rank_like_the_full_dataset():
     np.testing.assert_allclose(summary.clearance_std_um, full.clearance_std_um, rtol=1e-9)
     with pytest.raises(ValueError, match="window: .* differs from .* the window the summaries count"):
         rank(Study(**{**kw, "mechanics_engines": 0}, keep="summaries").run(), window=(40e-6, 70e-6))
+
+
+def test_too_few_counted_bearings_rank_on_the_tail_estimate(study):
+    from stackup.rank import MIN_COUNTED
+    from stackup.study.compare import tails_dataset
+
+    tails = tails_dataset("iso-example", list(study.scheme.values), n_level=1000)
+    ranking = stackup.rank(study, tails=tails)
+    for name, row in ranking.iterrows():
+        t = tails.sel(scheme=name)
+        if row.outside_window_counted < MIN_COUNTED:
+            assert row.outside_window_source == "subset simulation"
+            assert row.outside_window_ppm == pytest.approx(1e6 * float(t.tail_share.sum()))
+            lo, hi = row.outside_window_ppm_ci
+            assert lo <= row.outside_window_ppm <= hi and hi - lo > 0
+        else:
+            assert row.outside_window_source == "counted"
+    assert (ranking.outside_window_source == "counted").any()
+    with pytest.raises(ValueError, match="tails: estimated for the window"):
+        stackup.rank(study, tails=tails.assign_attrs(window=[40e-6, 70e-6]))

@@ -122,6 +122,28 @@ def test_alternatives_b_b_or_a_c(name):
     assert scheme.options("A", "A")[0] == ("A", "A")
 
 
+def test_scheme6_intermediate_pairs_have_the_preferred_wall_sum():
+    # ISO 13778 clause 6.1 b: intermediate pairs from adjacent grades; with equal 6 um grades
+    # B+B = A+C, B+C = A+D, C+C = B+D in wall sum, so they stand in before a bearing is a stock-out
+    scheme = schemes.load("iso13778-6")
+    grades = scheme.grades["shell"]
+    for preferred, alternative in (("B+B", "A+C"), ("B+C", "A+D"), ("C+C", "B+D")):
+        assert [f"{u}+{l}" for u, l in scheme.options(*preferred.split("+"))] == [preferred, alternative]
+        sums = [tuple(round((grades[u][k] + grades[l][k]) / UM) for k in (0, 1))
+                for u, l in (p.split("+") for p in (preferred, alternative))]
+        assert sums[0] == sums[1]
+    for unmatched in ("A+A", "A+B", "C+D", "D+D"):  # no pair of four grades has their sum
+        assert len(scheme.options(*unmatched.split("+"))) == 1
+    # the stated range holds with them
+    assert scheme.clearance_limits() == pytest.approx((0.026 * MM, 0.045 * MM), abs=1e-9)
+
+
+def test_scheme_sources_carry_the_standards_title():
+    for name in (f"iso13778-{k}" for k in range(1, 7)):
+        assert ("Plain bearings — Quality assurance of thin-walled half bearings — Selective assembly of "
+                "bearings to achieve a narrow clearance range") in schemes.load(name).source
+
+
 def test_scheme3_overlapping_shell_grades_sort_to_nearest_centre():
     shell = schemes.load("iso13778-3").shell
     # A 1.980-1.984 and B 1.977-1.981 overlap on 1.980-1.981; centres 1.982 and 1.979

@@ -112,6 +112,9 @@ def test_saved_datasets_round_trip_identically(engine_file, tmp_path, suffix, ke
         ({"seed": -1}, "seed: -1 is not valid"),
         ({"schemes": ()}, "schemes: give at least one scheme"),
         ({"schemes": ("iso13778-4", "iso13778-4")}, "names a scheme twice"),
+        ({"window": (45, 65)}, r"window: \(45.0, 65.0\) m is not a clearance window; .* in metres"),
+        ({"window": (65e-6, 45e-6)}, "is not a clearance window"),
+        ({"window": 50e-6}, "is not a \\(lower, upper\\) pair"),
     ],
 )
 def test_bad_study_input(kw, message):
@@ -180,7 +183,7 @@ def test_operating_clearance_is_the_press_fit_of_the_stored_parts(engine_file):
     np.testing.assert_array_equal(ds.clearance_operating.values[ok], fit.clearance)
     np.testing.assert_array_equal(ds.contact_pressure.values[ok], fit.contact_pressure)
     assert np.all(np.isnan(ds.clearance_operating.values[~ok]))
-    lo, hi = ds.attrs["crush_height_limits"]
+    lo, hi = ds.crush_height_limits.values
     crush = ds.shell_upper_crush.values[ok]
     assert crush.min() >= lo and crush.max() <= hi
 
@@ -189,7 +192,7 @@ def test_report_has_press_fit_section_with_intervals(engine_file, tmp_path):
     from stackup.report import fit_summary, write_report
 
     ds = small(engine_file()).run()
-    summary = fit_summary(ds, contact_pressure_min=40e6)  # a limit most bearings miss
+    summary = fit_summary(ds.assign(design_contact_pressure_min=40e6))  # a limit most bearings miss
     assert np.all(summary.low_pressure_ppm > 5e5)
     for lo, hi in summary.low_pressure_ci_ppm:
         assert lo < hi
@@ -204,11 +207,13 @@ def test_crank_stage_runs_on_the_subsample_and_marks_the_rest():
     ds = Study(n_engines=40, mechanics_engines=6, crank_angle_step=4.0, schemes=("iso13778-4",), seed=2,
                pilot_engines=2000, progress=False).run()
     status = ds.crank_status.values[0]
-    assert np.all(status[6:] == NOT_COMPUTED)
+    assert ds.crank_status.dims == ("scheme", "mech_engine")
+    assert list(ds.mech_engine.values) == list(range(6))  # the rest are not computed: not on mech_engine
+    assert not np.any(status == NOT_COMPUTED)
     assert np.all(status[:6] == 0)
     assert ds.crank_status.attrs["flag_meanings"] == " ".join(CYCLE_STATUS)
     r = ds.reaction_max.values[0]
-    assert np.all(np.isfinite(r[:6])) and np.all(np.isnan(r[6:]))
+    assert np.all(np.isfinite(r[:6])) and r.shape[0] == 6
     assert np.all((r[:6] > 5e3) & (r[:6] < 1e5))  # a 13 MPa, 76 mm bore four: kN to tens of kN
 
 
@@ -256,7 +261,7 @@ def test_target_error_sizes_the_mechanical_chain_independently_of_chunking():
     rechunked = Study(**kw, target_error=0.02, chunk_lots=1).run()
     xr.testing.assert_equal(loose, rechunked)
     used = loose.attrs["mechanics_engines_used"]
-    assert np.all(loose.crank_status.values[:, used:] == 3)  # not_computed beyond the sample
+    assert loose.sizes["mech_engine"] == used  # nothing beyond the sample
 
 
 def test_history_on_a_crank_angle_dimension_only_when_asked():
@@ -265,8 +270,34 @@ def test_history_on_a_crank_angle_dimension_only_when_asked():
     plain = Study(**kw).run()
     assert "crank_angle" not in plain.dims
     ds = Study(**kw, history=True).run()
-    assert ds.h_min_history.dims == ("scheme", "sampled_engine", "bearing", "crank_angle")
-    assert ds.sizes["crank_angle"] == 120 and ds.sizes["sampled_engine"] == 4
+    assert ds.h_min_history.dims == ("scheme", "mech_engine", "bearing", "crank_angle")
+    assert ds.sizes["crank_angle"] == 120 and ds.sizes["mech_engine"] == 4
     np.testing.assert_allclose(ds.h_min_history.min("crank_angle").values, ds.h_min.values[:, :4])
     np.testing.assert_allclose(np.linalg.norm(ds.load_history.values, axis=-1).max(axis=-1), ds.reaction_max.values[:, :4])
     assert ds.crank_angle.attrs["units"] == "degree"
+
+
+def test_a_study_window_overrides_the_engines_for_counts_and_ranking(engine_file):
+    from stackup import rank
+
+    kw = dict(keep="summaries", schemes=("iso13778-4",))
+    narrow, wide = (small(engine_file(), window=w, **kw).run() for w in ((30e-6, 31e-6), (10e-6, 200e-6)))
+    assert tuple(wide.clearance_window.values) == (10e-6, 200e-6)
+    assert int(wide.outside_window_count.sum()) == 0 < int(narrow.outside_window_count.sum())
+    assert rank(wide).loc["iso13778-4", "outside_window_ppm"] == 0 < rank(narrow).loc["iso13778-4", "outside_window_ppm"]
+
+
+def test_a_stage_failing_on_many_engines_stops_the_run_naming_stage_share_and_cause(engine_file, write_toml):
+    from stackup.study.failures import FailureCount, StageFailure
+
+    # a scheme whose journal grades start 6 um above the drawing's lower limit: about 8 % cannot be graded
+    text = (schemes._builtin_dir() / "iso13778-4.toml").read_text().replace(
+        "A = [46.000, 46.006], B = [46.006, 46.012], C = [46.012, 46.018]",
+        "A = [46.006, 46.012], B = [46.012, 46.018], C = [46.018, 46.024]")
+    wrong = write_toml("shifted.toml", text.replace('name = "iso13778-4"', 'name = "shifted"'))
+    with pytest.raises(StageFailure, match=r"grading: failed on .* of .* bearings with parts inside their drawing "
+                                           r"limits \(\d+\.\d %, more than the study's failure_limit of 5 %\); "
+                                           r"likely cause: the scheme's grade ranges"):
+        small(engine_file(), schemes=(str(wrong),), n_engines=120, pilot_engines=2000).run()
+    counts = FailureCount.of_dataset(small(engine_file(), schemes=(str(wrong),), failure_limit=1.0).run())
+    assert 0.05 < counts.shares()["grading"] < 0.2 and "grading: failed on" in counts.lines()[0]

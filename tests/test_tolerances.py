@@ -2,10 +2,11 @@
 
 import numpy as np
 import pytest
-from scipy import integrate, stats
+from scipy import integrate, special, stats
 
 from stackup.tolerances import (
-    Dimension, Gauge, Mixture, Normal, ToolWear, TruncatedNormal, Uniform, process_from_spec, quantize,
+    Dimension, FormError, Gauge, Mixture, Normal, ToolWear, TruncatedNormal, Uniform, form_from_spec,
+    process_from_spec, quantize,
 )
 
 UM = 1e-6
@@ -140,3 +141,49 @@ def test_inverted_drawing_limits_are_rejected():
 def test_bad_process_spec(spec, message):
     with pytest.raises(ValueError, match=message):
         process_from_spec(spec, lo=50.000e-3, hi=50.018e-3, scale=1e-3, field="housing_bore")
+
+
+def test_larger_of_two_readings_has_the_closed_form_moments():
+    # the largest of two independent standard normals: CDF Phi(x)^2, mean 1/sqrt(pi), variance 1 - 1/pi
+    g = Gauge(repeatability=1.0, readings=2, combine="max")
+    z = np.random.default_rng(0).standard_normal(400_000)
+    noise = g.noise(z)
+    assert noise.mean() == pytest.approx(1 / np.sqrt(np.pi), abs=0.005)
+    assert noise.var() == pytest.approx(1 - 1 / np.pi, abs=0.005)
+    x = np.array([-1.0, 0.0, 0.5, 1.5])
+    np.testing.assert_allclose([np.mean(noise <= v) for v in x], special.ndtr(x) ** 2, atol=0.003)
+    np.testing.assert_allclose(g.noise_moments(), (1 / np.sqrt(np.pi), np.sqrt(1 - 1 / np.pi)), rtol=1e-6)
+    # part by part the larger reading is never below the single reading of the same normal
+    assert np.all(noise >= Gauge(repeatability=1.0).noise(z) - 1e-12)
+
+
+def test_mean_of_readings_divides_the_repeatability():
+    g = Gauge(repeatability=2e-6, readings=4)
+    assert g.noise(np.array([1.0])) == pytest.approx(1e-6)
+    assert g.noise_moments() == (0.0, pytest.approx(1e-6))
+
+
+def test_single_reading_sees_ovality_two_directions_cancel_it():
+    z = np.random.default_rng(1).standard_normal((200_000, 3))
+    one = FormError(ovality=3e-6, taper=0.0).reading_error(z)
+    # o uniform on [0, 3 um], angle uniform: e = o/2 cos(2 phi), std = 3 um / sqrt(24)
+    assert one.std() == pytest.approx(3e-6 / np.sqrt(24), rel=0.01)
+    assert np.abs(one).max() <= 1.5e-6
+    assert np.abs(FormError(ovality=3e-6, taper=0.0, directions=2).reading_error(z)).max() < 1e-18
+
+
+def test_off_centre_plane_sees_taper_symmetric_planes_cancel_it():
+    z = np.random.default_rng(2).standard_normal((100_000, 3))
+    off = FormError(ovality=0.0, taper=3e-6, planes=(0.25,)).reading_error(z)
+    # taper uniform on [-3, 3] um, read a quarter of the width off centre: e = -tau / 4
+    assert np.abs(off).max() == pytest.approx(0.75e-6, rel=0.01)
+    assert np.abs(FormError(ovality=0.0, taper=3e-6, planes=(0.25, 0.75)).reading_error(z)).max() < 1e-18
+
+
+def test_form_and_gauge_specs_are_checked():
+    with pytest.raises(ValueError, match=r"gauge combine: 'median' is not one of 'mean', 'max'"):
+        Gauge(readings=2, combine="median")
+    with pytest.raises(ValueError, match=r"key journal_d.form: form planes: 1.5 is outside the valid range"):
+        form_from_spec({"planes": [1.5]}, scale=1e-3, field="key journal_d.form")
+    with pytest.raises(ValueError, match=r"unknown key\(s\) \['lobes'\]"):
+        form_from_spec({"lobes": 3}, scale=1e-3, field="form")

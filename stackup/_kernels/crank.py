@@ -9,9 +9,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..crank.law import REST
-
-CONVERGED, MAX_ITERATIONS, NOT_FINITE = 0, 1, 2
+#: Status of a solve, by code (the API stores it with these CF flag meanings).
+STATUS = ("converged", "max_iterations", "not_finite")
+CONVERGED, MAX_ITERATIONS, NOT_FINITE = range(len(STATUS))
 #: Floating-point licences that keep NaN/inf checks meaningful (no 'nnan', 'ninf').
 FAST = {"contract", "arcp", "reassoc", "nsz"}
 
@@ -30,16 +30,17 @@ def _expit(x):
 
 
 @njit(cache=True, inline="always", fastmath=FAST)
-def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
+def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta, rest):
     """Force and Jacobian of one bearing; see stackup.crank.law.
 
-    ``e = exp(-J/dx)`` and ``sp0 = softplus(-J/dx)`` are the bearing's constants.
+    ``e = exp(-J/dx)`` and ``sp0 = softplus(-J/dx)`` are the bearing's constants; below a
+    displacement ``rest`` [m] the journal is at rest.
     Returns (f0, f1, j00, j01, j10, j11).
     """
-    # displacements are micrometres: the squares cannot overflow; below REST (1e-150 m,
+    # displacements are micrometres: the squares cannot overflow; below rest (1e-150 m,
     # where they would start to underflow) the journal is at rest: no force, no stiffness
     mag = math.sqrt(u0 * u0 + u1 * u1)
-    if mag < REST:
+    if mag < rest:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     c = u0 / mag
     s_abs = abs(u1) / mag
@@ -69,7 +70,7 @@ def _bearing(u0, u1, clearance, dx, e, sp0, k_lv, k_hv, theta0, dtheta):
 
 
 @njit(cache=True, inline="always", fastmath=FAST)
-def _residual(x, kb, f_ext, off, law, consts, r, fb, jb):
+def _residual(x, kb, f_ext, off, law, consts, rest, r, fb, jb):
     """Residual K_b w - T P + F(w - d) into r; bearing forces into fb (n, 2); Jacobian blocks into jb (n, 4)."""
     n = kb.shape[1]
     for p in range(n):
@@ -80,7 +81,7 @@ def _residual(x, kb, f_ext, off, law, consts, r, fb, jb):
             r[2 * p + c] = acc
     for p in range(n):
         f0, f1, j00, j01, j10, j11 = _bearing(x[2 * p] - off[p, 0], x[2 * p + 1] - off[p, 1], law[0, p], law[1, p],
-                                              consts[0, p], consts[1, p], law[2, p], law[3, p], law[4, p], law[5, p])
+                                              consts[0, p], consts[1, p], law[2, p], law[3, p], law[4, p], law[5, p], rest)
         fb[p, 0] = f0
         fb[p, 1] = f1
         jb[p, 0] = j00
@@ -132,7 +133,8 @@ def _norm(r):
 
 
 @njit(cache=True, fastmath=FAST)
-def _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, reactions, deflections, status, iterations):
+def _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, rest, reactions, deflections, status,
+              iterations):
     """Solve sequence ``b`` along its load cases, warm-starting each from the previous ones."""
     n_a, m = loads.shape[1], loads.shape[2]
     n = kb.shape[1]
@@ -203,7 +205,7 @@ def _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, reacti
         mu = 0.0
         code = MAX_ITERATIONS
         it = 0
-        _residual(x, kb, f_ext, off, lw, consts, r, fb, jb)
+        _residual(x, kb, f_ext, off, lw, consts, rest, r, fb, jb)
         res = _norm(r)
         while it < max_iterations:
             if not math.isfinite(res):
@@ -231,7 +233,7 @@ def _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, reacti
             while t > 1e-10:
                 for k in range(size):
                     trial[k] = x[k] + t * step[k]
-                _residual(trial, kb, f_ext, off, lw, consts, r_trial, fb_t, jb_t)
+                _residual(trial, kb, f_ext, off, lw, consts, rest, r_trial, fb_t, jb_t)
                 res_t = _norm(r_trial)
                 if res_t < (1.0 - 1e-4 * t) * res:
                     accepted = True
@@ -270,7 +272,7 @@ def _outputs(loads, n):
 
 
 @njit(cache=True, parallel=True)
-def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
+def solve(kb, transfer, loads, offsets, law, rtol, max_iterations, rest):
     """Bearing forces and support deflections over sequences of load cases, sequences in parallel.
 
     kb (2, n, n), transfer (2, n, m); loads (B, A, m, 2); offsets (B, A, n, 2);
@@ -280,14 +282,14 @@ def solve(kb, transfer, loads, offsets, law, rtol, max_iterations):
     """
     out = _outputs(loads, kb.shape[1])
     for b in prange(loads.shape[0]):
-        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, *out)
+        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, rest, *out)
     return out
 
 
 @njit(cache=True)
-def solve_serial(kb, transfer, loads, offsets, law, rtol, max_iterations):
+def solve_serial(kb, transfer, loads, offsets, law, rtol, max_iterations, rest):
     """:func:`solve` on the calling thread (no thread-pool dispatch: for one or few sequences)."""
     out = _outputs(loads, kb.shape[1])
     for b in range(loads.shape[0]):
-        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, *out)
+        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, rest, *out)
     return out

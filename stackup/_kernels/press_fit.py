@@ -7,8 +7,6 @@ The numpy twin, and the definition of every term, is
 import numpy as np
 from numba import njit, prange
 
-from ..fit.tiers import FREE_RADIUS_ITERATIONS
-
 
 @njit(cache=True, inline="always")
 def _shell_compliance(r0, wall, modulus, poisson, thin):
@@ -25,9 +23,18 @@ def _at(values, i):
 
 
 @njit(cache=True, parallel=True)
-def press_fit(n, housing_bore, housing_outer, shell_wall, crush_height, check_bore, check_stress, journal_d,
-              delta_t, e_h, nu_h, al_h, e_s, nu_s, al_s, al_j, thin, with_journal):
-    """1-D arrays of length n (or 1, broadcast) in; (p, stress, swell, bore, shell_bore, clearance, loss) out."""
+def press_fit(n, housing_bore, housing_outer, shell_wall, lining_thickness, crush_height, check_bore, check_stress,
+              journal_d, delta_t, e_h, nu_h, al_h, e_s, nu_s, al_s, e_l, nu_l, al_l, al_j, thin, with_journal,
+              free_radius_iterations):
+    """1-D arrays of length n (or 1, broadcast) in; (p, stress, swell, bore, shell_bore, clearance, loss) out.
+
+    ``shell_wall`` is the full wall, ``lining_thickness`` its lining [m];
+    ``e_l, nu_l, al_l`` the lining's modulus, Poisson's ratio and expansion.
+    The steel-equivalent wall, the lined ring's expansion and the wall's
+    thermal thickening are formed per bearing as in the numpy twin
+    (``equivalent_wall``, ``equivalent_expansion``, ``wall_expansion``);
+    ``free_radius_iterations``: fixed-point steps for the shell's free radius.
+    """
     p_out = np.empty(n)
     stress = np.empty(n)
     swell = np.empty(n)
@@ -37,20 +44,27 @@ def press_fit(n, housing_bore, housing_outer, shell_wall, crush_height, check_bo
     loss = np.empty(n, np.bool_)
     for i in prange(n):
         t0 = _at(shell_wall, i)
+        t_l = _at(lining_thickness, i)
+        back = t0 - t_l
+        lining = t_l * (e_l / e_s)
+        te0 = back + lining
+        al_e = (back * al_s + lining * al_l) / te0
+        al_t = (back * (al_s + nu_s * (al_s - al_e)) + t_l * (al_l + nu_l * (al_l - al_e))) / t0
         sigma_c = _at(check_stress, i)
         base = 0.5 * _at(check_bore, i) + _at(crush_height, i) / np.pi
         r0 = base
-        for _ in range(FREE_RADIUS_ITERATIONS):
-            r0 = base + sigma_c * t0 / r0 * _shell_compliance(r0, t0, e_s, nu_s, thin)
+        for _ in range(free_radius_iterations):
+            r0 = base + sigma_c * te0 / r0 * _shell_compliance(r0, te0, e_s, nu_s, thin)
         dt = _at(delta_t, i)
         grow_h = 1.0 + al_h * dt
-        grow_s = 1.0 + al_s * dt
+        grow_s = 1.0 + al_e * dt
         a = 0.5 * _at(housing_bore, i) * grow_h
         b = 0.5 * _at(housing_outer, i) * grow_h
         r0 *= grow_s
-        t = t0 * grow_s
+        t = t0 * (1.0 + al_t * dt)
+        te = te0 * grow_s
         c_h = a / e_h * ((b * b + a * a) / (b * b - a * a) + nu_h)
-        c_s = _shell_compliance(r0, t, e_s, nu_s, thin)
+        c_s = _shell_compliance(r0, te, e_s, nu_s, thin)
         interference = r0 - a
         p = max(interference, 0.0) / (c_h + a / r0 * c_s)
         p_shell = p * a / r0
@@ -58,10 +72,10 @@ def press_fit(n, housing_bore, housing_outer, shell_wall, crush_height, check_bo
         if thin:
             wall_loaded = t
         else:
-            c = r0 - t
+            c = r0 - te
             wall_loaded = t - p_shell * c_s + 2.0 * p_shell * r0 * r0 * c / (e_s * (r0 * r0 - c * c))
         p_out[i] = p
-        stress[i] = p * a / t
+        stress[i] = p * a / te
         swell[i] = 2.0 * u_h
         bore[i] = 2.0 * (a + u_h)
         sb = 2.0 * (a + u_h - wall_loaded)

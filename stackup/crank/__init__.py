@@ -20,10 +20,10 @@ import numpy as np
 from .. import _validate as check
 from .._kernels import crank as _kernel
 from .beam import condensed, slope_matrices
-from .law import BellakhdharLaw
+from .law import REST, BellakhdharLaw
 
-#: Status codes of a solve, stored with CF flag attributes.
-STATUS = ("converged", "max_iterations", "not_finite")
+#: Status codes of a solve, stored with CF flag attributes (defined with the kernel that sets them).
+STATUS = _kernel.STATUS
 #: Newton stops when the residual is below this share of the load scale.
 RTOL = 1e-10
 MAX_ITERATIONS = 200  # 1-3 per angle normally; a kinked (dx = 0) cold start took up to 67 in 2000 random cases
@@ -170,7 +170,7 @@ def reactions(pin_loads, *, spans, EI, load_positions=None, offsets=None, law=No
         np.ascontiguousarray(loads).reshape(batch, seq, n_spans, 2),
         np.ascontiguousarray(offsets).reshape(batch, seq, n_spans + 1, 2),
         np.ascontiguousarray(params).reshape(batch, 6, n_spans + 1),
-        RTOL, MAX_ITERATIONS,
+        RTOL, MAX_ITERATIONS, REST,
     )
     return CrankReactions(r.reshape(*lead, n_spans + 1, 2), w.reshape(*lead, n_spans + 1, 2),
                           (status == 0).reshape(lead), iterations.reshape(lead), status.reshape(lead))

@@ -4,13 +4,26 @@ Tiers of :func:`min_film_thickness` (steady load):
 
 - ``"short"``: Ocvirk's short-bearing closed form (:mod:`stackup.film.tiers`);
 - ``"finite"``: Ocvirk's form times a load and attitude correction tabulated
-  from the Reynolds tier over L/D 0.1-2 and eccentricity 0.02-0.98
+  from the Reynolds tier over L/D 0.1-2 and eccentricity 0.02-0.995
   (``studies/film_finite_table.py``; its error is in ``reports/film_speed_vs_error.md``);
 - ``"reynolds"``: finite-difference Reynolds equation with Swift-Stieber
   cavitation (:mod:`stackup.film.reynolds`), the reference tier.
 
 The friction torque and side flow of every tier use the short-bearing forms at
 the tier's eccentricity, except ``"reynolds"``, which integrates its own field.
+
+Every tier is defined over the whole physical range of loads: zero load gives
+the concentric journal (eccentricity 0, h_min = c), and any finite load a film
+in (0, c]. Where a tier leaves the range on which it was checked against the
+reference (eccentricity above :data:`ECCENTRICITY_VALID`, or an L/D outside
+the finite tier's table) the film is still returned, with ``valid`` False:
+the finite tier then holds its correction at the table's edge, the Reynolds
+tier continues with the short-bearing load curve scaled to its own load at
+:data:`ECCENTRICITY_VALID`.
+
+Submodules: :mod:`~stackup.film.orbit` (film over the cycle),
+:mod:`~stackup.film.heat` (heat balance with the oil feed),
+:mod:`~stackup.film.oil` (viscosity).
 """
 
 from __future__ import annotations
@@ -26,6 +39,9 @@ from .. import _validate as check
 from . import oil, reynolds, tiers
 
 METHODS = ("short", "finite", "reynolds")
+#: Largest eccentricity on which the steady tiers are checked against the reference tier (the finite
+#: table's last node); films above it (thinner than 0.5 % of the clearance) carry ``valid`` False.
+ECCENTRICITY_VALID = 0.995
 
 
 @dataclass(frozen=True)
@@ -44,6 +60,10 @@ class Film:
         Friction torque on the journal [N m].
     side_flow : numpy.ndarray
         Oil leaving both ends of the bearing [m^3/s].
+    valid : numpy.ndarray of bool
+        The tier is inside the range on which it was checked against the
+        reference (eccentricity <= :data:`ECCENTRICITY_VALID`, L/D inside the
+        finite tier's table).
     """
 
     eccentricity: np.ndarray
@@ -51,33 +71,45 @@ class Film:
     attitude_angle: np.ndarray
     friction_torque: np.ndarray
     side_flow: np.ndarray
+    valid: np.ndarray
+
+
+def _table_coordinate(eps):
+    # -ln(1 - eps): the log load ratio is close to linear in it up to the table's end near 1 (linear in eps it
+    # bends there, and interpolating it in eps underestimates the film by 2-3 % above 0.98)
+    return -np.log1p(-eps)
 
 
 @lru_cache(maxsize=1)
 def _finite_table():
     data = np.load(resources.files("stackup") / "data" / "film_finite_table.npz")
-    grid = (np.log(data["length_over_diameter"]), data["eccentricity"])
-    ratio = RegularGridInterpolator(grid, np.log(data["load_ratio"]), bounds_error=False, fill_value=None)
-    attitude = RegularGridInterpolator(grid, data["attitude"], bounds_error=False, fill_value=None)
+    grid = (np.log(data["length_over_diameter"]), _table_coordinate(data["eccentricity"]))
+    ratio = RegularGridInterpolator(grid, np.log(data["load_ratio"]))
+    attitude = RegularGridInterpolator(grid, data["attitude"])
     return ratio, attitude, (data["length_over_diameter"][[0, -1]], data["eccentricity"][[0, -1]])
 
 
 def _finite(load, *, radius, length, radial_clearance, viscosity, speed):
-    ratio, attitude, (ld_range, _) = _finite_table()
+    """Eccentricity, attitude and validity of the finite tier; outside its table the correction is held at the edge."""
+    ratio, attitude, (ld_range, eps_range) = _finite_table()
     ld = length / (2 * radius)
-    if np.any((ld < ld_range[0]) | (ld > ld_range[1])):
-        raise ValueError(f"length: L/D {float(np.min(ld))!r}..{float(np.max(ld))!r} is outside the finite tier's "
-                         f"table [{ld_range[0]}, {ld_range[1]}]; use method='reynolds'")
-    log_ld = np.log(ld)
+    inside = (ld >= ld_range[0]) & (ld <= ld_range[1])
+    log_ld = np.log(np.clip(ld, *ld_range))
+
+    def lookup(table, eps):
+        pts = np.stack(np.broadcast_arrays(log_ld, _table_coordinate(np.clip(eps, *eps_range))), axis=-1)
+        return table(pts).reshape(np.shape(eps))
 
     def load_function(eps):
-        pts = np.stack(np.broadcast_arrays(log_ld, eps), axis=-1)
-        return tiers.short_load_function(eps) * np.exp(ratio(pts).reshape(np.shape(eps)))
+        return tiers.short_load_function(eps) * np.exp(lookup(ratio, eps))
 
     scale = viscosity * speed * radius * length**3 / (4 * radial_clearance**2)
     eps = tiers.invert_monotone(load_function, load / scale)
-    phi = attitude(np.stack(np.broadcast_arrays(log_ld, eps), axis=-1)).reshape(np.shape(eps))
-    return eps, phi
+    phi = lookup(attitude, eps)
+    # below the first node the attitude runs linearly to pi/2, its limit for the concentric journal
+    low = eps < eps_range[0]
+    phi = np.where(low, np.pi / 2 + (phi - np.pi / 2) * eps / eps_range[0], phi)
+    return eps, phi, inside & (eps <= eps_range[1])
 
 
 def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, method="short"):
@@ -86,7 +118,7 @@ def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, m
     Parameters
     ----------
     load : array_like
-        Bearing load [N], > 0.
+        Bearing load [N], >= 0.
     diameter : array_like
         Journal diameter [m].
     length : array_like
@@ -102,9 +134,11 @@ def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, m
     Returns
     -------
     Film
+        Zero load gives eccentricity 0 and h_min = c; every finite load a film
+        in (0, c], flagged by ``valid`` where the tier leaves its checked range.
     """
     check.one_of("method", method, METHODS)
-    load = check.positive("load", load)
+    load = check.positive("load", load, allow_zero=True)
     radius = check.positive("diameter", diameter) / 2
     length = check.positive("length", length)
     c = check.positive("clearance", clearance) / 2
@@ -114,30 +148,88 @@ def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, m
     kw = dict(radius=radius, length=length, radial_clearance=c, viscosity=mu, speed=omega)
     if method == "reynolds":
         return _reynolds(load, **kw)
-    eps, phi = (tiers.short if method == "short" else _finite)(load, **kw)
+    if method == "short":
+        eps, phi = tiers.short(load, **kw)
+        inside = np.ones(load.shape, bool)
+    else:
+        eps, phi, inside = _finite(load, **kw)
     h_min, torque, flow = tiers.film_quantities(eps, phi, load, **kw)
-    return Film(eps, h_min, phi, torque, flow)
+    return Film(eps, h_min, phi, torque, flow, inside & (eps <= ECCENTRICITY_VALID))
 
 
 def _reynolds(load, *, radius, length, radial_clearance, viscosity, speed):
     out = {k: np.empty(load.shape) for k in ("eps", "phi", "torque", "flow")}
+    valid = np.ones(load.shape, bool)
     for idx in np.ndindex(load.shape):
         r, l, c, mu, w = (float(a[idx]) for a in (radius, length, radial_clearance, viscosity, speed))
         unit = mu * w * r**4 / c**2  # load of a unit dimensionless force [N]
-        field = reynolds.eccentricity_for_load(float(load[idx]) / unit, l / r)
+        if load[idx] == 0:
+            field = reynolds.solve_field(0.0, l / r)
+            field.attitude = np.pi / 2  # the concentric film carries no load; its attitude is the limit pi/2
+        elif load[idx] / unit > _reynolds_edge(l / r).force:
+            eps, phi, torque, flow = _beyond_reynolds(float(load[idx]), r, l, c, mu, w)
+            out["eps"][idx], out["phi"][idx], out["torque"][idx], out["flow"][idx] = eps, phi, torque, flow
+            valid[idx] = False
+            continue
+        else:
+            field = reynolds.eccentricity_for_load(float(load[idx]) / unit, l / r)
         friction, flow = reynolds.friction_and_flow(field)
         out["eps"][idx] = field.eps
         out["phi"][idx] = field.attitude
         out["torque"][idx] = mu * w * r**4 / c * friction
         out["flow"][idx] = w * r**2 * c / 12 * flow
-    return Film(out["eps"], radial_clearance * (1 - out["eps"]), out["phi"], out["torque"], out["flow"])
+    return Film(out["eps"], radial_clearance * (1 - out["eps"]), out["phi"], out["torque"], out["flow"], valid)
+
+
+@lru_cache(maxsize=64)
+def _reynolds_edge(length_over_radius):
+    """The Reynolds field at :data:`ECCENTRICITY_VALID` for an L/R."""
+    return reynolds.solve_field(ECCENTRICITY_VALID, length_over_radius)
+
+
+def _beyond_reynolds(load, radius, length, c, mu, speed):
+    """Above the Reynolds tier's range: the short-bearing load curve scaled to the Reynolds load at its edge."""
+    edge = _reynolds_edge(length / radius)
+    short_edge = (length / radius) ** 3 / 4 * tiers.short_load_function(ECCENTRICITY_VALID)
+    scale = mu * speed * radius * length**3 / (4 * c**2) * edge.force / short_edge
+    eps = float(tiers.invert_monotone(tiers.short_load_function, np.array(load / scale)))
+    kw = dict(radius=radius, length=length, radial_clearance=c, viscosity=mu, speed=speed)
+    _, torque, flow = tiers.film_quantities(eps, edge.attitude, load, **kw)
+    return eps, edge.attitude, float(torque), float(flow)
+
+
+def journal_position(load, *, eccentricity, attitude_angle, clearance):
+    """Journal centre relative to the bearing centre [m] under a steady load.
+
+    Parameters
+    ----------
+    load : array_like (..., 2)
+        Load on the bearing (force of the journal on the bearing) [N], the frame of
+        :func:`stackup.film.orbit.orbit`.
+    eccentricity, attitude_angle : array_like (...)
+        Of the film under that load (:class:`Film`) [-], [rad].
+    clearance : array_like (...)
+        Diametral clearance [m].
+
+    Returns
+    -------
+    numpy.ndarray (..., 2)
+        The journal centre lies along the load turned by the attitude angle in
+        the sense of rotation (positive angles), as the mobility tier finds it.
+    """
+    f = check.finite("load", load)
+    direction = np.arctan2(f[..., 1], f[..., 0]) + np.asarray(attitude_angle)
+    e = np.asarray(eccentricity) * np.asarray(clearance) / 2
+    return np.stack([e * np.cos(direction), e * np.sin(direction)], axis=-1)
 
 
 #: Steady tiers from cheapest to dearest.
 BY_COST = ("short", "finite", "reynolds")
-#: Grid on which :func:`tier_errors` measures the cheaper tiers against the reference; it lies
-#: between the nodes of the finite tier's table, where its interpolation error is largest.
-ERROR_GRID = {"length_over_diameter": (0.33, 0.55, 0.85, 1.6), "eccentricity": (0.33, 0.55, 0.77, 0.87, 0.935)}
+#: Grid on which :func:`tier_errors` measures the cheaper tiers against the reference: it spans the finite
+#: tier's whole table (L/D 0.1-2, eccentricity 0.02-0.995, and below its first node) and lies between the
+#: table's nodes, where its interpolation error is largest.
+ERROR_GRID = {"length_over_diameter": (0.12, 0.175, 0.225, 0.35, 0.55, 0.85, 1.4, 1.8),
+              "eccentricity": (0.01, 0.03, 0.33, 0.55, 0.77, 0.89, 0.905, 0.935, 0.975, 0.9875, 0.99375)}
 
 
 @lru_cache(maxsize=1)
@@ -170,4 +262,5 @@ def cheapest_tier(max_error):
     return next(m for m in BY_COST if errors[m] <= max_error)
 
 
-__all__ = ["BY_COST", "ERROR_GRID", "cheapest_tier", "tier_errors", "METHODS", "Film", "min_film_thickness", "oil", "reynolds", "tiers"]
+__all__ = ["BY_COST", "ECCENTRICITY_VALID", "ERROR_GRID", "cheapest_tier", "tier_errors", "METHODS", "Film",
+           "journal_position", "min_film_thickness", "oil", "reynolds", "tiers"]

@@ -1,25 +1,54 @@
-r"""Oil viscosity (Vogel, with an optional pressure term) and the isothermal heat balance.
+r"""Engine oil viscosity: temperature (Vogel), shear thinning (Cross) and pressure (Barus).
 
-.. math:: \mu(T, p) = C_1 \exp\left(\frac{C_2}{T + C_3} + \beta p\right)
+Low-shear viscosity, Vogel (1921):
 
-with :math:`T` in degC (Vogel 1921; the pressure term as in Rozhdestvensky et
-al. 2018, eq. 3). Built-in oils fit :math:`C_1, C_2, C_3` exactly through
-three points per grade (``stackup/data/oils.toml``, with sources).
+.. math:: \mu_0(T) = C_1 \exp\left(\frac{C_2}{T + C_3}\right), \qquad T \text{ in degC}
 
-Effective film temperature (isothermal heat balance): the friction power
-:math:`N = T_f\,\omega` is carried away by the side flow :math:`Q`,
+fitted to **low-shear points only**: the measured kinematic viscosities at
+40 and 100 degC (KV40, KV100, times the density) and the ASTM D341 (Walther)
+extrapolation of those two to 150 degC, the standard way to carry KV40/KV100
+to other temperatures. :math:`C_3` is kept inside :data:`VOGEL_C3_RANGE` (a
+Vogel temperature :math:`-C_3` of about 90-210 K; Cameron gives about 95
+degC for mineral oils). Fitting the high-shear HTHS viscosity at 150 degC
+together with the low-shear KV40 and KV100 of a multigrade oil, as this
+module did before, mixes two flow curves and bends the fit: 10W-40 got
+:math:`C_3` = 258 K, a Vogel temperature of 15 K.
 
-.. math:: T_{eff} = T_{supply} + k\,\frac{N(\mu(T_{eff}))}{\rho\,c_p\,Q(\mu(T_{eff}))}
+Shear thinning of multigrade (polymer-thickened) oils, Cross (1965), with the
+high-shear point HTHS (150 degC, 1e6 1/s, SAE J300 / ASTM D4683):
 
-with :math:`k = 1/2` (mean of inlet and outlet), solved by damped fixed-point
-iteration.
+.. math:: \mu(T, \dot\gamma) = \mu_0(T)\left[r_\infty + \frac{1 - r_\infty}
+          {1 + (\dot\gamma/\dot\gamma_c(T))^{m}}\right], \qquad
+          \dot\gamma_c(T) = \dot\gamma_{c,150}\,\frac{\mu_0(150)}{\mu_0(T)}
+
+:math:`m` and :math:`\dot\gamma_{c,150}` from :data:`CROSS_VII`; the
+second-Newtonian share :math:`r_\infty` is solved so that the curve passes
+through HTHS at 150 degC and 1e6 1/s; the critical shear rate moves with the
+low-shear viscosity (time-temperature superposition). Monograde oils are
+Newtonian (their HTHS is only checked against the low-shear curve).
+
+Pressure (Barus 1893), an option: :math:`\mu(T, \dot\gamma, p) = \mu(T, \dot\gamma)\,e^{\alpha p}`
+with the oil's pressure-viscosity coefficient :math:`\alpha`; the
+Rozhdestvensky et al. (2018) form (eq. 3) is Vogel with this term.
+
+Which points each fit uses: the Vogel fit KV40, KV100 (and D341 at 150 degC
+from them): low shear only; the Cross fit adds HTHS150 at 1e6 1/s: high
+shear; :data:`CROSS_VII` fixes the shape of the transition.
 
 References
 ----------
 .. [1] Vogel, H., "Das Temperaturabhängigkeitsgesetz der Viskosität von
    Flüssigkeiten", Physikalische Zeitschrift 22 (1921) 645-646.
-.. [2] Rozhdestvensky et al. 2018, eq. 3 (pressure and temperature dependence).
-.. [3] SAE J300 (2015), Engine Oil Viscosity Classification.
+.. [2] ASTM D341-20, Standard Practice for Viscosity-Temperature Equations and
+   Charts for Liquid Petroleum or Hydrocarbon Products (Walther equation).
+.. [3] Cameron, A., *Basic Lubrication Theory*, 3rd ed., Ellis Horwood, 1981,
+   ch. 1 (Vogel's equation; constant about 95 degC for mineral oils).
+.. [4] Cross, M. M., "Rheology of non-Newtonian fluids: a new flow equation for
+   pseudoplastic systems", J. Colloid Sci. 20 (1965) 417-437 (exponent 2/3).
+.. [5] SAE J300 (2015), Engine Oil Viscosity Classification (HTHS at 150 degC, 1e6 1/s).
+.. [6] Barus, C., "Isothermals, isopiestics and isometrics relative to
+   viscosity", Am. J. Sci. 45 (1893) 87-96.
+.. [7] Rozhdestvensky et al. 2018, eq. 3 (pressure and temperature dependence).
 """
 
 from __future__ import annotations
@@ -33,13 +62,52 @@ from scipy import optimize
 
 from .. import _validate as check
 
-SPECIFIC_HEAT = 2000.0  # mineral engine oil [J/(kg K)]
-THERMAL_EXPANSION = 6.5e-4  # volumetric, for the density [1/K]
+#: Specific heat of engine oil at film temperatures (80-150 degC) [J/(kg K)] (mineral oils 2.0-2.3 kJ/(kg K)).
+SPECIFIC_HEAT = 2000.0
+#: Volumetric thermal expansion for the density [1/K] (ASTM D1250 tables give 6-7e-4 1/K for lubricating oils).
+THERMAL_EXPANSION = 6.5e-4
+#: Admissible Vogel constant C3 [K] (Vogel temperature -C3 degC between about 90 K and 210 K).
+VOGEL_C3_RANGE = (60.0, 180.0)
+#: Temperature range of the viscosity model [degC].
+TEMPERATURE_RANGE = (-30.0, 300.0)
+
+
+@dataclass(frozen=True)
+class CrossParameters:
+    """Shape of the Cross shear-thinning curve of polymer-thickened (multigrade) oils.
+
+    Attributes
+    ----------
+    exponent : float
+        :math:`m` [-]; 2/3, Cross's value for a wide range of pseudoplastic systems.
+    critical_shear_rate : float
+        :math:`\\dot\\gamma_c` at 150 degC [1/s]; 3e5 1/s, the inverse of the
+        Zimm relaxation time of an olefin-copolymer viscosity modifier
+        (M about 1e5 g/mol) in a base oil of about 2.5 mPa s at 150 degC: an
+        order-of-magnitude estimate, not a measurement. The viscosity at the
+        HTHS condition is exact whatever this value.
+    hths_shear_rate : float
+        Shear rate of the HTHS test [1/s] (SAE J300, ASTM D4683: 1e6 1/s).
+    hths_temperature : float
+        [degC] (150).
+    source : str
+    """
+
+    exponent: float = 2.0 / 3.0
+    critical_shear_rate: float = 3e5
+    hths_shear_rate: float = 1e6
+    hths_temperature: float = 150.0
+    source: str = ("Cross 1965 (m = 2/3); SAE J300 (HTHS at 150 degC, 1e6 1/s); critical shear rate 3e5 1/s at "
+                   "150 degC estimated from the Zimm relaxation time of an OCP viscosity modifier")
+
+
+#: Cross parameters of multigrade engine oils.
+CROSS_VII = CrossParameters()
 
 
 @dataclass(frozen=True)
 class Oil:
-    """An oil: Vogel constants, density and the pressure-viscosity coefficient.
+    """An oil: low-shear Vogel constants, density, shear thinning and the pressure-viscosity coefficient.
 
     Attributes
     ----------
@@ -51,8 +119,14 @@ class Oil:
     density15 : float
         Density at 15 degC [kg/m^3].
     pressure_coefficient : float
-        :math:`\\beta` [1/Pa]; 0 ignores the pressure term.
+        Barus :math:`\\alpha` [1/Pa] (applied only where a pressure is given).
     source : str
+    second_newtonian : float
+        :math:`r_\\infty`, high-shear over low-shear viscosity [-]; 1 for a Newtonian oil.
+    critical_shear_rate : float
+        :math:`\\dot\\gamma_c` at 150 degC [1/s].
+    thinning_exponent : float
+        Cross exponent :math:`m` [-].
     """
 
     name: str
@@ -62,43 +136,99 @@ class Oil:
     density15: float
     pressure_coefficient: float = 0.0
     source: str = ""
+    second_newtonian: float = 1.0
+    critical_shear_rate: float = CROSS_VII.critical_shear_rate
+    thinning_exponent: float = CROSS_VII.exponent
 
-    def viscosity(self, temperature, pressure=0.0):
-        """Dynamic viscosity [Pa s] at temperature [degC] and pressure [Pa]."""
-        t = check.in_range("temperature", temperature, -30.0, 300.0, unit=" degC")
-        return self.c1 * np.exp(self.c2 / (t + self.c3) + self.pressure_coefficient * np.asarray(pressure))
+    def low_shear_viscosity(self, temperature):
+        """Low-shear (Vogel) dynamic viscosity [Pa s] at temperature [degC]."""
+        t = check.in_range("temperature", temperature, *TEMPERATURE_RANGE, unit=" degC")
+        return self.c1 * np.exp(self.c2 / (t + self.c3))
+
+    def viscosity(self, temperature, *, shear_rate=None, pressure=0.0):
+        """Dynamic viscosity [Pa s] at temperature [degC], shear rate [1/s] and pressure [Pa].
+
+        Without a shear rate the low-shear (Vogel) viscosity; with one, the
+        Cross curve (a Newtonian oil is unchanged); the pressure term
+        :math:`e^{\\alpha p}` where a pressure is given.
+        """
+        mu0 = self.low_shear_viscosity(temperature)
+        if shear_rate is not None and self.second_newtonian < 1.0:
+            rate = check.positive("shear_rate", shear_rate, allow_zero=True)
+            critical = self.critical_shear_rate * self.c1 * np.exp(self.c2 / (CROSS_VII.hths_temperature + self.c3)) / mu0
+            r = self.second_newtonian
+            mu0 = mu0 * (r + (1 - r) / (1 + (rate / critical) ** self.thinning_exponent))
+        return mu0 * np.exp(self.pressure_coefficient * check.positive("pressure", pressure, allow_zero=True))
 
     def density(self, temperature):
         """Density [kg/m^3] at temperature [degC]."""
         return self.density15 / (1.0 + THERMAL_EXPANSION * (np.asarray(temperature) - 15.0))
 
 
-def fit_vogel(temperatures, viscosities):
-    """Vogel constants (C1 [Pa s], C2, C3 [K]) through three (temperature [degC], viscosity [Pa s]) points."""
-    t = np.asarray(temperatures, dtype=float)
-    ln = np.log(np.asarray(viscosities, dtype=float))
-    if t.shape != (3,) or not np.all(np.diff(t) > 0) or not np.all(np.diff(ln) < 0):
-        raise ValueError("fit_vogel: give three increasing temperatures with decreasing viscosities")
+def fit_vogel(temperatures, viscosities, *, c3_range=VOGEL_C3_RANGE):
+    """Vogel constants (C1 [Pa s], C2, C3 [K]) by least squares in ln(viscosity), C3 inside ``c3_range``.
 
-    def mismatch(c3):
-        ratio = (1 / (t[0] + c3) - 1 / (t[1] + c3)) / (1 / (t[1] + c3) - 1 / (t[2] + c3))
-        return ratio - (ln[0] - ln[1]) / (ln[1] - ln[2])
+    Parameters
+    ----------
+    temperatures : array_like
+        At least three increasing temperatures [degC].
+    viscosities : array_like
+        Decreasing dynamic viscosities [Pa s] at those temperatures (one flow curve: all low-shear).
+    c3_range : (float, float)
+        Admissible C3 [K]; three points whose exact fit lies inside it are reproduced exactly.
+    """
+    t = check.finite("temperatures", temperatures)
+    mu = check.positive("viscosities", viscosities)
+    if t.ndim != 1 or t.size < 3 or t.shape != mu.shape or not np.all(np.diff(t) > 0) or not np.all(np.diff(mu) < 0):
+        raise ValueError("fit_vogel: give at least three increasing temperatures with decreasing viscosities")
+    lo, hi = max(c3_range[0], -t[0] + 1e-3), c3_range[1]
+    ln = np.log(mu)
 
-    c3 = optimize.brentq(mismatch, -t[0] + 1e-3, 1e4)
-    c2 = (ln[0] - ln[1]) / (1 / (t[0] + c3) - 1 / (t[1] + c3))
-    c1 = np.exp(ln[0] - c2 / (t[0] + c3))
-    return float(c1), float(c2), float(c3)
+    def linear(c3):
+        a = np.stack([np.ones_like(t), 1.0 / (t + c3)], axis=-1)
+        coef, *_ = np.linalg.lstsq(a, ln, rcond=None)
+        return coef, float(np.sum((a @ coef - ln) ** 2))
+
+    best = optimize.minimize_scalar(lambda c3: linear(c3)[1], bounds=(lo, hi), method="bounded",
+                                    options={"xatol": 1e-10})
+    c3 = min((float(best.x), lo, hi), key=lambda c: linear(c)[1])  # a bounded optimum may sit on a bound
+    (ln_c1, c2), _ = linear(c3)
+    return float(np.exp(ln_c1)), float(c2), c3
+
+
+def walther_kinematic_viscosity(kv40, kv100, temperature):
+    """Kinematic viscosity [m^2/s] at temperature [degC] through KV40 and KV100 [m^2/s] (ASTM D341).
+
+    .. math:: \\log_{10}\\log_{10}(\\nu + 0.7) = A - B\\log_{10} T, \\qquad \\nu \\text{ in cSt},\\ T \\text{ in K}
+    """
+    z = [np.log10(np.log10(kv * 1e6 + 0.7)) for kv in (kv40, kv100)]
+    b = (z[0] - z[1]) / (np.log10(373.15) - np.log10(313.15))
+    a = z[0] + b * np.log10(313.15)
+    return (10 ** 10 ** (a - b * np.log10(np.asarray(temperature, dtype=float) + 273.15)) - 0.7) * 1e-6
+
+
+def _from_table(name, e):
+    rho = lambda t: e["density15"] / (1 + THERMAL_EXPANSION * (t - 15))  # noqa: E731
+    points = np.array([40.0, 100.0, CROSS_VII.hths_temperature])
+    nu = [e["kv40"], e["kv100"], walther_kinematic_viscosity(e["kv40"], e["kv100"], points[2])]
+    c1, c2, c3 = fit_vogel(points, np.array(nu) * rho(points))
+    oil = Oil(name, c1, c2, c3, e["density15"], e["pressure_coefficient"], e["source"])
+    if not e["multigrade"]:
+        return oil
+    # r_inf from HTHS: mu(150, 1e6) = mu0(150) (r + (1 - r) s), s = 1 / (1 + (1e6 / rate_c)^m)
+    ratio = e["hths150"] / float(oil.low_shear_viscosity(CROSS_VII.hths_temperature))
+    s = 1 / (1 + (CROSS_VII.hths_shear_rate / CROSS_VII.critical_shear_rate) ** CROSS_VII.exponent)
+    r = (ratio - s) / (1 - s)
+    if not 0 < r < 1:
+        raise ValueError(f"oil {name!r}: HTHS {e['hths150']!r} Pa s over the low-shear viscosity at 150 degC gives a "
+                         f"second-Newtonian share {r:.3g}, outside (0, 1)")
+    return Oil(name, c1, c2, c3, e["density15"], e["pressure_coefficient"], e["source"], second_newtonian=float(r))
 
 
 def _builtin():
     with open(resources.files("stackup") / "data" / "oils.toml", "rb") as f:
         table = tomllib.load(f)
-    oils = {}
-    for name, e in table.items():
-        rho = np.array([e["density15"] / (1 + THERMAL_EXPANSION * (t - 15)) for t in (40.0, 100.0)])
-        mu = [e["kv40"] * rho[0], e["kv100"] * rho[1], e["hths150"]]
-        oils[name] = Oil(name, *fit_vogel([40.0, 100.0, 150.0], mu), e["density15"], source=e["source"])
-    return oils
+    return {name: _from_table(name, e) for name, e in table.items()}
 
 
 _OILS = _builtin()
@@ -116,23 +246,3 @@ def get(oil):
     if oil not in _OILS:
         raise ValueError(f"oil: {oil!r} is not a known oil ({', '.join(available())})")
     return _OILS[oil]
-
-
-def effective_temperature(oil, supply_temperature, film, *, share=0.5, tolerance=1e-3, max_iterations=100):
-    """Effective film temperature [degC] and viscosity [Pa s] from the isothermal heat balance.
-
-    ``film(viscosity)`` returns (friction power [W], side flow [m^3/s]) for a
-    viscosity [Pa s] (arrays broadcast). Damped fixed point on the temperature.
-    """
-    oil = get(oil)
-    t_in = check.in_range("supply_temperature", supply_temperature, -30.0, 200.0, unit=" degC")
-    t = np.array(t_in, dtype=float)
-    for _ in range(max_iterations):
-        mu = oil.viscosity(np.minimum(t, 299.0))
-        power, flow = film(mu)
-        rise = share * power / (oil.density(t) * SPECIFIC_HEAT * np.maximum(flow, 1e-12))
-        t_new = t_in + rise
-        if np.all(np.abs(t_new - t) < tolerance):
-            return t_new, oil.viscosity(np.minimum(t_new, 299.0))
-        t = 0.5 * (t + t_new)
-    raise ValueError(f"effective_temperature: the heat balance did not converge in {max_iterations} iterations")

@@ -224,21 +224,22 @@ def cycle_tier_errors():
         return tomllib.load(f)["tiers"]
 
 
-def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), reference="mass-conserving"):
+def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), reference="mass-conserving", tiers=None):
     """The cheapest cycle tier whose measured errors (``measures``) are all within ``max_error`` [-].
 
     Like :func:`stackup.film.cheapest_tier` for the steady tiers. ``reference``:
     ``"mass-conserving"`` (Elrod-Adams, the physical reference) or
     ``"swift-stieber"`` (the same transient tier with the Reynolds condition, the
     cavitation model of every cheaper tier: it measures their numerical error
-    only). Falls back to ``reynolds-transient`` when no cheaper tier qualifies.
+    only). ``tiers``: the tiers to choose from (default every measured one). Falls
+    back to ``reynolds-transient`` when no cheaper tier qualifies.
     """
     max_error = float(check.positive("max_error", max_error, allow_zero=True))
     check.one_of("reference", reference, ("mass-conserving", "swift-stieber"))
     for name in measures:
         check.one_of("measures", name, ("h_min", "h_min_mean", "p_max", "p_max_mean", "friction_power"))
     errors = cycle_tier_errors()
-    ranked = sorted(errors, key=lambda t: errors[t]["seconds"])
+    ranked = sorted((t for t in errors if tiers is None or t in tiers), key=lambda t: errors[t]["seconds"])
 
     def error(tier, name):
         table = errors[tier] if reference == "mass-conserving" else errors[tier]["swift-stieber"]

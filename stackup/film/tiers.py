@@ -28,19 +28,28 @@ def short_load_function(eps):
     return eps * np.sqrt(np.pi**2 * (1 - eps**2) + 16 * eps**2) / (1 - eps**2) ** 2
 
 
+#: Largest eccentricity below 1 in floating point: the steady tiers never return a film of zero thickness.
+ECCENTRICITY_CEILING = float(np.nextafter(1.0, 0.0))
+
+
 def invert_monotone(function, target, *, iterations=200):
-    """Eccentricity in (0, 1) where the increasing ``function(eps)`` equals ``target`` (vectorised bisection)."""
+    """Eccentricity in [0, 1) where the increasing ``function(eps)`` (0 at 0) equals ``target`` (vectorised bisection).
+
+    A zero target gives exactly 0; a target beyond what ``function`` reaches
+    in floating point gives :data:`ECCENTRICITY_CEILING`.
+    """
     target = np.asarray(target, dtype=float)
     lo = np.zeros(target.shape)
     hi = np.ones(target.shape)
-    for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
-        above = function(mid) > target
-        hi = np.where(above, mid, hi)
-        lo = np.where(above, lo, mid)
-        if np.all(hi - lo < 1e-15):
-            break
-    return 0.5 * (lo + hi)
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        for _ in range(iterations):
+            mid = 0.5 * (lo + hi)
+            above = function(mid) > target
+            hi = np.where(above, mid, hi)
+            lo = np.where(above, lo, mid)
+            if np.all(hi - lo < 1e-15):
+                break
+    return np.where(target > 0, np.minimum(0.5 * (lo + hi), ECCENTRICITY_CEILING), 0.0)
 
 
 def film_quantities(eps, attitude, load, *, radius, length, radial_clearance, viscosity, speed):
@@ -53,7 +62,10 @@ def film_quantities(eps, attitude, load, *, radius, length, radial_clearance, vi
 
 
 def short(load, *, radius, length, radial_clearance, viscosity, speed):
-    """Eccentricity and attitude angle [rad] of a short bearing under a steady load [N]."""
+    """Eccentricity and attitude angle [rad] of a short bearing under a steady load [N] (>= 0).
+
+    Zero load gives the concentric journal (attitude pi/2, the limit of the closed form).
+    """
     scale = viscosity * speed * radius * length**3 / (4 * radial_clearance**2)
     eps = invert_monotone(short_load_function, load / scale)
     attitude = np.arctan2(np.pi * np.sqrt(1 - eps**2), 4 * eps)

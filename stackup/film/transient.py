@@ -72,8 +72,8 @@ FEED_LENGTH_SHARE = 0.3
 class _Film:
     """Grid and dimensionless film of one bearing."""
 
-    def __init__(self, *, length_over_radius, clearance_over_radius, n_theta, n_z, feed_angle, feed_width,
-                 feed_length_share, feed_pressure, limit=0.995):
+    def __init__(self, *, length_over_radius, clearance_over_radius, n_theta, n_z, feed_arc, feed_length_share,
+                 feed_pressure, limit=0.995):
         self.limit = limit
         self.theta = 2 * np.pi * np.arange(n_theta) / n_theta
         self.dtheta = 2 * np.pi / n_theta
@@ -87,7 +87,8 @@ class _Film:
         self.fixed = np.zeros((n_theta, n_z), bool)
         self.fixed[:, [0, -1]] = True
         self.p_fixed = np.zeros((n_theta, n_z))
-        near = np.abs(np.angle(np.exp(1j * (self.theta - feed_angle)))) <= feed_width / 2 + 1e-12
+        start, end = feed_arc
+        near = np.mod(self.theta - start + 1e-12, 2 * np.pi) <= (end - start) + 2e-12
         along = np.abs(self.z) <= feed_length_share * length_over_radius / 2 + 1e-12
         hole = near[:, None] & along[None, :]
         self.fixed |= hole
@@ -115,7 +116,7 @@ class _Film:
 
 def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, viscosity, speed, tilt=None, cycles=8,
                     cavitation="elrod-adams", n_theta=N_THETA, n_z=N_Z, time_order=2, feed_pressure=0.0,
-                    feed_angle=FEED_ANGLE, start=None):
+                    feed_angle=FEED_ANGLE, feed=None, start=None):
     """Orbit of each bearing by the transient Reynolds tier (called by :func:`stackup.film.orbit.orbit`).
 
     Parameters as :func:`stackup.film.orbit.orbit` (arrays over the leading shape, SI), and
@@ -128,6 +129,11 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         Supply pressure at the feed hole [Pa] (gauge; 0 keeps it full at ambient pressure).
     feed_angle : float
         Angle of the feed hole from load axis 0 [rad].
+    feed : stackup.film.heat.OilFeed, optional
+        The engine's oil feed: its supply pressure and groove (arc and axial width)
+        or hole replace ``feed_pressure`` and ``feed_angle`` (a hole is a
+        :data:`FEED_WIDTH` wide patch at ``feed.hole_angle``, the hole's diameter
+        long).
     start : array_like (..., 2), optional
         Journal centre at the first angle [m]; default from the ``mobility-finite`` tier
         (``mobility`` where the table does not cover the L/D).
@@ -168,9 +174,17 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         r, l, c, mu, w = (float(a[idx]) for a in (radius, length, radial_clearance, viscosity, speed))
         unit_force = mu * w * r**4 / c**2
         unit_pressure = mu * w * r**2 / c**2
+        if feed is None:
+            arc, share, supply = (feed_angle - FEED_WIDTH / 2, feed_angle + FEED_WIDTH / 2), FEED_LENGTH_SHARE, \
+                feed_pressure
+        elif feed.kind == "groove":
+            arc, share, supply = feed.groove_arc, feed.groove_width / l, feed.supply_pressure
+        else:
+            arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
+            share, supply = feed.hole_diameter / l, feed.supply_pressure
         film = _Film(length_over_radius=l / r, clearance_over_radius=c / r, n_theta=n_theta, n_z=n_z,
-                     feed_angle=feed_angle, feed_width=FEED_WIDTH, feed_length_share=FEED_LENGTH_SHARE,
-                     feed_pressure=feed_pressure / unit_pressure, limit=ECCENTRICITY_LIMIT)
+                     feed_arc=arc, feed_length_share=share, feed_pressure=supply / unit_pressure,
+                     limit=ECCENTRICITY_LIMIT)
         ld = l / (2 * r)
         finite = ld_nodes[0] <= ld <= ld_nodes[-1]
         i, t = _mobility._locate(ld_nodes, ld)
@@ -237,6 +251,11 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
                 sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta, film.dz,
                                      RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, mass_conserving)
                 if sweeps < 0:
+                    # over-relaxation can cycle between cavitated and full nodes in a thin, starved film;
+                    # plain Gauss-Seidel from where it stopped is slower but settles
+                    sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta,
+                                         film.dz, 1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, mass_conserving)
+                if sweeps < 0:
                     raise RuntimeError("field solve did not converge")
                 return film.force(p) - target, hh
 
@@ -283,7 +302,10 @@ def _force_balance(residual, x, jac, limit, tolerance):
     for _ in range(MAX_BROYDEN):
         if np.linalg.norm(f) <= tolerance:
             return x, h, jac
-        step = -np.linalg.solve(jac, f)
+        try:
+            step = -np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:  # a film that carries nothing in one direction (starved): no Newton step
+            return _least_squares_balance(residual, x, tolerance)
         size = np.linalg.norm(step)
         damping = 1.0
         accepted = False

@@ -6,7 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from stackup._kernels.crank import _bearing, _softplus
-from stackup.crank.law import BellakhdharLaw, force, gap_function, stiffness
+from stackup.crank.law import REST, BellakhdharLaw, force, gap_function, stiffness
 
 
 def direct_form(u, clearance, dx):
@@ -70,7 +70,7 @@ def test_kernel_bearing_equals_numpy_law(u0, u1, clearance, dx):
     f, jac = force(np.array([u0, u1]), p)
     e = np.exp(-clearance / dx) if dx > 0 else 0.0
     sp0 = _softplus(-clearance / dx) if dx > 0 else 0.0
-    got = _bearing(u0, u1, clearance, dx, e, sp0, *(float(x) for x in p[2:]))
+    got = _bearing(u0, u1, clearance, dx, e, sp0, *(float(x) for x in p[2:]), REST)
     np.testing.assert_allclose(got[:2], f, rtol=1e-10, atol=1e-6)
     np.testing.assert_allclose(got[2:], jac.ravel(), rtol=1e-9, atol=1e-3)
 

@@ -85,6 +85,31 @@ def test_study_stores_film_and_life_for_the_crank_engines():
     for name in ("h_min", "h_min_mean", "alpha", "life", "film_temperature"):
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
     assert np.all(ds.film_temperature.values[:4] > 90.0)
+    assert ds.attrs["film_method_used"] in ("mobility", "mobility-finite", "transient")
+
+
+def test_study_stores_the_film_status_tilt_and_peak_pressure_with_their_flags():
+    from stackup.study import Study
+    from stackup.study.schema import flag
+
+    ds = Study(n_engines=10, mechanics_engines=3, crank_angle_step=4.0, schemes=("iso13778-5",), seed=3,
+               pilot_engines=2000, progress=False, film_method="mobility-finite",
+               bearing_law="fitted").run().sel(scheme="iso13778-5")
+    computed = slice(0, 3)
+    status = ds.film_status.values[computed]
+    closed = (flag(ds.film_status, "periodic"), flag(ds.film_status, "edge_contact"))
+    assert np.all(np.isin(status, closed))  # the engines' orbits closed; the flag says how
+    assert np.all(ds.film_status.values[3:] == flag(ds.film_status, "not_computed"))
+    assert set(ds.film_status.attrs["flag_meanings"].split()) >= {"not_periodic", "collapsed", "failed"}
+    h, edge = ds.h_min.values[computed], ds.h_min_edge.values[computed]
+    assert np.all(edge <= h) and np.all(edge > 0)
+    np.testing.assert_allclose(ds.tilt_loss.values[computed], h - edge)
+    assert np.all((ds.tilt_max.values[computed] > 0) & (ds.tilt_max.values[computed] < 0.01))
+    assert np.all((ds.p_max.values[computed] > 10e6) & (ds.p_max.values[computed] < 1e9))
+    # the law fitted per bearing follows the film within a small share of the clearance
+    assert np.all(ds.law_fit_error.values[computed] < 0.1 * ds.clearance_operating.values[computed])
+    for name in ("h_min_edge", "tilt_loss", "tilt_max", "p_max", "film_status", "law_fit_error"):
+        assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
 
 
 # Hard cases. A load of constant size turning at the rate Omega: in the frame turning with it the

@@ -15,8 +15,8 @@ ANGLE = np.arange(0.0, 720.0, 8.0)
 def small_problem(seed, mass_conserving=True):
     """A 24 x 7 film with a tilted, eccentric journal moving since the last step (dimensionless)."""
     rng = np.random.default_rng(seed)
-    film = _Film(length_over_radius=0.8, clearance_over_radius=1e-3, n_theta=24, n_z=7, feed_angle=np.pi,
-                 feed_width=0.3, feed_length_share=0.3, feed_pressure=0.05)
+    film = _Film(length_over_radius=0.8, clearance_over_radius=1e-3, n_theta=24, n_z=7, feed_arc=(np.pi - 0.15, np.pi + 0.15),
+                 feed_length_share=0.3, feed_pressure=0.05)
     xi = rng.uniform(-0.6, 0.6, 2)
     gamma = rng.uniform(-2e-4, 2e-4, 2)
     h, h_e, h3e, h3n = film.thickness(xi, gamma)

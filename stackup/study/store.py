@@ -30,8 +30,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-#: Fixed-width string type of grade labels in a study dataset.
-LABEL_DTYPE = "<U2"
+from .schema import LABEL_DTYPE
+
 #: How string coordinates are stored: variable-length UTF-8, the string type Zarr 3 specifies.
 STORED_STRING = np.dtypes.StringDType()
 #: Attribute of a stored label variable: the labels its int8 codes index.
@@ -77,7 +77,7 @@ class ChunkStore:
         group.attrs["complete"] = True
 
     def write_total(self, total, next_first):
-        """Save a running total (dict of arrays) that holds every chunk before chunk ``next_first``.
+        """Save a running total (nested dicts of arrays) that holds every chunk before chunk ``next_first``.
 
         Written into the slot not in use, then the pointer is switched (last):
         an interruption leaves the previous total whole.
@@ -115,14 +115,19 @@ class ChunkStore:
 
 
 def _write_arrays(group, arrays):
-    """Write a dict of arrays into a Zarr group, one array each (replacing arrays of the same name)."""
+    """Write nested dicts of arrays into a Zarr group: an array per array, a subgroup per dict (replacing)."""
     for name, value in arrays.items():
+        if isinstance(value, dict):
+            _write_arrays(group.require_group(name), value)
+            continue
         value = np.asarray(value)
         group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
 
 
 def _read_arrays(group):
-    return {name: array[...] for name, array in group.arrays()}
+    """What :func:`_write_arrays` wrote: nested dicts of arrays."""
+    return {**{name: array[...] for name, array in group.arrays()},
+            **{name: _read_arrays(sub) for name, sub in group.groups()}}
 
 
 def _fast(ds):
@@ -159,12 +164,12 @@ def to_stored(ds, labels=()):
     return ds.assign(coded).assign_coords(strings)
 
 
-def open_study(path):
-    """The study dataset in a store, lazily (dask-backed): nothing is read until used.
+def open_study(path, *, group=None):
+    """The study dataset in a store (or one of its groups), lazily (dask-backed): nothing is read until used.
 
     Grade labels come back as fixed-width strings, as in an in-memory study.
     """
-    ds = xr.open_zarr(Path(path), consolidated=False, zarr_format=3)
+    ds = xr.open_zarr(Path(path), group=group, consolidated=False, zarr_format=3)
     labels = {}
     for name, var in ds.data_vars.items():
         if LABELS_ATTR in var.attrs:
@@ -173,4 +178,8 @@ def open_study(path):
             labels[name] = xr.Variable(var.dims, var.data.map_blocks(table.__getitem__, dtype=table.dtype), attrs)
     coords = {name: (var.dims, np.array(var.values.tolist(), dtype=str), var.attrs) for name, var in ds.coords.items()
               if var.dtype == STORED_STRING or var.dtype == object}
-    return ds.assign(labels).assign_coords(coords)
+    ds = ds.assign(labels).assign_coords(coords)
+    if "mech_engine" in ds.dims and "mechanics_engines_used" in ds.attrs:
+        # the store holds room for every engine the chain may run on; a target error may stop it earlier
+        ds = ds.isel(mech_engine=slice(0, int(ds.attrs["mechanics_engines_used"])))
+    return ds

@@ -1,0 +1,150 @@
+r"""Asperity contact of two rough surfaces across a thin film: Greenwood and Tripp (1970).
+
+Nominal contact pressure carried by the asperities at a mean separation
+(film thickness) :math:`h` of two Gaussian rough surfaces with composite RMS
+roughness :math:`\sigma = \sqrt{R_{q1}^2 + R_{q2}^2}`:
+
+.. math:: p_c(h) = \frac{16\sqrt 2}{15}\,\pi\,(\eta\beta\sigma)^2\sqrt{\frac{\sigma}{\beta}}\;
+          E^*\,F_{5/2}\!\left(\frac{h}{\sigma}\right),
+          \qquad \frac{1}{E^*} = \frac{1-\nu_1^2}{E_1} + \frac{1-\nu_2^2}{E_2}
+
+with the asperity density :math:`\eta`, asperity tip radius :math:`\beta` and
+the Gaussian height integral
+
+.. math:: F_n(\lambda) = \frac{1}{\sqrt{2\pi}}\int_\lambda^\infty (s-\lambda)^n e^{-s^2/2}\,ds
+          = \frac{\Gamma(n+1)}{\sqrt{2\pi}}\,e^{-\lambda^2/4}\,D_{-n-1}(\lambda)
+
+(:math:`D_\nu` the parabolic cylinder function; exact, so no polynomial fit
+and no cut-off at :math:`\lambda = 4`).
+
+References
+----------
+.. [1] Greenwood, J. A., Tripp, J. H., "The contact of two nominally flat rough
+   surfaces", Proc. IMechE 185 (1970) 625-633.
+.. [2] Greenwood, J. A., Williamson, J. B. P., "Contact of nominally flat
+   surfaces", Proc. R. Soc. Lond. A 295 (1966) 300-319 (:math:`\eta\beta\sigma`
+   of 0.03-0.05 for a wide range of engineering surfaces).
+.. [3] Gradshteyn, I. S., Ryzhik, I. M., *Table of Integrals, Series, and
+   Products*, 7th ed., 2007, 3.462.1 (the integral in closed form).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from scipy import special
+from scipy.interpolate import CubicSpline
+
+from . import _validate as check
+
+
+@dataclass(frozen=True)
+class AsperityParameters:
+    """Asperity statistics of the Greenwood-Tripp model.
+
+    Attributes
+    ----------
+    roughness_parameter : float
+        :math:`\\eta\\beta\\sigma` [-].
+    slope_parameter : float
+        :math:`\\sigma/\\beta` [-].
+    source : str
+    """
+
+    roughness_parameter: float = 0.04
+    slope_parameter: float = 1e-3
+    source: str = ("Greenwood & Williamson 1966: eta beta sigma 0.03-0.05 for engineering surfaces (0.04 taken); "
+                   "sigma/beta 1e-3, the value commonly used with Greenwood & Tripp 1970 for ground steel "
+                   "(the contact pressure scales with its square root)")
+
+
+#: Typical asperity statistics of ground and fine-bored bearing surfaces.
+TYPICAL_ASPERITIES = AsperityParameters()
+
+
+def gaussian_height_integral(order, separation):
+    """:math:`F_n(\\lambda)` of a Gaussian height distribution [-].
+
+    Parameters
+    ----------
+    order : float
+        :math:`n` (> -1; 5/2 for the pressure, 2 for the real area).
+    separation : array_like
+        :math:`\\lambda = h/\\sigma` [-]; any real value (negative: surfaces
+        pushed into each other).
+    """
+    lam = check.finite("separation", separation)
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+        d = special.pbdv(-order - 1.0, lam)[0]
+        value = special.gamma(order + 1.0) / np.sqrt(2 * np.pi) * np.exp(-0.25 * lam**2) * d
+    # far out of contact the product underflows to 0 (or 0 * inf): there is no contact
+    return np.where(np.isfinite(value) & (lam < 40.0), value, np.where(lam < 0, np.inf, 0.0))
+
+
+#: Separations covered by the table of ln F_5/2 that :func:`greenwood_tripp` interpolates (outside: exact form or 0).
+_TABLE_RANGE = (-8.0, 38.0)
+
+
+@lru_cache(maxsize=1)
+def _log_f52_table():
+    """Cubic spline of ln F_5/2 on 0.005 steps: the exact form costs about 10 us per point, the spline 0.1 us."""
+    lam = np.arange(_TABLE_RANGE[0], _TABLE_RANGE[1] + 1e-9, 0.005)
+    return CubicSpline(lam, np.log(gaussian_height_integral(2.5, lam)))
+
+
+def _f52(lam):
+    inside = (lam >= _TABLE_RANGE[0]) & (lam < _TABLE_RANGE[1])
+    out = np.where(lam >= _TABLE_RANGE[1], 0.0, np.nan)
+    out[inside] = np.exp(_log_f52_table()(lam[inside]))
+    deep = lam < _TABLE_RANGE[0]
+    if deep.any():
+        out[deep] = gaussian_height_integral(2.5, lam[deep])
+    return out
+
+
+def contact_modulus(modulus_1, poisson_1, modulus_2, poisson_2):
+    """Contact modulus :math:`E^*` [Pa] of two elastic bodies (moduli [Pa], Poisson's ratios [-])."""
+    e1 = check.positive("modulus_1", modulus_1)
+    e2 = check.positive("modulus_2", modulus_2)
+    n1 = check.in_range("poisson_1", poisson_1, -1.0, 0.5, lo_open=True, hi_open=True)
+    n2 = check.in_range("poisson_2", poisson_2, -1.0, 0.5, lo_open=True, hi_open=True)
+    return 1.0 / ((1 - n1**2) / e1 + (1 - n2**2) / e2)
+
+
+def composite_roughness(rq_1, rq_2):
+    """Composite RMS roughness :math:`\\sigma = \\sqrt{R_{q1}^2 + R_{q2}^2}` [m]."""
+    return np.hypot(check.positive("rq_1", rq_1), check.positive("rq_2", rq_2))
+
+
+def greenwood_tripp(film_thickness, *, roughness, contact_modulus, asperities=TYPICAL_ASPERITIES):
+    """Nominal asperity contact pressure [Pa] at a film thickness (Greenwood & Tripp 1970).
+
+    Parameters
+    ----------
+    film_thickness : array_like
+        Mean separation of the surfaces [m].
+    roughness : array_like
+        Composite RMS roughness :math:`\\sigma` [m] (:func:`composite_roughness`).
+    contact_modulus : array_like
+        :math:`E^*` [Pa] (:func:`contact_modulus`).
+    asperities : AsperityParameters
+
+    Returns
+    -------
+    numpy.ndarray
+        [Pa]; positive for every finite film (the Gaussian tail), 0 beyond 38 sigma.
+
+    Notes
+    -----
+    :math:`F_{5/2}` is interpolated (cubic spline of its logarithm on steps of
+    0.005) from the exact form of :func:`gaussian_height_integral`, within
+    1e-8 of it.
+    """
+    h = check.finite("film_thickness", film_thickness)
+    sigma = check.positive("roughness", roughness)
+    modulus = check.positive("contact_modulus", contact_modulus)
+    scale = (16 * np.sqrt(2) / 15 * np.pi * asperities.roughness_parameter**2
+             * np.sqrt(asperities.slope_parameter) * modulus)
+    return scale * _f52(np.atleast_1d(h / sigma)).reshape(np.shape(h / sigma))

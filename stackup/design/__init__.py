@@ -1,0 +1,309 @@
+r"""Scheme designer: grade limits, shell grades and pairing that suit one engine.
+
+ISO 13778's schemes are generic; :func:`scheme` designs one for a given
+engine's processes, gauges, press fit and operating-clearance window.
+
+Decision variables
+
+- housing and journal grade limits, on the read-out grid (``readout``, or the
+  gauge's resolution if coarser), each grade at least as wide as the gauge can
+  sort (a part at the grade's centre is read into it with probability at
+  least ``sort_share``);
+- shell grade limits, contiguous, hence the aims of shells made to order
+  (the grade centres); each grade at least as wide as the shell process and
+  its gauge can sort (a shell aimed at the grade's centre is read into it
+  with probability at least ``sort_share``);
+- the pairing table: one shell pair per cell, a grade with itself or (with
+  ``mixed_pairs``) with the next grade, the intermediate pairs of ISO 13778.
+
+Objective (all on one fixed design sample, common random numbers)
+
+.. math:: J = P_{out} + \lambda \max_s P^s_{out} + w_s\,\text{surplus} + w_o\,\text{shortfall}
+
+:math:`P_{out}`: share of the bearings whose operating clearance (press fit,
+housing swell and temperature by :func:`stackup.fit.press_fit` with the
+engine's press-fit data) lies outside the window; :math:`P^s_{out}` the same
+under each declared scenario that changes the clearance
+(:data:`stackup.scenarios.DECLARED`: process mean shifts of one sigma, gauge
+repeatability 2 um; the misalignment scenario changes loads and films, not
+the clearance); surplus and shortfall: shells per bearing of the planned
+shell supply left over and missing (:mod:`stackup.design.pairing`).
+
+Solvers: housing and journal limits by differential evolution
+(``scipy.optimize.differential_evolution``) on the read-out grid, polished
+limit by limit; shell limits by bounded Nelder-Mead from the best of a few
+starts (equal widths; the start scheme's grades); the pairing by a
+mixed-integer programme (HiGHS through ``scipy.optimize.milp``). The shells
+are integrated out on the sample (:mod:`stackup.design.objective`), so
+shares of a few ppm are resolved by a few thousand engines.
+
+References
+----------
+.. [1] Mease, D., Nair, V. N., Sudjianto, A., "Selective assembly in
+   manufacturing: statistical issues and optimal binning strategies",
+   Technometrics 46 (2004) 165-175.
+.. [2] ISO 13778:2017, Plain bearings - High-precision half bearings -
+   Selective fitting.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .. import __version__
+from .. import _validate as check
+from ..engines import load_engine
+from ..scenarios import DECLARED
+from ..schemes import from_dict
+from ..schemes import load as load_scheme
+from .explain import notes
+from .objective import score
+from .problem import LABELS, Weights, build_problem
+from .search import search_shells
+from .session import Search
+from .tables import nm
+
+ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
+#: Nelder-Mead evaluations per shell grade limit after the differential evolution of the shell limits.
+POLISH_PER_LIMIT = 10
+#: Engines the optimal process mean of a sorted shell supply is stated for (stackup.plan.optimise_supply).
+SUPPLY_VOLUME = 10_000
+
+
+@dataclass(frozen=True)
+class Design:
+    """A designed scheme with what the designer found on its way.
+
+    Attributes
+    ----------
+    scheme : Scheme
+        The designed scheme; its ``notes`` explain the choices (written as comments by ``to_toml``).
+    objective : float
+        :math:`J` of the designed scheme on the design sample [-].
+    outside : dict of str -> float
+        Share of bearings outside the window per sample ("nominal" and each scenario) [-].
+    start : str
+        Name of the scheme the design started from.
+    start_objective : float
+        Its :math:`J` without the supply terms, with its preferred pairs [-].
+    start_outside : dict of str -> float
+        Its share outside the window per sample [-].
+    iso : dict of str -> dict of str -> float
+        Share outside the window of every ISO 13778 scheme per sample [-].
+    mean_clearance, start_mean_clearance : float
+        Expected operating clearance of the designed and the start scheme [m].
+    surplus, shortfall : numpy.ndarray (shell grades,)
+        Planned shells per bearing left over and missing [-].
+    aim_share : numpy.ndarray (shell grades,) or None
+        Share of the shells made aimed at each grade, as the plan aims them for the design's
+        demand (shells made to order).
+    supply_mean : float
+        Mean of one shell process sorted into the designed grades that minimises surplus and
+        shortfall (:func:`stackup.plan.optimise_supply`) [m].
+    supply_mean_objective, supply_centred_objective : float
+        Surplus plus 10 x shortfall for :data:`SUPPLY_VOLUME` engines at that mean and with the
+        process centred on the grades [shells].
+    seconds : float
+        Wall time of the design [s].
+    evaluations : int
+        Sets of housing and journal limits scored.
+    """
+
+    scheme: object
+    objective: float
+    outside: dict
+    start: str
+    start_objective: float
+    start_outside: dict
+    iso: dict
+    mean_clearance: float
+    start_mean_clearance: float
+    surplus: np.ndarray
+    shortfall: np.ndarray
+    aim_share: np.ndarray | None
+    supply_mean: float
+    supply_mean_objective: float
+    supply_centred_objective: float
+    seconds: float
+    evaluations: int
+
+
+def scheme(engine="iso-example", **options):
+    """A selective-fitting scheme designed for ``engine`` (options: :func:`design`); its notes explain it."""
+    return design(engine, **options).scheme
+
+
+def design(engine="iso-example", *, window=None, shell_grades=3, housing_grades=3, journal_grades=3,
+           scenarios=DECLARED, seed=0, n_engines=4000, start=None, mixed_pairs=True, weights=Weights(),
+           sort_share=0.5, readout=1e-7, generations=8, name=None, log=None):
+    """Design a scheme for ``engine`` (module docstring: variables, objective, solvers).
+
+    Parameters
+    ----------
+    engine : str, path or Engine
+    window : (float, float), optional
+        Operating-clearance window [m]; default the engine's.
+    shell_grades, housing_grades, journal_grades : int
+        Grades of each dimension (1: ungraded housing or journal).
+    scenarios : dict of str -> dict
+        Declared scenarios (:mod:`stackup.scenarios`); those that do not
+        change the clearance are left out. Empty for none.
+    seed : int
+        Seed of the design sample (its own random stream, apart from a
+        study's lots and pilot with the same seed).
+    n_engines : int
+        Engines of the design sample (per scenario, common random numbers).
+    start : str, path or Scheme, optional
+        Scheme to start from; default the ISO 13778 scheme with the lowest
+        objective on the design sample. Its grades seed the search where
+        the counts match.
+    mixed_pairs : bool
+        Allow a grade paired with the next one (upper of one, lower of the
+        next: the intermediate pairs of ISO 13778).
+    weights : Weights
+        Weights of the worst scenario and of the planned surplus and shortfall.
+    sort_share : float
+        Smallest share of the parts (shells) at (aimed at) a grade's centre
+        that must be read into that grade, in (0, 1): sets each dimension's
+        narrowest grade (0.5: half-width 0.67 reading spreads).
+    readout : float
+        Step of the grid grade limits lie on [m] (the gauge's resolution if coarser).
+    generations : int
+        Generations of the differential evolution of the shell limits (0: Nelder-Mead from the best start only).
+    name : str, optional
+        Scheme name; default ``designed-<engine>``.
+    log : callable, optional
+        Called with one line of text per stage.
+
+    Returns
+    -------
+    Design
+    """
+    t0 = time.perf_counter()
+    log = log or (lambda line: None)
+    engine = load_engine(engine)
+    window = check.clearance_window("window", engine.clearance_window if window is None else window)
+    counts = {}
+    for field, k in (("shell_grades", shell_grades), ("housing_grades", housing_grades),
+                     ("journal_grades", journal_grades)):
+        counts[field] = check.integer(field, k, minimum=1)
+        if counts[field] > len(LABELS):
+            raise ValueError(f"{field}: {k} is not valid; at most {len(LABELS)} grades")
+    n_engines = check.integer("n_engines", n_engines, minimum=100)
+    sort_share = float(check.in_range("sort_share", sort_share, 0.0, 1.0, lo_open=True, hi_open=True))
+    readout = float(check.positive("readout", readout))
+    generations = check.integer("generations", generations, minimum=0)
+    for field in ("scenario", "surplus", "shortfall"):
+        check.positive(f"weights.{field}", getattr(weights, field), allow_zero=True)
+    scenarios = dict(scenarios or {})
+
+    log(f"design sample: {n_engines:,} engines, nominal and {len(scenarios)} declared scenarios")
+    problem = build_problem(engine, window=window, **counts, scenarios=scenarios, seed=seed, n_engines=n_engines,
+                            sort_share=sort_share, readout=readout, mixed=bool(mixed_pairs), weights=weights)
+    samples = problem.samples
+
+    log("ISO 13778 schemes on the design sample")
+    iso = {k: {s.label: score(k, s, window).outside for s in samples} for k in ISO_SCHEMES}
+    start_scheme = load_scheme(min(iso, key=lambda k: problem.objective(list(iso[k].values())))
+                               if start is None else start)
+    start_scores = [score(start_scheme, s, window) for s in samples]
+    start_outside = {s.label: sc.outside for s, sc in zip(samples, start_scores)}
+
+    search = Search(problem, seed=seed, x0=_encode_start(start_scheme, problem))
+    k_s = problem.shell_grades
+    wide = max(2 * problem.min_width, problem.span / max(problem.levels - 1, 1) * (1 if problem.mixed else 2))
+    starts = [(np.arange(k_s + 1) - 0.5 * k_s) * w for w in np.linspace(problem.min_width, wide, 4)]
+    start_edges = _start_shells(start_scheme, k_s, problem.min_width)
+    if start_edges is not None:
+        starts.append(start_edges - problem.centre)
+    log(f"shell grades: differential evolution and Nelder-Mead over {k_s + 1} limits")
+    relative = search_shells(search.evaluate, starts, lower=np.array([-0.5 * wide] + [problem.min_width] * k_s),
+                             upper=np.array([0.5 * wide] + [2 * wide] * k_s), generations=generations,
+                             polish=POLISH_PER_LIMIT * (k_s + 1), seed=seed)
+    log("final limits and pairing (HiGHS)")
+    found, surplus, shortfall, aim = search.finish(problem.on_grid(problem.centre + relative), log)
+
+    designed = _build(name or f"designed-{engine.name}", problem, found)
+    scores = [score(designed, s, window) for s in samples]
+    outside = {s.label: sc.outside for s, sc in zip(samples, scores)}
+    objective = problem.objective(list(outside.values())) + weights.surplus * surplus.sum() \
+        + weights.shortfall * shortfall.sum()
+
+    from ..plan import optimise_supply  # plan sits above the study layer; imported on use
+
+    log("process mean of a sorted shell supply (stackup.plan.optimise_supply)")
+    offer = optimise_supply(designed, engine, volume=SUPPLY_VOLUME, sample_engines=n_engines, seed=seed)
+    result = Design(
+        scheme=designed, objective=objective, outside=outside, start=start_scheme.name,
+        start_objective=problem.objective(list(start_outside.values())), start_outside=start_outside, iso=iso,
+        mean_clearance=scores[0].mean_clearance, start_mean_clearance=start_scores[0].mean_clearance,
+        surplus=surplus, shortfall=shortfall, aim_share=aim, supply_mean=offer["mean"],
+        supply_mean_objective=offer["objective"], supply_centred_objective=offer["centred_objective"],
+        seconds=time.perf_counter() - t0, evaluations=search.evaluations)
+    lines = notes(result, problem=problem, start_scheme=start_scheme, chosen=start is None, seed=seed,
+                  n_engines=n_engines)
+    return replace(result, scheme=replace(designed, notes=tuple(lines)))
+
+
+def _encode_start(start, problem):
+    """The start scheme's housing and journal limits as a point of the search cube, where the counts match."""
+    parts = []
+    for grades, limits, grid in ((start.housing, problem.housing, problem.housing_grid),
+                                 (start.journal, problem.journal, problem.journal_grid)):
+        if grades.fine or len(grades.labels) != limits.grades:
+            return None
+        lo, hi = grades.bins()
+        index = np.clip(np.searchsorted(grid.edges, nm(np.append(np.sort(lo), hi.max()))), 0, grid.bins)
+        index[0], index[-1] = 0, grid.bins
+        point = limits.encode(index)
+        if point is None:
+            return None
+        parts.append(point)
+    return np.concatenate(parts)
+
+
+def _start_shells(start, k, min_width):
+    """The start scheme's shell limits [m] if it has ``k`` grades no narrower than ``min_width`` (overlaps split)."""
+    if len(start.shell.labels) != k or not start.shell.graded:
+        return None
+    lo, hi = start.shell.bins()
+    edges = np.append(np.sort(lo), hi.max())
+    if np.any(np.diff(edges) < min_width - 1e-12):
+        return None
+    return edges
+
+
+def _build(name, problem, found):
+    """The designed scheme of a :class:`~stackup.design.session.Found` design."""
+    engine, window = problem.engine, problem.window
+
+    def mm(value_m):
+        return float(nm(value_m)) / 1e6
+
+    def dimension(grid, edges, limits):
+        if len(edges) == 2:
+            return {"limits": [mm(limits[0]), mm(limits[1])]}
+        metres = grid.metres(np.asarray(edges))
+        return {"grades": {LABELS[k]: [mm(metres[k]), mm(metres[k + 1])] for k in range(len(edges) - 1)}}
+
+    housing = dimension(problem.housing_grid, found.housing_edges, (engine.housing_bore.lo, engine.housing_bore.hi))
+    journal = dimension(problem.journal_grid, found.journal_edges, (engine.journal_d.lo, engine.journal_d.hi))
+    k_s = len(found.edges) - 1
+    shell = {"grades": {LABELS[k]: [mm(found.edges[k]), mm(found.edges[k + 1])] for k in range(k_s)}}
+    h_labels = list(housing.get("grades", {"-": None}))
+    j_labels = list(journal.get("grades", {"-": None}))
+    up, lo = found.upper, found.lower
+    table = {jl: {hl: f"{LABELS[up[h, j]]}+{LABELS[lo[h, j]]}" for h, hl in enumerate(h_labels)}
+             for j, jl in enumerate(j_labels)}
+    data = {"name": name,
+            "title": f"Designed for {engine.name}: {len(h_labels)} x {len(j_labels)} matrix, {k_s} shell grades",
+            "source": (f"stackup {__version__} stackup.design for engine {engine.name!r}, operating-clearance "
+                       f"window {window[0] * 1e6:.4g}-{window[1] * 1e6:.4g} um"),
+            "units": "mm", "housing": housing, "journal": journal, "shell": shell, "pairing": {"table": table}}
+    return from_dict(data)
+
+
+__all__ = ["Design", "ISO_SCHEMES", "Weights", "design", "scheme"]

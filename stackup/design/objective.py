@@ -1,0 +1,151 @@
+"""Share of bearings outside the operating-clearance window, for any scheme, on the design sample.
+
+The parts are the sample's (their readings choose the cell, hence the shell
+pair); the shells are integrated out: for each shell grade the walls of the
+shells the engine's supply sorts into it (:meth:`ShellSupply.make` on the
+sample's shell normals) give a histogram, two histograms convolved give the
+distribution of a pair's wall sum, and each bearing contributes the
+probability that its operating clearance
+:math:`C_{op} = A - \\beta S` falls outside the window,
+
+.. math:: P_{out} = 1 - [F_S((A - c_{lo})/\\beta) - F_S((A - c_{hi})/\\beta)].
+
+Averaging probabilities instead of counting bearings (conditional Monte
+Carlo) estimates shares of a few ppm from tens of thousands of bearings, and
+the share moves smoothly with the shell grades.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import schemes as schemes_mod
+
+#: Step of the wall and wall-sum histograms [m].
+WALL_BIN = 2e-8
+
+
+@dataclass(frozen=True)
+class WallSums:
+    """Distributions of the wall sum of shell pairs of one scheme's shell grades.
+
+    ``pmf[g]`` is the histogram of the true wall of the shells sorted into
+    grade g (sums to 1, or 0 for a grade no shell lands in) on bins of width
+    :data:`WALL_BIN` starting at ``origin`` [m].
+    """
+
+    origin: float
+    pmf: np.ndarray  # (grades, bins)
+    mean: np.ndarray  # (grades,) mean true wall [m]
+    landing: np.ndarray  # (grades,) share of the shells made that land in each grade
+
+    def cdf(self, upper, lower):
+        """Cumulative distribution of ``s_upper + s_lower``: (points [m], probabilities) for np.interp."""
+        a, b = self.pmf[upper], self.pmf[lower]
+        ia, ib = np.flatnonzero(a), np.flatnonzero(b)
+        if ia.size == 0 or ib.size == 0:
+            return None
+        conv = np.convolve(a[ia[0]:ia[-1] + 1], b[ib[0]:ib[-1] + 1])
+        # the sum of two values in bins i and j lies in [i + j, i + j + 2) bins above twice the origin;
+        # its mass is placed at the middle of that range and the CDF interpolated between mass points
+        start = 2 * self.origin + (ia[0] + ib[0] + 1) * WALL_BIN
+        x = start + WALL_BIN * np.arange(conv.size + 1) - 0.5 * WALL_BIN
+        return x, np.concatenate(([0.0], np.cumsum(conv)))
+
+
+def wall_sums(scheme, supply, normals, aim_share=None):
+    """:class:`WallSums` of ``scheme``'s shell grades made by ``supply`` from the sample's shell ``normals``."""
+    shells = supply.make(scheme, normals, aim_share)
+    ok = shells.grade >= 0
+    wall = shells.wall[ok]
+    origin = float(wall.min()) - WALL_BIN
+    index = np.floor((wall - origin) / WALL_BIN).astype(np.int64)
+    n = len(scheme.shell.labels)
+    width = int(index.max()) + 2
+    counts = np.bincount(shells.grade[ok] * width + index, minlength=n * width).reshape(n, width).astype(float)
+    total = counts.sum(axis=1)
+    pmf = counts / np.maximum(total, 1.0)[:, None]
+    mean = np.bincount(shells.grade[ok], weights=wall, minlength=n) / np.maximum(total, 1.0)
+    return WallSums(origin, pmf, mean, total / shells.wall.size)
+
+
+def outside_probability(sample, sums, upper, lower, window, *, wall_sums=None):
+    """Probability that each bearing of ``sample`` is outside ``window`` with shells of grades ``upper``+``lower``.
+
+    ``wall_sums`` = (smallest, largest) wall sum [m] that keeps each bearing
+    in the window, if already known (:meth:`DesignSample.ideal_wall_sum`).
+    """
+    table = sums.cdf(upper, lower)
+    if table is None:  # no shell of the grade: every bearing needing it is a stock-out, not a clearance
+        return np.full(sample.bearings, np.nan)
+    x, f = table
+    if wall_sums is None:
+        wall_sums = sample.ideal_wall_sum(window[1]), sample.ideal_wall_sum(window[0])
+    inside = _uniform_interp(wall_sums[1], x[0], f) - _uniform_interp(wall_sums[0], x[0], f)
+    return np.clip(1.0 - inside, 0.0, 1.0)
+
+
+def _uniform_interp(t, start, f):
+    """``np.interp(t, start + WALL_BIN * arange(f.size), f)`` by index arithmetic (the points are evenly spaced)."""
+    u = np.clip((t - start) / WALL_BIN, 0.0, f.size - 1.0)
+    i = np.minimum(u.astype(np.int64), f.size - 2)
+    return f[i] + (u - i) * (f[i + 1] - f[i])
+
+
+@dataclass(frozen=True)
+class SchemeScore:
+    """A scheme's share outside the window on one scenario's design sample.
+
+    Attributes
+    ----------
+    outside : float
+        Expected share of the assembled bearings outside the window [-].
+    demand : numpy.ndarray
+        Shells of each grade the sample's preferred pairs ask for, per bearing (grades,).
+    ungraded : float
+        Share of built bearings the scheme has no grade for [-].
+    """
+
+    outside: float
+    demand: np.ndarray
+    ungraded: float
+    mean_clearance: float
+
+
+def demand_share(scheme, sample):
+    """Shells of each grade per bearing that ``scheme``'s preferred pairs ask for on ``sample`` (grades,)."""
+    up, lo = scheme.pair_indices(*scheme.grade_indices(sample.housing_reading, sample.journal_reading))
+    n = len(scheme.shell.labels)
+    ok = up >= 0
+    return (np.bincount(up[ok], minlength=n) + np.bincount(lo[ok], minlength=n)) / sample.bearings
+
+
+def score(scheme, sample, window):
+    """:class:`SchemeScore` of a complete scheme (its preferred pairs; no stock-outs) on ``sample``."""
+    scheme = schemes_mod.load(scheme)
+    supply = sample.engine.shell_wall
+    demand = demand_share(scheme, sample)
+    aim = supply.aim_share(scheme, demand) if supply.mode == "to-order" else None
+    sums = wall_sums(scheme, supply, sample.shell_normals, aim)
+    up, lo = scheme.pair_indices(*scheme.grade_indices(sample.housing_reading, sample.journal_reading))
+    n = len(scheme.shell.labels)
+    code = np.where(up >= 0, up * n + lo, -1)
+    total, count, clearance = 0.0, 0, 0.0
+    for c in np.unique(code[code >= 0]):
+        rows = code == c
+        p = outside_probability(_rows(sample, rows), sums, c // n, c % n, window)
+        ok = np.isfinite(p)
+        total += p[ok].sum()
+        count += int(ok.sum())
+        level = sums.mean[c // n] + sums.mean[c % n]
+        clearance += sample.operating_clearance(level)[rows][ok].sum()
+    return SchemeScore(total / max(count, 1), demand, float(np.mean(code < 0)), clearance / max(count, 1))
+
+
+def _rows(sample, rows):
+    from dataclasses import replace
+
+    return replace(sample, housing_reading=sample.housing_reading[rows], journal_reading=sample.journal_reading[rows],
+                   clearance_offset=sample.clearance_offset[rows], wall_factor=sample.wall_factor[rows])

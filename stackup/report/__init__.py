@@ -1,0 +1,352 @@
+"""The scheme-comparison report, from saved study datasets alone.
+
+Every number comes from the study dataset (every engine kept, or its
+streaming summaries), the scenario datasets and the sensitivity dataset of a
+:class:`stackup.study.compare.Comparison`; nothing is sampled here.
+
+- :mod:`~stackup.report.tables`: numbers per scheme (and bearing), with intervals;
+- :mod:`~stackup.report.figures`: the figures;
+- :mod:`~stackup.report.prose`: the verdict, methods, limits and parameters in words;
+- :mod:`~stackup.report.html`: the self-contained HTML page.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..assembly import STATUS
+from ..rank import MIN_COUNTED
+from . import figures, prose
+from .html import anchor, markdown_to_html
+from .tables import (bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
+                     kept_summaries)
+
+#: Sections in report order (their headings; the verdict comes before them).
+SECTIONS = ("Methods and assumptions", "Limits of validity", "Ranking", "What drives the spread",
+            "Clearance per scheme", "Operating clearance: press fit, housing swell and temperature",
+            "Bearing loads over the engine cycle", "Oil film and bearing life per bearing position",
+            "Assembly, scrap and stock", "Planning: shells per grade", "Shell grade usage", "Parameters")
+
+
+def _fmt_ci(value, ci, digits=1):
+    return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
+
+
+def _fmt_q(q, digits=3):
+    """A (value, lower, upper) triple as 'value [lower, upper]' with significant digits."""
+    return f"{q[0]:.{digits}g} [{q[1]:.{digits}g}, {q[2]:.{digits}g}]"
+
+
+def markdown_table(frame):
+    """A DataFrame as a pipe table (index dropped: put what matters in columns)."""
+    head = "| " + " | ".join(frame.columns) + " |"
+    rule = "|" + "|".join("---" for _ in frame.columns) + "|"
+    body = ["| " + " | ".join(str(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    return "\n".join([head, rule, *body])
+
+
+def _section(title, *lines):
+    return [f"## {title}", "", *lines, ""]
+
+
+def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, dataset_file=None):
+    """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study dataset, every engine kept or its streaming summaries (then
+        the sections that need every engine say so).
+    scenarios : dict of str -> xarray.Dataset, optional
+        The study under declared scenarios (:class:`stackup.study.compare.Comparison`).
+    sensitivity : xarray.Dataset, optional
+        Contributions of the inputs (:func:`stackup.study.compare.sensitivity_dataset`).
+    tails : xarray.Dataset, optional
+        Tail estimates beyond the window (:func:`stackup.study.compare.tails_dataset`),
+        used by the ranking where too few bearings are counted outside.
+    dataset_file : str, optional
+        Name of the saved dataset, quoted in the report.
+
+    Returns
+    -------
+    pathlib.Path
+        The markdown report.
+    """
+    from ..rank import rank as rank_schemes
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    scenarios = scenarios or {}
+    ranking = rank_schemes(ds, scenarios=scenarios or None, tails=tails)
+    scenario_rankings = {label: rank_schemes(other) for label, other in scenarios.items()}
+    summary = clearance_summary(ds)
+    study = json.loads(ds.attrs["study"])
+    n_mech = int(ds.attrs.get("mechanics_engines_used", 0))
+    lines = [
+        f"# Scheme comparison: {ds.attrs['engine']}",
+        "",
+        f"{ds.attrs['title']}. stackup {ds.attrs['stackup_version']}, seed {ds.attrs['seed']}, "
+        f"{study['n_engines']:,} engines × {ds.sizes['bearing']} main bearings per scheme"
+        + (" (streaming summaries: quantiles and histograms to 0.1 µm)." if kept_summaries(ds) else "."),
+        "",
+        *prose.verdict(ds, ranking, scenario_rankings),
+        "Contents: " + " · ".join(f"[{title}](#{anchor(title)})" for title in SECTIONS),
+        "",
+        *_section("Methods and assumptions", *prose.methods(ds)),
+        *_section("Limits of validity", *prose.limits_of_validity(ds)),
+        *_ranking_section(ds, ranking, scenarios),
+        *_sensitivity_section(sensitivity, ranking, out),
+        *_clearance_section(ds, summary, out),
+        *_fit_section(ds),
+        *_crank_section(ds, n_mech),
+        *_film_section(ds, out),
+        *_assembly_section(summary),
+        *_plan_section(ds),
+        *_usage_section(ds, out),
+        *_section("Parameters", markdown_table(prose.parameters_table(ds)),
+                  *([f"Dataset: `{dataset_file}`; the study's parameters are also in its `study` attribute "
+                     "(JSON)."] if dataset_file else [])),
+    ]
+    path = out / "report.md"
+    text = "\n".join(lines) + "\n"
+    path.write_text(text)
+    (out / "report.html").write_text(markdown_to_html(text, out))
+    return path
+
+
+def _ranking_section(ds, ranking, scenarios):
+    window = ranking.attrs["window_m"]
+
+    def column(name):
+        """A ranking column, or '—' cells where the study has no film stage."""
+        return ranking[name] if name in ranking else pd.Series(np.nan, index=ranking.index, dtype=object)
+
+    table = pd.DataFrame({
+        "rank": ranking["rank"],
+        "scheme": ranking.index,
+        "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(ranking.clearance_mean_um, ranking.clearance_std_um)],
+        "outside window [ppm]": [_fmt_ci(v, ci, 0 if v >= 10 else 1) + ("" if src == "counted" else " †")
+                                 for v, ci, src in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
+                                                       ranking.outside_window_source)],
+        "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
+                         for v, ci in zip(column("alpha_over_limit_pct"), column("alpha_over_limit_pct_ci"))],
+        "life median [h]": [f"{v:.3g} [{ci[0]:.3g}, {ci[1]:.3g}]" if isinstance(ci, tuple) else "—"
+                            for v, ci in zip(column("life_median_h"), column("life_median_h_ci"))],
+        "shell grades": ranking.shell_grades,
+        "stock-outs [ppm]": ranking.stockout_ppm.map("{:.0f}".format),
+        "surplus [%]": ranking.surplus_pct.map("{:.1f}".format),
+    })
+    if scenarios:
+        table["worst scenario: Δ outside window [ppm]"] = [
+            f"{v:+.0f} ({name})" for v, name in zip(ranking.worst_outside_window_ppm, ranking.worst_outside_window_ppm_scenario)]
+        if "worst_life_median_h" in ranking:
+            table["worst scenario: Δ life median [h]"] = [
+                f"{v:+.3g} ({name})" if isinstance(name, str) else "—"
+                for v, name in zip(ranking.worst_life_median_h, ranking.worst_life_median_h_scenario)]
+    rule = (f"Operating-clearance design window {window[0] * 1e6:.0f}–{window[1] * 1e6:.0f} µm (the engine's). "
+            f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.")
+    if scenarios:
+        rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "
+                 "each run with the same seed (counted shares).")
+    notes = []
+    if (ranking.outside_window_source != "counted").any():
+        notes.append(f"† Fewer than {MIN_COUNTED} bearings of the study fell outside the window, too few for a tight "
+                     "interval: the share is estimated by subset simulation through the same assembly chain "
+                     "(`stackup.tail`; bins never run short there), with its stated standard error; the study "
+                     "counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
+                     + ".")
+    return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
+
+
+def _sensitivity_section(sensitivity, ranking, out):
+    if sensitivity is None or not sensitivity.sizes.get("output"):
+        return _section("What drives the spread", "The Sobol indices come with `stackup.compare` (its `sensitivity` "
+                        "dataset); none was given.")
+    figures.sensitivity_chart(sensitivity, out / "sensitivity.png")
+    return _section(
+        "What drives the spread",
+        *prose.tighten_first(sensitivity, ranking), "",
+        "Sobol indices of the root inputs: each sample engine is built from its own sizes, gauge errors, the shells "
+        "taken from their grades' bins and crush heights, and goes through grading, pairing and the press fit (and "
+        "for the film and the life through the crankshaft and the oil film). The first-order index S_1 is the share "
+        "of the output's variance an input explains alone; the total index S_T adds its interactions. The gap "
+        "between them, and a sum of S_1 below one, is the grading: a reading near a grade boundary sends a part "
+        "to another pair. Process mean shifts are not inputs here: the declared scenarios shift them.", "",
+        "![What drives the spread](sensitivity.png)")
+
+
+def _clearance_section(ds, summary, out):
+    figures.clearance_histogram(ds, out / "clearance_histogram.png")
+    table = pd.DataFrame({
+        "scheme": summary.index,
+        "stated [µm]": [f"{a:.0f}–{b:.0f}" for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
+        "worst case [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(summary.worst_case_min_um, summary.worst_case_max_um)],
+        "mean [µm]": summary.mean_um.map("{:.2f}".format),
+        "std [µm]": summary.std_um.map("{:.2f}".format),
+        "P0.135 % [µm]": [_fmt_ci(v, ci) for v, ci in zip(summary.p00135_um, summary.p00135_ci_um)],
+        "median [µm]": summary.median_um.map("{:.1f}".format),
+        "P99.865 % [µm]": [_fmt_ci(v, ci) for v, ci in zip(summary.p99865_um, summary.p99865_ci_um)],
+        "outside stated [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(summary.outside_stated_ppm, summary.outside_stated_ci_ppm)],
+    })
+    return _section(
+        "Clearance per scheme",
+        "Nominal diametral clearance of every assembled bearing (no swell or temperature, as the standard's stated "
+        "ranges), against each scheme's stated range and its worst case over the allowed combinations.", "",
+        markdown_table(table), "", *prose.read_out_notes(ds, summary), "",
+        "![Nominal and operating clearance per scheme, with the stated ranges and the design window]"
+        "(clearance_histogram.png)")
+
+
+def _fit_section(ds):
+    fit = fit_summary(ds)
+    p_min, s_max = float(ds.design_contact_pressure_min), float(ds.design_shell_stress_max)
+    table = pd.DataFrame({
+        "scheme": fit.index,
+        "nominal mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.nominal_mean_um, fit.nominal_std_um)],
+        "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
+        "operating P0.135–P99.865 % [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(fit.operating_p00135_um, fit.operating_p99865_um)],
+        "swell [µm]": fit.swell_mean_um.map("{:.2f}".format),
+        "min p [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
+        "max σ [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
+        f"p < {p_min / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.low_pressure_ppm, fit.low_pressure_ci_ppm)],
+        f"σ > {s_max / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.high_stress_ppm, fit.high_stress_ci_ppm)],
+        "loss of fit [ppm]": fit.loss_of_fit_ppm.map("{:.0f}".format),
+    })
+    return _section(
+        "Operating clearance: press fit, housing swell and temperature",
+        f"The shells' crush height presses them into the housing; the housing bore swells and the clearance "
+        f"changes with temperature. Design limits: contact pressure at least {p_min / 1e6:.0f} MPa, shell "
+        f"compression at most {s_max / 1e6:.0f} MPa (the methods section gives the housing and temperatures).", "",
+        markdown_table(table))
+
+
+def _crank_section(ds, n_mech):
+    crank = crank_summary(ds)
+    if not n_mech or not (crank.engines > 0).any():
+        return _section("Bearing loads over the engine cycle", "The crankshaft stage did not run (see the verdict's "
+                        "note).")
+    wide = crank.reset_index()
+    cells = wide.assign(text=[f"{m:.2f} ± {c:.2f} (max {x:.1f})" for m, c, x in zip(wide.mean_kn, wide.ci_kn, wide.max_kn)])
+    table = cells.pivot(index="scheme", columns="bearing", values="text")
+    table.columns = [f"bearing {b} [kN]" for b in table.columns]
+    first = crank.groupby(level="scheme").first()
+    table.insert(0, "engines (failed)", [f"{e} ({f})" for e, f in zip(first.engines, first.failed)])
+    target = json.loads(ds.attrs["study"]).get("target_error")
+    return _section(
+        "Bearing loads over the engine cycle",
+        f"Cycle-maximum load of each main bearing (mean ± 95 % interval of the mean, and the largest) on the first "
+        f"{n_mech:,} engines of each scheme"
+        + (f", as many as a ±{100 * target:g} % interval of the mean film needs" if target else "")
+        + "; engines with a bearing not assembled are skipped and marked in `crank_status`.", "",
+        markdown_table(table.reset_index()))
+
+
+def _film_section(ds, out):
+    film = film_summary(ds)
+    if not len(film):
+        return _section("Oil film and bearing life per bearing position", "The film and life stages did not run "
+                        "(see the verdict's note).")
+    figures.film_by_bearing(ds, out / "film_life.png")
+    target = float(ds.life_target) / 3600
+    overall = pd.DataFrame({
+        "scheme": film.index, "engines": film.engines,
+        "h_min P5 [µm]": [f"{q[0]:.2f} [{q[1]:.2f}, {q[2]:.2f}]" for q in film.h_min_p05_um],
+        "h_min median [µm]": [f"{q[0]:.2f}" for q in film.h_min_median_um],
+        "α mean [%]": (100 * film.alpha_mean).map("{:.1f}".format),
+        "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
+        "life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],
+        "life median [h]": [f"{q[0]:.3g}" for q in film.life_median_h],
+        "method 2 life B10 [h]": [_fmt_q(q) for q in film.wear_chart_b10_h],
+        f"engines < {target:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
+    })
+    per_bearing = bearing_summary(ds).reset_index()
+    h_table = per_bearing.assign(text=[f"{q[0]:.2f}" for q in per_bearing.h_min_median_um]).pivot(
+        index="scheme", columns="bearing", values="text")
+    life_table = per_bearing.assign(text=[f"{q[0]:.3g}" for q in per_bearing.life_median_h]).pivot(
+        index="scheme", columns="bearing", values="text")
+    both = pd.concat([h_table.add_prefix("h_min median [µm], bearing "),
+                      life_table.add_prefix("life median [h], bearing ")], axis=1).reset_index()
+    return _section(
+        "Oil film and bearing life per bearing position",
+        f"Minimum film thickness of each bearing over the cycle (`{ds.attrs['film_method_used']}` tier) at its "
+        "effective oil temperature; α is the share of the cycle with the film below the critical film h_lim,cr = "
+        f"{float(ds.critical_film) * 1e6:.2f} µm (above 20 % the risk of scuffing rises sharply); life by Levanov et "
+        "al. (2015): method 1 on the film the methods section names, and method 2's wear chart. An engine's life "
+        f"is that of its weakest bearing; the life target is {target:,.0f} h (the engine's).", "",
+        markdown_table(overall), "",
+        _positions_text(ds), "",
+        markdown_table(both), "",
+        "![Oil film and life per bearing position](film_life.png)")
+
+
+def _positions_text(ds):
+    """Why film and life differ by bearing position, from the loads the positions carry in this study."""
+    load = crank_summary(ds).groupby(level="bearing").mean_kn.mean()
+    film = bearing_summary(ds).reset_index()
+    film = film.assign(h=[q[0] for q in film.h_min_median_um]).groupby("bearing").h.mean()
+    heavy = sorted(load.index[load >= load.max() - 0.15 * (load.max() - load.min())])
+    thin = sorted(film.index[film <= film.min() + 0.15 * (film.max() - film.min())])
+    def listed(items):
+        items = [str(i) for i in items]
+        return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+    names = listed(heavy)
+    return (f"The bearing positions carry different loads: bearing{'s' if len(heavy) > 1 else ''} {names} carr"
+            f"{'y' if len(heavy) > 1 else 'ies'} the largest cycle-maximum load here ({load.max():.1f} kN on average "
+            f"against {load.min():.1f} kN at the least loaded), and the thinnest films are at bearing"
+            f"{'s' if len(thin) > 1 else ''} {listed(thin)}, so the film and life pooled over positions "
+            "are multimodal. Per position (median over engines):")
+
+
+def _assembly_section(summary):
+    table = pd.DataFrame({
+        "scheme": summary.index,
+        "bearings": summary.bearings,
+        "assembled": summary.assembled,
+        **{reason: summary[reason] for reason in STATUS if reason != "assembled"},
+        "substituted pairs": summary.substituted.map(lambda v: "—" if np.isnan(v) else f"{v:.0f}"),
+        "shells made": summary.shells_made,
+        "shells scrapped [%]": summary.shells_scrapped_pct.map("{:.2f}".format),
+    })
+    return _section("Assembly, scrap and stock", "Bearings not assembled are kept in the dataset with their reason "
+                    "(`status`); none are dropped.", "", markdown_table(table))
+
+
+def _plan_section(ds):
+    if kept_summaries(ds):
+        return _section("Planning: shells per grade", "Planning needs each engine's shell demand: run the study with "
+                        "`keep=\"everything\"` (the summaries keep only the totals in the grade usage below).")
+    from ..plan import plan as plan_grades
+
+    frame = plan_grades(ds, volume=10_000, service_level=0.99)
+    rows = [{"scheme": scheme, "grade": grade,
+             "demand per 1000 engines": f"{r.demand_per_1000:.0f} [{r.demand_per_1000_lo:.0f}, {r.demand_per_1000_hi:.0f}]",
+             "production share [%]": f"{100 * r.production_share:.2f}",
+             "surplus for 10 000 engines": f"{r.surplus:+.0f}",
+             "safety stock per lot (99 %)": f"{r.safety_stock:.0f}",
+             "order-up-to per lot": f"{r.order_up_to:.0f}"} for (scheme, grade), r in frame.iterrows()]
+    return _section(
+        "Planning: shells per grade",
+        "From `stackup.plan` on this study's own engines and shell lots: expected demand per grade (95 % interval), "
+        "the share of the shell production that landed in the grade when read and sorted, the surplus over 10 000 "
+        f"engines, and the safety stock per production lot ({ds.attrs['lot_engines']} engines) for a 99 % chance "
+        "that the lot's demand is covered. `stackup plan --scheme NAME --volume N` plans any volume and service "
+        "level.", "", markdown_table(pd.DataFrame(rows)))
+
+
+def _usage_section(ds, out):
+    figures.grade_usage_chart(ds, out / "grade_usage.png")
+    usage = grade_usage(ds).reset_index()[["scheme", "shell_grade", "shells_made", "shells_used", "shells_left",
+                                          "used_share_pct"]]
+    usage["used_share_pct"] = usage["used_share_pct"].map("{:.2f}".format)
+    usage.columns = ["scheme", "grade", "made", "fitted", "left in stock", "share of fitted [%]"]
+    return _section("Shell grade usage", "![Shell grades fitted and made per scheme](grade_usage.png)", "",
+                    markdown_table(usage))
+
+
+__all__ = ["bearing_summary", "clearance_summary", "crank_summary", "film_summary", "fit_summary", "grade_usage",
+           "markdown_table", "markdown_to_html", "write_report"]

@@ -1,0 +1,313 @@
+"""The words of the comparison report: the verdict, methods and assumptions, limits of validity, parameters.
+
+Each function reads saved datasets (and tables made from them) and returns
+markdown lines; nothing here computes a model.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+from ..stats import proportion_ci
+from ..study.failures import FailureCount
+from .tables import UM, centred, kept_summaries, separates
+
+#: Press-fit tiers in words; their errors against the finite-element reference are measured by
+#: ``python studies/press_fit_tiers.py`` (reports/press_fit_tiers.md).
+FIT_TIERS = {
+    "lame": "thick-ring (Lamé) tier, exact within linear plane-stress elasticity",
+    "thin-ring": "thin-ring tier (a shop formula: ignores the shell's radial stress)",
+    "fe": "finite-element reference tier",
+}
+#: Crankshaft support tiers in words (reports/bench_crank.md).
+CRANK_TIERS = {
+    "bearing-law": "continuous beam on the nonlinear bearing law of Bellakhdhar et al. (2013)",
+    "linear": "continuous beam on linear springs (the bearing law's low stiffness)",
+    "rigid": "continuous beam on rigid supports",
+}
+#: Names of the ranking metrics in words.
+METRICS = {"outside_window_ppm": "share outside the design window",
+           "alpha_over_limit_pct": "share of bearings with more than 20 % of the cycle in boundary friction",
+           "life_median_h": "median bearing life"}
+
+
+def _um(value, digits=1):
+    return f"{value * UM:.{digits}f}"
+
+
+def _ppm(value, ci=None):
+    text = f"{value:,.0f} ppm"
+    return text + (f" [{ci[0]:,.0f}, {ci[1]:,.0f}]" if ci is not None else "")
+
+
+def _names(names):
+    names = [f"**{n}**" for n in names]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def verdict(ds, ranking, scenario_rankings):
+    """The opening summary: what to use and why, what it costs, what it is fragile to, when another would win.
+
+    ``scenario_rankings`` maps each declared scenario to the ranking of the
+    schemes under it.
+    """
+    window = ranking.attrs["window_m"]
+    middle = 0.5 * (window[0] + window[1])
+    best = list(ranking.index[ranking["rank"] == 1])
+    first = ranking.loc[best[0]]
+    lines = []
+    if not np.isfinite(window[1]):
+        lines.append("The engine file gives no operating-clearance design window (`[targets] operating_clearance`), "
+                     "so no scheme can be judged by the share of bearings outside it; give one in the engine file "
+                     "or with `stackup compare --window LO HI`. The ranking below uses the other metrics only.")
+    if len(best) == 1:
+        others = ranking.drop(index=best)
+        runner = others.index[0] if len(others) else None
+        why = (f"{_ppm(first.outside_window_ppm, first.outside_window_ppm_ci)} of its bearings fall outside the "
+               f"operating-clearance window {_um(window[0], 0)}–{_um(window[1], 0)} µm")
+        if runner is not None:
+            r = ranking.loc[runner]
+            why += f", against {_ppm(r.outside_window_ppm, r.outside_window_ppm_ci)} for the next, {runner}"
+        lines.append(f"**Use {best[0]}** for {ds.attrs['engine']}: {why}. Its operating clearance is "
+                     f"{first.clearance_mean_um:.1f} ± {first.clearance_std_um:.1f} µm (mean ± standard deviation; "
+                     f"the window's middle is {_um(middle)} µm).")
+    else:
+        cheapest = min(best, key=lambda n: (ranking.loc[n, "shell_grades"], ranking.loc[n, "surplus_pct"]))
+        lines.append(f"{_names(best)} tie: their 95 % intervals overlap on every ranking metric. Of these, "
+                     f"**{cheapest}** needs the fewest shell grades and the least surplus: use it unless another "
+                     "reason decides.")
+        first = ranking.loc[cheapest]
+        best = [cheapest]
+    lines.append(f"**What it costs:** {int(first.shell_grades)} shell grade{'s' if first.shell_grades > 1 else ''} "
+                 f"to make and stock, {first.surplus_pct:.1f} % of the shells made left over at the ends of the lots, "
+                 f"{_ppm(first.stockout_ppm)} of bearings waiting for a shell (stock-outs); the planning section "
+                 "gives the quantities per grade.")
+    if "worst_outside_window_ppm" in ranking:
+        change, scenario = first.worst_outside_window_ppm, first.worst_outside_window_ppm_scenario
+        text = f"**What it is fragile to:** {scenario}, which adds {_ppm(change)} outside the window"
+        if "worst_life_median_h" in ranking and np.isfinite(first.get("worst_life_median_h", np.nan)):
+            text += (f"; {first.worst_life_median_h_scenario} changes its median life by "
+                     f"{first.worst_life_median_h:+.3g} h")
+        lines.append(text + ".")
+    lines.append("**When another scheme would win:** " + _would_win(ds, ranking, scenario_rankings, best[0], window))
+    notes = _run_notes(ds)
+    if notes:
+        lines.append("**Note:** " + " ".join(notes))
+    return ["<!-- verdict -->", *[x for line in lines for x in (line, "")], "<!-- /verdict -->"]
+
+
+def _would_win(ds, ranking, scenario_rankings, chosen, window):
+    """When another scheme would be the better choice: under a scenario, or with its clearance centred."""
+    parts = []
+    for scenario, other in scenario_rankings.items():
+        winners = [n for n in other.index[other["rank"] == 1] if n != chosen]
+        if winners and chosen not in other.index[other["rank"] == 1]:
+            parts.append(f"under {scenario}, {_names(winners)} rank{'s' if len(winners) == 1 else ''} first")
+    narrowest = ranking.clearance_std_um.idxmin()
+    if narrowest != chosen and np.isfinite(window[1]):
+        shift, outside, bearings = centred(ds, narrowest, window)
+        share, _, upper = proportion_ci(outside, bearings)
+        n = ranking.loc[narrowest]
+        verb = "thinner" if shift > 0 else "thicker"
+        parts.append(f"{narrowest} has the narrowest operating clearance ({n.clearance_std_um:.2f} µm standard "
+                     f"deviation against {ranking.loc[chosen, 'clearance_std_um']:.2f} µm) but its mean sits "
+                     f"{abs(shift) * UM:.1f} µm {'below' if shift > 0 else 'above'} the window's middle: with "
+                     f"shells aimed {abs(shift) * UM / 2:.1f} µm {verb} each it would put "
+                     + (f"about {_ppm(1e6 * share)} outside" if outside else
+                        f"none of its {bearings:,} bearings outside (below {_ppm(1e6 * upper)} at 95 %)")
+                     + "; `stackup design` designs such a scheme")
+    if not parts:
+        return f"no declared scenario changes the choice, and {chosen} also has the narrowest clearance."
+    return "; ".join(parts) + "."
+
+
+def _run_notes(ds):
+    """Stages that failed on some engines, or did not run, said in words."""
+    notes = []
+    failures = FailureCount.of_dataset(ds).lines()
+    if failures:
+        notes.append("Some stages failed on part of the engines (marked in the dataset, left out of the "
+                     "statistics): " + "; ".join(failures) + ".")
+    study = json.loads(ds.attrs["study"])
+    if int(ds.attrs.get("mechanics_engines_used", 0)) == 0:
+        reason = ("the study asked for none (`mechanics_engines=0`)" if study.get("mechanics_engines") == 0
+                  else "the engine file has no `[crank]` section")
+        notes.append(f"The crankshaft, oil film and life stages did not run: {reason}; the ranking uses the "
+                     "clearance only.")
+    return notes
+
+
+def non_discriminating(ranking):
+    """Sentences naming the ranking metrics that do not separate the schemes here."""
+    out = []
+    for column, label in METRICS.items():
+        if column not in ranking or f"{column}_ci" not in ranking:
+            continue
+        bounds = [ci if isinstance(ci, tuple) else (np.nan, np.nan) for ci in ranking[f"{column}_ci"]]
+        low, high = zip(*bounds)
+        if not separates(low, high):
+            values = ranking[column].astype(float)
+            same = f" ({values.iloc[0]:.3g} for every scheme)" if np.allclose(values, values.iloc[0]) else ""
+            out.append(f"The {label}{same} does not separate the schemes here: every pair of 95 % intervals "
+                       "overlaps, so it does not decide the ranking.")
+    return out
+
+
+def tighten_first(sensitivity, ranking):
+    """One sentence per analysed output of the recommended scheme: which input to tighten first."""
+    chosen = ranking.index[0]
+    labels = {"clearance_operating": "operating clearance", "h_min": "smallest film", "life": "life"}
+    out = []
+    for output in sensitivity.output.values:
+        schemes = [s for s in sensitivity.scheme.values
+                   if np.isfinite(sensitivity.ST.sel(output=output, scheme=s).values).any()]
+        scheme = chosen if chosen in schemes else (schemes[0] if schemes else None)
+        if scheme is None:
+            continue
+        d = sensitivity.sel(output=output, scheme=scheme).to_dataframe().dropna(subset=["ST"])
+        d = d.sort_values("ST", ascending=False)
+        top, second = d.iloc[0], d.iloc[1]
+        text = (f"**Tighten first ({scheme}, {labels.get(str(output), output)}):** the {d.index[0]}, with a total "
+                f"index of {top.ST:.2f} [{top.ST_lo:.2f}, {top.ST_hi:.2f}] of the variance "
+                f"(first-order {top.S1:.2f}), then the {d.index[1]} ({second.ST:.2f}).")
+        gauges = d[d.index.str.contains("gauge")]
+        if len(gauges) and gauges.ST.max() >= 0.05:
+            text += (" The gauges matter through misgrading: " + ", ".join(
+                f"{name} {row.ST:.2f}" for name, row in gauges.iterrows() if row.ST >= 0.05) + " (total indices).")
+        out += [text, ""]
+    return out[:-1]
+
+
+def read_out_notes(ds, summary):
+    """Why a scheme's worst case goes beyond its stated range: readings rounded to the scheme's read-out."""
+    out = []
+    for name in ds.scheme.values:
+        resolution = ds.reading_resolution.sel(scheme=name).values
+        row = summary.loc[str(name)]
+        if np.any(resolution > 0) and (row.worst_case_min_um < row.stated_min_um - 1e-6
+                                       or row.worst_case_max_um > row.stated_max_um + 1e-6):
+            step = _um(float(resolution.max()), 0)
+            out.append(f"{name} reads housing bores and journals to {step} µm: a reading rounded to the nearest "
+                       f"{step} µm lands in its class, so a part up to half a step outside the class is paired as "
+                       f"if inside it. That is why its worst case, {row.worst_case_min_um:.1f}–"
+                       f"{row.worst_case_max_um:.1f} µm, reaches beyond the stated {row.stated_min_um:.0f}–"
+                       f"{row.stated_max_um:.0f} µm; the share outside the stated range counts those bearings.")
+    return out
+
+
+def methods(ds):
+    """Methods and assumptions, in one place: processes, gauges, press fit, temperatures, tiers, sample sizes."""
+    study = json.loads(ds.attrs["study"])
+    press = json.loads(ds.attrs["press_fit"])
+    proc = json.loads(ds.attrs["engine_processes"])
+
+    def dimension(label, d):
+        lo, hi = d["limits_m"]
+        text = (f"{label} {lo * 1e3:.3f}–{hi * 1e3:.3f} mm, {d['distribution'].lower()} process, "
+                f"C_pk {d['cpk']:.2f} (σ {d['std_m'] * UM:.2f} µm)")
+        if d["shared"]:
+            text += f", {100 * d['shared']:.0f} % of the variance common to one part's bearings"
+        gauge = d["gauge_repeatability_m"] * UM
+        if gauge or d["gauge_resolution_m"]:
+            text += f"; gauge repeatability {gauge:.2f} µm"
+            if d["gauge_resolution_m"]:
+                text += f", read-out {d['gauge_resolution_m'] * UM:g} µm"
+        return text
+
+    shell = proc["shell_wall"]
+    crush = proc["crush_height"]
+    n_mech = int(ds.attrs.get("mechanics_engines_used", 0))
+    lines = [
+        f"- **Parts:** {dimension('housing bore', proc['housing_bore'])}; "
+        f"{dimension('journal', proc['journal_d'])}. Parts read outside their drawing limits are scrapped.",
+        f"- **Shells:** made to order per lot of {shell['lot_engines']} engines with {100 * shell['surplus']:.0f} % "
+        f"surplus, each grade aimed at its centre (wall σ {shell['sigma_m'] * UM:.2f} µm), read (repeatability "
+        f"{shell['gauge_repeatability_m'] * UM:.2f} µm) and sorted into grades; quantities planned from a pilot of "
+        f"{ds.attrs['pilot_engines']:,} engines. Crush height {crush['limits_m'][0] * 1e3:.3f}–"
+        f"{crush['limits_m'][1] * 1e3:.3f} mm, C_pk {crush['cpk']:.2f}."
+        if shell["supply"] == "to-order" else
+        f"- **Shells:** one process sorted into grades (supply `{shell['supply']}`), lots of {shell['lot_engines']} "
+        f"engines with {100 * shell['surplus']:.0f} % surplus.",
+        f"- **Press fit:** {press['housing_material']} housing (equivalent outer diameter "
+        f"{press['housing_outer'] * 1e3:.0f} mm), {press['shell_material']} shells {press['length'] * 1e3:.0f} mm "
+        f"wide, crush height checked in a {press['check_bore'] * 1e3:.3f} mm block at "
+        f"{press['check_stress'] / 1e6:.0f} MPa; {FIT_TIERS.get(study['fit_method'], study['fit_method'])} "
+        "(its error against the finite-element reference: reports/press_fit_tiers.md).",
+        f"- **Temperatures:** assembled at {press['assembly_temperature']:.0f} °C, running at "
+        f"{press['temperature']:.0f} °C (housing, shells and journal)"
+        + (f"; oil {proc['crank']['oil']} supplied at {proc['crank']['oil_supply_temperature_degC']:.0f} °C, "
+           "film temperature from the bearing's heat balance." if "crank" in proc else "."),
+        f"- **Clearance:** nominal C = D_H − (s_upper + s_lower + D_J) from true sizes, grading by the readings; "
+        f"operating clearance with press fit, housing swell and temperature, on all {study['n_engines']:,} engines "
+        f"× {ds.sizes['bearing']} bearings per scheme.",
+    ]
+    if n_mech:
+        crank = proc["crank"]
+        lines += [
+            f"- **Crankshaft and loads:** {CRANK_TIERS.get(study['crank_method'], study['crank_method'])} at "
+            f"{crank['speed_rpm']:.0f} rpm over the cycle in {study['crank_angle_step']:g}° steps, with each engine's "
+            f"operating clearances and its sampled bore coaxiality (drawing {crank['coaxiality_m'] * UM:.0f} µm) and "
+            f"journal run-out ({crank['journal_runout_m'] * UM:.0f} µm); on the first {n_mech:,} engines of each "
+            "scheme (a random sample: lots are independent).",
+            f"- **Oil film:** `{ds.attrs['film_method_used']}` tier"
+            + (f" (largest h_min error against the Reynolds reference {100 * ds.attrs['film_tier_error']:.1f} %)"
+               if "film_tier_error" in ds.attrs else "") + ".",
+            _life_method(ds, study),
+        ]
+    lines += [
+        "- **Statistics:** 95 % intervals: order statistics for quantiles, Clopper–Pearson for shares, normal "
+        "approximation for means. Scenarios reuse the study's seed (common random numbers), so their changes are "
+        "differences on the same parts.",
+    ]
+    if kept_summaries(ds):
+        lines.append("- **Summaries:** this dataset keeps streaming summaries: quantiles and histograms to "
+                     "0.1 µm, exact counts.")
+    return lines
+
+
+def _life_method(ds, study):
+    """The life methods, their film and constants with sources, in one bullet."""
+    wear = json.loads(ds.attrs["wear"])
+    film = study.get("life_film", "cycle-mean")
+    return (f"- **Life:** Levanov et al. (2015) method 1 (eqs. 4-5) on the {film.replace('-', ' ')} of the minimum "
+            "film over the cycle"
+            + (" (the paper's Table 1 pairs films of 5-9 µm with 5-17 % of the cycle in boundary friction, which only "
+               "the cycle mean allows)" if film == "cycle-mean" else " (a comparison: the paper implies the cycle mean)")
+            + f"; critical film h_lim,cr = {wear['critical_film_m'] * UM:.2f} µm from the journal's and the shell's "
+            f"roughness (Rz {wear['journal_rz_m'] * UM:.2f} + {wear['shell_rz_m'] * UM:.2f} µm, eq. 3; "
+            f"{wear['roughness_source'].strip()}), limiting wear {wear['wear_limit_m'] * UM:.0f} µm and wear speed "
+            f"{wear['wear_rate_m_per_s']:.0e} m/s ({wear['wear_source'].strip()}). Method 2 (eqs. 6-7): a wear chart "
+            "over the bearing surface where the film is below h_lim,cr, with the asperity contact pressure of "
+            "Greenwood and Tripp. An engine's life is that of its weakest bearing.")
+
+
+def limits_of_validity(ds):
+    """What the models leave out, said plainly."""
+    return [
+        "- Housing bores are round and straight: no distortion from bolt tension, no thermal distortion of the "
+        "block, no form error of the journals unless the engine file samples one.",
+        "- The press fit is plane-stress linear elasticity of rings: no plastic deformation of the lining, no "
+        "fretting, no relaxation of the crush over the engine's life.",
+        "- The crankshaft is a beam on point supports at the main bearings; the block is rigid; the loads come "
+        "from the engine file's pressure model, not a measured cylinder pressure, unless the file gives one.",
+        "- The oil film is isothermal at the bearing's effective temperature; no elastic deformation of the "
+        "bearing (EHD), no surface texture beyond the roughness in the critical film.",
+        "- Life follows Levanov et al. (2015), whose constants were fitted to another engine: compare schemes "
+        "rather than read the hours as a guarantee.",
+        "- Each scheme is judged on its preferred and allowed pairs as written in its file; the shell supply is "
+        "planned from a pilot sample and lots are independent.",
+    ]
+
+
+def parameters_table(ds):
+    """The study's parameters and the data it used, as rows of (parameter, value) for a readable table."""
+    study = json.loads(ds.attrs["study"])
+    rows = [(key, "—" if value is None else (", ".join(map(str, value)) if isinstance(value, list) else str(value)))
+            for key, value in study.items()]
+    rows += [("engine source", " ".join(ds.attrs["engine_source"].split())),
+             ("stackup version", ds.attrs["stackup_version"])]
+    rows += [(f"scheme {k}", v) for k, v in json.loads(ds.attrs["scheme_sources"]).items()]
+    return pd.DataFrame(rows, columns=["parameter", "value"])

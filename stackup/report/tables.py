@@ -1,0 +1,255 @@
+"""The comparison report's tables: numbers of a study dataset per scheme (and bearing), with intervals.
+
+Each function reads a study dataset (every engine kept, or its streaming
+summaries) and returns a pandas DataFrame; nothing is sampled.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..assembly import STATUS
+from ..stats import mean_half_width, proportion_ci, quantile_ci
+from ..study import summaries
+from ..study.schema import flag
+
+#: Tail quantiles reported: the +-3 sigma points of a normal distribution.
+TAIL_LOW, TAIL_HIGH = 0.00135, 0.99865
+UM = 1e6
+
+
+def kept_summaries(ds):
+    """The dataset holds streaming summaries (``Study(keep="summaries")``), not every engine."""
+    return ds.attrs.get("kept") == "summaries"
+
+
+def _assembled(d, name):
+    """Values of ``name`` of one scheme's assembled bearings (a full dataset)."""
+    return d[name].values[d.status.values == flag(d.status, "assembled")]
+
+
+def fit_summary(ds):
+    """One row per scheme: nominal against operating clearance [um], press-fit limits as shares with 95 % intervals.
+
+    The design limits are the dataset's (``design_contact_pressure_min``,
+    ``design_shell_stress_max``). From summaries, the operating
+    quantiles are read from the 0.1 um histogram.
+    """
+    p_min, s_max = float(ds.design_contact_pressure_min), float(ds.design_shell_stress_max)
+    rows = []
+    for name in ds.scheme.values:
+        d = ds.sel(scheme=name)
+        if kept_summaries(ds):
+            n = int(d.status_count.sel(status="assembled"))
+            counts = (int(d.low_contact_pressure_count), int(d.high_shell_stress_count), int(d.loss_of_fit_count))
+            hist = d.clearance_operating_histogram.values
+            row = {"nominal_mean_um": float(d.clearance_nominal_mean) * UM,
+                   "nominal_std_um": float(d.clearance_nominal_std) * UM,
+                   "operating_mean_um": float(d.clearance_operating_mean) * UM,
+                   "operating_std_um": float(d.clearance_operating_std) * UM,
+                   "operating_p00135_um": summaries.quantile_ci(hist, TAIL_LOW)[0] * UM,
+                   "operating_p99865_um": summaries.quantile_ci(hist, TAIL_HIGH)[0] * UM,
+                   "swell_mean_um": float(d.housing_swell_mean) * UM,
+                   "contact_pressure_min_mpa": float(d.contact_pressure_min) / 1e6,
+                   "shell_stress_max_mpa": float(d.shell_stress_max) / 1e6}
+        else:
+            nominal, operating = _assembled(d, "clearance_nominal"), _assembled(d, "clearance_operating")
+            p, sigma = _assembled(d, "contact_pressure"), _assembled(d, "shell_stress")
+            n = p.size
+            counts = (np.count_nonzero(p < p_min), np.count_nonzero(sigma > s_max),
+                      np.count_nonzero(_assembled(d, "loss_of_fit")))
+            row = {"nominal_mean_um": nominal.mean() * UM, "nominal_std_um": nominal.std(ddof=1) * UM,
+                   "operating_mean_um": operating.mean() * UM, "operating_std_um": operating.std(ddof=1) * UM,
+                   "operating_p00135_um": quantile_ci(operating, TAIL_LOW)[0] * UM,
+                   "operating_p99865_um": quantile_ci(operating, TAIL_HIGH)[0] * UM,
+                   "swell_mean_um": _assembled(d, "housing_swell").mean() * UM,
+                   "contact_pressure_min_mpa": p.min() / 1e6, "shell_stress_max_mpa": sigma.max() / 1e6}
+        low_p, high_s, lost = (proportion_ci(k, n) for k in counts)
+        rows.append({"scheme": str(name), **row,
+                     "low_pressure_ppm": low_p[0] * 1e6, "low_pressure_ci_ppm": (low_p[1] * 1e6, low_p[2] * 1e6),
+                     "high_stress_ppm": high_s[0] * 1e6, "high_stress_ci_ppm": (high_s[1] * 1e6, high_s[2] * 1e6),
+                     "loss_of_fit_ppm": lost[0] * 1e6})
+    return pd.DataFrame(rows).set_index("scheme")
+
+
+def clearance_summary(ds):
+    """One row per scheme: nominal clearance statistics [um], shares outside the stated range, stock.
+
+    Quantiles and shares come with 95 % intervals (order statistics and
+    Clopper-Pearson). From summaries they are read from the 0.1 um histogram
+    of the nominal clearance (quantiles to a bin; the stated ranges lie on the
+    bin grid, so the share outside them is exact); substitutions are not
+    counted there (NaN).
+    """
+    rows = []
+    for name in ds.scheme.values:
+        d = ds.sel(scheme=name)
+        lo_stated, hi_stated = d.clearance_stated.values
+        if kept_summaries(ds):
+            counts = dict(zip(ds.status.values, d.status_count.values))
+            hist = d.clearance_nominal_histogram.values
+            n_bearings, n = int(sum(counts.values())), int(counts["assembled"])
+            outside = summaries.share_beyond(hist, lo_stated, hi_stated)
+            p_lo, p50, p_hi = (summaries.quantile_ci(hist, q) for q in (TAIL_LOW, 0.5, TAIL_HIGH))
+            filled = np.flatnonzero(hist)
+            extremes = (summaries.BIN_START + (filled[[0, -1]] + 0.5) * summaries.BIN_WIDTH if filled.size
+                        else (np.nan, np.nan))
+            mean, std = float(d.clearance_nominal_mean), float(d.clearance_nominal_std)
+            substituted = np.nan
+        else:
+            status = d.status.values
+            counts = {reason: np.count_nonzero(status == flag(d.status, reason)) for reason in STATUS}
+            c = _assembled(d, "clearance_nominal")
+            n_bearings, n = status.size, c.size
+            outside = int(np.count_nonzero((c < lo_stated) | (c > hi_stated)))
+            p_lo, p50, p_hi = (quantile_ci(c, q) for q in (TAIL_LOW, 0.5, TAIL_HIGH))
+            extremes = (c.min(), c.max()) if c.size else (np.nan, np.nan)
+            mean = float(c.mean()) if c.size else np.nan
+            std = float(c.std(ddof=1)) if c.size > 1 else np.nan
+            substituted = int(np.count_nonzero(d.shell_option.values > 0))
+        share, share_lo, share_hi = proportion_ci(outside, n)
+        made = int(d.shells_made.sum()) + int(d.shells_scrapped)
+        row = {
+            "scheme": str(name),
+            "bearings": n_bearings,
+            "assembled": n,
+            "stated_min_um": lo_stated * UM,
+            "stated_max_um": hi_stated * UM,
+            "worst_case_min_um": float(d.clearance_limit.values[0]) * UM,
+            "worst_case_max_um": float(d.clearance_limit.values[1]) * UM,
+            "mean_um": mean * UM,
+            "std_um": std * UM,
+            "p00135_um": p_lo[0] * UM,
+            "p00135_ci_um": (p_lo[1] * UM, p_lo[2] * UM),
+            "median_um": p50[0] * UM,
+            "p99865_um": p_hi[0] * UM,
+            "p99865_ci_um": (p_hi[1] * UM, p_hi[2] * UM),
+            "min_um": float(extremes[0]) * UM,
+            "max_um": float(extremes[1]) * UM,
+            "outside_stated_ppm": share * 1e6,
+            "outside_stated_ci_ppm": (share_lo * 1e6, share_hi * 1e6),
+            "shells_made": made,
+            "shells_scrapped_pct": 100.0 * int(d.shells_scrapped) / made if made else np.nan,
+            "substituted": substituted,
+        }
+        row.update({reason: int(counts[reason]) for reason in STATUS if reason != "assembled"})
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("scheme")
+
+
+def grade_usage(ds):
+    """Shells made, fitted and left per scheme and grade (grades the scheme has)."""
+    frame = ds[["shells_made", "shells_used", "shells_left"]].to_dataframe()
+    frame = frame[ds.grade_in_scheme.to_series()]
+    used = frame["shells_used"]
+    frame["used_share_pct"] = 100.0 * used / used.groupby(level="scheme").transform("sum")
+    return frame
+
+
+def crank_summary(ds):
+    """Per scheme and bearing: engines the beam ran on, and the cycle-maximum load [kN] with a 95 % interval of its mean."""
+    rows = []
+    status = ds.crank_status
+    for i, name in enumerate(ds.scheme.values):
+        codes = status.values[i]
+        ok = codes == flag(status, "converged")
+        failed = int(np.count_nonzero((codes == flag(status, "max_iterations")) | (codes == flag(status, "not_finite"))))
+        for b, bearing in enumerate(ds.bearing.values):
+            r = ds.reaction_max.values[i, ok, b] / 1e3
+            rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(ok.sum()), "failed": failed,
+                         "mean_kn": r.mean() if r.size else np.nan,
+                         "ci_kn": mean_half_width(r) if r.size > 1 else np.nan,
+                         "max_kn": r.max() if r.size else np.nan})
+    return pd.DataFrame(rows).set_index(["scheme", "bearing"])
+
+
+def _converged(ds, i):
+    """Engines of scheme ``i`` whose crankshaft stage converged (the film and life were computed on them)."""
+    return ds.crank_status.values[i] == flag(ds.crank_status, "converged")
+
+
+def film_summary(ds):
+    """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals.
+
+    The share of engines below the life target uses the engine's own target
+    (``life_target``).
+    """
+    from ..life import ALPHA_SCUFFING
+
+    life_target_hours = float(ds.life_target) / 3600
+    rows = []
+    for i, name in enumerate(ds.scheme.values):
+        done = _converged(ds, i)
+        h = ds.h_min.values[i, done].ravel() * UM
+        a = ds.alpha.values[i, done].ravel()
+        life = ds.life.values[i, done].ravel() / 3600
+        chart = ds.life_wear_chart.values[i, done].ravel() / 3600
+        engine_life = ds.life.values[i, done].min(axis=1) / 3600 if done.any() else np.array([])
+        if h.size == 0:
+            continue
+        scuff = proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size)
+        short = proportion_ci(np.count_nonzero(engine_life < life_target_hours), engine_life.size)
+        rows.append({
+            "scheme": str(name), "engines": int(done.sum()),
+            "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
+            "alpha_mean": a.mean(), "alpha_over_20_pct": tuple(100 * v for v in scuff),
+            "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5),
+            "wear_chart_b10_h": quantile_ci(chart, 0.10),
+            "engines_below_target_pct": tuple(100 * v for v in short),
+        })
+    return pd.DataFrame(rows).set_index("scheme") if rows else pd.DataFrame()
+
+
+def bearing_summary(ds):
+    """Per scheme and main-bearing position: film and life of the engines the mechanical chain ran on.
+
+    Columns: ``engines``, ``h_min_p05_um`` and ``h_min_median_um`` (cycle
+    minimum), ``life_b10_h`` and ``life_median_h``, each a (value, lower,
+    upper) 95 % interval.
+    """
+    rows = []
+    for i, name in enumerate(ds.scheme.values):
+        done = _converged(ds, i)
+        if not done.any():
+            continue
+        for b, bearing in enumerate(ds.bearing.values):
+            h = ds.h_min.values[i, done, b] * UM
+            life = ds.life.values[i, done, b] / 3600
+            rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(done.sum()),
+                         "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
+                         "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5)})
+    return pd.DataFrame(rows).set_index(["scheme", "bearing"]) if rows else pd.DataFrame()
+
+
+def centred(ds, scheme, window):
+    """What centring a scheme's operating clearance in the window would give: (shift [m], bearings outside, assembled).
+
+    The shift moves every assembled bearing's clearance by the distance from
+    its mean to the window's middle, as shells aimed ``shift / 2`` thinner
+    each would; the shape of the distribution is kept. From summaries the
+    histogram is moved by whole bins.
+    """
+    d = ds.sel(scheme=scheme)
+    middle = 0.5 * (window[0] + window[1])
+    if kept_summaries(ds):
+        hist = d.clearance_operating_histogram.values
+        shift_bins = int(round((middle - float(d.clearance_operating_mean)) / summaries.BIN_WIDTH))
+        moved = np.zeros_like(hist)
+        src = slice(max(0, -shift_bins), hist.size - max(0, shift_bins))
+        moved[max(0, shift_bins):hist.size + min(0, shift_bins)] = hist[src]
+        return shift_bins * summaries.BIN_WIDTH, summaries.share_beyond(moved, *window), int(hist.sum())
+    c = _assembled(d, "clearance_operating")
+    shift = middle - c.mean()
+    moved = c + shift
+    return shift, int(np.count_nonzero((moved < window[0]) | (moved > window[1]))), c.size
+
+
+def separates(low, high):
+    """Whether a metric separates the schemes: some scheme's 95 % interval lies clear of another's.
+
+    ``low`` and ``high`` are the interval bounds per scheme.
+    """
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    ok = np.isfinite(low) & np.isfinite(high)
+    return bool(ok.sum() > 1 and np.min(high[ok]) < np.max(low[ok]))

@@ -1,0 +1,251 @@
+"""A study: one scenario (engine, schemes, size, seed) run into one xarray Dataset.
+
+The package is split by job:
+
+- :mod:`~stackup.study.chain`: what is computed, the one place where the
+  stages meet (parts -> assembly -> press fit -> crankshaft -> film -> life)
+  for a chunk of production lots;
+- :mod:`~stackup.study.schema`: how results are shaped, every dataset
+  variable declared once;
+- :mod:`~stackup.study.sinks`, :mod:`~stackup.study.summaries`,
+  :mod:`~stackup.study.store`: where results go (memory, a Zarr store,
+  streaming summaries);
+- :mod:`~stackup.study.schedule`: where chunks run (this process, local
+  processes, a dask cluster);
+- :mod:`~stackup.study.context` and :mod:`~stackup.study.pilot`: what every
+  chunk needs that follows from the parameters (engine, schemes, shell aims
+  from the pilot sample).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import xarray as xr
+from tqdm.auto import tqdm
+
+from .. import _validate as check
+from .._random import seed_sequence
+from ..crank.cycle import METHODS as CRANK_METHODS
+from ..fit import METHODS as FIT_METHODS
+from ..film.cycle import FILM_METHODS
+from ..life import FILM_STATISTICS
+from ..parts import SAMPLERS
+from . import chain, summaries
+from .context import context, fingerprint
+from .failures import FailureCount
+from .schedule import WORKER_MALLOC, check_scheduler, results
+from .sinks import sink
+from .store import ChunkStore, open_study
+
+ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
+
+
+@dataclass
+class Study:
+    """A Monte Carlo study of selective assembly.
+
+    Parameters
+    ----------
+    engine : str or path
+        Built-in engine name or engine TOML file.
+    schemes : sequence of str or path
+        Scheme names or scheme TOML files.
+    n_engines : int
+        Engines to sample (each with its block, crankshaft and shells).
+    seed : int
+        Root seed; lot ``k`` uses child ``k`` of ``SeedSequence(seed)``.
+    chunk_lots : int
+        Lots processed together. Execution only: results do not depend on it.
+    pilot_engines : int
+        Engines of the pilot sample (own random stream) from which the shell
+        quantity of each grade is planned.
+    mechanics_engines : int
+        Engines (the first ones sampled; lots are independent, so they are a
+        random sample) on which the crankshaft beam, film and life run over
+        the cycle; 0 skips the stage; with ``target_error`` it is the cap.
+        Engines with a bearing not assembled are skipped and marked.
+    keep : {"everything", "summaries"}
+        Keep every engine, or only streaming summaries
+        (:mod:`stackup.study.summaries`: histograms, counts, moments and extremes of
+        the clearance and press-fit stages, shell counters, worst bearings,
+        and the mechanical chain's results of the engines it runs on), so
+        memory stays flat as ``n_engines`` grows. ``history`` is not kept
+        with ``"summaries"``.
+    history : bool
+        Keep each mechanically computed engine's bearing loads and minimum
+        film at every crank angle, on dimensions ``mech_engine`` and
+        ``crank_angle`` (large: 720 angles per bearing and scheme).
+    target_error : float or None
+        Run the mechanical chain only until the 95 % interval of each
+        scheme's mean cycle-minimum film (engine means) is within this share
+        of the mean, checked every 25 engines [-]; None runs
+        ``mechanics_engines`` engines.
+    crank_angle_step : float
+        Step of the crank-angle grid over 720 deg [deg].
+    fit_method : str
+        Press-fit tier: "lame" (default), "thin-ring" or "fe" (slow reference).
+    crank_method : str
+        Crankshaft support tier: "bearing-law" (default), "linear" or "rigid".
+    film_method : str
+        Film over the cycle on the engines of the crankshaft stage
+        (:data:`stackup.film.cycle.FILM_METHODS`): quasi-static on a steady tier
+        ("short", "finite", "reynolds"), or dynamic with the squeeze film
+        ("mobility": short-bearing mobility orbit, "mobility-finite": the same
+        with the finite-length correction, "transient": the Reynolds reference,
+        minutes per bearing), or "auto" (default) for the cheapest dynamic tier
+        whose measured cycle-minimum and cycle-mean film errors against the
+        transient tier are within ``film_error``
+        (:func:`stackup.film.cycle.cheapest_film_method`).
+    film_error : float
+        Largest film error against the transient tier that "auto" accepts [-].
+    bearing_law : {"paper", "fitted"}
+        The crankshaft's bearing law: the engine's (the paper's constants, J
+        scaled with each clearance; default), or J and dx fitted per engine and
+        bearing to the steady film at its viscosity and clearance
+        (:func:`stackup.study.chain.fitted_law`; a second crankshaft cycle per
+        engine).
+    life_film : {"cycle-mean", "cycle-minimum"}
+        The film Levanov's method 1 reads (:func:`stackup.life.cycle_film`):
+        the cycle mean of the minimum film, as the paper's results imply, or
+        the cycle minimum (a comparison: lives of hours for any bearing that
+        touches boundary friction).
+    progress : bool or None
+        Show a progress bar; None shows one only on a terminal.
+    sampler : {"mc", "qmc"}
+        Pseudo-random Monte Carlo, or scrambled Sobol points for each
+        engine's parts (randomised QMC, one scramble per lot).
+    scenario : dict or None
+        Disturbance of the engine's processes (:mod:`stackup.scenarios`), e.g.
+        ``{"housing_shift": 1.0}`` for the bore mean one sigma up.
+    failure_limit : float
+        Largest share of engines or bearings a stage may fail on
+        (:mod:`stackup.study.failures`: a scheme that grades no part, a
+        crankshaft beam that does not converge) before the run stops with
+        an error naming the stage and the likely cause [-]; 1.0 never stops.
+    window : (float, float) or None
+        Design window of the operating clearance [m] that the summaries
+        count and the ranking uses; None takes the engine's.
+    store : str or None
+        Path of a Zarr store the results stream into as chunks finish
+        (:mod:`stackup.study.store`), so a study larger than memory can keep every
+        engine; ``run`` then returns the dataset opened lazily from the store.
+        It is also the checkpoint: a rerun of the same study with the same
+        store computes only the chunks not yet written, so an interrupted study
+        resumes without losing or repeating work. Execution only: results do
+        not depend on it.
+    """
+
+    engine: str = "iso-example"
+    schemes: tuple = ISO_SCHEMES
+    n_engines: int = 100_000
+    seed: int = 0
+    chunk_lots: int = 20
+    pilot_engines: int = 20_000
+    mechanics_engines: int = 200
+    target_error: float | None = None
+    history: bool = False
+    keep: str = "everything"
+    crank_angle_step: float = 1.0
+    fit_method: str = "lame"
+    crank_method: str = "bearing-law"
+    film_method: str = "auto"
+    film_error: float = 0.05
+    bearing_law: str = "paper"
+    life_film: str = "cycle-mean"
+    progress: bool | None = None
+    sampler: str = "mc"
+    scenario: dict | None = None
+    failure_limit: float = 0.05
+    window: tuple | None = None
+    store: str | None = None
+
+    def __post_init__(self):
+        self.n_engines = check.integer("n_engines", self.n_engines, minimum=1)
+        self.chunk_lots = check.integer("chunk_lots", self.chunk_lots, minimum=1)
+        self.pilot_engines = check.integer("pilot_engines", self.pilot_engines, minimum=1)
+        self.mechanics_engines = check.integer("mechanics_engines", self.mechanics_engines, minimum=0)
+        if self.target_error is not None:
+            self.target_error = float(check.in_range("target_error", self.target_error, 0.0, 1.0, lo_open=True))
+        self.crank_angle_step = float(check.in_range("crank_angle_step", self.crank_angle_step, 0.0, 90.0, lo_open=True))
+        check.one_of("sampler", self.sampler, SAMPLERS)
+        check.one_of("keep", self.keep, ("everything", "summaries"))
+        check.one_of("fit_method", self.fit_method, FIT_METHODS)
+        check.one_of("crank_method", self.crank_method, CRANK_METHODS)
+        check.one_of("film_method", self.film_method, (*FILM_METHODS, "auto"))
+        check.one_of("bearing_law", self.bearing_law, ("paper", "fitted"))
+        self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
+        check.one_of("life_film", self.life_film, FILM_STATISTICS)
+        self.failure_limit = float(check.in_range("failure_limit", self.failure_limit, 0.0, 1.0))
+        if (720.0 / self.crank_angle_step) % 1:
+            raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
+        self.schemes = tuple(str(s) for s in self.schemes)
+        if not self.schemes:
+            raise ValueError("schemes: give at least one scheme")
+        if len(set(self.schemes)) != len(self.schemes):
+            raise ValueError(f"schemes: {list(self.schemes)!r} names a scheme twice")
+        seed_sequence(self.seed)
+        self.engine = str(self.engine)
+        if self.window is not None:
+            self.window = check.clearance_window("window", self.window)
+
+    def parameters(self):
+        """The study's parameters as plain data (stored in the dataset's attrs)."""
+        return {k: v for k, v in asdict(self).items() if k not in ("progress", "store")}
+
+    def chunk(self, first, progress=None):
+        """Compute chunk ``first`` on its own (e.g. on a worker) for its sink.
+
+        A :class:`~stackup.study.chain.ChunkResult`, or with ``keep="summaries"``
+        its reduction to one summary per production lot
+        (:class:`~stackup.study.summaries.ChunkSummary`). ``progress`` is the
+        mechanical chain's progress over the chunks before, which only a
+        ``target_error`` study needs (in order).
+        """
+        ctx = context(self)
+        result = chain.run_chunk(ctx, self, first, progress)
+        failed = FailureCount.of_chunk(result)
+        if self.keep == "summaries":
+            result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window)
+        result.failures = failed
+        return result
+
+    def run(self, scheduler=None) -> xr.Dataset:
+        """Sample, measure, grade, pair, assemble and run the stages; return the dataset.
+
+        Parameters
+        ----------
+        scheduler : None, "processes" or dask.distributed.Client
+            Where the chunks run: in this process, in local worker processes
+            (a ``distributed.LocalCluster`` on loopback, one single-threaded
+            worker per core, closed at the end), or on the dask cluster of the
+            Client. Chunks are seeded from one SeedSequence, so the numbers are
+            identical on all three. Results stream back as chunks finish, at
+            most two chunks per worker in flight. ``target_error`` decides
+            after each batch of engines in order and needs ``None``.
+
+        Returns
+        -------
+        xarray.Dataset
+            In memory; with ``store``, the dataset opened lazily from the store
+            (dask-backed, read on use), except the small summary dataset.
+        """
+        ctx = context(self)
+        check_scheduler(scheduler, self)
+        store = ChunkStore(self.store, fingerprint(self)) if self.store is not None else None
+        out = sink(self, ctx, store)
+        firsts = list(range(0, ctx.n_lots, self.chunk_lots))
+        with tqdm(total=len(firsts), unit="chunk", disable=None if self.progress is None else not self.progress,
+                  desc="study") as bar:
+            finished = out.resume()
+            bar.update(len(finished))
+            todo = [first for first in firsts if first not in finished]
+            failures = FailureCount()
+            for result in results(self, todo, scheduler, out.progress):
+                failures.merge(result.failures).check(self.failure_limit)  # stop before storing a failed chunk
+                out.add(result)
+                bar.update(1)
+        return out.result()
+
+
+__all__ = ["ISO_SCHEMES", "Study", "WORKER_MALLOC", "open_study"]

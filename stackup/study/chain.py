@@ -1,0 +1,364 @@
+"""Where the stages meet: one chunk of production lots through every stage of a study.
+
+    parts -> assembly (per scheme) -> press fit -> crankshaft -> film -> life
+
+Each stage is called through its public API with plain arrays; no stage
+imports another. The result of a chunk is a :class:`ChunkResult`: the
+chunk's per-engine variables under their dataset names
+(:data:`stackup.study.schema.PER_ENGINE`), the shell counters and the
+mechanical chain's progress.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..assembly import ASSEMBLED, assemble
+from ..crank import support_slopes
+from ..crank.cycle import engine_cycles, worst_status
+from ..crank.law import BellakhdharLaw, fit_bellakhdhar
+from ..film.bearing_law import load_displacement
+from ..film.cycle import HEAT_STEP, bearing_films
+from ..film.heat import heat_balance
+from ..fit import press_fit
+from .. import materials
+from ..contact import composite_roughness, contact_modulus
+from ..life import alpha as boundary_share
+from ..life import cycle_film, levanov_method1, levanov_method2
+from ..parts import BlockParts, draw_lot
+from ..stats import mean_half_width
+from .._random import lot_generator
+from . import schema
+
+#: Engines per step of the mechanical chain when it runs to a target error.
+MECHANICS_BATCH = 25
+
+
+@dataclass
+class ShellCounts:
+    """Shell counters of some lots, per scheme: made, used and left per grade, scrapped."""
+
+    made: np.ndarray  # (schemes, grades)
+    used: np.ndarray
+    left: np.ndarray
+    scrapped: np.ndarray  # (schemes,)
+
+    @classmethod
+    def zeros(cls, n_schemes, n_grades):
+        return cls(*(np.zeros((n_schemes, n_grades), np.int64) for _ in range(3)), np.zeros(n_schemes, np.int64))
+
+    def add(self, other):
+        """Add ``other``'s counts to these, in place."""
+        for name in ("made", "used", "left", "scrapped"):
+            getattr(self, name)[...] += getattr(other, name)
+
+
+@dataclass
+class MechanicsProgress:
+    """How far the mechanical chain has run: engines ``[0, next)`` are done; ``done`` once it stops."""
+
+    next: int = 0
+    done: bool = False
+
+
+@dataclass
+class ChunkResult:
+    """What one chunk of production lots computed.
+
+    Attributes
+    ----------
+    first : int
+        First lot of the chunk (its number in the study's chunking).
+    engines : range
+        Study numbers of the chunk's engines.
+    per_engine : dict of str -> numpy.ndarray
+        Every variable of :data:`schema.PER_ENGINE`, the chunk's engines on
+        the variable's engine axis.
+    per_mech : dict of str -> numpy.ndarray
+        The :data:`schema.MECHANICS` variables (and :data:`schema.HISTORY`
+        with ``Study(history=True)``) of the chunk's engines within the
+        mechanical range (the study's first engines), on ``mech_engine``;
+        engines the chain did not reach are ``not_computed``.
+    shells : ShellCounts
+    progress : MechanicsProgress
+        The mechanical chain's progress after this chunk.
+    """
+
+    first: int
+    engines: range
+    per_engine: dict
+    per_mech: dict
+    shells: ShellCounts
+    progress: MechanicsProgress
+    failures: object = None  # the chunk's FailureCount, set by Study.chunk
+
+    @property
+    def h_min_head(self):
+        """Cycle-minimum film of the chunk's engines within the mechanical range (schemes, engines, bearings)."""
+        return self.per_mech["h_min"]
+
+    def take(self, rows):
+        """The per-engine variables of the chunk's engines ``rows`` (a slice), by name."""
+        return {name: value[(slice(None),) * schema.PER_ENGINE[name].engine_axis + (rows,)]
+                for name, value in self.per_engine.items()}
+
+
+def run_chunk(ctx, study, first, progress=None):
+    """Compute chunk ``first`` (lots ``first`` .. ``first + chunk_lots - 1``) through every stage.
+
+    Parameters
+    ----------
+    ctx : stackup.study.context.Context
+        What follows from the study's parameters alone (engine, schemes, shell aims, ...).
+    study : stackup.study.Study
+        Stage options: tiers, sampler, ``history``, ``target_error``.
+    first : int
+        First lot of the chunk.
+    progress : MechanicsProgress and h_min of earlier engines, optional
+        A ``target_error`` study's progress over the chunks before, in order
+        (``(MechanicsProgress, h_min_before)``); None for every other study.
+    """
+    lots, e0, e1 = ctx.bounds(first, study.chunk_lots)
+    n = e1 - e0
+    b = ctx.engine.main_bearings
+    drawn = [draw_lot(ctx.engine, lot_generator(ctx.root, k), min(ctx.lot, study.n_engines - k * ctx.lot),
+                      study.sampler) for k in lots]
+    parts = BlockParts(*(np.concatenate([getattr(p, f) for p, _ in drawn]) for f in BlockParts.__dataclass_fields__))
+    sizes = {"scheme": len(ctx.schemes), "engine": n, "bearing": b, "axis": 2}
+    out = {name: var.empty(sizes) for name, var in schema.PER_ENGINE.items()}
+    out.update(housing_bore=parts.housing_bore, housing_bore_reading=parts.housing_reading,
+               journal_d=parts.journal_d, journal_d_reading=parts.journal_reading,
+               block_scrapped=parts.block_scrapped, crank_scrapped=parts.crank_scrapped,
+               bore_offset=parts.bore_offset, journal_eccentricity=parts.journal_eccentricity)
+    shells = ShellCounts.zeros(len(ctx.schemes), len(ctx.grade_labels))
+    stages = []
+    for i, (scheme, share) in enumerate(zip(ctx.schemes, ctx.shares)):
+        made = [ctx.engine.shell_wall.make(scheme, normals, share) for _, normals in drawn]
+        result = assemble(scheme, parts, made, lot_engines=ctx.lot)
+        _record_assembly(out, shells, i, result, scheme, ctx.grade_labels)
+        fit = _press_fit(ctx.engine, parts, result, study.fit_method)
+        for name in schema.FIT:
+            out[name][i] = fit[name]
+        out["loss_of_fit"][i] = fit["loss_of_fit"]
+        stages.append((result, fit))
+
+    mechanical = max(0, min(e1, ctx.mechanics) - e0)  # engines of the chunk in the mechanical range
+    kept = schema.PER_MECH if study.history else schema.MECHANICS
+    mech = {name: var.empty({**sizes, "mech_engine": mechanical, "crank_angle": ctx.crank_angle.size})
+            for name, var in kept.items()}
+    state, h_min_before = progress if progress is not None else (MechanicsProgress(min(e0, ctx.mechanics)), None)
+    state = MechanicsProgress(state.next, state.done)
+    # mechanical chain: engines in order, in batches at fixed engine numbers, until the target error is
+    # met (decisions do not depend on the chunking)
+    a = max(e0, state.next)
+    while not state.done and a < min(e1, ctx.mechanics):
+        stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
+        rows = slice(a - e0, stop - e0)
+        for i, (result, fit) in enumerate(stages):
+            for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film,
+                                          study.bearing_law).items():
+                if name in mech:
+                    mech[name][i, rows] = value
+        a = state.next = stop
+        if a == ctx.mechanics or (study.target_error and a % MECHANICS_BATCH == 0
+                                  and _film_error(mech["h_min"][:, :a - e0], h_min_before) <= study.target_error):
+            state.done = True
+    return ChunkResult(first, range(e0, e1), out, mech, shells, state)
+
+
+def _record_assembly(out, shells, i, a, scheme, grade_labels):
+    """Scheme ``i``'s assembly into the chunk's arrays and shell counters."""
+    def labels(gradeset, index):
+        return np.array((*gradeset.labels, ""))[index]
+
+    out["housing_grade"][i] = labels(scheme.housing, a.housing_grade)
+    out["journal_grade"][i] = labels(scheme.journal, a.journal_grade)
+    out["shell_upper_grade"][i] = labels(scheme.shell, a.upper_grade)
+    out["shell_lower_grade"][i] = labels(scheme.shell, a.lower_grade)
+    out["shell_upper_wall"][i] = a.upper_wall
+    out["shell_lower_wall"][i] = a.lower_wall
+    out["shell_upper_crush"][i] = a.upper_crush
+    out["shell_lower_crush"][i] = a.lower_crush
+    out["clearance_nominal"][i] = a.clearance
+    out["status"][i] = a.status
+    out["shell_option"][i] = a.option
+    cols = [grade_labels.index(lab) for lab in scheme.shell.labels]
+    shells.made[i, cols] += a.shells_made
+    shells.used[i, cols] += a.shells_used
+    shells.left[i, cols] += a.shells_left
+    shells.scrapped[i] += a.shells_scrapped
+
+
+#: Press-fit results stored per bearing: dataset name -> PressFit field.
+FIT_FIELDS = {
+    "contact_pressure": "contact_pressure",
+    "shell_stress": "shell_stress",
+    "housing_swell": "housing_swell",
+    "bore_in_service": "bore_in_service",
+    "clearance_operating": "clearance",
+}
+
+
+def _press_fit(engine, parts, assembly, method):
+    """Press fit of the assembled bearings; NaN elsewhere (the status says why)."""
+    ok = assembly.status == ASSEMBLED
+    fit = press_fit(
+        housing_bore=parts.housing_bore[ok],
+        shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
+        crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]),
+        journal_d=parts.journal_d[ok],
+        method=method,
+        **engine.press_fit.kwargs(),
+    )
+    out = {}
+    for name, field in FIT_FIELDS.items():
+        full = np.full(ok.shape, np.nan)
+        full[ok] = getattr(fit, field)
+        out[name] = full
+    loss = np.zeros(ok.shape, bool)
+    loss[ok] = fit.loss_of_fit
+    out["loss_of_fit"] = loss
+    return out
+
+
+def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper"):
+    """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
+
+    Engines with a bearing not assembled are skipped (``not_computed``).
+    Returns the :data:`schema.PER_MECH` variables of one scheme, engines first.
+    """
+    engine, crank_angle = ctx.engine, ctx.crank_angle
+    count = rows.stop - rows.start
+    built = np.all(assembly.status[rows] == ASSEMBLED, axis=1)
+    sizes = {"scheme": 1, "mech_engine": count, "bearing": engine.main_bearings, "axis": 2,
+             "crank_angle": crank_angle.size}
+    out = {name: var.empty(sizes)[0] for name, var in schema.PER_MECH.items()}
+    if built.any():
+        values = mechanical_chain(engine, clearance=fit["clearance_operating"][rows][built],
+                                  journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
+                                  journal_eccentricity=parts.journal_eccentricity[rows][built],
+                                  crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method,
+                                  life_film=life_film, bearing_law=bearing_law)
+        for name, value in values.items():
+            out[name][built] = value
+    return out
+
+
+def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
+                     film_method, life_film="cycle-mean", bearing_law="paper"):
+    """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
+
+    Parameters
+    ----------
+    engine : Engine
+        With a crank section.
+    clearance, journal_d : array_like (engines, bearings)
+        Diametral operating clearance and journal diameter [m].
+    bore_offset, journal_eccentricity : array_like (engines, bearings, 2)
+        Misalignment of the bores and journals [m].
+    crank_angle : numpy.ndarray
+        [deg]
+    crank_method : str
+        Tier of the crankshaft supports.
+    film_method : str
+        Film method of :func:`stackup.film.cycle.bearing_films` (quasi-static steady tier or dynamic tier).
+    life_film : {"cycle-mean", "cycle-minimum"}
+        The film statistic Levanov's method 1 reads (:func:`stackup.life.cycle_film`).
+    bearing_law : {"paper", "fitted"}
+        With ``crank_method="bearing-law"``: the engine's law (the paper's
+        constants, J scaled with each clearance) or J and dx fitted per engine
+        and bearing to the steady film (:func:`fitted_law`).
+    """
+    spec = engine.crank
+    law, law_error = None, np.full(np.shape(clearance), np.nan)
+    if bearing_law == "fitted" and crank_method == "bearing-law":
+        law, law_error = fitted_law(engine, clearance=clearance, journal_d=journal_d, bore_offset=bore_offset,
+                                    journal_eccentricity=journal_eccentricity, crank_angle=crank_angle)
+    r = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
+                      clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
+    # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
+    # journals bend the beam; the line-bored bores stay parallel to the line)
+    tilt = support_slopes(spec.pin_loads(crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
+    films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
+                          journal_d=journal_d, method=film_method, tilt=tilt)
+    wear = engine.wear
+    journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
+    chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
+                            speed=engine.crank.speed, bearing_radius=np.asarray(journal_d) / 2,
+                            h_lim_cr=wear.critical_film, roughness=composite_roughness(wear.journal_rq, wear.shell_rq),
+                            contact_modulus=contact_modulus(journal.modulus, journal.poisson, lining.modulus,
+                                                            lining.poisson), wear_limit=wear.wear_limit)
+    life = levanov_method1(cycle_film(films.h_min, statistic=life_film), h_lim_cr=wear.critical_film,
+                           wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
+    return {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
+            "crank_status": worst_status(r.status),
+            "h_min": films.h_min.min(axis=-1),
+            "h_min_edge": films.h_min_edge.min(axis=-1),
+            "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
+            "tilt_max": np.linalg.norm(tilt, axis=-1).max(axis=1),
+            "p_max": films.p_max.max(axis=-1),
+            "film_status": films.status,
+            "law_fit_error": law_error,
+            "h_min_mean": cycle_film(films.h_min, statistic="cycle-mean"),
+            "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
+            "life": life.life,
+            "life_wear_chart": chart.life,
+            "wear_rate": chart.wear_rate,
+            "film_temperature": films.temperature,
+            "friction_power": films.friction_power,
+            "oil_flow": films.oil_flow,
+            "feed_flow": films.feed_flow,
+            "heat_status": films.heat_status,
+            "film_valid": films.valid,
+            "load_history": np.moveaxis(r.reactions, 1, 2),
+            "h_min_history": films.h_min}
+
+
+def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):
+    """The Bellakhdhar law with J and dx fitted per engine and bearing to the steady film.
+
+    A first crankshaft cycle on the engine's law gives each bearing's loads, the
+    quasi-static heat balance its effective viscosity; the law is then fitted
+    (:func:`stackup.crank.law.fit_bellakhdhar`) to the finite tier's
+    load-displacement curve (:func:`stackup.film.bearing_law.load_displacement`,
+    up to 1.5 times the bearing's peak load) at the engine's speed, that
+    viscosity and the bearing's clearance; stiffnesses and sigmoid stay the
+    engine's. Returns (law with parameters (engines, 1, bearings), rms fit error
+    (engines, bearings) [m]).
+    """
+    spec = engine.crank
+    first = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
+                          clearance=clearance, crank_angle=crank_angle)
+    loads = np.moveaxis(first.reactions, 1, 2)
+    step = float(crank_angle[1] - crank_angle[0]) if len(crank_angle) > 1 else 720.0
+    heat = heat_balance(loads[..., ::max(1, int(round(HEAT_STEP / step))), :], diameter=journal_d,
+                        length=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
+                        supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed, method="finite")
+    peak = np.linalg.norm(loads, axis=-1).max(axis=-1)
+    load, displacement = load_displacement(max_load=1.5 * peak, diameter=journal_d, length=spec.bearing_width,
+                                           clearance=clearance, viscosity=heat.viscosity, speed=spec.speed)
+    p = spec.law_parameters
+    stiff = {k: p.get(k, getattr(BellakhdharLaw, k)) for k in ("k_lv", "k_hv", "theta0", "dtheta")}
+    fit = fit_bellakhdhar(load, displacement, **stiff, clearance_guess=np.asarray(clearance) / 2)
+    law = BellakhdharLaw(clearance=fit.law.clearance[:, None, :], dx=fit.law.dx[:, None, :], **stiff)
+    return law, fit.rms_error
+
+
+def _film_error(h_min, h_min_before):
+    """Largest relative 95 % half-width over schemes of the mean cycle-minimum film of the engines so far.
+
+    ``h_min`` (schemes, engines, bearings) of this chunk's engines so far,
+    ``h_min_before`` those of the chunks before (or None).
+    """
+    worst = 0.0
+    if h_min_before is not None:
+        h_min = np.concatenate([h_min_before, h_min], axis=1)
+    for h in h_min:
+        computed = np.isfinite(h).any(axis=1)  # engines the chain ran on
+        values = np.nanmean(h[computed], axis=1)
+        if values.size < 2:
+            return np.inf
+        worst = max(worst, mean_half_width(values) / values.mean())
+    return worst

@@ -1,0 +1,181 @@
+"""The main job as a library call: a scheme comparison with its declared scenarios."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import json
+
+import numpy as np
+import xarray as xr
+
+from ..scenarios import DECLARED
+from ..sensitivity import sobol
+from . import ISO_SCHEMES, Study
+
+#: Engines of the mechanical chain in a scenario that disturbs it (misalignment); the
+#: clearance-only scenarios run no mechanics.
+SCENARIO_MECHANICS_ENGINES = 50
+#: Crank-angle step of the film and life Sobol samples [deg]: coarser than a study's, as ranking the inputs
+#: needs the cycle's shape, not its last tenth of a micrometre.
+SOBOL_CRANK_ANGLE_STEP = 4.0
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """What the main job computes; every part is a dataset, so a report needs nothing else.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        The study (every engine kept).
+    scenarios : dict of str -> xarray.Dataset
+        The same study under each declared scenario, with the same seed
+        (common random numbers), as streaming summaries.
+    sensitivity : xarray.Dataset
+        Sobol indices of the root inputs per output and scheme (:func:`sensitivity_dataset`).
+    tails : xarray.Dataset
+        Shares of bearings beyond each edge of the design window per scheme,
+        by subset simulation (:func:`tails_dataset`), which the ranking uses
+        where the study counts too few bearings outside the window.
+    """
+
+    dataset: xr.Dataset
+    scenarios: dict
+    sensitivity: xr.Dataset
+    tails: xr.Dataset
+
+
+def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
+            progress=None, log=None, **study_options):
+    """Compare selective-fitting schemes on an engine: the study, its scenarios and what drives the spread.
+
+    Parameters
+    ----------
+    engine : str or path
+        Built-in engine name or engine TOML file.
+    schemes : sequence of str or path
+    n_engines : int
+    seed : int
+    scenarios : dict of str -> dict
+        Label -> scenario (:mod:`stackup.scenarios`); each is run with the
+        same seed on the clearance stages, and on
+        :data:`SCENARIO_MECHANICS_ENGINES` engines of the mechanical chain
+        where it disturbs that chain (misalignment). Empty for none.
+    progress : bool or None
+        Progress bars (None: only on a terminal).
+    log : callable or None
+        Called with one line of text as each stage starts (the study, each
+        scenario, the sensitivity), e.g. ``print`` for logs.
+    **study_options
+        Further :class:`~stackup.study.Study` parameters.
+
+    Returns
+    -------
+    Comparison
+    """
+    log = log or (lambda line: None)
+    study = Study(engine=engine, schemes=tuple(schemes), n_engines=n_engines, seed=seed, progress=progress,
+                  **study_options)
+    log(f"study: {study.n_engines:,} engines x {len(study.schemes)} schemes")
+    ds = study.run()
+    runs = {}
+    for k, (label, change) in enumerate((scenarios or {}).items(), start=1):
+        log(f"scenario {k}/{len(scenarios)}: {label}")
+        runs[label] = replace(study, scenario=change, keep="summaries",
+                              mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
+    log("tails: shares beyond the design window by subset simulation")
+    tails = tails_dataset(engine, schemes, window=study_options.get("window"), seed=seed,
+                          pilot_engines=study.pilot_engines)
+    log("sensitivity: Sobol indices of the root inputs")
+    sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails)
+    return Comparison(ds, runs, sensitivity, tails)
+
+
+def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1024, n_film=64,
+                        tails=None):
+    """Sobol indices of the root inputs (:func:`stackup.sensitivity.sobol`) for the comparison's schemes.
+
+    The operating clearance (bearing 1; every position is alike) for every
+    scheme; the engine's smallest film and its life for the scheme the
+    ranking puts first (one run of the mechanical chain gives both). Variables
+    on (output, scheme, input): ``S1``, ``ST`` and their 95 % bootstrap
+    bounds ``*_lo``, ``*_hi``; NaN where an output was not analysed.
+    """
+    from ..rank import rank
+
+    params = json.loads(ds.attrs["study"])
+    engine = params["engine"] if engine is None else engine
+    schemes = [str(s) for s in ds.scheme.values]
+    frames = {}
+    for scheme in schemes:
+        frames[("clearance_operating", scheme)] = sobol(engine, scheme, n=n_clearance, seed=seed, scenario=scenario,
+                                                        pilot_engines=params["pilot_engines"])
+    if int(ds.attrs.get("mechanics_engines_used", 0)) and n_film:
+        best = rank(ds, tails=tails).index[0]
+        both = sobol(engine, best, output="h_min", n=n_film, seed=seed, scenario=scenario, return_all=True,
+                     crank_angle_step=max(params["crank_angle_step"], SOBOL_CRANK_ANGLE_STEP),
+                     crank_method=params["crank_method"],
+                     film_method=ds.attrs["film_method_used"], pilot_engines=params["pilot_engines"])
+        frames.update({(output, best): frame for output, frame in both.items()})
+    outputs = list(dict.fromkeys(output for output, _ in frames))
+    inputs = list(dict.fromkeys(i for frame in frames.values() for i in frame.index))
+    columns = ("S1", "S1_lo", "S1_hi", "ST", "ST_lo", "ST_hi")
+    values = {c: np.full((len(outputs), len(schemes), len(inputs)), np.nan) for c in columns}
+    evaluations = np.zeros((len(outputs), len(schemes)), np.int64)
+    for (output, scheme), frame in frames.items():
+        i, j = outputs.index(output), schemes.index(scheme)
+        for c in columns:
+            values[c][i, j] = frame[c].reindex(inputs).to_numpy()
+        evaluations[i, j] = frame.attrs["evaluations"]
+    dims = ("output", "scheme", "input")
+    names = {"S1": "first-order Sobol index (share of the variance the input explains alone)",
+             "ST": "total Sobol index (share of the variance the input explains with its interactions)"}
+    data = {c: (dims, values[c], {"units": "1", "long_name": names[c] if c in names else
+                                  f"{'lower' if c.endswith('lo') else 'upper'} 95 % bootstrap bound of {c[:2]}"})
+            for c in columns}
+    data["evaluations"] = (dims[:2], evaluations, {"units": "1", "long_name": "engines through the chain"})
+    coords = {"output": ("output", outputs, {"long_name": "output variable (h_min, life: the engine's weakest bearing)"}),
+              "scheme": ("scheme", schemes, {"long_name": "selective-fitting scheme"}),
+              "input": ("input", inputs, {"long_name": "root input (stackup.study.roots)"})}
+    return xr.Dataset(data, coords=coords, attrs={"method": "Sobol indices on root inputs through the assembly "
+                                                            "chain (stackup.sensitivity.sobol, SALib)", "seed": seed})
+
+
+def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=1_000):
+    """Share of bearings below and above the design window per scheme, by subset simulation (:mod:`stackup.tail`).
+
+    Variables on (scheme, side): ``tail_share``, its ``tail_standard_error``
+    and 95 % interval (``tail_interval`` on ``bound``; where no sample reaches
+    the tail the share is 0 with an upper bound and no standard error), with
+    the chain evaluations each estimate cost (``tail_bearings``).
+    """
+    from ..engines import load_engine
+    from ..schemes import load as load_scheme
+    from ..tail import clearance_tail
+
+    engine = load_engine(engine)
+    window = engine.clearance_window if window is None else window
+    loaded = [load_scheme(s) for s in schemes]
+    sides = ("lower", "upper")
+    shares, errors, cost = (np.full((len(loaded), 2), np.nan) for _ in range(3))
+    interval = np.full((len(loaded), 2, 2), np.nan)
+    for i, scheme in enumerate(loaded):
+        for j, side in enumerate(sides):
+            if not np.isfinite(window[j]) or (side == "lower" and window[j] <= 0):
+                continue
+            t = clearance_tail(engine, scheme, side=side, threshold=window[j], seed=seed,
+                               pilot_engines=pilot_engines, n_level=n_level)
+            shares[i, j], errors[i, j], cost[i, j] = t.share, t.standard_error, t.bearings
+            interval[i, j] = t.interval
+    dims = ("scheme", "side")
+    return xr.Dataset(
+        {"tail_share": (dims, shares, {"units": "1", "long_name": "share of assembled bearings beyond the window edge "
+                                                                   "(subset simulation)"}),
+         "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
+         "tail_interval": ((*dims, "bound"), interval, {"units": "1", "long_name": "95 % interval of tail_share"}),
+         "tail_bearings": (dims, cost, {"units": "1", "long_name": "chain evaluations of the estimate"})},
+        coords={"scheme": ("scheme", [s.name for s in loaded], {"long_name": "selective-fitting scheme"}),
+                "side": ("side", list(sides), {"long_name": "edge of the design window"}),
+                "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"})},
+        attrs={"window": list(map(float, window)), "method": "subset simulation (stackup.tail)", "seed": seed})

@@ -1,0 +1,241 @@
+"""Every variable a study dataset can hold, declared once: name, dimensions, units, long name, flags.
+
+The full dataset (every engine kept) and the streaming summaries build their
+variables from this table, so a variable reads the same in both. A variable
+of each sampled engine has ``"engine"`` among its dimensions; the results of
+the mechanical chain (crankshaft, film, life), which runs on the first
+engines only, have ``"mech_engine"`` instead, whose coordinate is the number
+of the engine on ``"engine"``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from ..assembly import NOT_GRADED, STATUS
+from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+from ..film.cycle import FILM_STATUS
+from ..film.heat import STATUS as HEAT_STATUS
+
+#: Film status in a dataset: the film stage's codes, then bearings the stage did not run on.
+FILM_STATUS_FLAGS = (*FILM_STATUS, "not_computed")
+
+SED = ("scheme", "engine", "bearing")
+SMB = ("scheme", "mech_engine", "bearing")
+ED = ("engine", "bearing")
+SG = ("scheme", "shell_grade")
+#: Fixed-width string type of grade labels in a study dataset.
+LABEL_DTYPE = "<U2"
+#: Resolution a compact file keeps of per-bearing values, by units (:func:`stackup.io.save`): 10 nm is
+#: a fiftieth of the gauges' repeatability (0.5 um) and a hundredth of their read-out, 10 kPa a
+#: thousandth of a shell's contact pressure, 1 N a ten-thousandth of a main bearing's load.
+STORED_RESOLUTION = {"m": 1e-8, "Pa": 1e4, "N": 1.0, "degC": 1e-2}
+
+
+@dataclass(frozen=True)
+class Var:
+    """A dataset variable's declaration."""
+
+    dims: tuple
+    units: str
+    long_name: str
+    flags: tuple = ()  # CF flag meanings of an integer status, by code
+    dtype: str = "f8"
+    fill: object = np.nan  # value until a stage fills it (a chunk's arrays start with it)
+
+    def __call__(self, data, *, dims=None, **attrs):
+        """The variable with ``data`` (on ``dims`` if given), its units, long name and flags."""
+        flags = {}
+        if self.flags:
+            flags = {"flag_values": np.arange(len(self.flags), dtype=np.int8), "flag_meanings": " ".join(self.flags)}
+        return xr.Variable(dims or self.dims, data, {"units": self.units, "long_name": self.long_name, **flags,
+                                                     **attrs})
+
+    def empty(self, sizes):
+        """An array of this variable's shape for dimension ``sizes`` (dim -> length), filled with ``fill``."""
+        return np.full(tuple(sizes[d] for d in self.dims), self.fill, self.dtype)
+
+    @property
+    def engine_axis(self):
+        """Position of the engine dimension (``engine`` or ``mech_engine``)."""
+        return next(i for i, d in enumerate(self.dims) if d in ("engine", "mech_engine"))
+
+
+#: Per-bearing results of the mechanical chain (crankshaft, film, life).
+MECHANICS = {
+    "reaction_max": Var(SMB, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
+    "h_min": Var(SMB, "m", "minimum oil film thickness in the bearing's mid-plane over the engine cycle (the film "
+                           "tier of film_method_used)"),
+    "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness (the film of Levanov's method 1)"),
+    "h_min_edge": Var(SMB, "m", "minimum oil film thickness over the bearing width and the engine cycle, with the "
+                                "journal's tilt (edge film)"),
+    "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min - h_min_edge"),
+    "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (crankshaft slope "
+                                "at the support)"),
+    "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle"),
+    "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "
+                                 "orbit became periodic, and why not)", FILM_STATUS_FLAGS, "i1",
+                       len(FILM_STATUS)),
+    "law_fit_error": Var(SMB, "m", "rms displacement error of the bearing law fitted to the bearing's steady film "
+                                   "(NaN: the engine's law, bearing_law='paper')"),
+    "alpha": Var(SMB, "1", "share of the cycle with the film below the critical film (boundary friction)"),
+    "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 on the film the study names (life_film)"),
+    "life_wear_chart": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 2 (wear chart over the bearing "
+                                     "surface, Greenwood-Tripp asperity contact; inf: never in boundary friction)"),
+    "wear_rate": Var(SMB, "m s-1", "wear speed of the deepest point of the bearing surface (method 2)"),
+    "film_temperature": Var(SMB, "degC", "effective oil film temperature (heat balance with feed and side flow)"),
+    "friction_power": Var(SMB, "W", "friction power of the film, cycle mean"),
+    "oil_flow": Var(SMB, "m3 s-1", "oil flow through the bearing (feed and side flow), cycle mean"),
+    "feed_flow": Var(SMB, "m3 s-1", "pressure-driven feed flow through the groove or hole, cycle mean"),
+    "heat_status": Var(SMB, "1", "status of the bearing's heat balance", HEAT_STATUS, "i1", 0),
+    "film_valid": Var(SMB, "1", "the film tier was inside its checked range at every crank angle", dtype="?",
+                      fill=False),
+    "crank_status": Var(("scheme", "mech_engine"), "1", "status of the crankshaft beam stage", CYCLE_STATUS, "i1",
+                        NOT_COMPUTED),
+}
+
+#: Press-fit results per bearing.
+FIT = {
+    "contact_pressure": Var(SED, "Pa", "contact pressure between shell backs and housing bore in service"),
+    "shell_stress": Var(SED, "Pa", "mean compressive hoop stress of the shell wall in service (positive in compression)"),
+    "housing_swell": Var(SED, "m", "elastic growth of the housing bore diameter from the shell press fit"),
+    "bore_in_service": Var(SED, "m", "housing bore diameter at operating temperature, swell included"),
+    "clearance_operating": Var(SED, "m", "diametral operating clearance: press fit, swell and temperature "
+                                         "(NaN where status is not assembled)"),
+}
+
+#: Variables of the dataset that keeps every engine, in dataset order.
+FULL = {
+    "housing_bore": Var(ED, "m", "housing bore diameter (true)"),
+    "housing_bore_reading": Var(ED, "m", "housing bore diameter as read by the gauge"),
+    "journal_d": Var(ED, "m", "journal diameter (true)"),
+    "journal_d_reading": Var(ED, "m", "journal diameter as read by the gauge"),
+    "block_scrapped": Var(("engine",), "1", "block scrapped: a bore read outside its drawing limits", dtype="?",
+                          fill=False),
+    "crank_scrapped": Var(("engine",), "1", "crankshaft scrapped: a journal read outside its drawing limits",
+                          dtype="?", fill=False),
+    "housing_grade": Var(SED, "1", "housing bore grade (empty: not graded)", dtype=LABEL_DTYPE, fill=""),
+    "journal_grade": Var(SED, "1", "journal grade (empty: not graded)", dtype=LABEL_DTYPE, fill=""),
+    "shell_upper_grade": Var(SED, "1", "upper shell grade fitted (empty: none)", dtype=LABEL_DTYPE, fill=""),
+    "shell_lower_grade": Var(SED, "1", "lower shell grade fitted (empty: none)", dtype=LABEL_DTYPE, fill=""),
+    "shell_upper_wall": Var(SED, "m", "upper shell crown wall thickness (true; NaN where status says none fitted)"),
+    "shell_lower_wall": Var(SED, "m", "lower shell crown wall thickness (true; NaN where status says none fitted)"),
+    "shell_upper_crush": Var(SED, "m", "crush height of the upper shell (NaN where none fitted)"),
+    "shell_lower_crush": Var(SED, "m", "crush height of the lower shell (NaN where none fitted)"),
+    "clearance_nominal": Var(SED, "m", "nominal diametral clearance D_H - (s_upper + s_lower + D_J), no swell "
+                                       "(NaN where status is not assembled)"),
+    **FIT,
+    "loss_of_fit": Var(SED, "1", "the shells have no interference left at operating temperature", dtype="?",
+                       fill=False),
+    "bore_offset": Var(("engine", "bearing", "axis"), "m", "housing bore centre off the straight bearing line (coaxiality)"),
+    "journal_eccentricity": Var(("engine", "bearing", "axis"), "m",
+                                "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
+    **MECHANICS,
+    "status": Var(SED, "1", "assembly status of the bearing", STATUS, "i1", NOT_GRADED),
+    "shell_option": Var(SED, "1", "shell pair used: 0 preferred, k > 0 the scheme's k-th alternative, -1 none",
+                        dtype="i1", fill=-1),
+    "shells_made": Var(SG, "1", "shells made and sorted into the grade"),
+    "shells_used": Var(SG, "1", "shells of the grade fitted to bearings"),
+    "shells_left": Var(SG, "1", "shells of the grade left in stock at the ends of the lots"),
+    "shells_scrapped": Var(("scheme",), "1", "shells read outside every grade of the scheme (scrapped)"),
+    "grade_in_scheme": Var(SG, "1", "the scheme has this shell grade"),
+    "clearance_stated": Var(("scheme", "bound"), "m", "clearance range stated by the scheme's source"),
+    "clearance_limit": Var(("scheme", "bound"), "m", "worst-case nominal clearance over the scheme's allowed combinations"),
+    "reading_resolution": Var(("scheme", "part"), "m", "step the scheme reads housing bores and journals to "
+                                                         "(0: continuous); readings round to the nearest step"),
+}
+
+#: Histories over the cycle of the engines of the mechanical chain (``Study(history=True)``).
+HISTORY = {
+    "load_history": Var((*SMB, "crank_angle", "axis"), "N",
+                        "bearing load over the cycle (force of the journal on the bearing)"),
+    "h_min_history": Var((*SMB, "crank_angle"), "m", "minimum oil film thickness over the cycle"),
+}
+
+#: Variables a chunk computes for each of its engines.
+PER_ENGINE = {name: var for name, var in FULL.items() if "engine" in var.dims}
+#: Variables a chunk computes for each of its engines in the mechanical chain (histories on request).
+PER_MECH = {**MECHANICS, **HISTORY}
+
+#: Grade labels (fixed-width strings; stored as int8 codes, :mod:`stackup.study.store`).
+LABELS = ("housing_grade", "journal_grade", "shell_upper_grade", "shell_lower_grade")
+
+#: Bins of the clearance histograms of the streaming summaries: from BIN_START [m], BIN_WIDTH [m] wide.
+BIN_START, BIN_WIDTH, BINS = 0.0, 0.1e-6, 3000  # up to 300 um
+#: Bearings the streaming summaries keep at each end of the operating clearance.
+WORST = 20
+
+#: Streaming summaries (``keep="summaries"``): the counts, extremes and moments they reduce to.
+SUMMARY = {
+    **{f"clearance_{label}_histogram": Var(("scheme", "clearance_bin"), "1", f"assembled bearings per "
+                                           f"{BIN_WIDTH * 1e6:g} um bin of the {label} clearance")
+       for label in ("nominal", "operating")},
+    **{f"clearance_{label}_mean": Var(("scheme",), "m", f"mean {label} diametral clearance")
+       for label in ("nominal", "operating")},
+    **{f"clearance_{label}_std": Var(("scheme",), "m", f"standard deviation of the {label} diametral clearance")
+       for label in ("nominal", "operating")},
+    **{f"worst_{side}": Var(("scheme", "rank", "field"), "mixed",
+                            f"the {WORST} bearings with the {extreme} operating clearance and their inputs "
+                            "(see field; lengths in m)")
+       for side, extreme in (("low", "smallest"), ("high", "largest"))},
+    "status_count": Var(("scheme", "status"), "1", "bearings per assembly status"),
+    "outside_window_count": Var(("scheme",), "1",
+                                "assembled bearings with the operating clearance outside the design window"),
+    "loss_of_fit_count": Var(("scheme",), "1", "assembled bearings whose shells have no interference left in service"),
+    "low_contact_pressure_count": Var(("scheme",), "1",
+                                      "assembled bearings with contact pressure below design_contact_pressure_min"),
+    "high_shell_stress_count": Var(("scheme",), "1", "assembled bearings with shell stress above design_shell_stress_max"),
+    "contact_pressure_min": Var(("scheme",), "Pa", "lowest contact pressure of an assembled bearing"),
+    "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing"),
+    "housing_swell_mean": Var(("scheme",), "m", "mean elastic growth of the housing bore from the press fit"),
+    "housing_swell_std": Var(("scheme",), "m", "standard deviation of the growth of the housing bore from the press fit"),
+    "clearance_operating_sampled": Var(SMB, "m", "diametral operating clearance of the bearings of the mechanical chain"),
+}
+
+
+
+def flag(variable, meaning):
+    """The code of ``meaning`` in a status variable's CF ``flag_meanings`` (e.g. ``flag(ds.status, "assembled")``)."""
+    meanings = variable.attrs["flag_meanings"].split()
+    if meaning not in meanings:
+        raise ValueError(f"{variable.name}: {meaning!r} is not one of its flags ({', '.join(meanings)})")
+    return int(variable.attrs["flag_values"][meanings.index(meaning)])
+
+
+#: The engine's design data every study dataset carries, with units (not as attributes, which have none).
+DESIGN = {
+    "clearance_window": Var(("bound",), "m", "design window of the diametral operating clearance"),
+    "life_target": Var((), "s", "bearing life the engine asks for"),
+    "crush_height_limits": Var(("bound",), "m", "drawing limits of the crush height of a half shell"),
+    "design_contact_pressure_min": Var((), "Pa", "least contact pressure between shell back and housing in service"),
+    "design_shell_stress_max": Var((), "Pa", "largest compressive hoop stress of the shell wall"),
+    "critical_film": Var((), "m", "critical film thickness h_lim,cr = Rz journal + Rz shell (Levanov et al. 2015, "
+                                  "eq. 3): below it, boundary friction"),
+}
+
+
+def design_variables(engine, *, contact_pressure_min, shell_stress_max):
+    """The :data:`DESIGN` variables of ``engine`` (its window, life target, crush limits and press-fit limits)."""
+    values = {"clearance_window": engine.clearance_window, "life_target": engine.life_target,
+              "crush_height_limits": (engine.shell_wall.crush.lo, engine.shell_wall.crush.hi),
+              "design_contact_pressure_min": contact_pressure_min, "design_shell_stress_max": shell_stress_max,
+              "critical_film": engine.wear.critical_film}
+    return {name: var(np.asarray(values[name], dtype=float)) for name, var in DESIGN.items()}
+
+
+def scheme_variables(schemes):
+    """The schemes' stated and worst-case clearance ranges, as every study dataset carries them."""
+    stated = np.array([s.stated_clearance if s.stated_clearance else (np.nan, np.nan) for s in schemes])
+    resolution = np.array([[s.housing.resolution, s.journal.resolution] for s in schemes])
+    return {"clearance_stated": FULL["clearance_stated"](stated),
+            "clearance_limit": FULL["clearance_limit"](np.array([s.clearance_limits() for s in schemes])),
+            "reading_resolution": FULL["reading_resolution"](resolution)}
+
+
+def mech_engine_coord(n):
+    """The ``mech_engine`` coordinate of a dataset whose mechanical chain ran on its first ``n`` engines."""
+    return ("mech_engine", np.arange(n), {"long_name": "engine of the mechanical chain (its number on the engine "
+                                                       "dimension)"})

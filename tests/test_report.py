@@ -1,0 +1,104 @@
+"""The report is a function of saved datasets alone: no sampling, no backend change, full or summary datasets."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import stackup
+from stackup.io import open_comparison, save_comparison
+from stackup.report import clearance_summary, fit_summary, write_report
+
+KW = dict(schemes=("iso13778-4", "iso13778-6"), n_engines=600, seed=4, pilot_engines=3000, mechanics_engines=12,
+          crank_angle_step=12.0, progress=False)
+SCENARIOS = {"bore mean +1σ": {"housing_shift": 1.0}, "misalignment ×2": {"misalignment_scale": 2.0}}
+
+
+@pytest.fixture(scope="module")
+def comparison():
+    return stackup.compare(**KW, scenarios=SCENARIOS)
+
+
+def _no_randomness(monkeypatch):
+    """Make every way of drawing random numbers raise."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("the report drew random numbers")
+
+    for name in ("Generator", "default_rng", "PCG64", "SeedSequence", "RandomState", "seed", "rand", "randn",
+                 "random", "choice", "normal", "integers"):
+        if hasattr(np.random, name):
+            monkeypatch.setattr(np.random, name, refuse)
+
+
+def test_compare_runs_the_study_its_scenarios_and_the_sensitivity(comparison):
+    assert list(comparison.scenarios) == list(SCENARIOS)
+    assert all(ds.attrs["kept"] == "summaries" for ds in comparison.scenarios.values())
+    assert comparison.scenarios["misalignment ×2"].attrs["mechanics_engines_used"] > 0
+    assert comparison.scenarios["bore mean +1σ"].attrs["mechanics_engines_used"] == 0
+    assert set(comparison.sensitivity.output.values) == {"clearance_operating", "h_min", "life"}
+
+
+def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison, tmp_path, monkeypatch):
+    path = save_comparison(comparison, tmp_path / "compare.nc", compact=False)  # exact: the same report
+    expected = write_report(comparison.dataset, tmp_path / "memory", scenarios=comparison.scenarios,
+                            sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
+    saved = open_comparison(path)
+    assert list(saved.scenarios) == list(SCENARIOS)
+    _no_randomness(monkeypatch)
+    text = write_report(saved.dataset, tmp_path / "saved", scenarios=saved.scenarios,
+                        sensitivity=saved.sensitivity, tails=saved.tails).read_text()
+    assert text == expected
+    assert "## Planning: shells per grade" in text and "misalignment ×2" in text
+
+
+def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
+    ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
+    text = write_report(ds, tmp_path).read_text()
+    assert "p < 20 MPa [ppm]" in text and "σ > 300 MPa [ppm]" in text and "engines < 2 h [%]" in text
+
+
+def test_report_of_streaming_summaries_agrees_and_says_what_needs_every_engine(tmp_path):
+    from dataclasses import replace
+
+    full = stackup.Study(**KW).run()
+    summary = replace(stackup.Study(**KW), keep="summaries").run()
+    text = write_report(summary, tmp_path).read_text()
+    assert "run the study with `keep=\"everything\"`" in text  # planning
+    assert "none was given" in text  # contributions
+    a, b = clearance_summary(full), clearance_summary(summary)
+    np.testing.assert_allclose(b.mean_um, a.mean_um, rtol=1e-9)
+    np.testing.assert_array_equal(b.outside_stated_ppm, a.outside_stated_ppm)  # stated ranges lie on the bin grid
+    np.testing.assert_allclose(b.median_um, a.median_um, atol=0.05 + 1e-9)  # within half a 0.1 um bin
+    fa, fb = fit_summary(full), fit_summary(summary)
+    np.testing.assert_array_equal(fb.low_pressure_ppm, fa.low_pressure_ppm)
+    np.testing.assert_allclose(fb.contact_pressure_min_mpa, fa.contact_pressure_min_mpa)
+
+
+def test_importing_the_report_leaves_the_matplotlib_backend_alone():
+    code = ("import matplotlib; matplotlib.use('svg'); import stackup.report, stackup.cli; "
+            "print(matplotlib.get_backend())")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "svg"
+
+
+def test_a_compact_file_keeps_every_variable_within_half_its_resolution(comparison, tmp_path):
+    from stackup.io import open_dataset, save
+    from stackup.study.schema import STORED_RESOLUTION
+
+    ds = comparison.dataset
+    exact, compact = save(ds, tmp_path / "exact.nc"), save(ds, tmp_path / "compact.nc", compact=True)
+    assert compact.stat().st_size < 0.5 * exact.stat().st_size  # 0.25 at the main job's size; headers weigh here
+    back = open_dataset(compact)
+    assert list(back.data_vars) == list(ds.data_vars)
+    for name, var in ds.data_vars.items():
+        if var.dtype.kind != "f":
+            np.testing.assert_array_equal(back[name].values, var.values)
+            continue
+        np.testing.assert_array_equal(np.isnan(back[name].values), np.isnan(var.values))  # NaN stays NaN
+        resolution = STORED_RESOLUTION.get(var.attrs["units"]) if var.ndim >= 2 else None
+        if resolution:
+            assert np.nanmax(np.abs(back[name].values - var.values)) <= 0.5 * resolution * (1 + 1e-6)
+        else:  # float32, or exact below two dimensions
+            np.testing.assert_allclose(back[name].values, var.values, rtol=2**-23)
+        assert back[name].attrs["units"] == var.attrs["units"]
