@@ -392,3 +392,21 @@ def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld
             if finite:
                 g *= math.exp(table_lookup(table, stretched, eps, alpha[k])[4])
             peak[b, k] = g * math.hypot(v[b, k, 0], v[b, k, 1])
+
+
+@njit(cache=True)
+def steady_peak_factors(eps, ld, tables, ld_nodes, stretched, finite, out):
+    """Peak-pressure factor of steady films (squeeze direction -pi/2), many at once; writes ``out``.
+
+    eps, ld (m,) eccentricity and L/D of each film; the short-bearing factor
+    :func:`peak_factor` times the finite tier's peak ratio where ``finite``
+    (the loops of the quasi-static tiers, compiled).
+    """
+    alpha = -0.5 * math.pi
+    for m in range(eps.shape[0]):
+        g = peak_factor(eps[m], alpha, 0.0)[0]
+        if finite:
+            i, t = _locate(ld_nodes, ld[m])
+            table = (1.0 - t) * tables[i] + t * tables[i + 1]
+            g *= math.exp(table_lookup(table, stretched, eps[m], alpha)[4])
+        out[m] = g

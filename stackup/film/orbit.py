@@ -395,32 +395,18 @@ def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity,
     else:
         film = min_film_thickness(np.maximum(magnitude, 1e-6), **kw, method=steady)
         eps = np.minimum(film.eccentricity, ECCENTRICITY_LIMIT)
-        field_peak = 0.5 * eps * _peak(eps, np.full(eps.shape, -0.5 * np.pi))  # v_s = (1/2) k x xi: |v| = eps/2
-        if steady == "finite":
-            ld_nodes, stretched, tables = mobility_table()
-            field_peak = field_peak * _table_peak_ratio(np.broadcast_to(l / (2 * r), eps.shape), eps, ld_nodes,
-                                                        stretched, tables)
-        field_peak = 1.5 * mu * w * (l / c) ** 2 * field_peak
+        ld_nodes, stretched, tables = mobility_table() if steady == "finite" else _short_table()
+        flat_eps = np.ascontiguousarray(eps, dtype=float).ravel()
+        factor = np.empty(flat_eps.size)
+        _kernel.steady_peak_factors(flat_eps, np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape),
+                                                                   dtype=float).ravel(),
+                                    tables, ld_nodes, stretched, steady == "finite", factor)
+        # v_s = (1/2) k x xi: |v| = eps/2
+        field_peak = 1.5 * mu * w * (l / c) ** 2 * 0.5 * eps * factor.reshape(eps.shape)
     direction = np.arctan2(loads[..., 1], loads[..., 0]) + film.attitude_angle
     ecc = np.where(magnitude > 0, film.eccentricity, 0.0)
     position = (c * ecc)[..., None] * np.stack([np.cos(direction), np.sin(direction)], axis=-1)
     return position, field_peak, film.friction_torque, film.side_flow
-
-
-def _peak(eps, alpha):
-    out = np.empty(np.shape(eps))
-    for idx in np.ndindex(out.shape):
-        out[idx] = _kernel.peak_factor(float(eps[idx]), float(alpha[idx]), 0.0)[0]
-    return out
-
-
-def _table_peak_ratio(ld, eps, ld_nodes, stretched, tables):
-    out = np.empty(np.shape(eps))
-    for idx in np.ndindex(out.shape):
-        i, t = _kernel._locate(ld_nodes, float(ld[idx]))
-        table = (1 - t) * tables[i] + t * tables[i + 1]
-        out[idx] = np.exp(_kernel.table_lookup(table, stretched, float(eps[idx]), -0.5 * np.pi)[4])
-    return out
 
 
 def _steady_reynolds(load, *, diameter, length, clearance, viscosity, speed):

@@ -118,3 +118,16 @@ def test_every_film_method_is_a_study_method_and_auto_picks_a_measured_dynamic_t
 def test_unknown_film_method_is_refused():
     with pytest.raises(ValueError, match="method"):
         films(engine_like_load(), "steady")
+
+
+def test_a_collapsed_or_unsettled_orbit_reads_back_from_the_dataset_variable_by_its_reason():
+    from stackup.study.schema import MECHANICS, flag
+
+    collapsed = films(turning(8e3, 0.5), "mobility-finite").status  # (1 engine, 1 bearing)
+    var = MECHANICS["film_status"](collapsed[None], dims=("scheme", "mech_engine", "bearing"))
+    import xarray as xr
+
+    da = xr.DataArray(var, name="film_status")
+    assert int(da.values[0, 0, 0]) == flag(da, "collapsed")
+    for reason in ("not_periodic", "failed", "edge_contact", "quasi_static", "not_computed"):
+        assert flag(da, reason) != flag(da, "collapsed")
