@@ -411,7 +411,7 @@ def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity,
 
 def _steady_reynolds(load, *, diameter, length, clearance, viscosity, speed):
     """Steady Reynolds tier at each angle, with the peak of its pressure field."""
-    from . import Film, reynolds
+    from . import ECCENTRICITY_VALID, Film, reynolds
 
     load, diameter, length, clearance, viscosity, speed = np.broadcast_arrays(load, diameter, length, clearance,
                                                                              viscosity, speed)
@@ -427,4 +427,5 @@ def _steady_reynolds(load, *, diameter, length, clearance, viscosity, speed):
         out["flow"][idx] = w * r**2 * c / 12 * flow
         out["peak"][idx] = mu * w * r**2 / c**2 * field.pressure.max()
     c = clearance / 2
-    return Film(out["eps"], c * (1 - out["eps"]), out["phi"], out["torque"], out["flow"]), out["peak"]
+    return Film(out["eps"], c * (1 - out["eps"]), out["phi"], out["torque"], out["flow"],
+                out["eps"] <= ECCENTRICITY_VALID), out["peak"]
