@@ -13,9 +13,12 @@ read, listing the valid ones, so a typo never runs silently with a default.
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from pathlib import Path
+
+from . import _validate as check
 
 #: Length units a file may declare, in m.
 UNITS = {"mm": 1e-3, "um": 1e-6, "m": 1.0}
@@ -92,7 +95,9 @@ class Table:
         self.valid.append(name)
         if name not in self.data:
             if required:
-                raise ValueError(f"{self._at(name)}: missing")
+                near = difflib.get_close_matches(name, [str(k) for k in self.data], n=1)
+                hint = f" (is {near[0]!r} a misspelling of it?)" if near else ""
+                raise ValueError(f"{self._at(name)}: missing{hint}")
             return default
         return self.data[name]
 
@@ -131,6 +136,15 @@ class Table:
         if below or above:
             lb, rb = "(" if lo_open else "[", ")" if hi_open else "]"
             raise ValueError(f"{self._at(name)}: {value:g}{unit} is outside the valid range {lb}{lo:g}, {hi:g}{rb}{unit}")
+        return value
+
+    def flag(self, name, default=None, *, required=False):
+        """A true/false value (a number or the text "false" is refused, never read as true)."""
+        value = self.get(name, default, required=required)
+        if value is None:
+            return None
+        if not isinstance(value, bool):
+            raise ValueError(f"{self._at(name)}: {value!r} is {_type_name(value)}, not true/false")
         return value
 
     def integer(self, name, default=None, *, required=False, lo=0, hi=10**12):
@@ -174,9 +188,10 @@ class Table:
         if count is not None and len(value) != count:
             raise ValueError(f"{self._at(name)}: {len(value)} values; give {count}")
         out = [self._length(name, v, scale, units, plausible, what) for v in value]
-        if increasing and any(b <= a for a, b in zip(out, out[1:])):
-            raise ValueError(f"{self._at(name)}: {value!r} {units} is not increasing (lower limit first, and a "
-                             "tolerance wider than zero)")
+        if increasing and len(out) == 2:  # drawing limits: the messages every limit check gives
+            check.limits(self._at(name), *value, unit=units)
+        elif increasing and any(b <= a for a, b in zip(out, out[1:])):
+            raise ValueError(f"{self._at(name)}: {value!r} {units} is not increasing")
         return out
 
     def close(self):
@@ -185,8 +200,11 @@ class Table:
         if unknown:
             where = f"{self.where}, key {self.path}" if self.path else self.where
             plural = "s" if len(unknown) > 1 else ""
+            valid = sorted(set(self.valid))
+            near = [m for k in unknown for m in difflib.get_close_matches(str(k), valid, n=1)]
+            hint = f"; did you mean {', '.join(map(repr, near))}?" if near else ""
             raise ValueError(f"{where}: unknown key{plural} {', '.join(map(repr, unknown))}; valid keys: "
-                             f"{', '.join(sorted(set(self.valid)))}")
+                             f"{', '.join(valid)}{hint}")
 
 
 def units_of(table):

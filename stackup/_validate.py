@@ -14,7 +14,13 @@ import numpy as np
 
 
 def finite(field, value):
-    """Return ``value`` as a float array; reject NaN and inf."""
+    """Return ``value`` as a float array; reject text, true/false, NaN and inf."""
+    raw = np.asarray(value)
+    if raw.dtype.kind in "USOb":  # "0.3" from a file is text: never converted silently
+        bad = [v for v in np.ravel(raw) if isinstance(v, (str, bytes, bool, np.bool_)) or v is None]
+        if bad or raw.dtype.kind in "USb":
+            shown = bad[0] if bad else value
+            raise ValueError(f"{field}: {shown!r} is not a number")
     arr = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(arr)):
         bad = float(arr[~np.isfinite(arr)].flat[0])
@@ -48,11 +54,14 @@ def in_range(field, value, lo, hi, *, lo_open=False, hi_open=False, unit=""):
 
 
 def limits(field, lo, hi, *, unit="m"):
-    """Check a pair of drawing limits and return them as floats."""
+    """Check a pair of drawing limits (a tolerance wider than zero) and return them as floats."""
     lo = float(finite(f"{field} lower limit", lo))
     hi = float(finite(f"{field} upper limit", hi))
     if hi < lo:
         raise ValueError(f"{field}: upper limit {hi:.6g} {unit} is below lower limit {lo:.6g} {unit}")
+    if hi == lo:
+        raise ValueError(f"{field}: [{lo:.6g}, {hi:.6g}] {unit} is a tolerance of zero width; give the lower and "
+                         "the upper limit")
     return lo, hi
 
 

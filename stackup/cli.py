@@ -1,92 +1,407 @@
-"""The ``stackup`` command: thin, it parses arguments and calls what a study script calls."""
+"""The ``stackup`` command: thin, it parses arguments and calls what a study script calls.
+
+Every output location is checked before anything is computed, and written
+whole or not at all (:mod:`stackup.output`). Exit codes: 0 done, 1 a store
+check found damage, 2 refused (bad input or output location), 130
+interrupted (Ctrl-C).
+"""
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
 
 from . import __version__
 
+#: Engines of ``stackup compare``, of ``stackup compare --quick`` and the fewest it runs: the report's 95 %
+#: intervals, the plan's safety stock and the sensitivity regression need about a hundred engines.
+COMPARE_ENGINES, QUICK_ENGINES, COMPARE_MIN_ENGINES = 100_000, 10_000, 100
+#: Output folders of ``stackup compare`` and ``stackup compare --quick`` (relative to the working folder).
+COMPARE_OUT, QUICK_OUT = "reports/compare", "reports/compare-quick"
+EXIT_DAMAGED, EXIT_REFUSED, EXIT_INTERRUPTED = 1, 2, 130
+#: Library parameter names as the command line spells them, for the messages.
+OPTIONS = {"n_engines": "--n", "volume": "--volume", "service_level": "--service-level", "lot_engines": "--lot",
+           "sample_engines": "--sample", "seed": "--seed", "part": "--part", "window": "--window"}
 
-def _compare(args):
-    from .io import save_comparison
+
+class _State:
+    """The stage under way and what a Ctrl-C now leaves behind, in words (each command keeps them current)."""
+
+    stage = ""
+    saved = "nothing was saved"
+
+    def interrupted(self):
+        return f"stackup: interrupted{f' during {self.stage}' if self.stage else ''}; {self.saved}"
+
+
+class _Log:
+    """One plain line per stage on stdout, with the time since the start (for logs and terminals alike)."""
+
+    def __init__(self, state):
+        self.start, self.state = time.perf_counter(), state
+
+    def __call__(self, line):
+        self.state.stage = line.split(":")[0]
+        print(f"[{time.perf_counter() - self.start:7.1f} s] {line}", flush=True)
+
+
+def _compare(args, state):
+    import numpy as np
+
+    import stackup
+
+    from .engines import load_engine
+    from .io import open_comparison, save_comparison
+    from .output import prepare_folder
     from .report import clearance_summary, write_report
     from .scenarios import DECLARED
+    from .schemes import load as load_scheme
     from .study import ISO_SCHEMES
-    from .study.compare import compare
 
-    n = args.n if args.n is not None else (10_000 if args.quick else 100_000)
-    t0 = time.perf_counter()
-    result = compare(engine=args.engine, schemes=args.schemes or ISO_SCHEMES, n_engines=n, seed=args.seed,
-                     scenarios={} if args.no_scenarios else DECLARED)
-    elapsed = time.perf_counter() - t0
-    out = Path(args.out)
-    data = save_comparison(result, out / "compare.nc")
-    report = write_report(result.dataset, out, scenarios=result.scenarios, sensitivity=result.sensitivity, tails=result.tails,
-                          dataset_file=data.name)
-    ds = result.dataset
-    summary = clearance_summary(ds)
-    print(f"{n:,} engines x {ds.sizes['bearing']} bearings x {ds.sizes['scheme']} schemes in {elapsed:.1f} s")
-    for name, row in summary.iterrows():
-        print(f"  {name:<14} mean {row.mean_um:6.2f} um  std {row.std_um:5.2f} um  "
-              f"outside stated {row.outside_stated_ppm:9.0f} ppm")
-    print(f"dataset: {data}\nreport:  {report}")
+    n = args.n if args.n is not None else (QUICK_ENGINES if args.quick else COMPARE_ENGINES)
+    out = args.out if args.out is not None else (QUICK_OUT if args.quick else COMPARE_OUT)
+    window = _window(args.window)
+    schemes = tuple(args.schemes or ISO_SCHEMES)
+    scenarios = {} if args.no_scenarios else DECLARED
+    load_engine(args.engine)  # a bad engine or scheme is said before any folder is touched
+    for scheme in schemes:
+        load_scheme(scheme)
+    design = None if args.no_design else {}
+    identity = {"engine": args.engine, "schemes": list(schemes), "n_engines": n, "seed": args.seed,
+                "window": list(window) if window else None, "scenarios": list(scenarios), "design": design}
+    existed = os.path.isdir(out)
+    staged = prepare_folder(out, identity=identity, force=args.force)
+    state.saved = f"nothing was saved: {out} {'is as it was' if existed else 'was not created'}"
+    log = _Log(state)
+    try:
+        result = stackup.compare(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed,
+                                 scenarios=scenarios, design=design, log=log, window=window)
+        log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
+        data = save_comparison(result, staged.staging / "compare.nc")
+        log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
+        saved = open_comparison(data)  # the report reads what was saved, nothing else
+        write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
+                     tails=saved.tails, dataset_file=data.name)
+        folder = staged.commit()
+    except BaseException:
+        staged.discard()
+        raise
+    state.stage, state.saved = "", f"{out} was written"
+    ds = saved.dataset
+    print(f"{n:,} engines x {ds.sizes['bearing']} bearings x {ds.sizes['scheme']} schemes in "
+          f"{time.perf_counter() - log.start:.1f} s")
+    for name, row in clearance_summary(ds).iterrows():
+        stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
+                  "        — (no stated range)")
+        print(f"  {name:<20} mean {row.mean_um:6.2f} um  std {row.std_um:5.2f} um  outside stated {stated}")
+    print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")
     return 0
 
 
-def _plan(args):
-    from .plan import plan
+def _window(window_um):
+    """The --window in m from LO HI in um, or None."""
+    if window_um is None:
+        return None
+    lo, hi = window_um
+    if not 0.0 < lo < hi < 1000.0:
+        raise ValueError(f"--window: {lo:g} {hi:g} um is not a clearance window; give LO HI in micrometres with "
+                         "0 < LO < HI < 1000, e.g. --window 45 65")
+    return lo / 1e6, hi / 1e6
 
+
+def _plan(args, state):
+    from .output import prepare_file, write_file
+    from .plan import plan, planner_table, planner_text
+
+    if args.force and args.csv in (None, "-"):
+        raise ValueError("--force: replaces an existing --csv FILE; without --csv FILE nothing is replaced")
+    csv = prepare_file(args.csv, force=args.force) if args.csv not in (None, "-") else None
     frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
                  lot_engines=args.lot, sample_engines=args.sample, seed=args.seed, part=args.part)
-    a = frame.attrs
-    if args.part != "shell":
-        print(f"scheme {a['scheme']} on {a['engine']}: {args.part} grades for {a['volume']:,} engines "
-              f"(ungradable share {a['ungradable_share']:.2e})")
-        print(frame.round(4).to_string())
+    table = planner_table(frame)
+    if args.csv == "-":
+        sys.stdout.write(table.to_csv())
         return 0
-    print(f"scheme {a['scheme']} on {a['engine']}: {a['volume']:,} engines, shells made {a['shells_made']:,} "
-          f"({a['supply']}), lots of {a['lot_engines']} engines, service level {a['service_level']:.3g}")
-    table = frame[["demand_per_1000", "demand_per_1000_lo", "demand_per_1000_hi", "production_share", "made",
-                   "demanded", "surplus", "safety_stock", "order_up_to"]].round(1)
-    table["production_share"] = frame["production_share"].round(4)
-    print(table.to_string())
-    print("(per grade: demand per 1000 engines with its 95 % interval; made, demanded and surplus for the volume; "
-          "safety stock and order-up-to level per lot)")
+    print(planner_text(table))
+    if csv is not None:
+        write_file(csv, table.to_csv())
+        print(f"\nThe table is in {csv} (CSV, one row per grade).")
     return 0
+
+
+def _engines(args, state):
+    from .engines import _builtin_dir, engine_locations, load_engine
+
+    def describe(path):
+        engine = load_engine(path)
+        return engine.title or engine.name
+
+    _listing("engines", "STACKUP_ENGINE_PATH", engine_locations(), _builtin_dir(), describe)
+    return 0
+
+
+def _schemes(args, state):
+    from .schemes import _builtin_dir, files, load
+
+    def describe(path):
+        scheme = load(path)
+        text = scheme.title or scheme.name
+        if scheme.stated_clearance:
+            lo, hi = scheme.stated_clearance
+            text += f"; stated clearance {lo * 1e6:g}-{hi * 1e6:g} um"
+        return text + f"; shell grades {', '.join(scheme.shell.labels)}"
+
+    _listing("schemes", "STACKUP_SCHEME_PATH", files(), _builtin_dir(), describe)
+    return 0
+
+
+def _listing(what, variable, found, builtin, describe):
+    """Print the built-in files and those a user's folder adds (or replaces), each with a line about it."""
+    folders = [p for p in os.environ.get(variable, "").split(os.pathsep) if p]
+
+    def line(name, path, note=""):
+        try:
+            about = describe(path)
+        except (ValueError, OSError) as error:
+            about = f"cannot be read: {error}"
+        return f"  {name:<20} {about}{note}"
+
+    builtin_names = sorted(p.stem for p in builtin.glob("*.toml"))
+    print(f"Built-in {what}:")
+    for name in builtin_names:
+        shadow = found[name].parent != builtin
+        print(line(name, builtin / f"{name}.toml", f" (replaced by {found[name]})" if shadow else ""))
+    if not folders:
+        print(f"{variable} is not set: put your own {what} (TOML files) in a folder and name it in {variable} "
+              f"(several folders separated by {os.pathsep!r}); they are then found by name like the built-in ones.")
+        return
+    for folder in folders:
+        if not os.path.isdir(folder):
+            print(f"From {variable}: {folder}: not a folder (ignored)")
+            continue
+        mine = sorted(Path(folder).glob("*.toml"))
+        print(f"From {variable}: {folder}:" + ("" if mine else " (none)"))
+        for path in mine:
+            name = path.stem
+            if not found[name].samefile(path):
+                note = f" (replaced by {found[name]})"
+            else:
+                note = " (replaces the built-in one)" if name in builtin_names else ""
+            print(line(name, path, note))
+
+
+def _store_check(args, state):
+    from .study.damage import check, status
+
+    state.saved = "nothing was changed"
+    print(_store_status(args.path, status(args.path)))
+    damages = check(args.path)
+    if not damages:
+        print("Every chunk was read: no damage found.")
+        return 0
+    print(f"{len(damages)} damaged chunk{'s' if len(damages) > 1 else ''}:")
+    for damage in damages:
+        print(f"  {damage.where()}: {damage.error}")
+    for remedy in dict.fromkeys(d.remedy(args.path) for d in damages):
+        print(f"To recover: {remedy}.")
+    return EXIT_DAMAGED
+
+
+def _store_repair(args, state):
+    from .study.damage import repair
+
+    state.saved = f"the repair may be partial: run `stackup store repair {args.path}` again"
+    damages = repair(args.path)
+    if not damages:
+        print(f"{args.path}: every chunk was read, no damage found; nothing to repair.")
+        return 0
+    for damage in damages:
+        done = (f"study chunk {damage.study_chunk:06d} marked to be computed again" if damage.recovery == "recompute"
+                else {"coordinate": "engine numbers rewritten",
+                      "restart": "saved running total dropped"}.get(damage.recovery, "left as it is"))
+        print(f"  {damage.where()}: {done}")
+    kinds = {d.recovery for d in damages}
+    if kinds & {"recompute", "restart", "rerun"}:
+        print(f"Now run the same study with store={args.path!r} again: it computes what was marked and keeps the "
+              "rest.")
+    if "none" in kinds:
+        print("This store was saved whole, not streamed by a study: save the dataset again.")
+    return 0
+
+
+def _store_status(path, st):
+    if st.study is None:
+        return f"{path}: a Zarr store not streamed by a study ({'complete' if st.finished else 'no dataset attributes'})"
+    s = st.study
+    kept = "every engine kept" if s.get("keep") == "everything" else "streaming summaries"
+    text = f"{path}: a study of {s['n_engines']:,} engines x {len(s['schemes'])} schemes ({kept}); "
+    if st.chunks_total is not None and st.chunks_done == st.chunks_total and st.finished:
+        return text + f"all {st.chunks_total} chunks computed."
+    of = f" of {st.chunks_total}" if st.chunks_total is not None else ""
+    return text + (f"{st.chunks_done}{of} chunks computed; running the same study with store={path!r} computes "
+                   "the rest and keeps these.")
+
+
+class _Formatter(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpFormatter):
+    """Defaults shown where there is one to show (not for flags, nor where the help says it)."""
+
+    def _get_help_string(self, action):
+        if action.default is None or action.default is False or action.default is argparse.SUPPRESS or "default" in (action.help or ""):
+            return action.help
+        return super()._get_help_string(action)
+
+
+def _count(minimum, what):
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number of {what}") from None
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"{value} {what if value != 1 else what[:-1]} is too few; give at least "
+                                             f"{minimum}")
+        return value
+
+    return parse
+
+
+def _share(text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not 0.0 < value < 1.0:
+        raise argparse.ArgumentTypeError(f"{value:g} is not a probability between 0 and 1 (e.g. 0.99)")
+    return value
+
+
+def parser():
+    """The ``stackup`` argument parser."""
+    top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
+        "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
+        epilog="Run `stackup COMMAND --help` for a command's options.")
+    top.add_argument("--version", action="version", version=f"stackup {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
+
+    cmp_ = sub.add_parser("compare", formatter_class=_Formatter, help="compare selective-fitting schemes on an engine",
+                          description="Compare selective-fitting schemes on an engine: a study of sampled engines, "
+                          "the declared robustness scenarios and what drives the spread; writes the dataset "
+                          "(compare.nc) and the report (report.md, report.html) into the output folder. One line "
+                          "per stage is printed as it starts.",
+                          epilog="examples:\n  stackup compare --quick\n"
+                                 "  stackup compare --schemes iso13778-4 my-scheme.toml --window 45 65 --out runs/a")
+    cmp_.add_argument("--engine", default="iso-example",
+                      help="engine name (see `stackup engines`) or engine TOML file")
+    cmp_.add_argument("--schemes", nargs="+", metavar="SCHEME",
+                      help="scheme names (see `stackup schemes`) or scheme TOML files (default: iso13778-1 ... -6)")
+    cmp_.add_argument("--n", type=_count(COMPARE_MIN_ENGINES, "engines"), metavar="ENGINES",
+                      help=f"engines to sample, at least {COMPARE_MIN_ENGINES} (default: {COMPARE_ENGINES}; "
+                           f"{QUICK_ENGINES} with --quick)")
+    cmp_.add_argument("--seed", type=int, default=0, help="root seed of the random numbers (same seed, same numbers)")
+    cmp_.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"),
+                      help="design window of the operating clearance in micrometres, instead of the engine's "
+                           "(default: the engine's)")
+    cmp_.add_argument("--out", metavar="FOLDER",
+                      help=f"output folder for the dataset and the report (default: {COMPARE_OUT}; {QUICK_OUT} "
+                           "with --quick)")
+    cmp_.add_argument("--quick", action="store_true",
+                      help=f"a small, fast run: {QUICK_ENGINES} engines, written to {QUICK_OUT}")
+    cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
+    cmp_.add_argument("--no-design", action="store_true",
+                      help="compare only the schemes given, without a scheme designed for the engine and window "
+                           "(`stackup design`)")
+    cmp_.add_argument("--force", action="store_true",
+                      help="replace another run in the output folder (the same run again is always replaced)")
+    cmp_.set_defaults(func=_compare)
+
+    pln = sub.add_parser("plan", formatter_class=_Formatter, help="shells (or graded parts) per grade for a volume",
+                         description="How many shells of each grade to make and stock for a production volume (whole "
+                         "shells, rounded up where stock must cover demand), or with --part how many housing bores "
+                         "or journals of each grade the volume gives. Prints the table with a title saying what it "
+                         "answers; --csv writes the same table for a spreadsheet.",
+                         epilog="examples:\n  stackup plan --scheme iso13778-5 --volume 10000\n"
+                                "  stackup plan --scheme iso13778-5 --volume 10000 --lot 500 --service-level 0.995 "
+                                "--csv shells.csv\n  stackup plan --scheme iso13778-4 --volume 10000 --part journal")
+    pln.add_argument("--scheme", required=True, help="scheme name (see `stackup schemes`) or scheme TOML file")
+    pln.add_argument("--engine", default="iso-example",
+                     help="engine name (see `stackup engines`) or engine TOML file: its processes, gauges and shell "
+                          "supply")
+    pln.add_argument("--volume", type=_count(1, "engines"), required=True, metavar="ENGINES", help="engines to build")
+    pln.add_argument("--service-level", type=_share, metavar="P",
+                     help="shells only: share of lots whose demand for a grade the stock per lot covers "
+                          "(default: 0.99)")
+    pln.add_argument("--lot", type=_count(1, "engines"), metavar="ENGINES",
+                     help="shells only: engines per production lot, at most --volume (default: the engine's lot, or "
+                          "the whole volume when it is smaller)")
+    pln.add_argument("--sample", type=_count(100, "engines"), default=20_000, metavar="ENGINES",
+                     help="engines sampled to estimate the demand")
+    pln.add_argument("--seed", type=int, default=0, help="seed of the sampled engines")
+    pln.add_argument("--part", choices=("shell", "housing", "journal"), default="shell",
+                     help="plan shells, or count the housing bores or journals of each grade")
+    pln.add_argument("--csv", metavar="FILE", help="also write the table as CSV to FILE ('-': only the CSV, to stdout)")
+    pln.add_argument("--force", action="store_true", help="replace an existing --csv FILE")
+    pln.set_defaults(func=_plan)
+
+    for name, variable, func in (("engines", "STACKUP_ENGINE_PATH", _engines),
+                                 ("schemes", "STACKUP_SCHEME_PATH", _schemes)):
+        lst = sub.add_parser(name, formatter_class=_Formatter, help=f"list the built-in {name} and the user's",
+                             description=f"List the built-in {name} and those the folders in the environment "
+                             f"variable {variable} add (a user's file of the same name replaces a built-in one). "
+                             f"Any {name[:-1]} file also works by its path.")
+        lst.set_defaults(func=func)
+
+    from .design_cli import add_parser as add_design_parser
+    add_design_parser(sub).formatter_class = _Formatter
+
+    store = sub.add_parser("store", formatter_class=_Formatter, help="check or repair a study's Zarr store",
+                           description="A study streamed into a Zarr store (Study(store=PATH)) can be checked for "
+                           "chunks that cannot be read, and repaired: the study chunks that wrote them are marked "
+                           "to be computed again, and running the same study with the same store recomputes them "
+                           "and keeps the rest.")
+    actions = store.add_subparsers(dest="action", required=True, metavar="ACTION", help="what to do with the store")
+    chk = actions.add_parser("check", formatter_class=_Formatter, help="read every chunk; exit 1 if any is damaged",
+                             description="Say what the store holds and read every chunk once; list the damaged "
+                             "ones with the variable, the file, the engines and the recovery. Exit 0 if sound, 1 if "
+                             "damaged.")
+    chk.add_argument("path", metavar="PATH", help="the store (a folder)")
+    chk.set_defaults(func=_store_check)
+    rep = actions.add_parser("repair", formatter_class=_Formatter, help="mark damaged chunks to be computed again",
+                             description="Mark the study chunks that wrote a damaged chunk to be computed again "
+                             "(their files stay until rewritten, so nothing reads as zeros), rewrite damaged engine "
+                             "numbers and drop a damaged running total of summaries; then run the same study with "
+                             "the same store.")
+    rep.add_argument("path", metavar="PATH", help="the store (a folder)")
+    rep.set_defaults(func=_store_repair)
+    return top
+
+
+def _message(error):
+    """The error's message with the library's parameter names spelled as the options."""
+    text = str(error)
+    for name, option in OPTIONS.items():
+        if text.startswith(f"{name}:"):
+            return option + text[len(name):]
+    return text
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="stackup", description=__doc__)
-    parser.add_argument("--version", action="version", version=f"stackup {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True)
-    cmp_ = sub.add_parser("compare", help="compare selective-fitting schemes on an engine")
-    cmp_.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file")
-    cmp_.add_argument("--schemes", nargs="+", help="scheme names or files (default: iso13778-1 ... -6)")
-    cmp_.add_argument("--n", type=int, help="engines to sample (default 100000; 10000 with --quick)")
-    cmp_.add_argument("--seed", type=int, default=0)
-    cmp_.add_argument("--out", default="reports/compare", help="output folder for dataset and report")
-    cmp_.add_argument("--quick", action="store_true", help="a small, fast run")
-    cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
-    cmp_.set_defaults(func=_compare)
-    pln = sub.add_parser("plan", help="shell quantities per grade for a scheme")
-    pln.add_argument("--scheme", required=True, help="scheme name or file")
-    pln.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file")
-    pln.add_argument("--volume", type=int, required=True, help="engines to build")
-    pln.add_argument("--service-level", type=float, default=0.99)
-    pln.add_argument("--lot", type=int, help="engines per production lot (default: the engine's)")
-    pln.add_argument("--sample", type=int, default=20_000, help="engines sampled to estimate the demand")
-    pln.add_argument("--seed", type=int, default=0)
-    pln.add_argument("--part", choices=("shell", "housing", "journal"), default="shell")
-    pln.set_defaults(func=_plan)
-    args = parser.parse_args(argv)
+    """Run the command; return its exit code (the console script exits with it)."""
     try:
-        return args.func(args)
-    except ValueError as err:
-        print(f"stackup: error: {err}", file=sys.stderr)
-        return 2
+        args = parser().parse_args(argv)
+    except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
+        return done.code
+    state = _State()
+    try:
+        return args.func(args, state)
+    except KeyboardInterrupt:
+        print(state.interrupted(), file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except ValueError as error:  # bad input, a refused output location, a damaged store: said, not a traceback
+        print(f"stackup: error: {_message(error)}", file=sys.stderr)
+        return EXIT_REFUSED
 
 
 if __name__ == "__main__":

@@ -28,21 +28,24 @@ def add_parser(subparsers):
                    help="operating-clearance window in um (default: the engine's)")
     p.add_argument("--start", help="scheme to start from (default: the best ISO 13778 scheme on the design sample)")
     p.add_argument("--n", type=int, default=4000, help="engines of the design sample (default 4000)")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=int, default=0, help="root seed of the design sample (default 0)")
     p.add_argument("--generations", type=int, default=8,
                    help="generations of the differential evolution of the shell limits (default 8; 0 is quicker)")
     p.add_argument("--no-scenarios", action="store_true", help="leave the declared scenarios out of the objective")
     p.add_argument("--name", help="scheme name (default designed-<engine>)")
     p.add_argument("--out", required=True, help="scheme file to write (TOML)")
+    p.add_argument("--force", action="store_true", help="replace an existing --out FILE")
     p.set_defaults(func=run)
     return p
 
 
-def run(args):
+def run(args, state=None):
     """Design the scheme of parsed ``args``, write it, print its explanation."""
     from .design import design
+    from .output import prepare_file, write_file
     from .scenarios import DECLARED
 
+    out = prepare_file(args.out, force=args.force, option="--out")  # refused before the design runs
     t0 = time.perf_counter()
     terminal = sys.stdout.isatty()
 
@@ -54,7 +57,7 @@ def run(args):
                     journal_grades=args.journal_grades, scenarios={} if args.no_scenarios else DECLARED,
                     seed=args.seed, n_engines=args.n, start=args.start, generations=args.generations,
                     name=args.name, log=log)
-    path = result.scheme.to_toml(args.out)
+    write_file(out, result.scheme.to_toml_text())
     print("\n".join(result.scheme.notes))
-    print(f"scheme: {path}")
+    print(f"scheme: {out}")
     return 0

@@ -11,13 +11,15 @@ temperatures the fit is checked at (``cold_temperature``,
 ``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
 operating-clearance window (absolute, or ``relative_clearance`` C/D of the
 journal) with its source. Built-in engines ship in ``stackup/data/engines``;
-a user's file works the same way, by path.
+a user's file works the same way, by path or by name from a folder named in
+the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
+``PATH``; a user's file replaces a built-in one of the same name).
 """
 
 from __future__ import annotations
 
+import io
 import os
-import tomllib
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -31,9 +33,8 @@ from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
 from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
+from ._files import Table, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
-
-_UNITS = {"mm": 1e-3, "m": 1.0}
 
 
 @dataclass(frozen=True)
@@ -218,176 +219,254 @@ def _builtin_dir():
     return Path(str(resources.files("stackup") / "data" / "engines"))
 
 
+def _search_dirs():
+    dirs = [Path(p) for p in os.environ.get("STACKUP_ENGINE_PATH", "").split(os.pathsep) if p]
+    return [*dirs, _builtin_dir()]
+
+
+def engine_locations():
+    """Where :func:`load_engine` finds each engine by name: {name: path}, the user's folders first."""
+    found = {}
+    for folder in _search_dirs():
+        if folder.is_dir():
+            for path in sorted(folder.glob("*.toml")):
+                found.setdefault(path.stem, path)
+    return found
+
+
 def available_engines():
-    """Names of the built-in engines."""
-    return sorted(p.stem for p in _builtin_dir().glob("*.toml"))
+    """Names of the engines :func:`load_engine` finds by name: built-in ones and the user's (``STACKUP_ENGINE_PATH``)."""
+    return sorted(engine_locations())
 
 
-def load_engine(name_or_path):
-    """Load an engine by built-in name (``"iso-example"``) or from a TOML file path."""
-    if isinstance(name_or_path, Engine):
-        return name_or_path
+def engine_path(name_or_path):
+    """The file of a built-in engine name (``"iso-example"``) or of a path."""
     text = os.fspath(name_or_path)
     path = Path(text)
-    if not path.is_file():
-        path = _builtin_dir() / f"{text}.toml"
-        if not path.is_file():
-            raise ValueError(f"engine: {text!r} is not a built-in engine ({', '.join(available_engines())}) nor a file")
-    where = f"engine file {path.name!r}"
-    with open(path, "rb") as f:
-        data = tomllib.load(f)
-    units = data.get("units")
-    if units not in _UNITS:
-        raise ValueError(f"{where}, key units: {units!r} is not one of {', '.join(map(repr, _UNITS))}")
-    scale = _UNITS[units]
-    bearings = check.integer(f"{where}, key main_bearings", data.get("main_bearings"), minimum=1)
+    if path.is_file() or path.suffix == ".toml" or os.sep in text:
+        return path
+    found = engine_locations().get(text)
+    if found is None:
+        raise ValueError(f"engine: {text!r} is not a built-in engine nor one in STACKUP_ENGINE_PATH "
+                         f"({', '.join(available_engines())}) nor a file")
+    return found
 
-    def dimension(key):
-        table = data.get(key)
-        if table is None:
-            raise ValueError(f"{where}: missing key '{key}'")
-        if "limits" not in table:
-            raise ValueError(f"{where}, key {key}.limits: missing")
-        lo, hi = check.limits(f"{where}, key {key}.limits", *table["limits"], unit=units)
-        lo, hi = lo * scale, hi * scale
-        process = process_from_spec(table.get("process", {}), lo=lo, hi=hi, scale=scale, field=f"{where}, key {key}.process")
-        gauge = gauge_from_spec(table.get("gauge"), scale=scale, field=f"{where}, key {key}.gauge")
-        shared = float(check.in_range(f"{where}, key {key}.shared", table.get("shared", 0.0), 0.0, 1.0, hi_open=True))
-        form = form_from_spec(table.get("form"), scale=scale, field=f"{where}, key {key}.form")
-        if form is not None:
-            # the gauge's readings are those of the form's planes and directions, averaged
-            if "readings" in (table.get("gauge") or {}) and gauge.readings != form.readings:
-                raise ValueError(f"{where}, key {key}.gauge.readings: {gauge.readings} readings, but the form is read "
-                                 f"in {form.readings} (planes x directions)")
-            gauge = replace(gauge, readings=form.readings, combine="mean")
-        bolt = float(check.positive(f"{where}, key {key}.bolt_scatter", table.get("bolt_scatter", 0.0),
-                                    allow_zero=True)) * scale
-        return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt,
-                         source=str(table.get("source", "")))
 
-    shell = dict(data.get("shell_wall", {}))
-    key = f"{where}, key shell_wall"
-    mode = check.one_of(f"{key}.supply", shell.pop("supply", "to-order"), ("to-order", "sorted"))
-    process = dict(shell.pop("process", {"distribution": "normal", "cpk": 1.33}))
-    sigma = shell.pop("sigma", None)
-    if mode == "to-order":
-        sigma = float(check.positive(f"{key}.sigma", 1e-6 / scale if sigma is None else sigma)) * scale
+def engine_files(name_or_path):
+    """The texts an engine is read from: ``{"name": ..., "text": ..., "extra": {file: text}}``.
+
+    ``extra`` holds the files the engine file names (a measured pressure
+    trace), so a study can store everything it read and run again without
+    the files (:meth:`stackup.study.Study.from_dataset`).
+    """
+    path = engine_path(name_or_path)
+    data, text = read_toml(path, kind="engine")
+    extra = {}
+    trace = data.get("crank", {}).get("pressure_trace") if isinstance(data.get("crank"), dict) else None
+    if isinstance(trace, str):
+        trace_path = path.parent / trace
+        if not trace_path.is_file():
+            raise ValueError(f"engine file {path.name!r}, key crank.pressure_trace: {trace!r} does not exist "
+                             f"(looked in {str(path.parent)!r})")
+        extra[trace] = trace_path.read_text()
+    return {"name": path.stem, "text": text, "extra": extra}
+
+
+def load_engine(name_or_path, *, files=None):
+    """Load an engine by built-in name (``"iso-example"``), from a TOML file path, or from its texts.
+
+    ``files`` (what :func:`engine_files` returns) replaces reading the disk.
+    Every key is checked: its type, its range, lengths against what such a
+    part can measure (a hint about ``units`` otherwise), and a key nobody
+    reads is refused with the valid ones listed.
+    """
+    if isinstance(name_or_path, Engine):
+        return name_or_path
+    files = engine_files(name_or_path) if files is None else files
+    where = f"engine file {files['name'] + '.toml'!r}"
+    return _engine(Table(parse_toml(files["text"], where=where), where), name=files["name"], extra=files["extra"])
+
+
+def _numbers(t, name, *, required=False, default=None):
+    """A list of numbers (or of lists of numbers) of table ``t`` as read; text, true/false and tables refused."""
+    value = t.get(name, default, required=required)
+    if value is None:
+        return None
+
+    def ok(v, depth):
+        if isinstance(v, list) and depth < 2:
+            return all(ok(x, depth + 1) for x in v)
+        return depth > 0 and isinstance(v, (int, float)) and not isinstance(v, bool)
+
+    if not ok(value, 0):
+        raise ValueError(f"{t.where}, key {t.key(name)}: {value!r} is not a list of numbers")
+    return value
+
+
+def _dimension(top, key, *, scale, units, plausible, what, required=True):
+    """A part's dimension: drawing limits, process, gauge, shared share, form error, bolt scatter, source."""
+    t = top.table(key, required=required)
+    lo, hi = t.lengths("limits", count=2, required=True, scale=scale, units=units, plausible=plausible, what=what,
+                       increasing=True)
+    field = f"{t.where}, key {t.path}"
+    process = process_from_spec(t.get("process", {}), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
+    gauge_table = t.get("gauge")
+    gauge = gauge_from_spec(gauge_table, scale=scale, field=f"{field}.gauge")
+    shared = t.number("shared", 0.0, lo=0.0, hi=1.0, hi_open=True)
+    form = form_from_spec(t.get("form"), scale=scale, field=f"{field}.form")
+    if form is not None:
+        # the gauge's readings are those of the form's planes and directions, averaged
+        if "readings" in (gauge_table or {}) and gauge.readings != form.readings:
+            raise ValueError(f"{field}.gauge.readings: {gauge.readings} readings, but the form is read in "
+                             f"{form.readings} (planes x directions)")
+        gauge = replace(gauge, readings=form.readings, combine="mean")
+    bolt = t.length("bolt_scatter", 0.0, scale=scale, units=units, plausible=(0.0, 50e-6), what="bolt scatter")
+    source = t.text("source", "")
+    t.close()
+    return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt, source=source)
+
+
+#: Sizes a length may have [m], for the plausibility checks of engine files.
+PLAUSIBLE = {"bore": (5e-3, 2.0), "crush": (5e-6, 1e-3), "wall_sigma": (1e-9, 50e-6), "ring": (5e-3, 5.0),
+             "width": (2e-3, 0.5), "lining": (0.0, 3e-3), "crank": (0.02, 5.0), "span": (0.02, 2.0),
+             "misalignment": (0.0, 0.5e-3), "law_dx": (0.0, 1e-3), "roughness": (10e-9, 20e-6),
+             "wear": (1e-7, 1e-3), "groove": (0.0, 0.1), "window": (2e-6, 2e-3)}
+
+
+def _engine(top, *, name, extra):
+    units, scale = units_of(top)
+    length = dict(scale=scale, units=units)
+    bearings = top.integer("main_bearings", required=True, lo=1, hi=30)
+    shell = top.table("shell_wall")
+    mode = shell.text("supply", "to-order", options=("to-order", "sorted"))
+    process = shell.table("process").data if "process" in shell else {"distribution": "normal", "cpk": 1.33}
+    sigma = shell.length("sigma", 1e-6 / scale, **length, plausible=PLAUSIBLE["wall_sigma"],
+                         what="shell wall process standard deviation")
     supply = ShellSupply(
         mode=mode,
         process=process,
-        sigma=sigma,
-        target_offset=float(check.finite(f"{key}.target_offset", shell.pop("target_offset", 0.0))) * scale,
-        gauge=gauge_from_spec(shell.pop("gauge", None), scale=scale, field=f"{key}.gauge"),
-        lot_engines=check.integer(f"{key}.lot_engines", shell.pop("lot_engines", 1000), minimum=1),
-        surplus=float(check.in_range(f"{key}.surplus", shell.pop("surplus", 0.1), 0.0, 10.0)),
-        crush=dimension("crush_height"),
+        sigma=sigma if mode == "to-order" else None,
+        target_offset=shell.number("target_offset", 0.0, lo=-0.1 / scale * 1e-3, hi=0.1 / scale * 1e-3) * scale,
+        gauge=gauge_from_spec(shell.get("gauge"), scale=scale, field=f"{shell.where}, key shell_wall.gauge"),
+        lot_engines=shell.integer("lot_engines", 1000, lo=1, hi=10**8),
+        surplus=shell.number("surplus", 0.1, lo=0.0, hi=10.0),
+        crush=_dimension(top, "crush_height", **length, plausible=PLAUSIBLE["crush"], what="crush height"),
         scale=scale,
     )
-    if shell:
-        raise ValueError(f"{key}: unknown key(s) {sorted(shell)}")
-    bore = dimension("housing_bore")
-    fit_table = dict(data.get("press_fit", {}))
-    key = f"{where}, key press_fit"
+    shell.close()
+    bore = _dimension(top, "housing_bore", **length, plausible=PLAUSIBLE["bore"], what="housing bore diameter")
+    journal = _dimension(top, "journal_d", **length, plausible=PLAUSIBLE["bore"], what="journal diameter")
+    if journal.hi >= bore.lo:
+        raise ValueError(f"{top.where}, key journal_d.limits: the journal ({journal.lo / scale:g}-{journal.hi / scale:g} "
+                         f"{units}) must be smaller than the housing bore ({bore.lo / scale:g}-{bore.hi / scale:g} {units})")
+    spec = _press_fit(top, bore, **length)
+    if "crank" not in top:
+        for table in ("bearing_law", "oil"):  # read only by the mechanical chain
+            if table in top:
+                raise ValueError(f"{top.where}: [{table}] needs a [crank] section (the mechanical chain); add "
+                                 f"[crank] or remove [{table}]")
+        top.get("crank")
+    engine = Engine(
+        name=top.text("name", name),
+        title=top.text("title", ""),
+        source=top.text("source", ""),
+        main_bearings=bearings,
+        housing_bore=bore,
+        journal_d=journal,
+        shell_wall=supply,
+        press_fit=spec,
+        crank=_crank(top, **length, bearings=bearings, extra=extra) if "crank" in top else None,
+        **_targets(top, **length, journal=journal),
+        wear=_wear(top, **length),
+        oil_feed=_oil_feed(top, **length, bearing_length=spec.length),
+    )
+    top.close()
+    return engine
 
-    def length(name, default=None):
-        if name not in fit_table and default is None:
-            raise ValueError(f"{key}: missing '{name}'")
-        value = fit_table.pop(name, None)
-        return default if value is None else float(check.positive(f"{key}.{name}", value)) * scale
 
-    def temperature(name, default=20.0):
-        value = fit_table.pop(name, default)
-        return None if value is None else float(check.in_range(f"{key}.{name}", value, -60.0, 300.0, unit=" degC"))
+def _press_fit(top, bore, *, scale, units):
+    t = top.table("press_fit", required=True)
+    length = dict(scale=scale, units=units)
+
+    def temperature(name, default):
+        return t.number(name, default, lo=-60.0, hi=300.0, unit=" degC")
 
     def material(name, default="steel"):
-        value = fit_table.pop(name, default)
+        value = t.text(name, default)
         return None if value is None else materials.get(value).name
 
-    lining_thickness = float(check.positive(f"{key}.lining_thickness", fit_table.pop("lining_thickness", 0.0),
-                                            allow_zero=True)) * scale
+    lining_thickness = t.length("lining_thickness", 0.0, **length, plausible=PLAUSIBLE["lining"],
+                                what="lining thickness")
     lining_material = material("lining_material", None)
     if lining_thickness > 0 and lining_material is None:
-        raise ValueError(f"{key}.lining_material: missing; a lining_thickness > 0 needs the lining's material")
+        raise ValueError(f"{t.where}, key press_fit.lining_material: missing; a lining_thickness > 0 needs the "
+                         "lining's material")
     spec = PressFitSpec(
-        housing_outer=length("housing_outer"),
+        housing_outer=t.length("housing_outer", required=True, **length, plausible=PLAUSIBLE["ring"],
+                               what="housing outer diameter"),
         housing_material=material("housing_material"),
         shell_material=material("shell_material"),
         journal_material=material("journal_material"),
-        length=length("length"),
-        check_bore=length("check_bore", bore.lo),
-        check_stress=float(check.in_range(f"{key}.check_stress", fit_table.pop("check_stress", 100e6), 0.0, 2e9,
-                                          lo_open=True, unit=" Pa")),
-        assembly_temperature=temperature("assembly_temperature"),
-        temperature=temperature("temperature"),
+        length=t.length("length", required=True, **length, plausible=PLAUSIBLE["width"], what="shell width"),
+        check_bore=t.length("check_bore", bore.lo / scale, **length, plausible=PLAUSIBLE["bore"],
+                            what="checking-block bore"),
+        check_stress=t.number("check_stress", 100e6, lo=0.0, hi=2e9, lo_open=True, unit=" Pa"),
+        assembly_temperature=temperature("assembly_temperature", 20.0),
+        temperature=temperature("temperature", 20.0),
         lining_thickness=lining_thickness,
         lining_material=lining_material,
         cold_temperature=temperature("cold_temperature", None),
         hot_temperature=temperature("hot_temperature", None),
-        limits=_limits(fit_table.pop("limits", None), f"{key}.limits"),
-        crush_source=str(fit_table.pop("crush_height_source", "")),
+        limits=_limits(t),
+        crush_source=t.text("crush_height_source", ""),
     )
-    if fit_table:
-        raise ValueError(f"{key}: unknown key(s) {sorted(fit_table)}")
+    t.close()
+    key = f"{t.where}, key press_fit"
     if spec.housing_outer <= bore.hi:
-        raise ValueError(f"{key}.housing_outer: {spec.housing_outer / scale!r} {units} is not above the housing bore")
+        raise ValueError(f"{key}.housing_outer: {spec.housing_outer / scale:g} {units} is not above the housing bore")
     if spec.cold_temperature is not None and spec.cold_temperature > spec.assembly_temperature:
         raise ValueError(f"{key}.cold_temperature: {spec.cold_temperature!r} degC is above the assembly temperature "
                          f"{spec.assembly_temperature!r} degC; the coldest state checked is the colder of the two")
     if spec.hot_temperature is not None and spec.hot_temperature < spec.temperature:
         raise ValueError(f"{key}.hot_temperature: {spec.hot_temperature!r} degC is below the operating temperature "
                          f"{spec.temperature!r} degC")
-    journal = dimension("journal_d")
-    return Engine(
-        name=str(data.get("name", path.stem)),
-        title=str(data.get("title", "")),
-        source=str(data.get("source", "")),
-        main_bearings=bearings,
-        housing_bore=bore,
-        journal_d=journal,
-        shell_wall=supply,
-        press_fit=spec,
-        crank=_crank(data, where, scale, bearings, path.parent) if "crank" in data else None,
-        **_targets(data, where, scale, units, journal),
-        wear=_wear(data, where, scale),
-        oil_feed=_oil_feed(data, where, scale, spec.length),
-    )
+    return spec
 
 
-def _wear(data, where, scale):
+def _wear(top, *, scale, units):
     """The [wear] table: roughness (Rz, Rq) of journal and shell, lining, limiting wear and wear speed."""
-    if "wear" not in data:
+    if "wear" not in top:
+        top.get("wear")  # a valid key, though absent
         return DEFAULT_WEAR
-    table = dict(data["wear"])
-    key = f"{where}, key wear"
-
-    def length(name):
-        if name not in table:
-            raise ValueError(f"{key}: missing '{name}'")
-        return float(check.positive(f"{key}.{name}", table.pop(name))) * scale
-
-    def text(name):
-        value = table.pop(name, "")
-        if not isinstance(value, str) or not value.strip():
-            raise ValueError(f"{key}: missing '{name}' (where the numbers come from)")
-        return value
-
-    rz1, rz2, rq1, rq2 = (length(n) for n in ("journal_rz", "shell_rz", "journal_rq", "shell_rq"))
+    t = top.table("wear")
+    key = f"{t.where}, key wear"
+    rough = dict(scale=scale, units=units, plausible=PLAUSIBLE["roughness"], what="surface roughness")
+    rz1, rz2, rq1, rq2 = (t.length(n, required=True, **rough) for n in ("journal_rz", "shell_rz", "journal_rq",
+                                                                          "shell_rq"))
     for rz, rq, part in ((rz1, rq1, "journal"), (rz2, rq2, "shell")):
         if rq >= rz:
             raise ValueError(f"{key}.{part}_rq: {rq / scale!r} is not below {part}_rz {rz / scale!r}")
     critical = rz1 + rz2
-    if "critical_film" in table:
-        given = length("critical_film")
+    given = t.length("critical_film", None, **rough)
+    if given is not None:
         if given < critical * (1 - 1e-12):
             raise ValueError(f"{key}.critical_film: {given / scale!r} is below journal_rz + shell_rz = "
                              f"{critical / scale!r} (Levanov et al. 2015, eq. 3: h_lim,cr > Rz1 + Rz2)")
         critical = given
+
+    def source(name):
+        value = t.text(name, required=True)
+        if not value.strip():
+            raise ValueError(f"{key}.{name}: empty; say where the numbers come from")
+        return value
+
     spec = WearSpec(journal_rz=rz1, shell_rz=rz2, journal_rq=rq1, shell_rq=rq2, critical_film=critical,
-                    wear_limit=length("wear_limit"), wear_rate=length("wear_rate"),
-                    lining_material=materials.get(table.pop("lining_material", "aluminium")).name,
-                    roughness_source=text("roughness_source"), wear_source=text("wear_source"))
-    if table:
-        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+                    wear_limit=t.length("wear_limit", required=True, scale=scale, units=units,
+                                        plausible=PLAUSIBLE["wear"], what="limiting wear"),
+                    wear_rate=t.number("wear_rate", required=True, lo=0.0, hi=1e-3 / scale, lo_open=True) * scale,
+                    lining_material=materials.get(t.text("lining_material", "aluminium")).name,
+                    roughness_source=source("roughness_source"), wear_source=source("wear_source"))
+    t.close()
     return spec
 
 
@@ -395,154 +474,158 @@ def _wear(data, where, scale):
 _DEFAULT_GROOVE_SHARE = 0.15
 
 
-def _oil_feed(data, where, scale, bearing_length):
+def _oil_feed(top, *, scale, units, bearing_length):
     """The [oil_feed] table: supply pressure [Pa] and the groove or hole (angles in deg, lengths in file units)."""
-    if "oil_feed" not in data:
+    if "oil_feed" not in top:
+        top.get("oil_feed")
         return OilFeed("groove", 0.3e6, (0.5 * np.pi, 1.5 * np.pi), _DEFAULT_GROOVE_SHARE * bearing_length,
                        source="default: 0.3 MPa into a 180 deg groove in the upper shell, 15 % of the bearing wide")
-    table = dict(data["oil_feed"])
-    key = f"{where}, key oil_feed"
-    kind = check.one_of(f"{key}.feed", table.pop("feed", None), FEEDS)
-    pressure = float(check.in_range(f"{key}.supply_pressure", table.pop("supply_pressure", None) or 0.0, 0.0, 2e7,
-                                    lo_open=True, unit=" Pa"))
-    source = table.pop("source", "")
-    if not isinstance(source, str) or not source.strip():
-        raise ValueError(f"{key}: missing 'source' (where the numbers come from)")
+    t = top.table("oil_feed")
+    key = f"{t.where}, key oil_feed"
+    kind = t.text("feed", required=True, options=FEEDS)
+    pressure = t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa")
+    source = t.text("source", required=True)
+    if not source.strip():
+        raise ValueError(f"{key}.source: empty; say where the numbers come from")
     if kind == "groove":
-        arc = check.finite(f"{key}.groove_arc", table.pop("groove_arc", [90.0, 270.0]))
+        arc = _numbers(t, "groove_arc", default=[90.0, 270.0])
+        arc = check.finite(f"{key}.groove_arc", arc)
         if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
             raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
                              f"start < end <= start + 360")
-        width = float(check.positive(f"{key}.groove_width", table.pop("groove_width", 0.0))) * scale
+        width = t.length("groove_width", required=True, scale=scale, units=units, plausible=PLAUSIBLE["groove"],
+                         what="groove width")
         if width >= bearing_length:
-            raise ValueError(f"{key}.groove_width: {width / scale!r} is not below the bearing length")
+            raise ValueError(f"{key}.groove_width: {width / scale:g} {units} is not below the bearing length")
         feed = OilFeed(kind, pressure, tuple(float(a) for a in np.radians(arc)), width, source=source)
     else:
-        diameter = float(check.positive(f"{key}.hole_diameter", table.pop("hole_diameter", 0.0))) * scale
+        diameter = t.length("hole_diameter", required=True, scale=scale, units=units, plausible=PLAUSIBLE["groove"],
+                            what="feed hole diameter")
         if diameter >= bearing_length / 2:
-            raise ValueError(f"{key}.hole_diameter: {diameter / scale!r} is not below half the bearing length")
-        angle = float(check.finite(f"{key}.hole_angle", table.pop("hole_angle", 180.0)))
+            raise ValueError(f"{key}.hole_diameter: {diameter / scale:g} {units} is not below half the bearing length")
+        angle = t.number("hole_angle", 180.0, lo=-360.0, hi=720.0, unit=" deg")
         feed = OilFeed(kind, pressure, hole_angle=float(np.radians(angle)), hole_diameter=diameter, source=source)
-    if table:
-        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    t.close()
     return feed
 
 
-def _limits(table, key):
+def _limits(press_fit):
     """Press-fit design limits from ``[press_fit.limits]`` (Pa, with their source); Kopeliovich's if absent."""
-    if table is None:
+    if "limits" not in press_fit:
+        press_fit.get("limits")
         return KOPELIOVICH_LIMITS
-    table = dict(table)
-    for name in ("contact_pressure_min", "shell_stress_max", "source"):
-        if name not in table:
-            raise ValueError(f"{key}: missing '{name}' (limits in Pa, with the source they come from)")
+    t = press_fit.table("limits")
     limits = PressFitLimits(
-        contact_pressure_min=float(check.positive(f"{key}.contact_pressure_min", table.pop("contact_pressure_min"))),
-        shell_stress_max=float(check.positive(f"{key}.shell_stress_max", table.pop("shell_stress_max"))),
-        source=str(table.pop("source")),
+        contact_pressure_min=t.number("contact_pressure_min", required=True, lo=0.0, lo_open=True, unit=" Pa"),
+        shell_stress_max=t.number("shell_stress_max", required=True, lo=0.0, lo_open=True, unit=" Pa"),
+        source=t.text("source", required=True),
     )
-    if table:
-        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    t.close()
     if not (1e5 <= limits.contact_pressure_min <= 100e6 and 10e6 <= limits.shell_stress_max <= 2e9):
-        raise ValueError(f"{key}: contact_pressure_min {limits.contact_pressure_min!r} Pa, shell_stress_max "
-                         f"{limits.shell_stress_max!r} Pa; give the limits in Pa (e.g. 10e6 and 400e6)")
+        raise ValueError(f"{t.where}, key press_fit.limits: contact_pressure_min {limits.contact_pressure_min:g} Pa, "
+                         f"shell_stress_max {limits.shell_stress_max:g} Pa; give the limits in Pa (e.g. 10e6 and 400e6)")
     return limits
 
 
-def _targets(data, where, scale, units, journal):
+def _targets(top, *, scale, units, journal):
     """Design window of the operating clearance (absolute, or relative to the journal) and life target."""
-    table = dict(data.get("targets", {}))
-    key = f"{where}, key targets"
+    t = top.table("targets")
+    key = f"{t.where}, key targets"
     out = {}
-    forms = [k for k in ("operating_clearance", "relative_clearance") if k in table]
-    if len(forms) > 1:
+    if "operating_clearance" in t and "relative_clearance" in t:
         raise ValueError(f"{key}: give either operating_clearance or relative_clearance, not both")
-    if "operating_clearance" in table:
-        lo, hi = check.limits(f"{key}.operating_clearance", *table.pop("operating_clearance"), unit=units)
-        out["clearance_window"] = (lo * scale, hi * scale)
-    if "relative_clearance" in table:
+    window = t.lengths("operating_clearance", count=2, scale=scale, units=units, plausible=PLAUSIBLE["window"],
+                       what="operating clearance", increasing=True)
+    if window is not None:
+        out["clearance_window"] = tuple(window)
+    ratio = _numbers(t, "relative_clearance")
+    if ratio is not None:
         # psi = C / D of the journal's nominal size (its lower drawing limit)
-        lo, hi = check.limits(f"{key}.relative_clearance", *table.pop("relative_clearance"), unit="")
+        if len(ratio) != 2:
+            raise ValueError(f"{key}.relative_clearance: {ratio!r} is not a [lower, upper] pair")
+        lo, hi = check.limits(f"{key}.relative_clearance", *ratio, unit="")
         if lo <= 0 or hi >= 0.01:
             raise ValueError(f"{key}.relative_clearance: [{lo!r}, {hi!r}] is not a clearance ratio C/D in (0, 0.01) "
                              "(write 1 per mille as 0.001)")
         out["clearance_window"] = (lo * journal.lo, hi * journal.lo)
-    if "clearance_source" in table:
-        out["clearance_window_source"] = str(table.pop("clearance_source"))
-    if "life_hours" in table:
-        out["life_target"] = float(check.positive(f"{key}.life_hours", table.pop("life_hours"))) * 3600.0
-    if table:
-        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    source = t.text("clearance_source")
+    if source is not None:
+        out["clearance_window_source"] = source
+    hours = t.number("life_hours", None, lo=0.0, hi=1e7, lo_open=True, unit=" h")
+    if hours is not None:
+        out["life_target"] = hours * 3600.0
+    t.close()
     return out
 
 
-def _crank(data, where, scale, bearings, folder):
-    table = dict(data["crank"])
-    key = f"{where}, key crank"
-
-    def pop(name, default=None):
-        if name not in table:
-            if default is None:
-                raise ValueError(f"{key}: missing '{name}'")
-            return default
-        return table.pop(name)
-
-    def length(name, default=None):
-        return float(check.positive(f"{key}.{name}", pop(name, default))) * scale
-
-    cylinders = check.integer(f"{key}.cylinders", pop("cylinders"), minimum=1)
+def _crank(top, *, scale, units, bearings, extra):
+    t = top.table("crank")
+    key = f"{t.where}, key crank"
+    length = dict(scale=scale, units=units)
+    cylinders = t.integer("cylinders", required=True, lo=1, hi=29)
     if cylinders != bearings - 1:
         raise ValueError(f"{key}.cylinders: {cylinders} cylinders need {cylinders + 1} main bearings, "
                          f"the engine has {bearings} (inline engines only)")
-    stroke = length("stroke")
-    unbalance = float(check.in_range(f"{key}.counterweight_share", pop("counterweight_share", 0.0), 0.0, 2.0))
-    rotating = float(check.positive(f"{key}.rotating_mass", pop("rotating_mass"), allow_zero=True))
+    stroke = t.length("stroke", required=True, **length, plausible=PLAUSIBLE["crank"], what="stroke")
+    unbalance = t.number("counterweight_share", 0.0, lo=0.0, hi=2.0)
+    rotating = t.number("rotating_mass", required=True, lo=0.0, hi=1e4, unit=" kg")
     kinematics = Kinematics(
-        cylinder_bore=length("cylinder_bore"), stroke=stroke, conrod=length("conrod"),
-        reciprocating_mass=float(check.positive(f"{key}.reciprocating_mass", pop("reciprocating_mass"), allow_zero=True)),
+        cylinder_bore=t.length("cylinder_bore", required=True, **length, plausible=PLAUSIBLE["crank"],
+                               what="cylinder bore"),
+        stroke=stroke,
+        conrod=t.length("conrod", required=True, **length, plausible=PLAUSIBLE["crank"], what="connecting rod"),
+        reciprocating_mass=t.number("reciprocating_mass", required=True, lo=0.0, hi=1e4, unit=" kg"),
         rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
-    trace_file = table.pop("pressure_trace", None)
-    trace = read_pressure_trace(folder / trace_file) if trace_file else None
-    combustion = Combustion(compression_ratio=float(pop("compression_ratio", 16.0)),
-                            peak_pressure=float(pop("peak_pressure", 13e6)))
-    throws = tuple(float(a) for a in pop("throw_angles"))
-    order = tuple(int(c) for c in pop("firing_order"))
+    trace_file = t.text("pressure_trace")
+    trace = None
+    if trace_file is not None:
+        if trace_file not in extra:
+            raise ValueError(f"{key}.pressure_trace: {trace_file!r} was not read with the engine file")
+        trace = read_pressure_trace(io.StringIO(extra[trace_file]), name=trace_file)
+    combustion = Combustion(compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=50.0, lo_open=True),
+                            peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa"))
+    throws = tuple(float(a) for a in check.finite(f"{key}.throw_angles", _numbers(t, "throw_angles", required=True)))
+    order = t.get("firing_order", required=True)
+    if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
+        raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")
+    order = tuple(order)
     if len(throws) != cylinders or len(order) != cylinders:
         raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
-    spans = check.positive(f"{key}.spans", pop("spans")) * scale
-    inertia = check.positive(f"{key}.section_inertia", pop("section_inertia")) * scale**4
-    if spans.shape != (cylinders,) or inertia.shape not in ((cylinders,), (cylinders, 2)):
-        raise ValueError(f"{key}: spans need shape ({cylinders},), section_inertia ({cylinders},) or ({cylinders}, 2)")
-    modulus = materials.get(pop("crank_material", "steel")).modulus
+    spans = np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
+                               what="crankshaft span"))
+    inertia = check.positive(f"{key}.section_inertia", _numbers(t, "section_inertia", required=True)) * scale**4
+    if inertia.shape not in ((cylinders,), (cylinders, 2)):
+        raise ValueError(f"{key}.section_inertia: shape {inertia.shape}; give ({cylinders},) or ({cylinders}, 2)")
+    if np.any((inertia < 1e-10) | (inertia > 1e-1)):  # a 10 mm to a 1 m steel journal
+        raise ValueError(f"{key}.section_inertia: {float(inertia.min() / scale**4):g} to "
+                         f"{float(inertia.max() / scale**4):g} {units}^4 is not a plausible section inertia "
+                         f"({1e-10 / scale**4:g} to {1e-1 / scale**4:g} {units}^4); is `units` right?")
+    modulus = materials.get(t.text("crank_material", "steel")).modulus
     spec = CrankSpec(
         kinematics=kinematics, combustion=combustion, throw_angles=throws, firing_order=order,
-        speed=float(check.positive(f"{key}.speed", pop("speed"))) * 2 * np.pi / 60,
+        speed=t.number("speed", required=True, lo=10.0, hi=3e4, unit=" rpm") * 2 * np.pi / 60,
         spans=spans, ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
-        bearing_width=length("bearing_width"),
-        coaxiality=float(check.positive(f"{key}.coaxiality", pop("coaxiality", 0.0), allow_zero=True)) * scale,
-        journal_runout=float(check.positive(f"{key}.journal_runout", pop("journal_runout", 0.0), allow_zero=True)) * scale,
+        bearing_width=t.length("bearing_width", required=True, **length, plausible=PLAUSIBLE["width"],
+                               what="bearing width"),
+        coaxiality=t.length("coaxiality", 0.0, **length, plausible=PLAUSIBLE["misalignment"], what="coaxiality"),
+        journal_runout=t.length("journal_runout", 0.0, **length, plausible=PLAUSIBLE["misalignment"],
+                                what="journal run-out"),
         clearance_ratio=1.0, law_parameters={}, pressure_trace=trace,
     )
-    if table:
-        raise ValueError(f"{key}: unknown key(s) {sorted(table)}")
+    t.close()
     firing_offsets(throws, order)
-    law = dict(data.get("bearing_law", {}))
-    lkey = f"{where}, key bearing_law"
+    law = top.table("bearing_law")
     params = {
-        "dx": float(check.positive(f"{lkey}.dx", law.pop("dx", 0.00965e-3 / scale), allow_zero=True)) * scale,
-        "k_lv": float(check.positive(f"{lkey}.k_lv", law.pop("k_lv", 0.98e9))),
-        "k_hv": float(check.positive(f"{lkey}.k_hv", law.pop("k_hv", 1.72e9))),
-        "theta0": np.radians(float(check.finite(f"{lkey}.theta0", law.pop("theta0", 97.0)))),
-        "dtheta": np.radians(float(check.positive(f"{lkey}.dtheta", law.pop("dtheta", 15.0)))),
+        "dx": law.length("dx", 0.00965e-3 / scale, **length, plausible=PLAUSIBLE["law_dx"], what="law transition"),
+        "k_lv": law.number("k_lv", 0.98e9, lo=1e5, hi=1e13, unit=" N/m"),
+        "k_hv": law.number("k_hv", 1.72e9, lo=1e5, hi=1e13, unit=" N/m"),
+        "theta0": np.radians(law.number("theta0", 97.0, lo=0.0, hi=180.0, unit=" deg")),
+        "dtheta": np.radians(law.number("dtheta", 15.0, lo=0.0, hi=180.0, lo_open=True, unit=" deg")),
     }
-    ratio = float(check.positive(f"{lkey}.clearance_ratio", law.pop("clearance_ratio", 37.0 / 30.0)))
-    if law:
-        raise ValueError(f"{lkey}: unknown key(s) {sorted(law)}")
-    oil_table = dict(data.get("oil", {}))
-    okey = f"{where}, key oil"
-    grade = film_oil.get(oil_table.pop("grade", "SAE-5W-30")).name
-    supply = float(check.in_range(f"{okey}.supply_temperature", oil_table.pop("supply_temperature", 90.0), -30.0, 200.0,
-                                  unit=" degC"))
-    if oil_table:
-        raise ValueError(f"{okey}: unknown key(s) {sorted(oil_table)}")
+    ratio = law.number("clearance_ratio", 37.0 / 30.0, lo=0.0, hi=10.0, lo_open=True)
+    law.close()
+    oil = top.table("oil")
+    grade = film_oil.get(oil.text("grade", "SAE-5W-30")).name
+    supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
+    oil.close()
     return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply)

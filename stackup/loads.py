@@ -185,16 +185,18 @@ def firing_offsets(throw_angles, firing_order):
     return np.mod(fire - fire[order[0]], 720.0)
 
 
-def read_pressure_trace(path):
+def read_pressure_trace(path, *, name=None):
     """A measured cylinder pressure trace from CSV: columns ``crank_angle_deg`` and ``pressure_pa``.
 
     Angles are cycle angles [deg] from firing TDC over 720 deg (one row per
     angle, any spacing, in increasing order); pressures absolute [Pa].
-    Returns (angles, pressures) for :func:`pin_loads`.
+    ``path`` may also be an open text buffer (``name`` then names it in
+    messages). Returns (angles, pressures) for :func:`pin_loads`.
     """
     import pandas as pd
 
     frame = pd.read_csv(path)
+    path = path if name is None else name
     missing = {"crank_angle_deg", "pressure_pa"} - set(frame.columns)
     if missing:
         raise ValueError(f"pressure trace {str(path)!r}: missing column(s) {sorted(missing)}; "

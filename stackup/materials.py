@@ -7,12 +7,12 @@ and :func:`get` also accepts a :class:`Material` directly.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
 from . import _validate as check
+from ._files import Table, read_toml
 
 
 @dataclass(frozen=True)
@@ -44,17 +44,21 @@ class Material:
 
 
 def _read(path):
-    with open(path, "rb") as f:
-        data = tomllib.load(f)
-    if data.pop("units", "SI") != "SI":
-        raise ValueError(f"materials file {Path(path).name!r}, key units: only 'SI' is supported")
+    """The materials of a file: ``units = "SI"`` and one table per material (see the built-in file)."""
+    data, _ = read_toml(path, kind="materials")
+    top = Table(data, f"materials file {Path(path).name!r}")
+    top.text("units", "SI", options=("SI",))
     out = {}
-    for name, entry in data.items():
-        missing = {"modulus", "poisson", "expansion"} - set(entry)
-        if missing:
-            raise ValueError(f"materials file {Path(path).name!r}, key {name}: missing {sorted(missing)}")
-        out[name] = Material(name, float(entry["modulus"]), float(entry["poisson"]), float(entry["expansion"]),
-                             str(entry.get("source", "")))
+    for name in [k for k in data if k != "units"]:
+        t = top.table(name)
+        t.text("title", "")  # a description for the reader of the file
+        # SI only: a modulus in GPa (210) or an expansion in um/(m K) (11.5) is refused as implausible.
+        out[name] = Material(name,
+                             t.number("modulus", required=True, lo=1e8, hi=1e13, unit=" Pa"),
+                             t.number("poisson", required=True, lo=-1.0, hi=0.5, lo_open=True, hi_open=True),
+                             t.number("expansion", required=True, lo=-1e-4, hi=1e-4, unit=" 1/K"),
+                             t.text("source", ""))
+        t.close()
     return out
 
 

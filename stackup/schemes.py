@@ -42,7 +42,6 @@ its binary floating-point value is slightly below 50.018 mm.
 from __future__ import annotations
 
 import os
-import tomllib
 from dataclasses import dataclass
 from functools import cached_property
 from importlib import resources
@@ -51,6 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _validate as check
+from ._files import Table, read_toml
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
 #: Readings are snapped to this grid before comparison with grade limits [m].
@@ -137,40 +137,41 @@ class GradeSet:
         return lut[np.searchsorted(edges, _snap(reading), side="right")]
 
 
-def _grade_set(table, *, scale, where, dim):
-    known = {"limits", "grades", "classes", "resolution", "overlap"}
-    unknown = set(table) - known
-    if unknown:
-        raise ValueError(f"{where}, key {dim}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
-    forms = [k for k in ("grades", "classes") if k in table]
+#: Sizes a scheme's lengths may have [m], for the plausibility checks (a bore of 50 m or a wall of
+#: 0.002 mm is a file written in the wrong ``units``).
+PLAUSIBLE = {"housing": (5e-3, 2.0), "journal": (5e-3, 2.0), "shell": (0.3e-3, 30e-3),
+             "stated_clearance": (0.0, 2e-3), "resolution": (0.0, 0.1e-3), "step": (0.1e-6, 0.1e-3)}
+_WHAT = {"housing": "housing bore diameter", "journal": "journal diameter", "shell": "shell wall thickness"}
+
+
+def _grade_set(top, *, scale, units, dim):
+    t = top.table(dim, required=True)
+    where, field = t.where, f"{t.where}, key {dim}"
+    size = dict(scale=scale, units=units, plausible=PLAUSIBLE[dim], what=_WHAT[dim])
+    forms = [k for k in ("grades", "classes") if k in t]
     if len(forms) > 1:
-        raise ValueError(f"{where}, key {dim}: give either 'grades' or 'classes', not both")
-    resolution = float(check.positive(f"{where}, key {dim}.resolution", table.get("resolution", 0.0), allow_zero=True)) * scale
-    overlap = bool(table.get("overlap", False))
+        raise ValueError(f"{field}: give either 'grades' or 'classes', not both")
+    resolution = t.length("resolution", 0.0, scale=scale, units=units, plausible=PLAUSIBLE["resolution"],
+                          what="read-out step")
+    overlap = t.flag("overlap", False)
+    limits = t.lengths("limits", count=2, **size, increasing=True)
+    limits = None if limits is None else tuple(limits)
+    grades_table = t.table("grades") if "grades" in t else t.get("grades")
+    classes_table = t.table("classes") if "classes" in t else t.get("classes")
+    t.close()
 
-    def pair_of(key, value):
-        if not (isinstance(value, (list, tuple)) and len(value) == 2):
-            raise ValueError(f"{where}, key {key}: {value!r} is not a [lower, upper] pair")
-        lo, hi = (float(check.finite(f"{where}, key {key}", v)) for v in value)
-        if hi < lo:
-            raise ValueError(f"{where}, key {key}: upper limit {hi!r} is below lower limit {lo!r}")
-        if hi == lo:
-            raise ValueError(f"{where}, key {key}: upper limit {hi!r} equals lower limit; a grade needs a width")
-        return lo * scale, hi * scale
-
-    limits = pair_of(f"{dim}.limits", table["limits"]) if "limits" in table else None
-
-    if "classes" in table:
-        spec = table["classes"]
-        try:
-            start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
-        except (KeyError, TypeError, ValueError):
-            raise ValueError(f"{where}, key {dim}.classes: {spec!r} needs numbers start, stop and step") from None
-        if step <= 0 or stop < start:
-            raise ValueError(f"{where}, key {dim}.classes: {spec!r} needs step > 0 and stop >= start")
+    if classes_table is not None:
+        c = classes_table
+        c.length("start", required=True, **size)
+        c.length("stop", required=True, **size)
+        c.length("step", required=True, scale=scale, units=units, plausible=PLAUSIBLE["step"], what="class width")
+        c.close()
+        start, stop, step = (float(c.data[k]) for k in ("start", "stop", "step"))  # in file units, as written
+        if stop < start:
+            raise ValueError(f"{field}.classes: stop {stop!r} is below start {start!r}")
         count = int(round((stop - start) / step)) + 1
         if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
-            raise ValueError(f"{where}, key {dim}.classes: stop {stop!r} is not start plus a whole number of steps")
+            raise ValueError(f"{field}.classes: stop {stop!r} is not start plus a whole number of steps")
         start_nm = int(_snap(start * scale))
         step_nm = int(_snap(step * scale))
         edges = start_nm + step_nm * np.arange(count, dtype=np.int64)
@@ -181,15 +182,15 @@ def _grade_set(table, *, scale, where, dim):
         labels = tuple(str(k) for k in range(count))
         return GradeSet(labels, lo, hi, limits, resolution, True, edges, np.arange(count), int(edges[-1] + step_nm), False)
 
-    if "grades" in table:
-        grades = table["grades"]
-        if not isinstance(grades, dict) or not grades:
-            raise ValueError(f"{where}, key {dim}.grades: needs at least one grade as label = [lower, upper]")
-        labels = tuple(grades)
+    if grades_table is not None:
+        g = grades_table
+        if not g.data:
+            raise ValueError(f"{field}.grades: needs at least one grade as label = [lower, upper]")
+        labels = tuple(g.data)
         for lab in labels:
             if not lab or len(lab) > 2:
-                raise ValueError(f"{where}, key {dim}.grades.{lab}: grade labels are one or two characters")
-        bounds = [pair_of(f"{dim}.grades.{lab}", grades[lab]) for lab in labels]
+                raise ValueError(f"{field}.grades.{lab}: grade labels are one or two characters")
+        bounds = [g.lengths(lab, count=2, required=True, **size, increasing=True) for lab in labels]
         lo = np.array([b[0] for b in bounds])
         hi = np.array([b[1] for b in bounds])
         order = np.argsort(lo, kind="stable")
@@ -199,28 +200,29 @@ def _grade_set(table, *, scale, where, dim):
             la, lb = labels[order[a]], labels[order[b]]
             if lo_nm[b] > hi_nm[a]:
                 raise ValueError(
-                    f"{where}, key {dim}.grades: gap between grade {la} (up to {hi[order[a]] / scale:.6g}) "
+                    f"{field}.grades: gap between grade {la} (up to {hi[order[a]] / scale:.6g}) "
                     f"and grade {lb} (from {lo[order[b]] / scale:.6g})"
                 )
             if lo_nm[b] < hi_nm[a]:
                 if not overlap:
                     raise ValueError(
-                        f"{where}, key {dim}.grades: grades {la} and {lb} overlap "
+                        f"{field}.grades: grades {la} and {lb} overlap "
                         f"({lo[order[b]] / scale:.6g} < {hi[order[a]] / scale:.6g}); "
                         f"set {dim}.overlap = true if that is intended"
                     )
                 if hi_nm[b] <= hi_nm[a] or lo_nm[b] <= lo_nm[a]:
-                    raise ValueError(f"{where}, key {dim}.grades: grade {lb} lies inside grade {la}")
+                    raise ValueError(f"{field}.grades: grade {lb} lies inside grade {la}")
                 # A reading in the overlap goes to the grade whose centre is nearest.
                 edges[b] = (lo_nm[b] + hi_nm[a]) // 2
         span = (float(lo.min()), float(hi.max()))
         if limits is not None and (limits[0] > span[0] or limits[1] < span[1]):
-            raise ValueError(f"{where}, key {dim}.limits: grades reach outside the limits {limits}")
+            raise ValueError(f"{field}.limits: grades reach outside the limits "
+                             f"[{limits[0] / scale:.6g}, {limits[1] / scale:.6g}] {units}")
         limits = span if limits is None else limits
         return GradeSet(labels, lo, hi, limits, resolution, False, edges, order, int(hi_nm.max()), True)
 
     if limits is None:
-        raise ValueError(f"{where}, key {dim}: give 'limits', 'grades' or 'classes'")
+        raise ValueError(f"{field}: give 'limits', 'grades' or 'classes'")
     lo_nm = _snap(limits[0])
     return GradeSet((UNGRADED,), np.array([limits[0]]), np.array([limits[1]]), limits, resolution, False,
                     np.array([lo_nm]), np.array([0]), int(_snap(limits[1])), True)
@@ -354,6 +356,10 @@ class Scheme:
         path.write_text(_toml_text(self))
         return path
 
+    def to_toml_text(self):
+        """The text :meth:`to_toml` writes."""
+        return _toml_text(self)
+
     def clearance_limits(self):
         r"""Worst-case nominal diametral clearance (c_min, c_max) [m], without housing swell.
 
@@ -393,54 +399,63 @@ def _parse_pair(text, shells, where, key):
     return tuple(out)
 
 
-def _pairing(table, housing, journal, shells, where):
-    forms = [k for k in ("all", "table", "matrix") if k in table]
+def _pairing(top, housing, journal, shells):
+    t = top.table("pairing", required=True)
+    where, field = t.where, f"{t.where}, key pairing"
+    given = {k: t.get(k) for k in ("all", "table", "matrix", "letters", "alternatives")}
+    t.close()
+    forms = [k for k in ("all", "table", "matrix") if given[k] is not None]
     if len(forms) != 1:
-        raise ValueError(f"{where}, key pairing: give exactly one of 'all', 'table' or 'matrix' (found {forms or 'none'})")
-    unknown = set(table) - {"all", "table", "matrix", "letters", "alternatives"}
-    if unknown:
-        raise ValueError(f"{where}, key pairing: unknown key(s) {sorted(unknown)}")
+        raise ValueError(f"{field}: give exactly one of 'all', 'table' or 'matrix' (found {forms or 'none'})")
+    if given["letters"] is not None and "matrix" not in forms:
+        raise ValueError(f"{field}.letters: letters give the meaning of a matrix's letters; there is no matrix")
     nj, nh = len(journal.labels), len(housing.labels)
     cells = np.full((nj, nh, 2), -1, dtype=np.int64)
-    if "all" in table:
-        cells[:, :] = _parse_pair(table["all"], shells, where, "pairing.all")
-    elif "table" in table:
-        rows = table["table"]
-        for jl in rows:
+    if "all" in forms:
+        cells[:, :] = _parse_pair(given["all"], shells, where, "pairing.all")
+    elif "table" in forms:
+        rows = t.table("table")
+        for jl in rows.data:
             if jl not in journal.labels:
-                raise ValueError(f"{where}, key pairing.table.{jl}: unknown journal grade {jl!r} (grades: {', '.join(journal.labels)})")
-            for hl in rows[jl]:
+                raise ValueError(f"{field}.table.{jl}: unknown journal grade {jl!r} (grades: {', '.join(journal.labels)})")
+            row = rows.table(jl)
+            for hl in row.data:
                 if hl not in housing.labels:
-                    raise ValueError(f"{where}, key pairing.table.{jl}.{hl}: unknown housing grade {hl!r} (grades: {', '.join(housing.labels)})")
+                    raise ValueError(f"{field}.table.{jl}.{hl}: unknown housing grade {hl!r} (grades: {', '.join(housing.labels)})")
                 key = f"pairing.table.{jl}.{hl}"
-                cells[journal.labels.index(jl), housing.labels.index(hl)] = _parse_pair(rows[jl][hl], shells, where, key)
+                cells[journal.labels.index(jl), housing.labels.index(hl)] = _parse_pair(row.get(hl), shells, where, key)
     else:
-        letters = table.get("letters")
-        if not isinstance(letters, dict) or not letters:
-            raise ValueError(f"{where}, key pairing.letters: a matrix needs its letters, e.g. letters = {{ a = 'A+A' }}")
-        meaning = {k: _parse_pair(v, shells, where, f"pairing.letters.{k}") for k, v in letters.items()}
-        rows = table["matrix"]
+        if given["letters"] is None:
+            raise ValueError(f"{field}.letters: missing; a matrix needs its letters, e.g. letters = {{ a = 'A+A' }}")
+        letters = t.table("letters")
+        if not letters.data:
+            raise ValueError(f"{field}.letters: empty; a matrix needs its letters, e.g. letters = {{ a = 'A+A' }}")
+        meaning = {k: _parse_pair(v, shells, where, f"pairing.letters.{k}") for k, v in letters.data.items()}
+        rows = given["matrix"]
+        if not isinstance(rows, list) or not all(isinstance(r, str) for r in rows):
+            raise ValueError(f"{field}.matrix: {rows!r} is not a list of rows of letters, one text per journal class")
         if len(rows) != nj:
-            raise ValueError(f"{where}, key pairing.matrix: {len(rows)} rows for {nj} journal classes")
+            raise ValueError(f"{field}.matrix: {len(rows)} rows for {nj} journal classes")
         for j, row in enumerate(rows):
             if len(row) != nh:
-                raise ValueError(f"{where}, key pairing.matrix[{j}]: {len(row)} letters for {nh} housing classes")
+                raise ValueError(f"{field}.matrix[{j}]: {len(row)} letters for {nh} housing classes")
             for h, letter in enumerate(row):
                 if letter not in meaning:
-                    raise ValueError(f"{where}, key pairing.matrix[{j}][{h}]: letter {letter!r} is not in pairing.letters")
+                    raise ValueError(f"{field}.matrix[{j}][{h}]: letter {letter!r} is not in pairing.letters")
                 cells[j, h] = meaning[letter]
     missing = np.argwhere(cells[..., 0] < 0)
     if len(missing):
         j, h = missing[0]
         raise ValueError(
-            f"{where}, key pairing: no pairing for journal grade {journal.labels[j]!r} "
+            f"{field}: no pairing for journal grade {journal.labels[j]!r} "
             f"with housing grade {housing.labels[h]!r}"
         )
     alternatives = {}
-    for pref, alts in table.get("alternatives", {}).items():
+    alts_table = t.table("alternatives")
+    for pref, alts in alts_table.data.items():
         key = _parse_pair(pref, shells, where, f"pairing.alternatives.{pref}")
         if not isinstance(alts, list):
-            raise ValueError(f"{where}, key pairing.alternatives.{pref}: {alts!r} is not a list of pairs")
+            raise ValueError(f"{field}.alternatives.{pref}: {alts!r} is not a list of pairs")
         alternatives[key] = tuple(_parse_pair(a, shells, where, f"pairing.alternatives.{pref}") for a in alts)
     return cells, alternatives
 
@@ -458,13 +473,19 @@ def _search_dirs():
     return [*dirs, _builtin_dir()]
 
 
+def files():
+    """Where :func:`load` finds each scheme by name: {name: path}, the user's folders first."""
+    found = {}
+    for folder in _search_dirs():
+        if folder.is_dir():
+            for path in sorted(folder.glob("*.toml")):
+                found.setdefault(path.stem, path)
+    return found
+
+
 def available():
     """Names of the schemes that :func:`load` finds by name, shipped ones and the user's."""
-    names = set()
-    for d in _search_dirs():
-        if d.is_dir():
-            names.update(p.stem for p in d.glob("*.toml"))
-    return sorted(names)
+    return sorted(files())
 
 
 def load(name_or_path):
@@ -473,25 +494,19 @@ def load(name_or_path):
         return name_or_path
     text = os.fspath(name_or_path)
     path = Path(text)
-    if not (path.suffix == ".toml" or os.sep in text or path.is_file()):
+    if not (path.suffix == ".toml" or os.sep in text or path.exists()):
         found = [d / f"{text}.toml" for d in _search_dirs() if (d / f"{text}.toml").is_file()]
         if not found:
             raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file")
         path = found[0]
-    if not path.is_file():
-        raise ValueError(f"scheme: file {text!r} does not exist")
-    where = f"scheme file {path.name!r}"
-    try:
-        with open(path, "rb") as f:
-            data = tomllib.load(f)
-    except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{where}: not valid TOML ({err})") from None
-    return _from_dict(data, where=where, path=str(path))
+    data, _ = read_toml(path, kind="scheme")
+    return _from_dict(data, where=f"scheme file {path.name!r}", path=str(path))
 
 
 def from_dict(data, *, path=""):
     """A scheme from the table a scheme file holds (see the module docstring), e.g. built by a program."""
-    return _from_dict(data, where=f"scheme {data.get('name', path or 'table')!r}", path=str(path))
+    name = data.get("name", path or "table") if isinstance(data, dict) else path or "table"
+    return _from_dict(data, where=f"scheme {name!r}", path=str(path))
 
 
 def _mm(value):
@@ -559,31 +574,27 @@ _LETTERS = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
 
 def _from_dict(data, *, where, path):
-    known = {"name", "title", "source", "units", "stated_clearance", "housing", "journal", "shell", "pairing"}
-    unknown = set(data) - known
-    if unknown:
-        raise ValueError(f"{where}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
-    for key in ("units", "housing", "journal", "shell", "pairing"):
-        if key not in data:
-            raise ValueError(f"{where}: missing key '{key}'")
-    units = data["units"]
-    if units not in _UNITS:
-        raise ValueError(f"{where}, key units: {units!r} is not one of {', '.join(map(repr, _UNITS))}")
+    """The scheme of a table, every key read through :class:`stackup._files.Table` (unknown keys refused)."""
+    top = Table(data, where)
+    units = top.text("units", required=True, options=tuple(_UNITS))
     scale = _UNITS[units]
-    housing = _grade_set(data["housing"], scale=scale, where=where, dim="housing")
-    journal = _grade_set(data["journal"], scale=scale, where=where, dim="journal")
-    shell = _grade_set(data["shell"], scale=scale, where=where, dim="shell")
-    cells, alternatives = _pairing(data["pairing"], housing, journal, shell.labels, where)
-    stated = data.get("stated_clearance")
-    if stated is not None:
-        lo, hi = check.limits(f"{where}, key stated_clearance", *stated, unit=units)
-        stated = (lo * scale, hi * scale)
+    name = top.text("name", Path(path).stem)
+    title = top.text("title", "")
+    source = top.text("source", "")
+    # Optional: a scheme without it has no stated range (None), never a range of zero width.
+    stated = top.lengths("stated_clearance", count=2, scale=scale, units=units, plausible=PLAUSIBLE["stated_clearance"],
+                         what="stated clearance", increasing=True)
+    housing = _grade_set(top, scale=scale, units=units, dim="housing")
+    journal = _grade_set(top, scale=scale, units=units, dim="journal")
+    shell = _grade_set(top, scale=scale, units=units, dim="shell")
+    cells, alternatives = _pairing(top, housing, journal, shell.labels)
+    top.close()
     return Scheme(
-        name=str(data.get("name", Path(path).stem)),
-        title=str(data.get("title", "")),
-        source=str(data.get("source", "")),
+        name=name,
+        title=title,
+        source=source,
         path=path,
-        stated_clearance=stated,
+        stated_clearance=None if stated is None else tuple(stated),
         housing=housing,
         journal=journal,
         shell=shell,

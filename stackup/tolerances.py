@@ -472,6 +472,33 @@ class Dimension:
 _DISTRIBUTIONS = ("normal", "truncated-normal", "uniform", "mixture", "tool-wear")
 
 
+def _spec_table(field, spec):
+    """A TOML table as a dict, or a ValueError naming the field (a number or text where a table belongs)."""
+    if not isinstance(spec, dict):
+        raise ValueError(f"{field}: {spec!r} is not a table (write {{ key = value, ... }})")
+    return dict(spec)
+
+
+def _scalar(field, value):
+    """One finite number from a file: text, true/false, lists and tables are refused, never converted."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{field}: {value!r} is not a number")
+    return float(check.finite(field, value))
+
+
+#: Largest gauge error or form error a file may give [m]: 0.1 mm (a value in um written as mm is 1000 times more).
+_SMALL_LENGTH = 0.1e-3
+
+
+def _small_length(field, value, scale):
+    """A gauge or form error in file units -> m, refused above :data:`_SMALL_LENGTH` with a hint about units."""
+    v = _scalar(field, value)
+    if abs(v * scale) > _SMALL_LENGTH:
+        raise ValueError(f"{field}: {v:g} is not a plausible gauge or form error (at most {_SMALL_LENGTH / scale:g} "
+                         "in the file's units); is `units` right?")
+    return v * scale
+
+
 def process_from_spec(spec, *, lo, hi, scale, field):
     """Build a process from a TOML table (lengths in file units times ``scale`` -> m).
 
@@ -487,16 +514,16 @@ def process_from_spec(spec, *, lo, hi, scale, field):
 
     Any form takes ``mean_shift`` (added to the process mean).
     """
-    spec = dict(spec)
+    spec = _spec_table(field, spec)
     kind = check.one_of(f"{field}.distribution", spec.pop("distribution", "normal"), _DISTRIBUTIONS)
-    shift = float(check.finite(f"{field}.mean_shift", spec.pop("mean_shift", 0.0))) * scale
+    shift = _scalar(f"{field}.mean_shift", spec.pop("mean_shift", 0.0)) * scale
 
     def length(key, default=None):
         if key not in spec:
             if default is None:
                 raise ValueError(f"{field}: missing key '{key}' for distribution '{kind}'")
             return default
-        return float(check.finite(f"{field}.{key}", spec.pop(key))) * scale
+        return _scalar(f"{field}.{key}", spec.pop(key)) * scale
 
     def spread(key):
         value = length(key)
@@ -506,10 +533,11 @@ def process_from_spec(spec, *, lo, hi, scale, field):
 
     if kind == "normal":
         if "cpk" in spec:
-            cpk = spec.pop("cpk")
+            cpk = _scalar(f"{field}.cpk", spec.pop("cpk"))
             cp = spec.pop("cp", None)
-            if cpk is None or float(cpk) <= 0:
-                raise ValueError(f"{field}.cpk: {cpk!r} is not valid; must be > 0")
+            cp = None if cp is None else _scalar(f"{field}.cp", cp)
+            if cpk <= 0:
+                raise ValueError(f"{field}.cpk: {cpk:g} is not valid; must be > 0")
             process = Normal.from_capability(lo, hi, cpk=float(cpk), cp=cp, side=spec.pop("side", "upper"))
         else:
             process = Normal(length("mean", 0.5 * (lo + hi)), spread("sigma"))
@@ -523,9 +551,12 @@ def process_from_spec(spec, *, lo, hi, scale, field):
             raise ValueError(f"{field}: uniform hi {process.hi:.6g} m is not above lo {process.lo:.6g} m")
     elif kind == "mixture":
         items = spec.pop("components", None)
+        if items is not None and not (isinstance(items, list) and all(isinstance(c, dict) for c in items)):
+            raise ValueError(f"{field}.components: {items!r} is not a list of tables")
         if not items:
             raise ValueError(f"{field}.components: a mixture needs at least one component")
-        weights = tuple(float(c.get("weight", np.nan)) for c in items)
+        weights = tuple(_scalar(f"{field}.components[{i}].weight", c.get("weight", np.nan))
+                        for i, c in enumerate(items))
         comps = tuple(
             process_from_spec({k: v for k, v in c.items() if k != "weight"}, lo=lo, hi=hi, scale=scale,
                               field=f"{field}.components[{i}]")
@@ -543,30 +574,43 @@ def form_from_spec(spec, *, scale, field):
     """Build a :class:`FormError` from a TOML table (lengths in file units times ``scale``), or None."""
     if spec is None:
         return None
-    spec = dict(spec)
+    spec = _spec_table(field, spec)
     known = {"ovality", "taper", "planes", "directions"}
     unknown = set(spec) - known
     if unknown:
         raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
     try:
-        return FormError(ovality=float(check.finite(f"{field}.ovality", spec.get("ovality", 0.0))) * scale,
-                         taper=float(check.finite(f"{field}.taper", spec.get("taper", 0.0))) * scale,
-                         planes=tuple(float(x) for x in spec.get("planes", (0.5,))),
-                         directions=spec.get("directions", 1))
+        planes = spec.get("planes", [0.5])
+        if not isinstance(planes, list):
+            raise ValueError(f"planes: {planes!r} is not a list of axial positions")
+        directions = spec.get("directions", 1)
+        if isinstance(directions, bool) or not isinstance(directions, int):
+            raise ValueError(f"directions: {directions!r} is not a whole number")
+        return FormError(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
+                         taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
+                         planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
+                         directions=directions)
     except ValueError as err:
         raise ValueError(f"{field}: {err}") from None
 
 
 def gauge_from_spec(spec, *, scale, field):
     """Build a :class:`Gauge` from a TOML table (lengths in file units times ``scale``)."""
-    spec = dict(spec or {})
+    spec = _spec_table(field, {} if spec is None else spec)
     known = {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings", "combine"}
     unknown = set(spec) - known
     if unknown:
         raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
     for key in ("bias", "repeatability", "resolution"):
         if key in spec:
-            spec[key] = float(check.finite(f"{field}.{key}", spec[key])) * scale
+            spec[key] = _small_length(f"{field}.{key}", spec[key], scale)
+    for key in ("temperature", "expansion_mismatch"):
+        if key in spec:
+            spec[key] = _scalar(f"{field}.{key}", spec[key])
+    if "readings" in spec and (isinstance(spec["readings"], bool) or not isinstance(spec["readings"], int)):
+        raise ValueError(f"{field}.readings: {spec['readings']!r} is not a whole number")
+    if "combine" in spec and not isinstance(spec["combine"], str):
+        raise ValueError(f"{field}.combine: {spec['combine']!r} is not text")
     try:
         return Gauge(**spec)
     except ValueError as err:

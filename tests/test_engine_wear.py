@@ -65,12 +65,12 @@ def test_defaults_without_the_tables_say_so(engine_file):
 @pytest.mark.parametrize("extra, message", [
     (WEAR + "critical_film = 0.0015\n", r"critical_film: 0.0015 is below journal_rz \+ shell_rz = 0.0018"),
     (WEAR.replace("shell_rq = 0.0003", "shell_rq = 0.002"), "shell_rq: 0.002 is not below shell_rz 0.0012"),
-    (WEAR.replace('wear_source = "test"', ""), "missing 'wear_source'"),
-    (WEAR + "colour = 1\n", r"unknown key\(s\) \['colour'\]"),
+    (WEAR.replace('wear_source = "test"', ""), "key wear.wear_source: missing"),
+    (WEAR + "colour = 1\n", r"key wear: unknown key 'colour'; valid keys: critical_film, journal_rq"),
     ('\n[oil_feed]\nfeed = "slot"\nsupply_pressure = 1e5\nsource = "x"\n', "oil_feed.feed: 'slot' is not one of"),
     ('\n[oil_feed]\nfeed = "groove"\nsupply_pressure = 1e5\ngroove_arc = [200.0, 100.0]\ngroove_width = 2.0\n'
      'source = "x"\n', r"groove_arc: \[200.0, 100.0\] deg is not valid"),
-    ('\n[oil_feed]\nfeed = "groove"\nsupply_pressure = 1e5\ngroove_width = 2.0\n', "missing 'source'"),
+    ('\n[oil_feed]\nfeed = "groove"\nsupply_pressure = 1e5\ngroove_width = 2.0\n', "key oil_feed.source: missing"),
 ])
 def test_bad_tables(with_tables, extra, message):
     with pytest.raises(ValueError, match=message):

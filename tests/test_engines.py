@@ -82,7 +82,7 @@ def _engine_file(tmp_path, change):
 @pytest.mark.parametrize("change, message", [
     ({"contact_pressure_min = 10e6": "contact_pressure_min = 10.0"}, r"give the limits in Pa"),
     ({'source = """Kopeliovich, Crush height of engine bearings, sec. 2: contact pressure':
-      'not_source = """Kopeliovich'}, r"press_fit.limits: missing 'source'"),
+      'not_source = """Kopeliovich'}, r"press_fit.limits.source: missing"),
     ({"cold_temperature = -25.0": "cold_temperature = 40.0"}, r"cold_temperature: 40.0 degC is above the assembly"),
     ({"hot_temperature = 130.0": "hot_temperature = 90.0"}, r"hot_temperature: 90.0 degC is below the operating"),
     ({"relative_clearance = [0.00075, 0.00125]": "relative_clearance = [0.75, 1.25]"},

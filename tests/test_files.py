@@ -37,5 +37,70 @@ def test_implausible_lengths_point_at_the_units():
     with pytest.raises(ValueError, match=r"key crank.spans: 0.085 mm is not a plausible crankshaft span "
                                          r"\(20 to 2000 mm\); is `units` right\?"):
         t.lengths("spans", scale=1e-3, units="mm", plausible=(0.02, 2.0), what="crankshaft span")
-    with pytest.raises(ValueError, match=r"key crank.limits: \[50.0, 50.0\] mm is not increasing"):
+    with pytest.raises(ValueError, match=r"key crank.limits: \[50, 50\] mm is a tolerance of zero width"):
         t.lengths("limits", scale=1e-3, units="mm", plausible=(1e-3, 2.0), what="bore", increasing=True)
+
+
+def test_materials_files_are_read_strictly(tmp_path):
+    from stackup import materials
+
+    cases = {
+        "[mg]\nmodulus = 45\npoisson = 0.35\nexpansion = 26e-6\n":
+            r"materials file 'm.toml', key mg.modulus: 45 Pa is outside the valid range \[1e\+08, 1e\+13\] Pa",
+        "[mg]\nmodulus = '45e9'\npoisson = 0.35\nexpansion = 26e-6\n": r"key mg.modulus: '45e9' is text, not a number",
+        "[mg]\nmodulus = 45e9\npoisson = 0.35\nexpansion = 26e-6\nmodulos = 1\n":
+            r"key mg: unknown key 'modulos'; valid keys: .*did you mean 'modulus'\?",
+        "[mg]\nmodulus = 45e9\nexpansion = 26e-6\n": r"key mg.poisson: missing",
+        "units = 'mm'\n": r"key units: 'mm' is not one of 'SI'",
+        "mg = 3\n": r"key mg: 3 is a number, not a table",
+    }
+    for text, message in cases.items():
+        (tmp_path / "m.toml").write_text(text)
+        with pytest.raises(ValueError, match=message):
+            materials.load(tmp_path / "m.toml")
+    with pytest.raises(ValueError, match=r"materials file '.*': is a folder, not a file"):
+        materials.load(tmp_path)
+
+
+def test_oils_file_is_read_strictly(tmp_path):
+    from stackup.film import oil
+
+    good = ("[o]\nkv40 = 62e-6\nkv100 = 10.8e-6\nhths150 = 3.1e-3\ndensity15 = 852.0\nmultigrade = true\n"
+            "pressure_coefficient = 1.1e-8\nsource = 's'\n")
+    (tmp_path / "oils.toml").write_text(good)
+    assert oil._read(tmp_path / "oils.toml")["o"] == oil.get("SAE-5W-30").__class__(
+        **{**oil.get("SAE-5W-30").__dict__, "name": "o", "source": "s"})
+    cases = {("kv40 = 62e-6", "kv40 = 62"): r"oils file 'oils.toml', key o.kv40: 62 m\^2/s is outside",
+             ("multigrade = true", "multigrade = 'yes'"): r"key o.multigrade: 'yes' is text, not true/false",
+             ("source = 's'", "sorce = 's'"): r"key o.source: missing \(is 'sorce' a misspelling of it\?\)"}
+    for (old, new), message in cases.items():
+        (tmp_path / "oils.toml").write_text(good.replace(old, new))
+        with pytest.raises(ValueError, match=message):
+            oil._read(tmp_path / "oils.toml")
+
+
+def test_a_scheme_needs_no_stated_clearance_and_refuses_wrong_types(tmp_path):
+    from stackup import schemes
+
+    text = (schemes._builtin_dir() / "iso13778-4.toml").read_text()
+    (tmp_path / "s.toml").write_text(text.replace("stated_clearance = [0.026, 0.044]\n", ""))
+    assert schemes.load(tmp_path / "s.toml").stated_clearance is None
+    cases = {("A = [50.000, 50.006]", 'A = ["50.000", 50.006]'): r"key housing.grades.A: '50.000' is text, not a number",
+             ("[housing]", "[housing]\noverlap = 'false'"): r"key housing.overlap: 'false' is text, not true/false",
+             ("[housing]", "[housing]\nresolution = 1.0"): r"key housing.resolution: 1 mm is not a plausible read-out",
+             ("A = [50.000, 50.006]", "A = [50000, 50.006]"): r"key housing.grades.A: 50000 mm is not a plausible "
+                                                               r"housing bore diameter .*is `units` right\?",
+             ("[pairing.table]", "[pairing]\nletters = { a = 'A+A' }\n[pairing.table]"): r"key pairing.letters: .*no matrix",
+             ("[journal]", "[journal]\ngrade = 1"): r"key journal: unknown key 'grade'.*did you mean 'grades'\?"}
+    for (old, new), message in cases.items():
+        assert old in text
+        (tmp_path / "s.toml").write_text(text.replace(old, new, 1))
+        with pytest.raises(ValueError, match=rf"scheme file 's.toml', {message}"):
+            schemes.load(tmp_path / "s.toml")
+    (tmp_path / "d").mkdir()
+    with pytest.raises(ValueError, match=r"scheme file '.*d': is a folder, not a file"):
+        schemes.load(tmp_path / "d")
+    text6 = (schemes._builtin_dir() / "iso13778-6.toml").read_text()
+    (tmp_path / "s.toml").write_text(text6.replace("step = 0.001", 'step = "0.001"', 1))
+    with pytest.raises(ValueError, match=r"key housing.classes.step: '0.001' is text, not a number"):
+        schemes.load(tmp_path / "s.toml")

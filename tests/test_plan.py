@@ -1,5 +1,7 @@
 """Grade-quantity planning: conservation, symmetry, service level by simulation, bad input."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -58,8 +60,9 @@ def test_unknown_scheme():
 def test_cli_plan(capsys):
     assert main(["plan", "--scheme", "iso13778-5", "--volume", "2000", "--sample", "2000"]) == 0
     out = capsys.readouterr().out
-    assert "safety" in out and "B" in out
+    assert "safety" in out and "[shells]" in out and "\nB " in out
     assert main(["plan", "--scheme", "iso13778-5", "--volume", "-5"]) == 2
+    assert "argument --volume: -5 engines is too few; give at least 1" in capsys.readouterr().err
 
 
 def test_optimiser_matches_brute_force_on_a_small_case():
@@ -121,3 +124,69 @@ def test_plan_from_a_study_dataset_agrees_with_the_process_plan():
     for g in ("A", "B", "C"):
         lo, hi = from_ds.loc[("iso13778-5", g), ["demand_per_1000_lo", "demand_per_1000_hi"]]
         assert lo - 30 <= direct.demand_per_1000[g] <= hi + 30  # two independent samples of the same demand
+    from stackup.plan import planner_table
+
+    table = planner_table(from_ds)
+    assert table.loc[("iso13778-5", "all grades"), "needed, 10000 engines [shells]"] == \
+        table.xs("iso13778-5", level="scheme").drop("all grades")["needed, 10000 engines [shells]"].sum()
+    assert "from the 8,000 engines of the study dataset" in " ".join(table.attrs["title"])
+
+
+@pytest.mark.parametrize("p, lot", [(0.3, 1), (0.088, 7), (0.5, 50), (0.9, 1000)])
+def test_lot_demand_quantile_is_the_binomial_quantile_for_one_part_at_most_per_engine(p, lot):
+    # each engine asks for one part with probability p: the lot's demand is Binomial(lot, p) (closed form)
+    from scipy import stats
+
+    from stackup.plan import lot_demand_quantile
+
+    n = 1000
+    sample = np.r_[np.ones(round(p * n), dtype=int), np.zeros(n - round(p * n), dtype=int)]
+    for level in (0.9, 0.99, 0.999):
+        assert lot_demand_quantile(sample, lot, level) == stats.binom.ppf(level, lot, round(p * n) / n)
+
+
+def test_lot_demand_quantile_of_huge_lots_falls_back_to_the_normal_approximation():
+    from scipy import stats
+
+    from stackup.plan import EXACT_LOT_SUPPORT, lot_demand_quantile
+
+    lot = EXACT_LOT_SUPPORT  # support past the exact limit
+    sample = np.r_[np.ones(300, dtype=int), np.zeros(700, dtype=int)]
+    exact = stats.binom.ppf(0.99, lot, 0.3)
+    assert abs(lot_demand_quantile(sample, lot, 0.99) - exact) <= 0.001 * np.sqrt(lot * 0.21) + 1
+
+
+def test_stock_for_a_small_lot_meets_the_service_level_in_simulation():
+    # the normal approximation covers 98.4 % of lots of 50 engines with scheme 4; the exact quantile covers 99 %
+    small = plan("iso13778-4", volume=50, service_level=0.99, sample_engines=20_000)
+    assert small.attrs["lot_engines"] == 50 and "one lot of 50 engines" in small.attrs["lot_note"]
+    lots = 2000
+    coverage = simulate_lot_coverage("iso13778-4", order_up_to=small.order_up_to.to_numpy(), lot_engines=50,
+                                     lots=lots, seed=11)
+    assert np.all(coverage >= 0.99 - 3 * np.sqrt(0.99 * 0.01 / lots))
+
+
+def test_lots_and_volumes_that_contradict_each_other():
+    with pytest.raises(ValueError, match="lot_engines: a lot of 20,000 engines is more than the volume of 10,000"):
+        plan("iso13778-5", volume=10_000, lot_engines=20_000, sample_engines=500)
+    seven = plan("iso13778-5", volume=7, sample_engines=500)
+    assert seven.attrs["lot_engines"] == 7 and seven.attrs["shells_made"] == math.ceil(7 * 5 * 2 * 1.1)
+    whole = plan("iso13778-5", volume=2500, lot_engines=1000, sample_engines=500)
+    assert whole.attrs["lot_note"] == ""
+    for name, value in (("lot_engines", 10), ("service_level", 0.95)):
+        with pytest.raises(ValueError, match=f"{name}: applies to the shell stock only; journals are graded"):
+            plan("iso13778-4", volume=100, part="journal", sample_engines=500, **{name: value})
+
+
+def test_planner_table_is_whole_parts_that_add_up(plan4):
+    from stackup.plan import planner_table
+
+    table = planner_table(plan4)
+    grades = table.drop("all grades")
+    made = grades["made, 10000 engines [shells]"]
+    assert made.sum() == round(plan4.made.sum())  # apportioned: the grades add up to the shells made
+    assert (abs(made - plan4.made) < 1).all()
+    assert (grades["needed, 10000 engines [shells]"] >= plan4.demanded - 1e-6).all()  # a whole number stays one
+    assert (grades["stock per lot of 1000 engines [shells]"] >= plan4.lot_demand_mean).all()
+    assert table.loc["all grades", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
+    assert table.attrs["title"][0].startswith("How many shells of each grade to make and stock for 10,000 engines")

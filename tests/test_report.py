@@ -1,23 +1,27 @@
 """The report is a function of saved datasets alone: no sampling, no backend change, full or summary datasets."""
 
+import json
 import subprocess
 import sys
+import tomllib
 
 import numpy as np
 import pytest
 
 import stackup
+import stackup.schemes as schemes
 from stackup.io import open_comparison, save_comparison
 from stackup.report import clearance_summary, fit_summary, write_report
 
 KW = dict(schemes=("iso13778-4", "iso13778-6"), n_engines=600, seed=4, pilot_engines=3000, mechanics_engines=12,
           crank_angle_step=12.0, progress=False)
 SCENARIOS = {"bore mean +1σ": {"housing_shift": 1.0}, "misalignment ×2": {"misalignment_scale": 2.0}}
+DESIGN = {"n_engines": 500, "generations": 0, "name": "designed"}
 
 
 @pytest.fixture(scope="module")
 def comparison():
-    return stackup.compare(**KW, scenarios=SCENARIOS)
+    return stackup.compare(**KW, scenarios=SCENARIOS, design=DESIGN)
 
 
 def _no_randomness(monkeypatch):
@@ -102,3 +106,37 @@ def test_a_compact_file_keeps_every_variable_within_half_its_resolution(comparis
         else:  # float32, or exact below two dimensions
             np.testing.assert_allclose(back[name].values, var.values, rtol=2**-23)
         assert back[name].attrs["units"] == var.attrs["units"]
+
+
+def test_the_designed_scheme_is_compared_beside_the_others_and_explained(comparison, tmp_path):
+    ds = comparison.dataset
+    assert list(ds.scheme.values) == [*KW["schemes"], "designed"] and ds.attrs["designed_scheme"] == "designed"
+    assert "designed" in comparison.tails.scheme.values
+    design = json.loads(ds.attrs["design"])
+    assert design["start"] in KW["schemes"] or design["start"].startswith("iso13778-")
+    # the scheme the study ran is the one the designer wrote, stored as text: it reads back as that scheme
+    text = json.loads(ds.attrs["input_files"])["schemes"]["designed"]
+    assert schemes.from_dict(tomllib.loads(text)).clearance_limits() == pytest.approx(
+        [float(v) for v in ds.clearance_limit.sel(scheme="designed").values], abs=1e-9)
+    report = write_report(ds, tmp_path, scenarios=comparison.scenarios, sensitivity=comparison.sensitivity,
+                          tails=comparison.tails).read_text()
+    section = report.split("## Designed scheme")[1].split("\n## ")[0]
+    assert f"starting from `{design['start']}`" in section and "| housing bore |" in section
+    assert "| gauge repeatability 2 µm |" not in section or "design sample" in section
+    assert "What changed" in section and "```text" in section
+
+
+def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
+    from stackup.study import Study
+    from stackup.study.inputs import scheme_text
+
+    text = "\n".join(line for line in scheme_text("iso13778-4").splitlines() if not line.startswith("stated_clearance"))
+    path = tmp_path / "unstated.toml"
+    path.write_text(text.replace('name = "iso13778-4"', 'name = "unstated"'))
+    ds = Study(schemes=(str(path), "iso13778-3"), n_engines=300, mechanics_engines=0, progress=False,
+               pilot_engines=1000).run()
+    summary = clearance_summary(ds)
+    assert np.isnan(summary.outside_stated_ppm["unstated"]) and np.isfinite(summary.outside_stated_ppm["iso13778-3"])
+    report = write_report(ds, tmp_path / "report").read_text()
+    row = next(line for line in report.splitlines() if line.startswith("| unstated | — (none stated) |"))
+    assert row.rstrip(" |").endswith("—")

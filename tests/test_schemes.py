@@ -194,7 +194,7 @@ def test_a_seventh_scheme_as_a_file_needs_no_code(write_toml, monkeypatch):
     "change, message",
     [
         (('B = [50.006, 50.012]', 'B = [50.012, 50.006]'),
-         r"scheme file 'bad.toml', key housing.grades.B: upper limit 50.006 is below lower limit 50.012"),
+         r"scheme file 'bad.toml', key housing.grades.B: upper limit 50.006 mm is below lower limit 50.012 mm"),
         (('B = [50.006, 50.012]', 'B = [50.007, 50.012]'),
          r"scheme file 'bad.toml', key housing.grades: gap between grade A \(up to 50.006\) and grade B \(from 50.007\)"),
         (('B = [50.006, 50.012]', 'B = [50.005, 50.012]'),

@@ -53,14 +53,15 @@ References
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from importlib import resources
+from pathlib import Path
 
 import numpy as np
 from scipy import optimize
 
 from .. import _validate as check
+from .._files import Table, read_toml
 
 #: Specific heat of engine oil at film temperatures (80-150 degC) [J/(kg K)] (mineral oils 2.0-2.3 kJ/(kg K)).
 SPECIFIC_HEAT = 2000.0
@@ -207,7 +208,20 @@ def walther_kinematic_viscosity(kv40, kv100, temperature):
     return (10 ** 10 ** (a - b * np.log10(np.asarray(temperature, dtype=float) + 273.15)) - 0.7) * 1e-6
 
 
-def _from_table(name, e):
+def _from_table(t):
+    """An :class:`Oil` from its table of an oils file (SI: m^2/s, Pa s, kg/m^3, 1/Pa); every key checked."""
+    name = t.path
+    # cSt (62) or mPa s (3.1) instead of SI fall outside these ranges.
+    e = {"kv40": t.number("kv40", required=True, lo=1e-6, hi=1e-2, unit=" m^2/s"),
+         "kv100": t.number("kv100", required=True, lo=1e-6, hi=1e-3, unit=" m^2/s"),
+         "hths150": t.number("hths150", required=True, lo=5e-4, hi=0.1, unit=" Pa s"),
+         "density15": t.number("density15", required=True, lo=600.0, hi=1200.0, unit=" kg/m^3"),
+         "multigrade": t.flag("multigrade", required=True),
+         "pressure_coefficient": t.number("pressure_coefficient", 0.0, lo=0.0, hi=1e-7, unit=" 1/Pa"),
+         "source": t.text("source", required=True)}
+    t.close()
+    if e["kv100"] >= e["kv40"]:
+        raise ValueError(f"{t.where}, key {name}.kv100: {e['kv100']!r} m^2/s is not below kv40 {e['kv40']!r} m^2/s")
     rho = lambda t: e["density15"] / (1 + THERMAL_EXPANSION * (t - 15))  # noqa: E731
     points = np.array([40.0, 100.0, CROSS_VII.hths_temperature])
     nu = [e["kv40"], e["kv100"], walther_kinematic_viscosity(e["kv40"], e["kv100"], points[2])]
@@ -220,15 +234,20 @@ def _from_table(name, e):
     s = 1 / (1 + (CROSS_VII.hths_shear_rate / CROSS_VII.critical_shear_rate) ** CROSS_VII.exponent)
     r = (ratio - s) / (1 - s)
     if not 0 < r < 1:
-        raise ValueError(f"oil {name!r}: HTHS {e['hths150']!r} Pa s over the low-shear viscosity at 150 degC gives a "
-                         f"second-Newtonian share {r:.3g}, outside (0, 1)")
+        raise ValueError(f"{t.where}, key {name}.hths150: HTHS {e['hths150']!r} Pa s over the low-shear viscosity at "
+                         f"150 degC gives a second-Newtonian share {r:.3g}, outside (0, 1)")
     return Oil(name, c1, c2, c3, e["density15"], e["pressure_coefficient"], e["source"], second_newtonian=float(r))
 
 
+def _read(path):
+    """The oils of an oils file, one table per oil (see ``stackup/data/oils.toml``)."""
+    data, _ = read_toml(path, kind="oils")
+    top = Table(data, f"oils file {Path(str(path)).name!r}")
+    return {name: _from_table(top.table(name)) for name in data}
+
+
 def _builtin():
-    with open(resources.files("stackup") / "data" / "oils.toml", "rb") as f:
-        table = tomllib.load(f)
-    return {name: _from_table(name, e) for name, e in table.items()}
+    return _read(resources.files("stackup") / "data" / "oils.toml")
 
 
 _OILS = _builtin()

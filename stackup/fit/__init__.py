@@ -33,12 +33,6 @@ from . import reference, tiers
 
 METHODS = ("lame", "thin-ring", "fe")
 
-#: Legacy design limits [Pa], kept importable only until the study layer reads
-#: each engine's own (``engine.press_fit_limits``, from its file with their
-#: source): Kopeliovich, sec. 2, gives a least contact pressure of 8-10 MPa and
-#: a largest compression stress of 400-500 MPa depending on the application.
-CONTACT_PRESSURE_MIN = 8e6
-SHELL_STRESS_MAX = 450e6
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ streaming summaries), the scenario datasets and the sensitivity dataset of a
 from __future__ import annotations
 
 import json
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -22,17 +23,19 @@ from ..assembly import STATUS
 from ..rank import MIN_COUNTED
 from . import figures, prose
 from .html import anchor, markdown_to_html
-from .tables import (bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
+from .tables import (UM, bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
                      kept_summaries)
 
 #: Sections in report order (their headings; the verdict comes before them).
-SECTIONS = ("Methods and assumptions", "Limits of validity", "Ranking", "What drives the spread",
+SECTIONS = ("Methods and assumptions", "Limits of validity", "Ranking", "Designed scheme", "What drives the spread",
             "Clearance per scheme", "Operating clearance: press fit, housing swell and temperature",
             "Bearing loads over the engine cycle", "Oil film and bearing life per bearing position",
             "Assembly, scrap and stock", "Planning: shells per grade", "Shell grade usage", "Parameters")
 
 
 def _fmt_ci(value, ci, digits=1):
+    if not np.isfinite(value):
+        return "—"
     return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
 
 
@@ -94,11 +97,13 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
         + (" (streaming summaries: quantiles and histograms to 0.1 µm)." if kept_summaries(ds) else "."),
         "",
         *prose.verdict(ds, ranking, scenario_rankings),
-        "Contents: " + " · ".join(f"[{title}](#{anchor(title)})" for title in SECTIONS),
+        "Contents: " + " · ".join(f"[{title}](#{anchor(title)})" for title in SECTIONS
+                                  if title != "Designed scheme" or "design" in ds.attrs),
         "",
         *_section("Methods and assumptions", *prose.methods(ds)),
         *_section("Limits of validity", *prose.limits_of_validity(ds)),
         *_ranking_section(ds, ranking, scenarios),
+        *_design_section(ds, ranking),
         *_sensitivity_section(sensitivity, ranking, out),
         *_clearance_section(ds, summary, out),
         *_fit_section(ds),
@@ -116,6 +121,60 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
     path.write_text(text)
     (out / "report.html").write_text(markdown_to_html(text, out))
     return path
+
+
+def _grades_um(gradeset):
+    """A dimension's grades as 'label lo–hi' in µm, or 'ungraded'."""
+    if not gradeset.graded:
+        return "ungraded"
+    lo0 = gradeset.limits[0]
+    return ", ".join(f"{lab} {(lo - lo0) * UM:+.1f}…{(hi - lo0) * UM:+.1f}"
+                     for lab, lo, hi in zip(gradeset.labels, gradeset.lo, gradeset.hi))
+
+
+def _design_section(ds, ranking):
+    """The designed scheme beside the ISO scheme it started from: what changed, why, and how it did."""
+    if "design" not in ds.attrs:
+        return []
+    from ..schemes import from_dict
+    from ..study.inputs import load_inputs
+
+    record = json.loads(ds.attrs["design"])
+    name, start = ds.attrs["designed_scheme"], record["start"]
+    params = json.loads(ds.attrs["study"])
+    _, loaded = load_inputs(json.loads(ds.attrs["input_files"]), params["schemes"])
+    designed = {s.name: s for s in loaded}[name]
+    started = from_dict(tomllib.loads(record["start_text"]), path=start)
+    rows = [{"dimension": label, f"{start} (start)": _grades_um(getattr(started, dim)), name: _grades_um(getattr(designed, dim))}
+            for label, dim in (("housing bore", "housing"), ("journal", "journal"), ("shell wall", "shell"))]
+    samples = list(record["outside"])
+    shares = pd.DataFrame({
+        "design sample": samples,
+        f"{start} [ppm]": [f"{1e6 * record['start_outside'].get(k, np.nan):.1f}" for k in samples],
+        f"{name} [ppm]": [f"{1e6 * record['outside'][k]:.1f}" for k in samples],
+    })
+
+    def outcome(scheme):
+        row = ranking.loc[scheme]
+        return (f"rank {row['rank']}, {_fmt_ci(row.outside_window_ppm, row.outside_window_ppm_ci, 1)} ppm outside "
+                f"the window{'' if row.outside_window_source == 'counted' else ' †'}")
+
+    lines = [
+        f"`{name}` was designed for this engine and window by `stackup.design` before the study "
+        f"({record['evaluations']:,} candidate limit sets, {record['seconds']:.0f} s), starting from `{start}`, the "
+        "ISO scheme with the lowest objective on the design sample. The study above then judged it on its own "
+        f"engines like every other scheme: {outcome(name)}"
+        + (f", against {outcome(start)} for `{start}`." if start in ranking.index else
+           f" (`{start}` is not among the schemes compared here)."),
+        "",
+        "What changed (grade limits in µm from the lower drawing limit of each dimension):", "",
+        markdown_table(pd.DataFrame(rows)), "",
+    ]
+    lines += ["Share outside the window on the design sample (the designer's own engines, common random numbers), "
+              "nominal and under each declared scenario:", "", markdown_table(shares), "",
+              "Why, in the designer's words (also the comments of the scheme text stored in the dataset's "
+              "`input_files`):", "", "```text", *record["notes"], "```"]
+    return _section("Designed scheme", *lines)
 
 
 def _ranking_section(ds, ranking, scenarios):
@@ -183,7 +242,8 @@ def _clearance_section(ds, summary, out):
     figures.clearance_histogram(ds, out / "clearance_histogram.png")
     table = pd.DataFrame({
         "scheme": summary.index,
-        "stated [µm]": [f"{a:.0f}–{b:.0f}" for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
+        "stated [µm]": [f"{a:.0f}–{b:.0f}" if np.isfinite(a) else "— (none stated)"
+                        for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
         "worst case [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(summary.worst_case_min_um, summary.worst_case_max_um)],
         "mean [µm]": summary.mean_um.map("{:.2f}".format),
         "std [µm]": summary.std_um.map("{:.2f}".format),
@@ -210,18 +270,30 @@ def _fit_section(ds):
         "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
         "operating P0.135–P99.865 % [µm]": [f"{a:.1f}–{b:.1f}" for a, b in zip(fit.operating_p00135_um, fit.operating_p99865_um)],
         "swell [µm]": fit.swell_mean_um.map("{:.2f}".format),
-        "min p [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
-        "max σ [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
+        "min p, all temperatures [MPa]": fit.contact_pressure_min_mpa.map("{:.1f}".format),
+        "max σ, all temperatures [MPa]": fit.shell_stress_max_mpa.map("{:.0f}".format),
         f"p < {p_min / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.low_pressure_ppm, fit.low_pressure_ci_ppm)],
         f"σ > {s_max / 1e6:.0f} MPa [ppm]": [_fmt_ci(v, ci, 0) for v, ci in zip(fit.high_stress_ppm, fit.high_stress_ci_ppm)],
         "loss of fit [ppm]": fit.loss_of_fit_ppm.map("{:.0f}".format),
     })
+    temperatures = ", ".join(f"{t:.0f}" for t in ds.press_fit_temperatures.values)
+    crush = ds.crush_height_limits.values * 1e3
+    window = ds.clearance_window.values * UM
+    sources = [f"- contact pressure at least {p_min / 1e6:.0f} MPa and shell compression at most "
+               f"{s_max / 1e6:.0f} MPa: {ds.attrs.get('press_fit_limits_source') or 'no source given'};",
+               f"- crush height {crush[0]:.3f}–{crush[1]:.3f} mm: "
+               f"{ds.attrs.get('crush_height_source') or 'no source given'};",
+               f"- operating-clearance window {window[0]:.1f}–{window[1]:.1f} µm: "
+               f"{ds.attrs.get('clearance_window_source') or 'no source given'}."]
     return _section(
         "Operating clearance: press fit, housing swell and temperature",
-        f"The shells' crush height presses them into the housing; the housing bore swells and the clearance "
-        f"changes with temperature. Design limits: contact pressure at least {p_min / 1e6:.0f} MPa, shell "
-        f"compression at most {s_max / 1e6:.0f} MPa (the methods section gives the housing and temperatures).", "",
-        markdown_table(table))
+        "The shells' crush height presses them into the housing; the housing bore swells and the clearance "
+        "changes with temperature. The clearance is that at the operating temperature; the two press-fit checks "
+        f"are made at every declared temperature ({temperatures} °C: cold start, assembly, operating, hot), "
+        "because they bite at different ends: the shell stress where the housing has shrunk most onto the steel "
+        "backs (cold for a light-alloy housing), the contact pressure where it has grown most (hot for aluminium, "
+        "cold for a cast iron that expands less than steel). The limits and where they come from:", "",
+        *sources, "", markdown_table(table))
 
 
 def _crank_section(ds, n_mech):

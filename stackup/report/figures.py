@@ -48,7 +48,8 @@ def clearance_histogram(ds, path):
     for ax, name in zip(axes, names):
         edges, nominal, operating = data[name]
         lo, hi = ds.sel(scheme=name).clearance_stated.values * UM
-        ax.axvspan(lo, hi, color="tab:blue", alpha=0.10, label="stated range (nominal)")
+        if np.isfinite(lo) and np.isfinite(hi):  # a scheme may state no range
+            ax.axvspan(lo, hi, color="tab:blue", alpha=0.10, label="stated range (nominal)")
         if np.all(np.isfinite(window)):  # an engine file may give no window
             ax.axvspan(*window, color="tab:red", alpha=0.08, label="design window (operating)")
             for x in window:

@@ -55,10 +55,10 @@ def fit_summary(ds):
                    "shell_stress_max_mpa": float(d.shell_stress_max) / 1e6}
         else:
             nominal, operating = _assembled(d, "clearance_nominal"), _assembled(d, "clearance_operating")
-            p, sigma = _assembled(d, "contact_pressure"), _assembled(d, "shell_stress")
+            p, sigma = _assembled(d, "contact_pressure_lowest"), _assembled(d, "shell_stress_highest")
             n = p.size
             counts = (np.count_nonzero(p < p_min), np.count_nonzero(sigma > s_max),
-                      np.count_nonzero(_assembled(d, "loss_of_fit")))
+                      np.count_nonzero(_assembled(d, "loss_of_fit_any_temperature")))
             row = {"nominal_mean_um": nominal.mean() * UM, "nominal_std_um": nominal.std(ddof=1) * UM,
                    "operating_mean_um": operating.mean() * UM, "operating_std_um": operating.std(ddof=1) * UM,
                    "operating_p00135_um": quantile_ci(operating, TAIL_LOW)[0] * UM,
@@ -109,6 +109,8 @@ def clearance_summary(ds):
             std = float(c.std(ddof=1)) if c.size > 1 else np.nan
             substituted = int(np.count_nonzero(d.shell_option.values > 0))
         share, share_lo, share_hi = proportion_ci(outside, n)
+        if not (np.isfinite(lo_stated) and np.isfinite(hi_stated)):  # the scheme states no range: nothing to count
+            share = share_lo = share_hi = np.nan
         made = int(d.shells_made.sum()) + int(d.shells_scrapped)
         row = {
             "scheme": str(name),

@@ -19,6 +19,7 @@ The package is split by job:
 
 from __future__ import annotations
 
+import json
 from dataclasses import asdict, dataclass
 
 import xarray as xr
@@ -31,7 +32,8 @@ from ..fit import METHODS as FIT_METHODS
 from ..film.cycle import FILM_METHODS
 from ..life import FILM_STATISTICS
 from ..parts import SAMPLERS
-from . import chain, summaries
+from ..schemes import Scheme
+from . import chain, inputs, summaries
 from .context import context, fingerprint
 from .failures import FailureCount
 from .schedule import WORKER_MALLOC, check_scheduler, results
@@ -134,6 +136,14 @@ class Study:
     window : (float, float) or None
         Design window of the operating clearance [m] that the summaries
         count and the ranking uses; None takes the engine's.
+    files : dict or None
+        The texts of the input files, ``{"engine": {"name", "text",
+        "extra"}, "schemes": {label: text}}`` (:mod:`stackup.study.inputs`);
+        what it holds is used instead of the disk, the rest is read. Every
+        dataset stores the full set (attribute ``input_files``), and
+        :meth:`from_dataset` passes it here, so a rerun needs no file.
+        Schemes given as :class:`~stackup.schemes.Scheme` objects (a
+        designed scheme) are put here by their name.
     store : str or None
         Path of a Zarr store the results stream into as chunks finish
         (:mod:`stackup.study.store`), so a study larger than memory can keep every
@@ -166,6 +176,7 @@ class Study:
     scenario: dict | None = None
     failure_limit: float = 0.05
     window: tuple | None = None
+    files: dict | None = None
     store: str | None = None
 
     def __post_init__(self):
@@ -187,7 +198,11 @@ class Study:
         self.failure_limit = float(check.in_range("failure_limit", self.failure_limit, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
             raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
-        self.schemes = tuple(str(s) for s in self.schemes)
+        given = [s for s in self.schemes if isinstance(s, Scheme)]
+        if given:
+            self.files = {**(self.files or {}), "schemes": {**(self.files or {}).get("schemes", {}),
+                                                            **{s.name: s.to_toml_text() for s in given}}}
+        self.schemes = tuple(s.name if isinstance(s, Scheme) else str(s) for s in self.schemes)
         if not self.schemes:
             raise ValueError("schemes: give at least one scheme")
         if len(set(self.schemes)) != len(self.schemes):
@@ -199,7 +214,23 @@ class Study:
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
-        return {k: v for k, v in asdict(self).items() if k not in ("progress", "store")}
+        return {k: v for k, v in asdict(self).items() if k not in ("progress", "store", "files")}
+
+    def input_files(self):
+        """The texts of the engine and scheme files this study reads (:func:`stackup.study.inputs.input_files`)."""
+        return inputs.input_files(self.engine, self.schemes, self.files)
+
+    @classmethod
+    def from_dataset(cls, ds, **changes):
+        """The study that made ``ds``, reading its engine and schemes from the texts ``ds`` stores.
+
+        ``Study.from_dataset(ds).run()`` gives ``ds`` again with no input file
+        present; ``changes`` replace parameters (e.g. ``n_engines``).
+        """
+        if "study" not in ds.attrs or "input_files" not in ds.attrs:
+            raise ValueError("ds: not a study dataset (attributes 'study' and 'input_files' missing)")
+        params = json.loads(ds.attrs["study"])
+        return cls(**{**params, "files": json.loads(ds.attrs["input_files"]), **changes})
 
     def chunk(self, first, progress=None):
         """Compute chunk ``first`` on its own (e.g. on a worker) for its sink.
@@ -214,7 +245,8 @@ class Study:
         result = chain.run_chunk(ctx, self, first, progress)
         failed = FailureCount.of_chunk(result)
         if self.keep == "summaries":
-            result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window)
+            result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window,
+                                            limits=ctx.engine.press_fit_limits)
         result.failures = failed
         return result
 

@@ -12,6 +12,7 @@ import xarray as xr
 from ..scenarios import DECLARED
 from ..sensitivity import sobol
 from . import ISO_SCHEMES, Study
+from .inputs import load_inputs, scheme_text
 
 #: Engines of the mechanical chain in a scenario that disturbs it (misalignment); the
 #: clearance-only scenarios run no mechanics.
@@ -47,7 +48,7 @@ class Comparison:
 
 
 def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
-            progress=None, log=None, **study_options):
+            design=None, progress=None, log=None, **study_options):
     """Compare selective-fitting schemes on an engine: the study, its scenarios and what drives the spread.
 
     Parameters
@@ -62,6 +63,12 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         same seed on the clearance stages, and on
         :data:`SCENARIO_MECHANICS_ENGINES` engines of the mechanical chain
         where it disturbs that chain (misalignment). Empty for none.
+    design : dict or None
+        Design a scheme for the engine and its window first
+        (:func:`stackup.design.design` with these keyword options, the
+        comparison's seed and scenarios) and compare it beside ``schemes``;
+        its choices are stored in the dataset's attributes
+        (``designed_scheme``, ``design``). None designs nothing.
     progress : bool or None
         Progress bars (None: only on a terminal).
     log : callable or None
@@ -75,21 +82,41 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     Comparison
     """
     log = log or (lambda line: None)
+    designed = None
+    if design is not None:
+        from ..design import design as design_scheme
+
+        log("design: a scheme for the engine and its window (stackup.design)")
+        designed = design_scheme(engine, window=study_options.get("window"), scenarios=scenarios, seed=seed,
+                                 **design)
+        schemes = (*schemes, designed.scheme)
     study = Study(engine=engine, schemes=tuple(schemes), n_engines=n_engines, seed=seed, progress=progress,
                   **study_options)
     log(f"study: {study.n_engines:,} engines x {len(study.schemes)} schemes")
     ds = study.run()
+    if designed is not None:
+        ds.attrs.update(designed_scheme=designed.scheme.name, design=json.dumps(design_record(designed)))
+    engine_used, loaded = load_inputs(study.input_files(), study.schemes)
     runs = {}
     for k, (label, change) in enumerate((scenarios or {}).items(), start=1):
         log(f"scenario {k}/{len(scenarios)}: {label}")
         runs[label] = replace(study, scenario=change, keep="summaries",
                               mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
     log("tails: shares beyond the design window by subset simulation")
-    tails = tails_dataset(engine, schemes, window=study_options.get("window"), seed=seed,
+    tails = tails_dataset(engine_used, loaded, window=study_options.get("window"), seed=seed,
                           pilot_engines=study.pilot_engines)
     log("sensitivity: Sobol indices of the root inputs")
     sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails)
     return Comparison(ds, runs, sensitivity, tails)
+
+
+def design_record(designed):
+    """What a :class:`~stackup.design.Design` found, as plain data for the dataset's ``design`` attribute."""
+    return {"start": designed.start, "objective": designed.objective, "start_objective": designed.start_objective,
+            "outside": designed.outside, "start_outside": designed.start_outside, "iso_outside": designed.iso,
+            "mean_clearance_m": designed.mean_clearance, "start_mean_clearance_m": designed.start_mean_clearance,
+            "seconds": designed.seconds, "evaluations": designed.evaluations, "notes": list(designed.scheme.notes),
+            "start_text": scheme_text(designed.start)}
 
 
 def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1024, n_film=64,
@@ -105,15 +132,17 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
     from ..rank import rank
 
     params = json.loads(ds.attrs["study"])
-    engine = params["engine"] if engine is None else engine
+    stored_engine, loaded = load_inputs(json.loads(ds.attrs["input_files"]), params["schemes"])
+    engine = stored_engine if engine is None else engine
+    by_name = {s.name: s for s in loaded}
     schemes = [str(s) for s in ds.scheme.values]
     frames = {}
     for scheme in schemes:
-        frames[("clearance_operating", scheme)] = sobol(engine, scheme, n=n_clearance, seed=seed, scenario=scenario,
+        frames[("clearance_operating", scheme)] = sobol(engine, by_name[scheme], n=n_clearance, seed=seed, scenario=scenario,
                                                         pilot_engines=params["pilot_engines"])
     if int(ds.attrs.get("mechanics_engines_used", 0)) and n_film:
         best = rank(ds, tails=tails).index[0]
-        both = sobol(engine, best, output="h_min", n=n_film, seed=seed, scenario=scenario, return_all=True,
+        both = sobol(engine, by_name[best], output="h_min", n=n_film, seed=seed, scenario=scenario, return_all=True,
                      crank_angle_step=max(params["crank_angle_step"], SOBOL_CRANK_ANGLE_STEP),
                      crank_method=params["crank_method"],
                      film_method=ds.attrs["film_method_used"], pilot_engines=params["pilot_engines"])

@@ -10,10 +10,9 @@ import numpy as np
 
 from .. import __version__
 from .._random import seed_sequence
-from ..engines import load_engine
 from ..film.cycle import cheapest_film_method
 from ..scenarios import apply as apply_scenario
-from ..schemes import load as load_scheme
+from .inputs import digest, load_inputs
 from .pilot import pilot_parts, shell_plan
 
 
@@ -40,6 +39,8 @@ class Context:
         Film method used (``"auto"`` resolved, :data:`stackup.film.cycle.FILM_METHODS`).
     crank_angle : numpy.ndarray
         Crank-angle grid [deg].
+    files : dict
+        The texts of the engine and scheme files read (:mod:`stackup.study.inputs`).
     """
 
     engine: object
@@ -53,6 +54,7 @@ class Context:
     mechanics: int
     film_method: str
     crank_angle: np.ndarray
+    files: dict
 
     def bounds(self, first, chunk_lots):
         """Lots of chunk ``first`` and the study numbers of its first and past-last engines."""
@@ -60,9 +62,10 @@ class Context:
         return lots, lots[0] * self.lot, min((lots[-1] + 1) * self.lot, self.n_engines)
 
 
-def fingerprint(study):
-    """The study's identity: its parameters and the package version."""
-    return json.dumps({"study": study.parameters(), "version": __version__}, sort_keys=True)
+def fingerprint(study, files=None):
+    """The study's identity: its parameters, the texts of its input files and the package version."""
+    files = study.input_files() if files is None else files
+    return json.dumps({"study": study.parameters(), "inputs": digest(files), "version": __version__}, sort_keys=True)
 
 
 #: The context of the study this process works on (one at a time).
@@ -71,12 +74,13 @@ _CACHE = {}
 
 def context(study):
     """The :class:`Context` of ``study``, cached in this process (workers build it once)."""
-    key = fingerprint(study)
+    files = study.input_files()
+    key = fingerprint(study, files)
     if key not in _CACHE:
-        engine = apply_scenario(load_engine(study.engine), study.scenario)
+        engine, schemes = load_inputs(files, study.schemes)
+        engine = apply_scenario(engine, study.scenario)
         if study.window is not None:
             engine = replace(engine, clearance_window=study.window)
-        schemes = [load_scheme(s) for s in study.schemes]
         names = [s.name for s in schemes]
         if len(set(names)) != len(names):
             raise ValueError(f"schemes: two files carry the same scheme name ({names})")
@@ -90,7 +94,7 @@ def context(study):
             n_lots=math.ceil(study.n_engines / lot),
             mechanics=min(study.mechanics_engines, study.n_engines) if engine.crank is not None else 0,
             film_method=cheapest_film_method(study.film_error) if study.film_method == "auto" else study.film_method,
-            crank_angle=np.arange(0.0, 720.0, study.crank_angle_step))
+            crank_angle=np.arange(0.0, 720.0, study.crank_angle_step), files=files)
     return _CACHE[key]
 
 

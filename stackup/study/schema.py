@@ -105,6 +105,10 @@ FIT = {
     "bore_in_service": Var(SED, "m", "housing bore diameter at operating temperature, swell included"),
     "clearance_operating": Var(SED, "m", "diametral operating clearance: press fit, swell and temperature "
                                          "(NaN where status is not assembled)"),
+    "contact_pressure_lowest": Var(SED, "Pa", "lowest contact pressure between shell backs and housing bore over "
+                                              "the temperatures checked (press_fit_temperatures; 0: fit lost)"),
+    "shell_stress_highest": Var(SED, "Pa", "highest compressive hoop stress of the shell wall over the temperatures "
+                                           "checked (press_fit_temperatures)"),
 }
 
 #: Variables of the dataset that keeps every engine, in dataset order.
@@ -130,6 +134,8 @@ FULL = {
     **FIT,
     "loss_of_fit": Var(SED, "1", "the shells have no interference left at operating temperature", dtype="?",
                        fill=False),
+    "loss_of_fit_any_temperature": Var(SED, "1", "the shells lose their interference at one of the temperatures "
+                                                 "checked (press_fit_temperatures)", dtype="?", fill=False),
     "bore_offset": Var(("engine", "bearing", "axis"), "m", "housing bore centre off the straight bearing line (coaxiality)"),
     "journal_eccentricity": Var(("engine", "bearing", "axis"), "m",
                                 "main journal centre off the crankshaft axis at crank angle 0 (run-out)"),
@@ -184,12 +190,17 @@ SUMMARY = {
     "status_count": Var(("scheme", "status"), "1", "bearings per assembly status"),
     "outside_window_count": Var(("scheme",), "1",
                                 "assembled bearings with the operating clearance outside the design window"),
-    "loss_of_fit_count": Var(("scheme",), "1", "assembled bearings whose shells have no interference left in service"),
+    "loss_of_fit_count": Var(("scheme",), "1", "assembled bearings whose shells lose their interference at one of "
+                                              "the temperatures checked (press_fit_temperatures)"),
     "low_contact_pressure_count": Var(("scheme",), "1",
-                                      "assembled bearings with contact pressure below design_contact_pressure_min"),
-    "high_shell_stress_count": Var(("scheme",), "1", "assembled bearings with shell stress above design_shell_stress_max"),
-    "contact_pressure_min": Var(("scheme",), "Pa", "lowest contact pressure of an assembled bearing"),
-    "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing"),
+                                      "assembled bearings with contact pressure below design_contact_pressure_min at "
+                                      "one of the temperatures checked"),
+    "high_shell_stress_count": Var(("scheme",), "1", "assembled bearings with shell stress above "
+                                                     "design_shell_stress_max at one of the temperatures checked"),
+    "contact_pressure_min": Var(("scheme",), "Pa", "lowest contact pressure of an assembled bearing over the "
+                                                   "temperatures checked"),
+    "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing over the temperatures "
+                                               "checked"),
     "housing_swell_mean": Var(("scheme",), "m", "mean elastic growth of the housing bore from the press fit"),
     "housing_swell_std": Var(("scheme",), "m", "standard deviation of the growth of the housing bore from the press fit"),
     "clearance_operating_sampled": Var(SMB, "m", "diametral operating clearance of the bearings of the mechanical chain"),
@@ -212,16 +223,21 @@ DESIGN = {
     "crush_height_limits": Var(("bound",), "m", "drawing limits of the crush height of a half shell"),
     "design_contact_pressure_min": Var((), "Pa", "least contact pressure between shell back and housing in service"),
     "design_shell_stress_max": Var((), "Pa", "largest compressive hoop stress of the shell wall"),
+    "press_fit_temperatures": Var(("press_fit_check",), "degC", "temperatures the press fit is checked at (cold "
+                                                                "start, assembly, operating, hot)"),
     "critical_film": Var((), "m", "critical film thickness h_lim,cr = Rz journal + Rz shell (Levanov et al. 2015, "
                                   "eq. 3): below it, boundary friction"),
 }
 
 
-def design_variables(engine, *, contact_pressure_min, shell_stress_max):
+def design_variables(engine):
     """The :data:`DESIGN` variables of ``engine`` (its window, life target, crush limits and press-fit limits)."""
+    limits = engine.press_fit_limits
     values = {"clearance_window": engine.clearance_window, "life_target": engine.life_target,
               "crush_height_limits": (engine.shell_wall.crush.lo, engine.shell_wall.crush.hi),
-              "design_contact_pressure_min": contact_pressure_min, "design_shell_stress_max": shell_stress_max,
+              "design_contact_pressure_min": limits.contact_pressure_min,
+              "design_shell_stress_max": limits.shell_stress_max,
+              "press_fit_temperatures": engine.press_fit.temperatures,
               "critical_film": engine.wear.critical_film}
     return {name: var(np.asarray(values[name], dtype=float)) for name, var in DESIGN.items()}
 

@@ -14,7 +14,6 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
-from ..fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX
 from ..tolerances import process_mean
 from . import schema
 from . import summaries as summarise
@@ -66,7 +65,7 @@ def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
     used = {name: value[:, :mechanics_used] for name, value in per_mech.items()}
     values = {**per_engine, **used, "shells_made": shells.made, "shells_used": shells.used, "shells_left": shells.left,
               "shells_scrapped": shells.scrapped, "grade_in_scheme": in_scheme}
-    fixed = {**schema.scheme_variables(schemes), **design_variables(engine)}
+    fixed = {**schema.scheme_variables(schemes), **schema.design_variables(engine)}
     data = {name: fixed[name] if name in fixed else var(values[name]) for name, var in schema.FULL.items()}
     data.update({name: fixed[name] for name in schema.DESIGN})
     coords = {
@@ -85,11 +84,6 @@ def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
                                  {"units": "degree", "long_name": "crank angle from firing TDC of the first cylinder fired"})
     attrs = {"title": f"Selective assembly of {engine.title or engine.name}", **attributes(study, ctx, mechanics_used)}
     return xr.Dataset(data, coords=coords, attrs=attrs)
-
-
-def design_variables(engine):
-    """The engine's design data as dataset variables (:data:`stackup.study.schema.DESIGN`)."""
-    return schema.design_variables(engine, contact_pressure_min=CONTACT_PRESSURE_MIN, shell_stress_max=SHELL_STRESS_MAX)
 
 
 def processes(engine):
@@ -132,6 +126,10 @@ def attributes(study, ctx, mechanics_used):
         "mechanics_engines_used": mechanics_used,
         "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
         "press_fit": json.dumps(engine.press_fit.kwargs()),
+        "press_fit_limits_source": engine.press_fit_limits.source,
+        "input_files": json.dumps(ctx.files),
+        "crush_height_source": engine.press_fit.crush_source,
+        "clearance_window_source": engine.clearance_window_source,
         "engine_processes": json.dumps(processes(engine)),
         "wear": json.dumps({"journal_rz_m": engine.wear.journal_rz, "shell_rz_m": engine.wear.shell_rz,
                             "journal_rq_m": engine.wear.journal_rq, "shell_rq_m": engine.wear.shell_rq,
@@ -319,7 +317,7 @@ class SummarySink:
         attrs = {"title": f"Streaming summaries of selective assembly of {ctx.engine.title or ctx.engine.name}",
                  **attributes(self.study, ctx, used), "bin_width": summarise.BIN_WIDTH}
         ds = summarise.dataset(self.total, sample, schemes=ctx.schemes, grade_labels=ctx.grade_labels, attrs=attrs)
-        ds = ds.assign(design_variables(ctx.engine))
+        ds = ds.assign(schema.design_variables(ctx.engine))
         if self.store is not None:
             self.store.write_rest(to_stored(ds))
         return ds

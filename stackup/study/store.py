@@ -67,7 +67,7 @@ class ChunkStore:
 
     def read_state(self, first):
         """The small state saved with chunk ``first``."""
-        return _read_arrays(self._book[f"{first:06d}"])
+        return _read_arrays(self._book[f"{first:06d}"], self.path)
 
     def write_state(self, first, state):
         """Save chunk ``first``'s small state and mark the chunk complete (last)."""
@@ -92,7 +92,7 @@ class ChunkStore:
         saved = self._book.attrs.get("total")
         if not saved:
             return None
-        return _read_arrays(self._book[saved["slot"]]), saved["next"]
+        return _read_arrays(self._book[saved["slot"]], self.path), saved["next"]
 
     @property
     def has_template(self):
@@ -124,10 +124,19 @@ def _write_arrays(group, arrays):
         group.create_array(name, shape=value.shape, dtype=value.dtype, overwrite=True)[...] = value
 
 
-def _read_arrays(group):
-    """What :func:`_write_arrays` wrote: nested dicts of arrays."""
-    return {**{name: array[...] for name, array in group.arrays()},
-            **{name: _read_arrays(sub) for name, sub in group.groups()}}
+def _read_arrays(group, path):
+    """What :func:`_write_arrays` wrote: nested dicts of arrays (a damaged one raises DamagedStore naming it)."""
+    return {**{name: _read_array(array, path) for name, array in group.arrays()},
+            **{name: _read_arrays(sub, path) for name, sub in group.groups()}}
+
+
+def _read_array(array, path):
+    try:
+        return array[...]
+    except Exception as error:
+        from .damage import damaged_state
+
+        raise damaged_state(path, array.path, error) from error
 
 
 def _fast(ds):
@@ -167,9 +176,13 @@ def to_stored(ds, labels=()):
 def open_study(path, *, group=None):
     """The study dataset in a store (or one of its groups), lazily (dask-backed): nothing is read until used.
 
-    Grade labels come back as fixed-width strings, as in an in-memory study.
+    Grade labels come back as fixed-width strings, as in an in-memory study. A
+    chunk that cannot be read raises :class:`~stackup.study.damage.DamagedStore`
+    naming it and how to recover.
     """
-    ds = xr.open_zarr(Path(path), group=group, consolidated=False, zarr_format=3)
+    from .damage import named_reads
+
+    ds = named_reads(xr.open_zarr(Path(path), group=group, consolidated=False, zarr_format=3, chunks=None), path, group)
     labels = {}
     for name, var in ds.data_vars.items():
         if LABELS_ATTR in var.attrs:

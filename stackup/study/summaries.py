@@ -34,7 +34,6 @@ import numpy as np
 import xarray as xr
 
 from ..assembly import ASSEMBLED, STATUS
-from ..fit import CONTACT_PRESSURE_MIN, SHELL_STRESS_MAX
 from . import schema
 from .schema import BIN_START, BIN_WIDTH, BINS, WORST
 from .chain import MechanicsProgress, ShellCounts
@@ -111,7 +110,7 @@ class ChunkSummary:
     failures: object = None  # the chunk's FailureCount, set by Study.chunk
 
 
-def reduce_chunk(result, *, lot_engines, window):
+def reduce_chunk(result, *, lot_engines, window, limits):
     """Summary of a :class:`~stackup.study.chain.ChunkResult`, one per production lot.
 
     Lots are fixed units, so the sums do not depend on the chunking. The
@@ -122,7 +121,7 @@ def reduce_chunk(result, *, lot_engines, window):
     for j, start in enumerate(range(e0, result.engines.stop, lot_engines)):
         rows = slice(start - e0, min(start + lot_engines, result.engines.stop) - e0)
         shells = result.shells if j == 0 else ShellCounts.zeros(*result.shells.made.shape)
-        lots.append(_reduce(result.take(rows), shells, e0=start, window=window))
+        lots.append(_reduce(result.take(rows), shells, e0=start, window=window, limits=limits))
     mechanical = result.h_min_head.shape[1]
     # a copy: a view would keep the whole chunk's arrays alive for as long as the sample is kept
     sample = {**{name: result.per_mech[name] for name in schema.MECHANICS},
@@ -130,7 +129,7 @@ def reduce_chunk(result, *, lot_engines, window):
     return ChunkSummary(result.first, lots, sample, result.progress, result.h_min_head)
 
 
-def _reduce(v, shells, *, e0, window):
+def _reduce(v, shells, *, e0, window, limits):
     """Summary of one lot's per-engine variables ``v`` and its shell counters."""
     status = v["status"]  # (schemes, engines, bearings)
     n_schemes = status.shape[0]
@@ -149,10 +148,10 @@ def _reduce(v, shells, *, e0, window):
         counts[f"{name}_histogram"] = hist
     c = v["clearance_operating"]
     counts["outside_window"] = np.sum(ok & ((c < window[0]) | (c > window[1])), axis=(1, 2))
-    pressure, stress = v["contact_pressure"], v["shell_stress"]
-    counts["loss_of_fit"] = np.sum(ok & v["loss_of_fit"], axis=(1, 2))
-    counts["low_contact_pressure"] = np.sum(ok & (pressure < CONTACT_PRESSURE_MIN), axis=(1, 2))
-    counts["high_shell_stress"] = np.sum(ok & (stress > SHELL_STRESS_MAX), axis=(1, 2))
+    pressure, stress = v["contact_pressure_lowest"], v["shell_stress_highest"]
+    counts["loss_of_fit"] = np.sum(ok & v["loss_of_fit_any_temperature"], axis=(1, 2))
+    counts["low_contact_pressure"] = np.sum(ok & (pressure < limits.contact_pressure_min), axis=(1, 2))
+    counts["high_shell_stress"] = np.sum(ok & (stress > limits.shell_stress_max), axis=(1, 2))
     for name in ("made", "used", "left", "scrapped"):
         counts[f"shells_{name}"] = getattr(shells, name)
     engines = e0 + np.arange(status.shape[1])
