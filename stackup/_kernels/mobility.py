@@ -278,8 +278,9 @@ def _load_at(w, tau, k, kn, t):
 
 
 @njit(cache=True)
-def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v, alpha_out):
-    """One bearing's periodic orbit from the bearing centre, by the explicit midpoint rule.
+def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v, alpha_out, start0=0.0, start1=0.0,
+           warm=False):
+    """One bearing's periodic orbit from the bearing centre (or from ``start`` when ``warm``), by the explicit midpoint rule.
 
     Laps of the cycle at two angles per step until the journal comes back to
     within COARSE_SHARE of the thinnest film of where it was one lap before,
@@ -287,17 +288,19 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v
     ``tolerance`` of the thinnest film (a contracting orbit stays there: the
     rest of the record is the last lap's). Out of ``max_cycles``, one lap at
     every angle is still run for the record; an orbit out of cycles whose film
-    still thins cycle after cycle (THINNING_LAPS) is collapsing. Writes xi, v (n, 2) and alpha_out (n,).
+    still thins cycle after cycle (THINNING_LAPS) is collapsing. A warm start (a
+    position near the periodic orbit's at the first angle, e.g. from a coarser
+    or nearby orbit) skips the coarse laps. Writes xi, v (n, 2) and alpha_out (n,).
     Returns (status, cycles integrated).
     """
     n = w.shape[0]
     lap_of = np.full(n, -1)  # lap in which each angle was last recorded
-    x0 = 0.0
-    x1 = 0.0
+    x0 = start0 if warm else 0.0
+    x1 = start1 if warm else 0.0
     alpha = -HALF_PI  # steady rotation: squeeze against the turning direction
     alpha_last = alpha
     turn_mid = 0.0
-    stride = 2
+    stride = 1 if warm else 2
     k = 0
     lap = 0
     in_lap = 0  # angles advanced in this lap
@@ -365,8 +368,9 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v
 
 
 @njit(cache=True, parallel=True)
-def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld, finite, xi, v, peak, status, cycles):
-    """Orbits of many bearings (prange over bearings).
+def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld, finite, xi, v, peak, status, cycles,
+           start, warm):
+    """Orbits of many bearings (prange over bearings); ``start`` (B, 2) the first angle's centres where ``warm``.
 
     w (B, n, 2) dimensionless loads at times tau[:n] (tau (n+1,), tau[n] the cycle's end); ld (B,) L/D of each bearing (finite tier);
     tables (n_ld, n_eps, n_alpha, 3). Writes xi, v (B, n, 2), peak (B, n): the
@@ -382,7 +386,8 @@ def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld
         else:
             table = tables[0]
         alpha = np.empty(n)
-        s, c = _orbit(w[b], tau, limit, tolerance, max_cycles, table, stretched, finite, xi[b], v[b], alpha)
+        s, c = _orbit(w[b], tau, limit, tolerance, max_cycles, table, stretched, finite, xi[b], v[b], alpha,
+                      start[b, 0], start[b, 1], warm)
         status[b] = s
         cycles[b] = c
         phi = 0.0

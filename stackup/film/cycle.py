@@ -151,7 +151,8 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
     balance = dynamic_heat_balance(loads, crank_angle, tier=tier, oil=spec.oil,
                                    supply_temperature=spec.oil_supply_temperature, feed=feed, stride=stride,
                                    options=options, **geometry)
-    film = orbit(loads, crank_angle, **geometry, viscosity=balance.viscosity, method=tier, tilt=tilt, **options)
+    film = orbit(loads, crank_angle, **geometry, viscosity=balance.viscosity, method=tier, tilt=tilt,
+                 start=balance.start, **options)
     fed = _feed_flow(film, feed, clearance, balance.viscosity, journal_d, spec.bearing_width)
     valid = np.isin(film.status, (ORBIT_STATUS.index("periodic"), ORBIT_STATUS.index("edge_contact")))
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, valid,
@@ -179,6 +180,7 @@ class DynamicHeat:
     residual: np.ndarray  # T - T_supply - rise at the last temperature evaluated [K]
     status: np.ndarray  # int8 index into stackup.film.heat.STATUS
     evaluations: int  # coarse orbits run
+    start: np.ndarray  # (..., 2) journal centre at the first angle of the last coarse orbit [m]
 
 
 #: First secant step of the dynamic heat balance: dg/dT [-] (1.1-1.3 on the built-in engines' bearings: the
@@ -228,10 +230,15 @@ def dynamic_heat_balance(loads, crank_angle, *, tier, diameter, length, clearanc
                              supply=supply_temperature).items()}
     shear_rate = each["speed"] * each["diameter"] / each["clearance"]
 
-    def g(t, rows):
+    start = np.zeros((flat.shape[0], 2))
+
+    def g(t, rows, warm=True):
         mu = oil.viscosity(t, shear_rate=shear_rate[rows])
         geo = {k: each[k][rows] for k in ("diameter", "length", "clearance", "speed")}
-        film = orbit(flat[rows], coarse_angle, **geo, viscosity=mu, method=tier, **options)
+        # each orbit starts where the last one began: it is near the periodic orbit, so no coarse laps
+        film = orbit(flat[rows], coarse_angle, **geo, viscosity=mu, method=tier, start=start[rows] if warm else None,
+                     **options)
+        start[rows] = film.position[:, 0]
         fed = _feed_flow(film, feed, geo["clearance"], mu, geo["diameter"], geo["length"])
         rise = TEMPERATURE_SHARE * film.friction_power_mean / (oil.density(t) * oils.SPECIFIC_HEAT
                                                                * (film.side_flow_mean + fed))
@@ -240,7 +247,7 @@ def dynamic_heat_balance(loads, crank_angle, *, tier, diameter, length, clearanc
     n = flat.shape[0]
     everyone = np.arange(n)
     t0 = each["supply"].copy()
-    g0 = g(t0, everyone)
+    g0 = g(t0, everyone, warm=False)
     t1 = np.clip(t0 - g0 / SLOPE_GUESS, each["supply"], TEMPERATURE_LIMIT)
     g1 = np.full(n, np.nan)
     done = np.zeros(n, bool)
@@ -260,4 +267,4 @@ def dynamic_heat_balance(loads, crank_angle, *, tier, diameter, length, clearanc
     status = np.where((t1 >= TEMPERATURE_LIMIT) & (g0 < 0), HEAT_STATUS.index("no_balance_below_limit"), status)
     mu = oil.viscosity(t1, shear_rate=shear_rate)
     return DynamicHeat(t1.reshape(lead), mu.reshape(lead), g0.reshape(lead), status.astype(np.int8).reshape(lead),
-                       evaluations)
+                       evaluations, start.reshape(*lead, 2))

@@ -261,7 +261,7 @@ def resolve(method, steady_method="finite"):
 
 
 def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, speed, method="mobility",
-          steady_method="finite", tilt=None, cycles=None, **transient_options):
+          steady_method="finite", tilt=None, cycles=None, start=None, **transient_options):
     """Film over the engine cycle of dynamically loaded bearings.
 
     Parameters
@@ -288,6 +288,12 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     cycles : int, optional
         Most cycles a dynamic tier integrates to reach a periodic orbit
         (default 20 for the mobility tiers, 8 for ``"reynolds-transient"``).
+    start : array_like (..., 2), optional
+        Journal centre at the first crank angle [m] to start a dynamic tier
+        from (e.g. the ``position[..., 0, :]`` of a coarser orbit); default the
+        bearing centre (the mobility tiers) or the ``mobility-finite`` orbit's
+        (the transient tier). A start near the periodic orbit saves laps; the
+        orbit reached is the same.
     **transient_options
         Grid and cavitation options of ``"reynolds-transient"``
         (:func:`stackup.film.transient.transient_orbit`).
@@ -322,11 +328,14 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     elif kind == "reynolds-transient":
         from .transient import transient_orbit
 
-        result = transient_orbit(loads, angle, tilt=tilt, cycles=cycles, **geometry, **transient_options)
+        result = transient_orbit(loads, angle, tilt=tilt, cycles=cycles, start=start, **geometry,
+                                 **transient_options)
         return result
     else:
+        if start is not None:
+            start = np.broadcast_to(check.finite("start", start), (*lead, 2))
         position, p_max, torque, flow, status, used = _mobility(loads, angle, finite=kind == "mobility-finite",
-                                                                cycles=cycles, **geometry)
+                                                                cycles=cycles, start=start, **geometry)
     ecc = np.linalg.norm(position, axis=-1) / c[..., None]
     h_min = c[..., None] * (1 - ecc)
     h_edge, status = edge_film(position, tilt, width, c, h_min, status)
@@ -348,7 +357,7 @@ def edge_film(position, tilt, width, c, h_min, status):
     return np.maximum(np.minimum(h_min, c[..., None] - reach), floor), status
 
 
-def _mobility(loads, angle, *, finite, cycles, radius, length, radial_clearance, viscosity, speed):
+def _mobility(loads, angle, *, finite, cycles, start, radius, length, radial_clearance, viscosity, speed):
     lead = loads.shape[:-2]
     n = angle.size
     c, mu, w = radial_clearance, viscosity, speed
@@ -369,8 +378,10 @@ def _mobility(loads, angle, *, finite, cycles, radius, length, radial_clearance,
     peak = np.empty((m, n))
     status = np.empty(m, np.int8)
     used = np.empty(m)
+    warm = start is not None
+    xi0 = np.ascontiguousarray((start / c[..., None]).reshape(-1, 2) if warm else np.zeros((m, 2)), dtype=float)
     _kernel.orbits(w_bar, tau, ECCENTRICITY_LIMIT, PERIODIC, cycles, tables, ld_nodes, stretched, ld, finite,
-                   xi, v, peak, status, used)
+                   xi, v, peak, status, used, xi0, warm)
     xi = xi.reshape(*lead, n, 2)
     v = v.reshape(*lead, n, 2)
     position = xi * c[..., None, None]

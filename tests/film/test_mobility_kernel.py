@@ -132,7 +132,7 @@ def test_orbit_kernel_equals_numpy_twin(engine_like):
     status = np.empty(1, np.int8)
     cycles = np.empty(1)
     kernel.orbits(w[None], tau, ECCENTRICITY_LIMIT, PERIODIC, 20, np.zeros((1, 2, 2, 3)), np.array([1.0, 2.0]),
-                  np.array([0.0, 1.0]), np.array([0.5]), False, xi, v, peak, status, cycles)
+                  np.array([0.0, 1.0]), np.array([0.5]), False, xi, v, peak, status, cycles, np.zeros((1, 2)), False)
     assert status[0] == kernel.PERIODIC
     twin = orbit_twin(w, cycles=6)
     film = 1 - np.linalg.norm(twin, axis=-1)

@@ -7,7 +7,7 @@ from stackup.film import min_film_thickness
 from scipy import integrate
 
 from stackup._kernels import mobility as kernel
-from stackup.film.orbit import ECCENTRICITY_LIMIT, STATUS, orbit
+from stackup.film.orbit import ECCENTRICITY_LIMIT, PERIODIC, STATUS, orbit
 
 GEOMETRY = dict(diameter=0.046, length=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
 
@@ -194,3 +194,14 @@ def test_cheapest_cycle_tier_follows_the_measured_errors():
     for method in errors:  # every measured tier is a method of orbit
         orbit(np.tile([1e3, 0.0], (4, 1)), np.arange(0.0, 720.0, 180.0), **GEOMETRY, method=method,
               **({"n_theta": 24, "n_z": 5, "cycles": 1} if method == "reynolds-transient" else {}))
+
+
+@pytest.mark.parametrize("method", ["mobility", "mobility-finite"])
+def test_a_warm_start_reaches_the_same_periodic_orbit_in_fewer_laps(method):
+    load = turning_load(6e3, 0.0) * (1 + 2.5 * np.exp(-((ANGLE - 370) / 25) ** 2))[:, None]
+    cold = orbit(load, ANGLE, **GEOMETRY, method=method)
+    coarse = orbit(load[::2], ANGLE[::2], **GEOMETRY, method=method)
+    warm = orbit(load, ANGLE, **GEOMETRY, method=method, start=coarse.position[0])
+    assert cold.status == warm.status == STATUS.index("periodic")
+    np.testing.assert_allclose(warm.h_min, cold.h_min, rtol=0, atol=3 * PERIODIC * cold.h_min.min())
+    assert warm.cycles < cold.cycles
