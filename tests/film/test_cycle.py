@@ -5,7 +5,7 @@ import pytest
 
 from stackup.engines import load_engine
 from stackup.film import oil as oils
-from stackup.film.cycle import (DYNAMIC, FILM_METHODS, FILM_STATUS, HEAT_STEP, HEAT_TOLERANCE, bearing_films,
+from stackup.film.cycle import (DYNAMIC, DYNAMIC_HEAT_STEP, FILM_METHODS, FILM_STATUS, HEAT_TOLERANCE, bearing_films,
                                 cheapest_film_method)
 from stackup.film.heat import STATUS as HEAT_STATUS
 from stackup.film.heat import TEMPERATURE_SHARE, feed_flow
@@ -57,8 +57,8 @@ def test_heat_balance_closes_on_the_dynamic_film():
     f = films(reactions, "mobility-finite")
     assert f.heat_status[0, 0] == HEAT_STATUS.index("balanced")
     assert SPEC.oil_supply_temperature < f.temperature[0, 0] < SPEC.oil_supply_temperature + 60
-    # the balance is solved on orbits at every HEAT_STEP deg; on the full orbit it holds within the tolerance
-    assert HEAT_STEP > ANGLE[1] - ANGLE[0]
+    # the balance is solved on orbits at every DYNAMIC_HEAT_STEP deg; on the full orbit it holds within the tolerance
+    assert DYNAMIC_HEAT_STEP > ANGLE[1] - ANGLE[0]
     assert abs(residual(f, reactions)[0, 0]) < HEAT_TOLERANCE
     # friction power and flows are the orbit's cycle means at that temperature
     assert f.friction_power[0, 0] > 0 and f.oil_flow[0, 0] > f.feed_flow[0, 0] > 0
