@@ -8,4 +8,4 @@ from .rank import rank  # noqa: E402
 from .study import Study  # noqa: E402
 from .study.compare import Comparison, compare  # noqa: E402
 
-__all__ = ["Comparison", "Study", "compare", "plan", "rank", "__version__"]
+__all__ = ["Comparison", "Study", "compare", "design", "plan", "rank", "__version__"]

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
 import tomllib
 from pathlib import Path
 
@@ -22,6 +23,18 @@ from . import _validate as check
 
 #: Length units a file may declare, in m.
 UNITS = {"mm": 1e-3, "um": 1e-6, "m": 1.0}
+
+
+def locations(variable, builtin):
+    """Where files are found by name: ``{name: path}`` of the ``*.toml`` files in the folders of the
+    environment variable ``variable`` (``os.pathsep``-separated), then in ``builtin``; the user's first."""
+    folders = [Path(p) for p in os.environ.get(variable, "").split(os.pathsep) if p]
+    found = {}
+    for folder in (*folders, builtin):
+        if folder.is_dir():
+            for path in sorted(folder.glob("*.toml")):
+                found.setdefault(path.stem, path)
+    return found
 
 
 def read_toml(path, *, kind):

@@ -33,7 +33,7 @@ from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
 from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
-from ._files import Table, parse_toml, read_toml, units_of
+from ._files import Table, locations, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
 
 
@@ -219,19 +219,9 @@ def _builtin_dir():
     return Path(str(resources.files("stackup") / "data" / "engines"))
 
 
-def _search_dirs():
-    dirs = [Path(p) for p in os.environ.get("STACKUP_ENGINE_PATH", "").split(os.pathsep) if p]
-    return [*dirs, _builtin_dir()]
-
-
 def engine_locations():
     """Where :func:`load_engine` finds each engine by name: {name: path}, the user's folders first."""
-    found = {}
-    for folder in _search_dirs():
-        if folder.is_dir():
-            for path in sorted(folder.glob("*.toml")):
-                found.setdefault(path.stem, path)
-    return found
+    return locations("STACKUP_ENGINE_PATH", _builtin_dir())
 
 
 def available_engines():

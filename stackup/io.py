@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .study.schema import STORED_RESOLUTION
+from .study.schema import STORED_RESOLUTION, STORED_RESOLUTION_OF
 from .study.store import open_study, to_stored
 
 
@@ -27,7 +27,7 @@ def save(ds, path, *, group=None, compact=False):
 
     ``compact`` stores the per-bearing values (two dimensions or more) to the
     resolution of :data:`stackup.study.schema.STORED_RESOLUTION` by their
-    units, as CF packed integers (``scale_factor``, ``add_offset``; NaN as
+    units (:data:`~stackup.study.schema.STORED_RESOLUTION_OF` by name), as CF packed integers (``scale_factor``, ``add_offset``; NaN as
     ``_FillValue``), and other floating-point values of that size as float32,
     with byte shuffling before compression: about a quarter of the size, and
     every value within half the resolution of what was computed.
@@ -47,16 +47,16 @@ def save(ds, path, *, group=None, compact=False):
         elif var.dtype.kind in "fiub" and var.ndim > 0 and name not in ds.dims:
             encoding[name] = {"zlib": True, "complevel": 1}
             if compact and var.ndim >= 2:
-                encoding[name].update(shuffle=True, **_packing(var))
+                encoding[name].update(shuffle=True, **_packing(name, var))
     ds.to_netcdf(path, mode=mode, group=group, encoding=encoding, engine="netcdf4")
     return path
 
 
-def _packing(var):
+def _packing(name, var):
     """CF packing of a variable to the stored resolution of its units, or float32 (see :func:`save`)."""
     if var.dtype.kind != "f":
         return {}
-    resolution = STORED_RESOLUTION.get(var.attrs.get("units"))
+    resolution = STORED_RESOLUTION_OF.get(name, STORED_RESOLUTION.get(var.attrs.get("units")))
     values = var.values[np.isfinite(var.values)]
     if resolution is None or values.size == 0:
         return {"dtype": "f4"}

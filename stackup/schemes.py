@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _validate as check
-from ._files import Table, read_toml
+from ._files import Table, locations, read_toml
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
 #: Readings are snapped to this grid before comparison with grade limits [m].
@@ -146,7 +146,7 @@ _WHAT = {"housing": "housing bore diameter", "journal": "journal diameter", "she
 
 def _grade_set(top, *, scale, units, dim):
     t = top.table(dim, required=True)
-    where, field = t.where, f"{t.where}, key {dim}"
+    field = f"{t.where}, key {dim}"
     size = dict(scale=scale, units=units, plausible=PLAUSIBLE[dim], what=_WHAT[dim])
     forms = [k for k in ("grades", "classes") if k in t]
     if len(forms) > 1:
@@ -468,19 +468,9 @@ def _builtin_dir():
     return Path(__file__).resolve().parent.parent / "schemes"
 
 
-def _search_dirs():
-    dirs = [Path(p) for p in os.environ.get("STACKUP_SCHEME_PATH", "").split(os.pathsep) if p]
-    return [*dirs, _builtin_dir()]
-
-
 def files():
     """Where :func:`load` finds each scheme by name: {name: path}, the user's folders first."""
-    found = {}
-    for folder in _search_dirs():
-        if folder.is_dir():
-            for path in sorted(folder.glob("*.toml")):
-                found.setdefault(path.stem, path)
-    return found
+    return locations("STACKUP_SCHEME_PATH", _builtin_dir())
 
 
 def available():
@@ -495,10 +485,9 @@ def load(name_or_path):
     text = os.fspath(name_or_path)
     path = Path(text)
     if not (path.suffix == ".toml" or os.sep in text or path.exists()):
-        found = [d / f"{text}.toml" for d in _search_dirs() if (d / f"{text}.toml").is_file()]
-        if not found:
+        path = files().get(text)
+        if path is None:
             raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file")
-        path = found[0]
     data, _ = read_toml(path, kind="scheme")
     return _from_dict(data, where=f"scheme file {path.name!r}", path=str(path))
 

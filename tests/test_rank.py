@@ -64,7 +64,7 @@ def test_sensitivity_recovers_known_variance_shares():
     from stackup.sensitivity import INPUTS
 
     rng = np.random.default_rng(0)
-    n, b = 4000, 5
+    n = 4000
     ds = stackup.Study(n_engines=n, mechanics_engines=0, schemes=("iso13778-1",), seed=1, pilot_engines=2000,
                        progress=False).run()
     d = ds.sel(scheme="iso13778-1")

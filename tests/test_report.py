@@ -88,7 +88,7 @@ def test_importing_the_report_leaves_the_matplotlib_backend_alone():
 
 def test_a_compact_file_keeps_every_variable_within_half_its_resolution(comparison, tmp_path):
     from stackup.io import open_dataset, save
-    from stackup.study.schema import STORED_RESOLUTION
+    from stackup.study.schema import STORED_RESOLUTION, STORED_RESOLUTION_OF
 
     ds = comparison.dataset
     exact, compact = save(ds, tmp_path / "exact.nc"), save(ds, tmp_path / "compact.nc", compact=True)
@@ -100,7 +100,8 @@ def test_a_compact_file_keeps_every_variable_within_half_its_resolution(comparis
             np.testing.assert_array_equal(back[name].values, var.values)
             continue
         np.testing.assert_array_equal(np.isnan(back[name].values), np.isnan(var.values))  # NaN stays NaN
-        resolution = STORED_RESOLUTION.get(var.attrs["units"]) if var.ndim >= 2 else None
+        resolution = (STORED_RESOLUTION_OF.get(name, STORED_RESOLUTION.get(var.attrs["units"])) if var.ndim >= 2
+                      else None)
         if resolution:
             assert np.nanmax(np.abs(back[name].values - var.values)) <= 0.5 * resolution * (1 + 1e-6)
         else:  # float32, or exact below two dimensions
@@ -124,6 +125,8 @@ def test_the_designed_scheme_is_compared_beside_the_others_and_explained(compari
     assert f"starting from `{design['start']}`" in section and "| housing bore |" in section
     assert "| gauge repeatability 2 µm |" not in section or "design sample" in section
     assert "What changed" in section and "```text" in section
+    page = (tmp_path / "report.html").read_text()
+    assert "<pre>Scheme designed by stackup" in page  # the reasons as a text block, not one paragraph per line
 
 
 def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):

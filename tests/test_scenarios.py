@@ -1,6 +1,5 @@
 """Robustness scenarios applied to an engine."""
 
-import numpy as np
 import pytest
 
 from stackup.engines import load_engine

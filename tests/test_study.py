@@ -171,7 +171,7 @@ def test_cli_reports_bad_input_as_an_error(capsys):
 
 
 def test_operating_clearance_is_the_press_fit_of_the_stored_parts(engine_file):
-    from stackup.engines import engine_path, load_engine
+    from stackup.engines import load_engine
     from stackup.fit import press_fit
 
     engine = engine_file()

@@ -39,9 +39,20 @@ def _fmt_ci(value, ci, digits=1):
     return f"{value:.{digits}f} [{ci[0]:.{digits}f}, {ci[1]:.{digits}f}]"
 
 
+def _sig(value, digits=3):
+    """A number to ``digits`` significant digits, written out with thousands separators (26,500, not 2.65e+04)."""
+    if not np.isfinite(value):
+        return "∞" if value > 0 else ("−∞" if value < 0 else "—")
+    if value == 0:
+        return "0"
+    rounded = float(f"{value:.{digits}g}")
+    decimals = max(0, digits - 1 - int(np.floor(np.log10(abs(rounded)))))
+    return f"{rounded:,.{decimals}f}"
+
+
 def _fmt_q(q, digits=3):
     """A (value, lower, upper) triple as 'value [lower, upper]' with significant digits."""
-    return f"{q[0]:.{digits}g} [{q[1]:.{digits}g}, {q[2]:.{digits}g}]"
+    return f"{_sig(q[0], digits)} [{_sig(q[1], digits)}, {_sig(q[2], digits)}]"
 
 
 def markdown_table(frame):
@@ -193,7 +204,7 @@ def _ranking_section(ds, ranking, scenarios):
                                                        ranking.outside_window_source)],
         "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
                          for v, ci in zip(column("alpha_over_limit_pct"), column("alpha_over_limit_pct_ci"))],
-        "life median [h]": [f"{v:.3g} [{ci[0]:.3g}, {ci[1]:.3g}]" if isinstance(ci, tuple) else "—"
+        "life median [h]": [_fmt_q((v, *ci)) if isinstance(ci, tuple) else "—"
                             for v, ci in zip(column("life_median_h"), column("life_median_h_ci"))],
         "shell grades": ranking.shell_grades,
         "stock-outs [ppm]": ranking.stockout_ppm.map("{:.0f}".format),
@@ -206,7 +217,8 @@ def _ranking_section(ds, ranking, scenarios):
             table["worst scenario: Δ life median [h]"] = [
                 f"{v:+.3g} ({name})" if isinstance(name, str) else "—"
                 for v, name in zip(ranking.worst_life_median_h, ranking.worst_life_median_h_scenario)]
-    rule = (f"Operating-clearance design window {window[0] * 1e6:.0f}–{window[1] * 1e6:.0f} µm (the engine's). "
+    whose = "the study's" if json.loads(ds.attrs["study"]).get("window") else "the engine's"
+    rule = (f"Operating-clearance design window {prose._um_edge(window[0])}–{prose._um_edge(window[1])} µm ({whose}). "
             f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.")
     if scenarios:
         rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "
@@ -279,12 +291,13 @@ def _fit_section(ds):
     temperatures = ", ".join(f"{t:.0f}" for t in ds.press_fit_temperatures.values)
     crush = ds.crush_height_limits.values * 1e3
     window = ds.clearance_window.values * UM
+    def source(key):
+        return " ".join(str(ds.attrs.get(key, "")).split()) or "no source given"
+
     sources = [f"- contact pressure at least {p_min / 1e6:.0f} MPa and shell compression at most "
-               f"{s_max / 1e6:.0f} MPa: {ds.attrs.get('press_fit_limits_source') or 'no source given'};",
-               f"- crush height {crush[0]:.3f}–{crush[1]:.3f} mm: "
-               f"{ds.attrs.get('crush_height_source') or 'no source given'};",
-               f"- operating-clearance window {window[0]:.1f}–{window[1]:.1f} µm: "
-               f"{ds.attrs.get('clearance_window_source') or 'no source given'}."]
+               f"{s_max / 1e6:.0f} MPa: {source('press_fit_limits_source')};",
+               f"- crush height {crush[0]:.3f}–{crush[1]:.3f} mm: {source('crush_height_source')};",
+               f"- operating-clearance window {window[0]:.1f}–{window[1]:.1f} µm: {source('clearance_window_source')}."]
     return _section(
         "Operating clearance: press fit, housing swell and temperature",
         "The shells' crush height presses them into the housing; the housing bore swells and the clearance "
@@ -331,14 +344,14 @@ def _film_section(ds, out):
         "α mean [%]": (100 * film.alpha_mean).map("{:.1f}".format),
         "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
         "life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],
-        "life median [h]": [f"{q[0]:.3g}" for q in film.life_median_h],
+        "life median [h]": [_sig(q[0]) for q in film.life_median_h],
         "method 2 life B10 [h]": [_fmt_q(q) for q in film.wear_chart_b10_h],
         f"engines < {target:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
     })
     per_bearing = bearing_summary(ds).reset_index()
     h_table = per_bearing.assign(text=[f"{q[0]:.2f}" for q in per_bearing.h_min_median_um]).pivot(
         index="scheme", columns="bearing", values="text")
-    life_table = per_bearing.assign(text=[f"{q[0]:.3g}" for q in per_bearing.life_median_h]).pivot(
+    life_table = per_bearing.assign(text=[_sig(q[0]) for q in per_bearing.life_median_h]).pivot(
         index="scheme", columns="bearing", values="text")
     both = pd.concat([h_table.add_prefix("h_min median [µm], bearing "),
                       life_table.add_prefix("life median [h], bearing ")], axis=1).reset_index()

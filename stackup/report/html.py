@@ -11,7 +11,8 @@ _STYLE = """body{font-family:system-ui,sans-serif;max-width:1200px;margin:2em au
 table{border-collapse:collapse;font-size:.85em;margin:1em 0}th,td{border:1px solid #ccc;padding:.25em .5em;text-align:right}
 th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}img{max-width:100%}code{background:#f3f3f3;padding:0 .2em}
 nav{background:#f7f7f7;border:1px solid #ddd;padding:.4em .8em;margin:1em 0;font-size:.9em}nav a{margin-right:1em}
-.verdict{border-left:4px solid #2a7;padding:.2em 1em;background:#f4fbf7}"""
+.verdict{border-left:4px solid #2a7;padding:.2em 1em;background:#f4fbf7}
+pre{background:#f7f7f7;border:1px solid #ddd;padding:.6em;font-size:.8em;overflow-x:auto;white-space:pre-wrap}"""
 
 
 def anchor(title):
@@ -31,11 +32,11 @@ def markdown_to_html(text, folder):
     """The report's markdown as one self-contained HTML page (figures embedded as base64 PNG).
 
     Handles exactly what :func:`stackup.report.write_report` writes:
-    headings (with ids), paragraphs, pipe tables, bullet lists, images, a
+    headings (with ids), paragraphs, pipe tables, bullet lists, fenced text blocks, images, a
     ``Contents:`` line as a navigation bar and the block between
     ``<!-- verdict -->`` and ``<!-- /verdict -->`` as the highlighted verdict.
     """
-    body, table, items = [], [], []
+    body, table, items, code = [], [], [], None
 
     def flush():
         if table:
@@ -49,6 +50,17 @@ def markdown_to_html(text, folder):
             items.clear()
 
     for line in text.splitlines():
+        if code is not None:  # inside a fenced block: kept verbatim until the closing fence
+            if line.startswith("```"):
+                body.append("<pre>" + html.escape("\n".join(code)) + "</pre>")
+                code = None
+            else:
+                code.append(line)
+            continue
+        if line.startswith("```"):
+            flush()
+            code = []
+            continue
         if line.startswith("|"):
             table.append(line)
             continue

@@ -38,9 +38,24 @@ def _um(value, digits=1):
     return f"{value * UM:.{digits}f}"
 
 
+def _um_edge(value):
+    """A window edge in µm: whole micrometres unless it has a fraction (34.5, not 34)."""
+    if not np.isfinite(value):
+        return "∞" if value > 0 else "−∞"
+    um = round(value * UM, 3)
+    return f"{um:.0f}" if um == round(um) else f"{um:g}"
+
+
 def _ppm(value, ci=None):
-    text = f"{value:,.0f} ppm"
-    return text + (f" [{ci[0]:,.0f}, {ci[1]:,.0f}]" if ci is not None else "")
+    """A share in ppm with its interval, to a tenth below 10 ppm (0.2 ppm is not 0)."""
+    digits = 1 if abs(value) < 10 and (ci is None or abs(ci[1]) < 10) else 0
+    text = f"{value:,.{digits}f} ppm"
+    return text + (f" [{ci[0]:,.{digits}f}, {ci[1]:,.{digits}f}]" if ci is not None else "")
+
+
+def _source(row):
+    """' (estimated by subset simulation)' where the ranking took the share from the tails, else ''."""
+    return "" if row.get("outside_window_source", "counted") == "counted" else " (estimated by subset simulation †)"
 
 
 def _names(names):
@@ -66,8 +81,8 @@ def verdict(ds, ranking, scenario_rankings):
     if len(best) == 1:
         others = ranking.drop(index=best)
         runner = others.index[0] if len(others) else None
-        why = (f"{_ppm(first.outside_window_ppm, first.outside_window_ppm_ci)} of its bearings fall outside the "
-               f"operating-clearance window {_um(window[0], 0)}–{_um(window[1], 0)} µm")
+        why = (f"{_ppm(first.outside_window_ppm, first.outside_window_ppm_ci)}{_source(first)} of its bearings "
+               f"fall outside the operating-clearance window {_um_edge(window[0])}–{_um_edge(window[1])} µm")
         if runner is not None:
             r = ranking.loc[runner]
             why += f", against {_ppm(r.outside_window_ppm, r.outside_window_ppm_ci)} for the next, {runner}"
@@ -278,8 +293,8 @@ def _life_method(ds, study):
                "the cycle mean allows)" if film == "cycle-mean" else " (a comparison: the paper implies the cycle mean)")
             + f"; critical film h_lim,cr = {wear['critical_film_m'] * UM:.2f} µm from the journal's and the shell's "
             f"roughness (Rz {wear['journal_rz_m'] * UM:.2f} + {wear['shell_rz_m'] * UM:.2f} µm, eq. 3; "
-            f"{wear['roughness_source'].strip()}), limiting wear {wear['wear_limit_m'] * UM:.0f} µm and wear speed "
-            f"{wear['wear_rate_m_per_s']:.0e} m/s ({wear['wear_source'].strip()}). Method 2 (eqs. 6-7): a wear chart "
+            f"{' '.join(wear['roughness_source'].split())}), limiting wear {wear['wear_limit_m'] * UM:.0f} µm and wear speed "
+            f"{wear['wear_rate_m_per_s']:.0e} m/s ({' '.join(wear['wear_source'].split())}). Method 2 (eqs. 6-7): a wear chart "
             "over the bearing surface where the film is below h_lim,cr, with the asperity contact pressure of "
             "Greenwood and Tripp. An engine's life is that of its weakest bearing.")
 

@@ -197,7 +197,6 @@ FIT_FIELDS = {
     "contact_pressure": "contact_pressure",
     "shell_stress": "shell_stress",
     "housing_swell": "housing_swell",
-    "bore_in_service": "bore_in_service",
     "clearance_operating": "clearance",
 }
 #: Press-fit checks over the declared temperatures: dataset name -> PressFitExtremes field.
@@ -208,40 +207,26 @@ EXTREME_FIELDS = {
 
 
 def _press_fit(engine, parts, assembly, method):
-    """Press fit of the assembled bearings; NaN elsewhere (the status says why)."""
+    """Press fit of the assembled bearings at the operating temperature and its checks over the declared ones.
+
+    NaN (False) where a bearing is not assembled (the status says why).
+    """
     ok = assembly.status == ASSEMBLED
-    fit = press_fit(
-        housing_bore=parts.housing_bore[ok],
-        shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
-        crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]),
-        journal_d=parts.journal_d[ok],
-        method=method,
-        **engine.press_fit.kwargs(),
-    )
-    out = {}
-    for name, field in FIT_FIELDS.items():
-        full = np.full(ok.shape, np.nan)
-        full[ok] = getattr(fit, field)
-        out[name] = full
-    loss = np.zeros(ok.shape, bool)
-    loss[ok] = fit.loss_of_fit
-    out["loss_of_fit"] = loss
+    bearing = dict(housing_bore=parts.housing_bore[ok],
+                   shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
+                   crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]), method=method)
+    fit = press_fit(journal_d=parts.journal_d[ok], **bearing, **engine.press_fit.kwargs())
     # the design checks over every declared temperature: the stress bites cold for a light-alloy housing,
     # the pressure hot (cold for cast iron)
-    extremes = press_fit_extremes(
-        housing_bore=parts.housing_bore[ok],
-        shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
-        crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]),
-        method=method,
-        **engine.press_fit.extremes_kwargs(),
-    )
-    for name, field in EXTREME_FIELDS.items():
-        full = np.full(ok.shape, np.nan)
-        full[ok] = getattr(extremes, field)
-        out[name] = full
-    loss = np.zeros(ok.shape, bool)
-    loss[ok] = extremes.loss_of_fit
-    out["loss_of_fit_any_temperature"] = loss
+    extremes = press_fit_extremes(**bearing, **engine.press_fit.extremes_kwargs())
+    out = {}
+    for result, fields in ((fit, {**FIT_FIELDS, "loss_of_fit": "loss_of_fit"}),
+                           (extremes, {**EXTREME_FIELDS, "loss_of_fit_any_temperature": "loss_of_fit"})):
+        for name, field in fields.items():
+            value = getattr(result, field)
+            full = np.zeros(ok.shape, bool) if value.dtype == bool else np.full(ok.shape, np.nan)
+            full[ok] = value
+            out[name] = full
     return out
 
 

@@ -33,6 +33,10 @@ LABEL_DTYPE = "<U2"
 #: a fiftieth of the gauges' repeatability (0.5 um) and a hundredth of their read-out, 10 kPa a
 #: thousandth of a shell's contact pressure, 1 N a ten-thousandth of a main bearing's load.
 STORED_RESOLUTION = {"m": 1e-8, "Pa": 1e4, "N": 1.0, "degC": 1e-2}
+#: Coarser stored resolutions of variables whose spread and limits are far above their unit's: shell stress
+#: (limits of hundreds of MPa) to 0.1 MPa, crush heights (tolerances of tens of um) to 0.1 um.
+STORED_RESOLUTION_OF = {"shell_stress": 1e5, "shell_stress_highest": 1e5, "shell_upper_crush": 1e-7,
+                        "shell_lower_crush": 1e-7}
 
 
 @dataclass(frozen=True)
@@ -102,7 +106,6 @@ FIT = {
     "contact_pressure": Var(SED, "Pa", "contact pressure between shell backs and housing bore in service"),
     "shell_stress": Var(SED, "Pa", "mean compressive hoop stress of the shell wall in service (positive in compression)"),
     "housing_swell": Var(SED, "m", "elastic growth of the housing bore diameter from the shell press fit"),
-    "bore_in_service": Var(SED, "m", "housing bore diameter at operating temperature, swell included"),
     "clearance_operating": Var(SED, "m", "diametral operating clearance: press fit, swell and temperature "
                                          "(NaN where status is not assembled)"),
     "contact_pressure_lowest": Var(SED, "Pa", "lowest contact pressure between shell backs and housing bore over "
