@@ -242,3 +242,15 @@ def test_design_for_one_shell_process_sorted_into_grades(engine_file):
     assert result.scheme.shell.graded and np.isfinite(result.objective)
     lo, hi = result.scheme.shell.limits
     assert lo < result.supply_mean < hi
+
+
+def test_shell_search_starts_from_a_point_on_its_bounds():
+    # a start on a bound can scale to just outside scipy's unit cube (here the width's lower bound to -1e-16)
+    # and was refused by differential evolution
+    from stackup.design.search import search_shells
+
+    lower, upper = np.array([-1e-6, 1.7400399524647847e-06]), np.array([1e-6, 6.117583592432608e-06])
+    start = np.array([-0.5, 0.5]) * lower[1]  # edges: the middle at 0, the width on its lower bound
+    edges = search_shells(lambda e: float((np.diff(e)[0] - 2e-6) ** 2), [start], lower=lower, upper=upper,
+                          generations=2, polish=20, seed=0)
+    assert lower[1] - 1e-15 <= np.diff(edges)[0] <= upper[1] + 1e-15

@@ -194,8 +194,10 @@ def search_shells(evaluate, starts, *, lower, upper, generations, polish, seed):
     best = points[int(np.argmin(values))]
     bounds = list(zip(lower, upper))
     if generations:
+        # a start on a bound can scale to just above 1 in scipy's unit cube and be refused: start a hair inside
+        margin = 1e-9 * (upper - lower)
         result = optimize.differential_evolution(f, bounds, popsize=4, maxiter=generations, seed=seed, polish=False,
-                                                 init="sobol", x0=best, tol=0.0)
+                                                 init="sobol", x0=np.clip(best, lower + margin, upper - margin), tol=0.0)
         best = result.x
     if polish:
         result = optimize.minimize(f, best, method="Nelder-Mead", bounds=bounds,

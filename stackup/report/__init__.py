@@ -21,9 +21,10 @@ import pandas as pd
 
 from ..assembly import STATUS
 from ..rank import MIN_COUNTED
+from ..study.schema import flag
 from . import figures, prose
 from .html import anchor, markdown_to_html
-from .tables import (UM, bearing_summary, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
+from .tables import (UM, bearing_summary, converged_engines, clearance_summary, crank_summary, film_summary, fit_summary, grade_usage,
                      kept_summaries)
 
 #: Sections in report order (their headings; the verdict comes before them).
@@ -365,7 +366,51 @@ def _film_section(ds, out):
         markdown_table(overall), "",
         _positions_text(ds), "",
         markdown_table(both), "",
+        *_film_detail(ds),
         "![Oil film and life per bearing position](film_life.png)")
+
+
+def _film_detail(ds):
+    """Edge film with the journal's tilt, tilt loss and peak film pressure per position; orbits that did not close.
+
+    Only for datasets whose film stage stores them (``h_min_edge``, ``tilt_loss``, ``p_max``, ``film_status``).
+    """
+    lines = []
+    names = ("h_min_edge", "tilt_loss", "p_max")
+    if all(name in ds for name in names):
+        rows = []
+        for i, scheme in enumerate(ds.scheme.values):
+            done = converged_engines(ds, i)
+            if not done.any():
+                continue
+            for b, bearing in enumerate(ds.bearing.values):
+                edge, loss, peak = (ds[name].values[i, done, b] for name in names)
+                rows.append({"scheme": str(scheme), "bearing": int(bearing),
+                             "text": f"{np.nanmedian(edge) * UM:.2f} / {np.nanmedian(loss) * UM:.2f} / "
+                                     f"{np.nanmedian(peak) / 1e6:.0f}"})
+        if rows:
+            table = pd.DataFrame(rows).pivot(index="scheme", columns="bearing", values="text")
+            table.columns = [f"bearing {b}" for b in table.columns]
+            lines += ["Misalignment reaches the film: the journal tilts in its bearing by the crankshaft's slope at "
+                      "the support (beam solution with the engine's sampled bore coaxiality and journal run-out), so "
+                      "the film is thinnest at an edge. Per position, median over engines: edge film with tilt [µm] "
+                      "/ film lost to the tilt [µm] / peak film pressure [MPa]:", "",
+                      markdown_table(table.reset_index()), ""]
+    if "film_status" in ds:
+        status = ds.film_status
+        meanings = status.attrs["flag_meanings"].split()
+        ran = status.values != flag(status, "not_computed") if "not_computed" in meanings else np.ones(status.shape, bool)
+        counts = {m: int(np.count_nonzero(ran & (status.values == flag(status, m)))) for m in meanings
+                  if m not in ("periodic", "quasi_static", "not_computed")}
+        counts = {m: k for m, k in counts.items() if k}
+        total = int(np.count_nonzero(ran))
+        if counts:
+            lines += [f"Orbits that did not become periodic, of {total:,} bearing-cycles: "
+                      + ", ".join(f"{k:,} {m.replace('_', ' ')}" for m, k in counts.items())
+                      + " (marked in `film_status`; a collapsed film is flagged, not given a number).", ""]
+        elif total:
+            lines += [f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).", ""]
+    return lines
 
 
 def _positions_text(ds):

@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..study import summaries
-from .tables import UM, _assembled, _converged, grade_usage, kept_summaries
+from .tables import UM, _assembled, converged_engines, grade_usage, kept_summaries
 
 #: Width of a full-page figure [in] at DPI: the HTML page is 1200 px wide.
 WIDTH, DPI = 11.0, 110
@@ -85,7 +85,7 @@ def film_by_bearing(ds, path):
     width = 0.8 / len(names)
     for k, name in enumerate(names):
         i = names.index(name)
-        done = _converged(ds, i)
+        done = converged_engines(ds, i)
         offset = (k - (len(names) - 1) / 2) * width
         h = [ds.h_min.values[i, done, b] * UM for b in range(len(bearings))]
         life = [ds.life.values[i, done, b] / 3600 for b in range(len(bearings))]

@@ -166,7 +166,7 @@ def crank_summary(ds):
     return pd.DataFrame(rows).set_index(["scheme", "bearing"])
 
 
-def _converged(ds, i):
+def converged_engines(ds, i):
     """Engines of scheme ``i`` whose crankshaft stage converged (the film and life were computed on them)."""
     return ds.crank_status.values[i] == flag(ds.crank_status, "converged")
 
@@ -182,7 +182,7 @@ def film_summary(ds):
     life_target_hours = float(ds.life_target) / 3600
     rows = []
     for i, name in enumerate(ds.scheme.values):
-        done = _converged(ds, i)
+        done = converged_engines(ds, i)
         h = ds.h_min.values[i, done].ravel() * UM
         a = ds.alpha.values[i, done].ravel()
         life = ds.life.values[i, done].ravel() / 3600
@@ -212,7 +212,7 @@ def bearing_summary(ds):
     """
     rows = []
     for i, name in enumerate(ds.scheme.values):
-        done = _converged(ds, i)
+        done = converged_engines(ds, i)
         if not done.any():
             continue
         for b, bearing in enumerate(ds.bearing.values):

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-
+import contextlib
 import json
+from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
@@ -13,6 +13,7 @@ from ..scenarios import DECLARED
 from ..sensitivity import sobol
 from . import ISO_SCHEMES, Study
 from .inputs import load_inputs, scheme_text
+from .schedule import local_cluster
 
 #: Engines of the mechanical chain in a scenario that disturbs it (misalignment); the
 #: clearance-only scenarios run no mechanics.
@@ -48,7 +49,7 @@ class Comparison:
 
 
 def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
-            design=None, progress=None, log=None, **study_options):
+            design=None, scheduler=None, progress=None, log=None, **study_options):
     """Compare selective-fitting schemes on an engine: the study, its scenarios and what drives the spread.
 
     Parameters
@@ -69,6 +70,10 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         comparison's seed and scenarios) and compare it beside ``schemes``;
         its choices are stored in the dataset's attributes
         (``designed_scheme``, ``design``). None designs nothing.
+    scheduler : None, "processes" or dask.distributed.Client
+        Where the study and its scenarios run (:meth:`stackup.study.Study.run`;
+        "processes" starts one local worker per core for all of them). The
+        numbers do not depend on it.
     progress : bool or None
         Progress bars (None: only on a terminal).
     log : callable or None
@@ -92,22 +97,34 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         schemes = (*schemes, designed.scheme)
     study = Study(engine=engine, schemes=tuple(schemes), n_engines=n_engines, seed=seed, progress=progress,
                   **study_options)
-    log(f"study: {study.n_engines:,} engines x {len(study.schemes)} schemes")
-    ds = study.run()
+    with _client(scheduler) as where:
+        log(f"study: {study.n_engines:,} engines x {len(study.schemes)} schemes")
+        ds = study.run(where)
+        runs = {}
+        for k, (label, change) in enumerate((scenarios or {}).items(), start=1):
+            log(f"scenario {k}/{len(scenarios)}: {label}")
+            runs[label] = replace(study, scenario=change, keep="summaries",
+                                  mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change
+                                  else 0).run(where)
     if designed is not None:
         ds.attrs.update(designed_scheme=designed.scheme.name, design=json.dumps(design_record(designed)))
     engine_used, loaded = load_inputs(study.input_files(), study.schemes)
-    runs = {}
-    for k, (label, change) in enumerate((scenarios or {}).items(), start=1):
-        log(f"scenario {k}/{len(scenarios)}: {label}")
-        runs[label] = replace(study, scenario=change, keep="summaries",
-                              mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change else 0).run()
     log("tails: shares beyond the design window by subset simulation")
     tails = tails_dataset(engine_used, loaded, window=study_options.get("window"), seed=seed,
                           pilot_engines=study.pilot_engines)
     log("sensitivity: Sobol indices of the root inputs")
     sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails)
     return Comparison(ds, runs, sensitivity, tails)
+
+
+@contextlib.contextmanager
+def _client(scheduler):
+    """The scheduler for every study run of a comparison: "processes" becomes one local cluster for all of them."""
+    if scheduler != "processes":
+        yield scheduler
+        return
+    with local_cluster() as client:
+        yield client
 
 
 def design_record(designed):

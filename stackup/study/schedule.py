@@ -7,6 +7,7 @@ finish, with at most two chunks per worker thread in flight.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import os
 
@@ -41,16 +42,23 @@ def results(study, firsts, scheduler, progress):
         for first in firsts:
             yield study.chunk(first, progress.for_next_chunk() if study.target_error else None)
     elif scheduler == "processes":
-        from distributed import Client, LocalCluster
-
-        import dask
-
-        with dask.config.set(WORKER_MALLOC), LocalCluster(
-                n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True, host="127.0.0.1",
-                dashboard_address=None) as cluster, Client(cluster) as client:
+        with local_cluster() as client:
             yield from _stream(study, firsts, client)
     else:
         yield from _stream(study, firsts, scheduler)
+
+
+@contextlib.contextmanager
+def local_cluster():
+    """A Client of a dask cluster on this machine: one single-threaded worker per core, WORKER_MALLOC set."""
+    from distributed import Client, LocalCluster
+
+    import dask
+
+    with dask.config.set(WORKER_MALLOC), LocalCluster(
+            n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True, host="127.0.0.1",
+            dashboard_address=None) as cluster, Client(cluster) as client:
+        yield client
 
 
 def _chunk_task(study, first):
