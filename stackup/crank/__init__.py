@@ -19,7 +19,7 @@ import numpy as np
 
 from .. import _validate as check
 from .._kernels import crank as _kernel
-from .beam import condensed
+from .beam import condensed, slope_matrices
 from .law import REST, BellakhdharLaw
 
 #: Status codes of a solve, stored with CF flag attributes (defined with the kernel that sets them).
@@ -176,4 +176,47 @@ def reactions(pin_loads, *, spans, EI, load_positions=None, offsets=None, law=No
                           (status == 0).reshape(lead), iterations.reshape(lead), status.reshape(lead))
 
 
-__all__ = ["BellakhdharLaw", "CrankReactions", "STATUS", "reactions"]
+def support_slopes(pin_loads, displacements, *, spans, EI, load_positions=None):  # noqa: N803
+    """Slope of the crankshaft at each main bearing [rad] from the beam solution.
+
+    Parameters
+    ----------
+    pin_loads : array_like (..., N, 2)
+        Span loads [N], as given to :func:`reactions`.
+    displacements : array_like (..., N+1, 2)
+        Journal centres at the bearings [m] (``CrankReactions.displacements``).
+    spans, EI, load_positions :
+        As :func:`reactions`.
+
+    Returns
+    -------
+    numpy.ndarray (..., N+1, 2)
+        :math:`dw/dz` per load component at each support, z along the crank
+        axis from bearing 1 towards bearing N+1: the tilt of the journal axis
+        against the straight reference line (and against the bore axes, which
+        the line-boring leaves parallel to it), the film's ``tilt``.
+
+    Notes
+    -----
+    The rotations eliminated by the static condensation of
+    :func:`stackup.crank.beam.condensed`, recovered from the deflections and the
+    loads (:func:`stackup.crank.beam.slope_matrices`), per bending plane.
+    """
+    loads = check.finite("pin_loads", pin_loads)
+    w = check.finite("displacements", displacements)
+    spans_arr = check.positive("spans", spans)
+    n = spans_arr.size
+    if loads.shape[-2:] != (n, 2) or w.shape[-2:] != (n + 1, 2):
+        raise ValueError(f"pin_loads {loads.shape} and displacements {w.shape} must end in ({n}, 2) and ({n + 1}, 2)")
+    ei = check.positive("EI", EI)
+    ei = np.broadcast_to(ei if ei.ndim < 2 else ei, (n,) if ei.ndim < 2 else (n, 2))
+    ei = np.stack([ei, ei], axis=-1) if ei.ndim == 1 else ei
+    positions = np.full(n, 0.5) if load_positions is None else np.broadcast_to(load_positions, (n,))
+    out = np.empty(np.broadcast_shapes(loads.shape[:-2], w.shape[:-2]) + (n + 1, 2))
+    for c in range(2):
+        s_w, s_p = slope_matrices(spans_arr, ei[:, c], positions)
+        out[..., c] = np.einsum("pq,...q->...p", s_w, w[..., c]) + np.einsum("pi,...i->...p", s_p, loads[..., c])
+    return out
+
+
+__all__ = ["BellakhdharLaw", "CrankReactions", "STATUS", "reactions", "support_slopes"]

@@ -61,3 +61,33 @@ def condensed(spans, ei, load_positions):
     select = (gone[:, None] == loads[None, :]).astype(float)
     transfer = -k_re @ np.linalg.solve(k_ee, select)
     return 0.5 * (k_b + k_b.T), transfer
+
+
+def slope_matrices(spans, ei, load_positions):
+    """Support slopes of one bending plane from support deflections and span loads.
+
+    Returns (S_w (N+1, N+1) [1/m], S_p (N+1, N) [1/N]) with the beam's slope
+    :math:`dw/dz` at each support :math:`= S_w\\,w + S_p\\,P`: the rotations the
+    static condensation of :func:`condensed` eliminated,
+    :math:`u_e = K_{ee}^{-1}(F_e - K_{er}\\,w)`, at the support nodes.
+    """
+    spans = np.asarray(spans, dtype=float)
+    n = spans.size
+    n_nodes = 2 * n + 1
+    k = np.zeros((2 * n_nodes, 2 * n_nodes))
+    for i in range(n):
+        a = load_positions[i] * spans[i]
+        for j, length in enumerate((a, spans[i] - a)):
+            first = 2 * i + j
+            dofs = [2 * first, 2 * first + 1, 2 * first + 2, 2 * first + 3]
+            k[np.ix_(dofs, dofs)] += element_stiffness(length, ei[i])
+    kept = np.array([2 * (2 * j) for j in range(n + 1)])
+    loads = np.array([2 * (2 * i + 1) for i in range(n)])
+    gone = np.setdiff1d(np.arange(2 * n_nodes), kept)
+    k_ee = k[np.ix_(gone, gone)]
+    k_er = k[np.ix_(gone, kept)]
+    select = (gone[:, None] == loads[None, :]).astype(float)
+    rotations = np.searchsorted(gone, [2 * (2 * j) + 1 for j in range(n + 1)])  # support rotation DOFs
+    s_w = -np.linalg.solve(k_ee, k_er)[rotations]
+    s_p = np.linalg.solve(k_ee, select)[rotations]
+    return s_w, s_p

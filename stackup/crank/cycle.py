@@ -14,7 +14,8 @@ NOT_COMPUTED = len(STATUS)
 METHODS = ("bearing-law", "linear", "rigid")
 
 
-def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_angle, method="bearing-law"):
+def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_angle, method="bearing-law",
+                  law=None):
     """Bearing reactions of engines over a crank-angle grid.
 
     Parameters
@@ -30,6 +31,9 @@ def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_a
     method : {"bearing-law", "linear", "rigid"}
         Support tier: the engine's nonlinear bearing law, linear springs of
         its low stiffness k_lv, or rigid supports.
+    law : BellakhdharLaw, optional
+        With ``"bearing-law"``: this law (parameters broadcast to (engines, 1,
+        N+1), e.g. fitted to each bearing's film) instead of the engine's.
 
     Returns
     -------
@@ -38,7 +42,7 @@ def engine_cycles(spec, *, bore_offset, journal_eccentricity, clearance, crank_a
     loads = spec.pin_loads(crank_angle)[None]  # (1, angles, N, 2), shared by all engines
     offsets = spec.offsets(np.asarray(bore_offset), np.asarray(journal_eccentricity), crank_angle)
     if method == "bearing-law":
-        law = spec.law(np.asarray(clearance)[:, None, :])
+        law = spec.law(np.asarray(clearance)[:, None, :]) if law is None else law
     elif method == "linear":
         law = spec.law_parameters["k_lv"]
     else:

@@ -1,28 +1,69 @@
-r"""Dynamically loaded bearings over the engine cycle: the journal orbit and its minimum film.
+r"""Dynamically loaded bearings over the engine cycle: the journal orbit, its film and pressure.
 
-Tiers of :func:`orbit`:
+Tiers of :func:`orbit` (``method``); their measured costs and errors are in
+``reports/film_speed_vs_error.md`` and :func:`cheapest_cycle_tier` picks from them:
 
-``"quasi-static"``
+``"quasi-static"`` (``"quasi-static-short"``, ``"quasi-static-finite"``, ``"quasi-static-reynolds"``)
     Each crank angle as a steady load on a steady tier (``steady_method``):
-    no squeeze film; cheap.
-``"mobility"``
+    no squeeze film.
+``"mobility"`` (alias ``"mobility-short"``)
     The journal centre moves so that the film force balances the load at
-    every instant (massless journal, Booker's mobility method). The film
-    force comes from the short-bearing Reynolds equation with journal
-    rotation and squeeze, with Gümbel (π-film) cavitation, written in the
-    engine-fixed frame for a journal centre :math:`\mathbf x` moving at
-    :math:`\dot{\mathbf x}`, :math:`h(\Theta) = c - \mathbf x\cdot\mathbf n(\Theta)`:
+    every instant (massless journal, Booker's mobility method), with the
+    short-bearing film force in closed form.
+``"mobility-finite"``
+    The same orbit with the short-bearing force scaled and turned by a
+    finite-length correction tabulated from the Reynolds tier with squeeze
+    (``stackup/data/film_mobility_table.npz``, ``studies/film_mobility_table.py``:
+    L/D 0.15-1, eccentricity up to the limit, every squeeze direction; the
+    peak pressure corrected the same way). The quasi-static ``finite`` tier's
+    peak pressure uses the same table at the steady squeeze direction.
+``"reynolds-transient"``
+    The reference: the finite-difference Reynolds equation with squeeze and
+    mass-conserving (Elrod-Adams, JFO) cavitation, the journal centre integrated
+    over the cycle (:mod:`stackup.film.transient`).
 
-    .. math:: \frac{\partial}{\partial z}\left(h^3\frac{\partial p}{\partial z}\right)
-              = 6\mu\omega\,\frac{\partial h}{\partial\Theta} + 12\mu\,\frac{\partial h}{\partial t}
-              \equiv Q(\Theta), \qquad
-              \int p\,dz = \frac{L^3\max(0, -Q)}{12\,h^3}
+Mobility tiers. In the engine-fixed frame, journal centre :math:`\mathbf x`
+(from the bearing centre), journal speed :math:`\omega` (positive from axis 0 to
+axis 1), bearing fixed, :math:`h(\Theta) = c - \mathbf x\cdot\mathbf n(\Theta)`, the
+Reynolds equation's source is
 
-    and the force on the bearing :math:`\mathbf F = \int\!\!\int p\,\mathbf n\,R\,d\Theta\,dz`.
-    :math:`\mathbf F` is piecewise linear in :math:`\dot{\mathbf x}` with a
-    positive-definite Jacobian, so Newton finds the velocity (the mobility
-    inverse) in a few steps; the orbit is integrated with classical RK4 over
-    the cycle and repeated until it is periodic.
+.. math:: 6\mu\omega\,\partial_\Theta h + 12\mu\,\partial_t h = -12\mu\,\mathbf v_s\cdot\mathbf n,
+          \qquad \mathbf v_s = \dot{\mathbf x} - \tfrac{\omega}{2}\,\mathbf k\times\mathbf x
+
+so rotation and squeeze act together as a pure squeeze at :math:`\mathbf v_s`
+(Booker 1965). The short bearing (:math:`\partial_z(h^3\partial_z p) = -12\mu\,\mathbf v_s\cdot\mathbf n`,
+:math:`p = 0` at both ends, π-film: no pressure where :math:`\mathbf v_s\cdot\mathbf n < 0`) gives
+
+.. math:: \mathbf F = \frac{\mu R L^3}{c^3}\,G(\varepsilon, \alpha)\,\mathbf v_s, \qquad
+          G = \int_{\alpha-\pi/2}^{\alpha+\pi/2}\frac{\mathbf n\mathbf n^T\,d\phi}{(1-\varepsilon\cos\phi)^3}
+
+(line-of-centres frame, :math:`\alpha` the direction of :math:`\mathbf v_s`), in closed form
+through Sommerfeld's substitution. Given the load, Newton on :math:`\alpha` finds
+:math:`\mathbf v_s` (the mobility inverse: the force turns monotonically with :math:`\alpha`);
+:math:`\dot{\mathbf x}` is integrated by the explicit midpoint rule over repeated cycles
+from the bearing centre, two angles per step until the orbit nearly closes, then
+every angle until it closes within :data:`PERIODIC` of the thinnest film (the
+midpoint rule at 1 deg steps is within 0.07 % of RK4 at 1/8 deg on the built-in
+engines' bearings). Per
+angle: mid-plane peak pressure :math:`p_{max} = \tfrac32\mu\,(L/c)^2\max_\phi\,\mathbf v_s\cdot\mathbf n/\bar h^3`,
+friction torque on the journal :math:`T = \frac{2\pi\mu\omega R^3 L}{c\sqrt{1-\varepsilon^2}} - \tfrac12(\mathbf x\times\mathbf W)_z`
+(full-film shear plus the pressure couple, as the steady tiers) and side flow
+:math:`Q = 2RL|\mathbf v_s|` (both reduce to Ocvirk's steady forms).
+
+Journal tilt (``tilt``, the slope :math:`\boldsymbol\gamma` of the journal axis relative to
+the bearing axis) makes the film :math:`h = c - (\mathbf x + z\boldsymbol\gamma)\cdot\mathbf n`,
+:math:`z \in [-L/2, L/2]`. Every tier but the transient one keeps the mid-plane
+orbit and reports the edge film geometrically,
+:math:`h_{edge} = c - \max_\pm|\mathbf x \pm \tfrac L2\boldsymbol\gamma|`; the transient tier
+carries the tilt in its film.
+
+Status per bearing (:data:`STATUS`): ``periodic``; ``not_periodic`` (the orbit had not
+closed within ``cycles``); ``collapsed`` (the journal reached :data:`ECCENTRICITY_LIMIT`,
+or its film thinned cycle after cycle: a film collapse, e.g. a load turning at
+half the shaft speed; the film is reported where it was held); ``failed`` (the
+film solve failed; angles not solved are NaN); ``edge_contact`` (a periodic
+orbit whose tilted journal brings an edge to the limit: the edge film is held at
+:math:`c(1 - \varepsilon_{lim})`). Never a silent NaN.
 
 References
 ----------
@@ -30,133 +71,203 @@ References
    solution", J. Basic Eng. 87 (1965) 537-546.
 .. [2] Booker, J. F., "Squeeze films and bearing dynamics", CRC Handbook of
    Lubrication Vol. II, 1983, pp. 121-137.
+.. [3] Ocvirk, F. W., NACA TN 2808, 1952 (short bearing).
+.. [4] Rozhdestvensky, Y. et al., Tribology in Industry 40 (2018), eq. 4 (film with skewed axes).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
 
 import numpy as np
 
 from .. import _validate as check
+from .._kernels import mobility as _kernel
 
-METHODS = ("quasi-static", "mobility")
-#: Quadrature points around the bearing for the short-bearing film force.
-N_THETA = 360
-#: The orbit is periodic when the cycle-minimum film changes by less than this share.
+#: Tier names :func:`orbit` accepts, cheapest first, and what each runs: (method, steady tier).
+TIERS = {
+    "quasi-static-short": ("quasi-static", "short"),
+    "quasi-static-finite": ("quasi-static", "finite"),
+    "mobility": ("mobility", None),
+    "mobility-short": ("mobility", None),
+    "mobility-finite": ("mobility-finite", None),
+    "quasi-static-reynolds": ("quasi-static", "reynolds"),
+    "reynolds-transient": ("reynolds-transient", None),
+}
+METHODS = ("quasi-static", *TIERS)
+#: Status codes of an orbit (CF flag_values 0..4 with these flag_meanings).
+STATUS = ("periodic", "not_periodic", "collapsed", "failed", "edge_contact")
+#: The orbit is periodic when the journal returns after a cycle to within this share of the thinnest film.
 PERIODIC = 1e-3
-#: Largest eccentricity the integrator lets the journal reach; beyond it the film is marked as collapsed.
+#: Largest eccentricity a journal reaches; a film held there has collapsed.
 ECCENTRICITY_LIMIT = 0.995
 
 
 @dataclass(frozen=True)
 class Orbit:
-    """Film over a cycle.
+    """Film of bearings over a cycle; leading shape (...) of the loads, angles last.
 
     Attributes
     ----------
     h_min : numpy.ndarray (..., angles)
-        Minimum film thickness at each crank angle [m].
+        Minimum film thickness in the bearing's mid-plane [m].
+    h_min_edge : numpy.ndarray (..., angles)
+        Minimum film thickness over the bearing width, with the journal's tilt [m]
+        (equals ``h_min`` without tilt).
     eccentricity : numpy.ndarray (..., angles)
-        Eccentricity ratio [-].
-    position : numpy.ndarray (..., angles, 2) or None
-        Journal centre relative to the bearing centre [m] (``"mobility"``).
-    converged : numpy.ndarray of bool (...)
-        The orbit became periodic (``"mobility"``), or every angle solved.
-    cycles : int
-        Cycles integrated (``"mobility"``); 0 for ``"quasi-static"``.
+        Eccentricity ratio of the mid-plane journal centre [-].
+    position : numpy.ndarray (..., angles, 2)
+        Journal centre relative to the bearing centre [m].
+    p_max : numpy.ndarray (..., angles)
+        Peak film pressure [Pa].
+    friction_torque : numpy.ndarray (..., angles)
+        Friction torque on the journal [N m].
+    side_flow : numpy.ndarray (..., angles)
+        Oil leaving both ends of the bearing [m^3/s].
+    status : numpy.ndarray of int8 (...)
+        Index into :data:`STATUS`.
+    cycles : numpy.ndarray of int (...)
+        Cycles integrated (0 for the quasi-static tiers).
+    speed : numpy.ndarray (...)
+        Journal angular speed [rad/s] (for the friction power).
     """
 
     h_min: np.ndarray
+    h_min_edge: np.ndarray
     eccentricity: np.ndarray
-    position: np.ndarray | None
-    converged: np.ndarray
-    cycles: int
+    position: np.ndarray
+    p_max: np.ndarray
+    friction_torque: np.ndarray
+    side_flow: np.ndarray
+    status: np.ndarray
+    cycles: np.ndarray
+    speed: np.ndarray
+
+    @property
+    def converged(self):
+        """The orbit is periodic with a film (status 0)."""
+        return self.status == 0
+
+    @property
+    def h_min_cycle(self):
+        """Cycle minimum of the mid-plane minimum film (inf h_min) [m]."""
+        return self.h_min.min(axis=-1)
+
+    @property
+    def h_min_mean(self):
+        """Cycle average of the mid-plane minimum film (h*_min) [m] (equal angle steps)."""
+        return self.h_min.mean(axis=-1)
+
+    @property
+    def h_min_edge_cycle(self):
+        """Cycle minimum of the film over the bearing width, with tilt [m]."""
+        return self.h_min_edge.min(axis=-1)
+
+    @property
+    def p_max_cycle(self):
+        """Cycle maximum of the peak film pressure (sup p_max) [Pa]."""
+        return self.p_max.max(axis=-1)
+
+    @property
+    def p_max_mean(self):
+        """Cycle average of the peak film pressure (p*_max) [Pa]."""
+        return self.p_max.mean(axis=-1)
+
+    @property
+    def friction_power(self):
+        """Friction power at each angle [W]."""
+        return self.friction_torque * self.speed[..., None]
+
+    @property
+    def friction_power_mean(self):
+        """Cycle average of the friction power (N*) [W]."""
+        return self.friction_power.mean(axis=-1)
+
+    @property
+    def side_flow_mean(self):
+        """Cycle average of the side flow (Q*) [m^3/s]."""
+        return self.side_flow.mean(axis=-1)
 
 
-class _ShortFilm:
-    """Film force of a short bearing with π-film cavitation, in the engine-fixed frame."""
+@lru_cache(maxsize=1)
+def mobility_table():
+    """The finite-length correction of the short-bearing squeeze force (see ``studies/film_mobility_table.py``).
 
-    def __init__(self, *, radius, length, radial_clearance, viscosity, speed):
-        self.r, self.l, self.c, self.mu, self.w = radius, length, radial_clearance, viscosity, speed
-        theta = 2 * np.pi * (np.arange(N_THETA) + 0.5) / N_THETA
-        self.n = np.stack([np.cos(theta), np.sin(theta)], axis=-1)  # (N, 2)
-        self.t = np.stack([-np.sin(theta), np.cos(theta)], axis=-1)
-        self.dtheta = 2 * np.pi / N_THETA
-
-    def force(self, x, v):
-        """Force on the bearing (2,) [N] and d force / d velocity (2, 2) for position x and velocity v."""
-        h = self.c - self.n @ x
-        dh_dtheta = -(self.t @ x)
-        q = 6 * self.mu * self.w * dh_dtheta - 12 * self.mu * (self.n @ v)
-        active = q < 0
-        weight = self.l**3 / (12 * h**3) * self.r * self.dtheta
-        f = ((-q * active * weight)[:, None] * self.n).sum(axis=0)
-        jac = 12 * self.mu * np.einsum("k,ki,kj->ij", active * weight, self.n, self.n)
-        return f, jac
-
-    def velocity(self, x, load, v0):
-        """Journal centre velocity [m/s] at which the film carries ``load`` [N] (Newton)."""
-        v = v0.copy()
-        scale = max(np.linalg.norm(load), 1e-9)
-        for _ in range(60):
-            f, jac = self.force(x, v)
-            r = f - load
-            if np.linalg.norm(r) <= 1e-10 * scale:
-                return v
-            jac = jac + np.eye(2) * 1e-12 * max(np.trace(jac), 1e-30)
-            step = np.linalg.solve(jac, -r)
-            t = 1.0
-            while t > 1e-6:
-                if np.linalg.norm(self.force(x, v + t * step)[0] - load) < np.linalg.norm(r):
-                    break
-                t *= 0.5
-            v = v + t * step
-        return v
+    Returns (length_over_diameter (n_ld,), -ln(1 - eccentricity) (n_eps,), table (n_ld, n_eps, n_alpha, 3)):
+    log force ratio, turn [rad] and log peak-pressure ratio of the Reynolds tier to the
+    short bearing, over squeeze directions alpha in [0, pi] (uniform).
+    """
+    path = resources.files("stackup") / "data" / "film_mobility_table.npz"
+    with np.load(path) as data:
+        table = np.stack([data["log_force_ratio"], data["turn"], data["log_peak_ratio"]], axis=-1)
+        return (np.ascontiguousarray(data["length_over_diameter"]), -np.log1p(-data["eccentricity"]),
+                np.ascontiguousarray(table))
 
 
-def _mobility(loads, crank_angle, film, cycles):
-    """Integrate one bearing's orbit over repeated cycles; loads (angles, 2) on the bearing."""
-    n = len(crank_angle)
-    dt = np.radians(np.diff(np.append(crank_angle, crank_angle[0] + 720.0))) / film.w
-    limit = ECCENTRICITY_LIMIT * film.c
-    x = np.zeros(2)
-    v = np.zeros(2)
-    previous = None
-    positions = np.empty((n, 2))
-    collapsed = False
-    for cycle in range(1, cycles + 1):
-        for k in range(n):
-            positions[k] = x
-            load0 = loads[k]
-            load1 = loads[(k + 1) % n]
-            mid = 0.5 * (load0 + load1)
-            # classical RK4 on dx/dt = velocity(x, load(t))
-            k1 = film.velocity(x, load0, v)
-            k2 = film.velocity(x + 0.5 * dt[k] * k1, mid, k1)
-            k3 = film.velocity(x + 0.5 * dt[k] * k2, mid, k2)
-            k4 = film.velocity(x + dt[k] * k3, load1, k3)
-            x = x + dt[k] / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-            v = k4
-            e = np.linalg.norm(x)
-            if e > limit:
-                x *= limit / e
-                collapsed = True
-        h_min = film.c - np.linalg.norm(positions, axis=1)
-        if previous is not None and abs(h_min.min() - previous) <= PERIODIC * previous:
-            return positions, not collapsed, cycle
-        previous = h_min.min()
-    return positions, False, cycles
+@lru_cache(maxsize=1)
+def cycle_tier_errors():
+    """Measured cost and film error of each cycle tier against ``reynolds-transient``.
+
+    From ``stackup/data/film_cycle_errors.toml``, written by
+    ``studies/film_speed_vs_error.py`` on the built-in engines' main bearings: per
+    tier ``seconds`` (one bearing's cycle on one core) and the largest relative
+    error of the cycle minimum (``h_min``) and cycle mean (``h_min_mean``) of the
+    minimum film, the peak pressure's maximum and mean and the mean friction
+    power, against the mass-conserving reference, and in ``"swift-stieber"``
+    against the same reference with the Reynolds cavitation condition.
+    """
+    import tomllib
+
+    with open(resources.files("stackup") / "data" / "film_cycle_errors.toml", "rb") as f:
+        return tomllib.load(f)["tiers"]
+
+
+def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), reference="mass-conserving", tiers=None):
+    """The cheapest cycle tier whose measured errors (``measures``) are all within ``max_error`` [-].
+
+    Like :func:`stackup.film.cheapest_tier` for the steady tiers. ``reference``:
+    ``"mass-conserving"`` (Elrod-Adams, the physical reference) or
+    ``"swift-stieber"`` (the same transient tier with the Reynolds condition, the
+    cavitation model of every cheaper tier: it measures their numerical error
+    only). ``tiers``: the tiers to choose from (default every measured one). Falls
+    back to ``reynolds-transient`` when no cheaper tier qualifies.
+    """
+    max_error = float(check.positive("max_error", max_error, allow_zero=True))
+    check.one_of("reference", reference, ("mass-conserving", "swift-stieber"))
+    for name in measures:
+        check.one_of("measures", name, ("h_min", "h_min_mean", "p_max", "p_max_mean", "friction_power"))
+    errors = cycle_tier_errors()
+    ranked = sorted((t for t in errors if tiers is None or t in tiers), key=lambda t: errors[t]["seconds"])
+
+    def error(tier, name):
+        table = errors[tier] if reference == "mass-conserving" else errors[tier]["swift-stieber"]
+        return table[name]
+
+    return next((t for t in ranked if all(error(t, m) <= max_error for m in measures)), "reynolds-transient")
+
+
+def _short_table():
+    return np.array([1.0, 2.0]), np.array([0.0, 1.0]), np.zeros((1, 2, 2, 3))
+
+
+def resolve(method, steady_method="finite"):
+    """(kernel method, steady tier) of a tier name."""
+    check.one_of("method", method, METHODS)
+    if method == "quasi-static":
+        return "quasi-static", steady_method
+    return TIERS[method]
 
 
 def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, speed, method="mobility",
-          steady_method="finite", cycles=12):
-    """Minimum oil film over the engine cycle of a dynamically loaded bearing.
+          steady_method="finite", tilt=None, cycles=None, start=None, **transient_options):
+    """Film over the engine cycle of dynamically loaded bearings.
 
     Parameters
     ----------
     load_history : array_like (..., angles, 2)
-        Load on the bearing over one cycle [N] (force of the journal on the
+        Load on each bearing over one cycle [N] (force of the journal on the
         bearing, engine-fixed frame).
     crank_angle : array_like (angles,)
         Crank angles [deg], increasing, covering one cycle (720 deg).
@@ -164,50 +275,168 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
         Journal diameter, bearing length, diametral clearance [m].
     viscosity : float or array_like (...)
         Effective oil viscosity [Pa s].
-    speed : float
-        Crankshaft angular speed [rad/s].
-    method : {"quasi-static", "mobility"}
-    steady_method : str
-        Steady tier of ``"quasi-static"`` (see :func:`stackup.film.min_film_thickness`).
-    cycles : int
-        Most cycles ``"mobility"`` integrates to reach a periodic orbit.
+    speed : float or array_like (...)
+        Journal angular speed [rad/s] (positive: from load axis 0 towards axis 1).
+    method : str
+        A tier of :data:`TIERS`, or ``"quasi-static"`` with ``steady_method``.
+    steady_method : {"short", "finite", "reynolds"}
+        Steady tier of ``"quasi-static"``.
+    tilt : array_like (..., angles, 2), optional
+        Slope of the journal axis relative to the bearing axis [rad], per
+        component of the engine frame (the journal centre at axial position
+        :math:`z` from the mid-plane is :math:`\\mathbf x + z\\boldsymbol\\gamma`).
+    cycles : int, optional
+        Most cycles a dynamic tier integrates to reach a periodic orbit
+        (default 20 for the mobility tiers, 8 for ``"reynolds-transient"``).
+    start : array_like (..., 2), optional
+        Journal centre at the first crank angle [m] to start a dynamic tier
+        from (e.g. the ``position[..., 0, :]`` of a coarser orbit); default the
+        bearing centre (the mobility tiers) or the ``mobility-finite`` orbit's
+        (the transient tier). A start near the periodic orbit saves laps; the
+        orbit reached is the same.
+    **transient_options
+        Grid and cavitation options of ``"reynolds-transient"``
+        (:func:`stackup.film.transient.transient_orbit`).
 
     Returns
     -------
     Orbit
     """
-    from . import min_film_thickness
-
-    check.one_of("method", method, METHODS)
+    kind, steady = resolve(method, steady_method)
     loads = check.finite("load_history", load_history)
     angle = check.finite("crank_angle", crank_angle)
-    if loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
+    if angle.ndim != 1 or loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
         raise ValueError(f"load_history: shape {loads.shape} is not valid; expected (..., {angle.size}, 2)")
     if np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
         raise ValueError("crank_angle: must increase and span less than 720 deg")
     lead = loads.shape[:-2]
     radius = np.broadcast_to(check.positive("diameter", diameter) / 2, lead)
-    length = np.broadcast_to(check.positive("length", length), lead)
+    width = np.broadcast_to(check.positive("length", length), lead)
     c = np.broadcast_to(check.positive("clearance", clearance) / 2, lead)
     mu = np.broadcast_to(check.positive("viscosity", viscosity), lead)
-    omega = float(check.positive("speed", speed))
+    omega = np.broadcast_to(check.positive("speed", speed), lead)
+    if cycles is None:
+        cycles = 8 if kind == "reynolds-transient" else 20
+    cycles = check.integer("cycles", cycles, minimum=1)
+    if tilt is not None:
+        tilt = np.broadcast_to(check.finite("tilt", tilt), loads.shape)
+    geometry = dict(radius=radius, length=width, radial_clearance=c, viscosity=mu, speed=omega)
+
+    if kind == "quasi-static":
+        position, p_max, torque, flow = _quasi_static(loads, steady, **geometry)
+        status, used = np.zeros(lead, np.int8), np.zeros(lead, int)
+    elif kind == "reynolds-transient":
+        from .transient import transient_orbit
+
+        result = transient_orbit(loads, angle, tilt=tilt, cycles=cycles, start=start, **geometry,
+                                 **transient_options)
+        return result
+    else:
+        if start is not None:
+            start = np.broadcast_to(check.finite("start", start), (*lead, 2))
+        position, p_max, torque, flow, status, used = _mobility(loads, angle, finite=kind == "mobility-finite",
+                                                                cycles=cycles, start=start, **geometry)
+    ecc = np.linalg.norm(position, axis=-1) / c[..., None]
+    h_min = c[..., None] * (1 - ecc)
+    h_edge, status = edge_film(position, tilt, width, c, h_min, status)
+    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, omega)
+
+
+def edge_film(position, tilt, width, c, h_min, status):
+    """Thinnest film over the width of a tilted journal (at an edge), held at the limit where an edge touches.
+
+    Returns (edge film (..., angles) [m], status with ``edge_contact`` where a periodic orbit's edge touched).
+    """
+    if tilt is None:
+        return h_min, status
+    half = 0.5 * width[..., None, None] * tilt
+    reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
+    floor = (c * (1 - ECCENTRICITY_LIMIT))[..., None]
+    touching = c[..., None] - reach < floor
+    status = np.where((status == 0) & touching.any(axis=-1), STATUS.index("edge_contact"), status).astype(np.int8)
+    return np.maximum(np.minimum(h_min, c[..., None] - reach), floor), status
+
+
+def _mobility(loads, angle, *, finite, cycles, start, radius, length, radial_clearance, viscosity, speed):
+    lead = loads.shape[:-2]
+    n = angle.size
+    c, mu, w = radial_clearance, viscosity, speed
+    scale = mu * w * radius * length**3 / c**2  # load of unit dimensionless force [N]
+    w_bar = np.ascontiguousarray((loads / scale[..., None, None]).reshape(-1, n, 2))
+    tau = np.radians(np.append(angle, angle[0] + 720.0) - angle[0])
+    ld = np.ascontiguousarray((length / (2 * radius)).reshape(-1), dtype=float)
+    if finite:
+        ld_nodes, stretched, tables = mobility_table()
+        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
+            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the mobility-finite "
+                             f"table [{ld_nodes[0]}, {ld_nodes[-1]}]; use method='reynolds-transient'")
+    else:
+        ld_nodes, stretched, tables = _short_table()
+    m = w_bar.shape[0]
+    xi = np.empty((m, n, 2))
+    v = np.empty((m, n, 2))
+    peak = np.empty((m, n))
+    status = np.empty(m, np.int8)
+    used = np.empty(m)
+    warm = start is not None
+    xi0 = np.ascontiguousarray((start / c[..., None]).reshape(-1, 2) if warm else np.zeros((m, 2)), dtype=float)
+    _kernel.orbits(w_bar, tau, ECCENTRICITY_LIMIT, PERIODIC, cycles, tables, ld_nodes, stretched, ld, finite,
+                   xi, v, peak, status, used, xi0, warm)
+    xi = xi.reshape(*lead, n, 2)
+    v = v.reshape(*lead, n, 2)
+    position = xi * c[..., None, None]
+    ecc = np.linalg.norm(xi, axis=-1)
+    p_max = 1.5 * (mu * w * (length / c) ** 2)[..., None] * peak.reshape(*lead, n)
+    torque = (2 * np.pi * mu * w * radius**3 * length / c)[..., None] / np.sqrt(1 - ecc**2) \
+        + 0.5 * (position[..., 1] * loads[..., 0] - position[..., 0] * loads[..., 1])
+    flow = (2 * radius * length * c * w)[..., None] * np.linalg.norm(v, axis=-1)
+    return position, p_max, torque, flow, status.reshape(lead), used.reshape(lead)
+
+
+def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity, speed):
+    """Steady film at each angle; the journal sits at the attitude angle ahead of the load, in the turning direction."""
+    from . import min_film_thickness
+
+    c, mu, w = (a[..., None] for a in (radial_clearance, viscosity, speed))
+    r, l = radius[..., None], length[..., None]
     magnitude = np.linalg.norm(loads, axis=-1)
+    kw = dict(diameter=2 * r, length=l, clearance=2 * c, viscosity=mu, speed=w)
+    if steady == "reynolds":
+        film, field_peak = _steady_reynolds(np.maximum(magnitude, 1e-6), **kw)
+    else:
+        film = min_film_thickness(np.maximum(magnitude, 1e-6), **kw, method=steady)
+        eps = np.minimum(film.eccentricity, ECCENTRICITY_LIMIT)
+        ld_nodes, stretched, tables = mobility_table() if steady == "finite" else _short_table()
+        flat_eps = np.ascontiguousarray(eps, dtype=float).ravel()
+        factor = np.empty(flat_eps.size)
+        _kernel.steady_peak_factors(flat_eps, np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape),
+                                                                   dtype=float).ravel(),
+                                    tables, ld_nodes, stretched, steady == "finite", factor)
+        # v_s = (1/2) k x xi: |v| = eps/2
+        field_peak = 1.5 * mu * w * (l / c) ** 2 * 0.5 * eps * factor.reshape(eps.shape)
+    direction = np.arctan2(loads[..., 1], loads[..., 0]) + film.attitude_angle
+    ecc = np.where(magnitude > 0, film.eccentricity, 0.0)
+    position = (c * ecc)[..., None] * np.stack([np.cos(direction), np.sin(direction)], axis=-1)
+    return position, field_peak, film.friction_torque, film.side_flow
 
-    if method == "quasi-static":
-        film = min_film_thickness(np.maximum(magnitude, 1e-6), diameter=2 * radius[..., None], length=length[..., None],
-                                  clearance=2 * c[..., None], viscosity=mu[..., None], speed=omega, method=steady_method)
-        return Orbit(film.h_min, film.eccentricity, None, np.ones(loads.shape[:-2], bool), 0)
 
-    h_min = np.empty(loads.shape[:-1])
-    position = np.empty(loads.shape)
-    converged = np.empty(loads.shape[:-2], bool)
-    used = 0
-    for idx in np.ndindex(loads.shape[:-2]):
-        film = _ShortFilm(radius=float(radius[idx]), length=float(length[idx]), radial_clearance=float(c[idx]),
-                          viscosity=float(mu[idx]), speed=omega)
-        pos, ok, n_cycles = _mobility(loads[idx], angle, film, cycles)
-        position[idx] = pos
-        h_min[idx] = c[idx] - np.linalg.norm(pos, axis=-1)
-        converged[idx] = ok
-        used = max(used, n_cycles)
-    return Orbit(h_min, 1 - h_min / c[..., None], position, converged, used)
+def _steady_reynolds(load, *, diameter, length, clearance, viscosity, speed):
+    """Steady Reynolds tier at each angle, with the peak of its pressure field."""
+    from . import ECCENTRICITY_VALID, Film, reynolds
+
+    load, diameter, length, clearance, viscosity, speed = np.broadcast_arrays(load, diameter, length, clearance,
+                                                                             viscosity, speed)
+    out = {k: np.empty(load.shape) for k in ("eps", "phi", "torque", "flow", "peak")}
+    for idx in np.ndindex(load.shape):
+        r, l, c, mu, w = (float(a[idx]) for a in (diameter / 2, length, clearance / 2, viscosity, speed))
+        unit = mu * w * r**4 / c**2
+        field = reynolds.eccentricity_for_load(float(load[idx]) / unit, l / r)
+        friction, flow = reynolds.friction_and_flow(field)
+        out["eps"][idx] = field.eps
+        out["phi"][idx] = field.attitude
+        out["torque"][idx] = mu * w * r**4 / c * friction
+        out["flow"][idx] = w * r**2 * c / 12 * flow
+        out["peak"][idx] = mu * w * r**2 / c**2 * field.pressure.max()
+    c = clearance / 2
+    return Film(out["eps"], c * (1 - out["eps"]), out["phi"], out["torque"], out["flow"],
+                out["eps"] <= ECCENTRICITY_VALID), out["peak"]

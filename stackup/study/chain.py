@@ -16,8 +16,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..assembly import ASSEMBLED, assemble
+from ..crank import support_slopes
 from ..crank.cycle import engine_cycles, worst_status
-from ..film.cycle import bearing_films
+from ..crank.law import BellakhdharLaw, fit_bellakhdhar
+from ..film.bearing_law import load_displacement
+from ..film.cycle import HEAT_STEP, bearing_films
+from ..film.heat import heat_balance
 from ..fit import press_fit, press_fit_extremes
 from .. import materials
 from ..contact import composite_roughness, contact_modulus
@@ -154,7 +158,8 @@ def run_chunk(ctx, study, first, progress=None):
         stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
         rows = slice(a - e0, stop - e0)
         for i, (result, fit) in enumerate(stages):
-            for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film).items():
+            for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film,
+                                          study.bearing_law).items():
                 if name in mech:
                     mech[name][i, rows] = value
         a = state.next = stop
@@ -225,7 +230,7 @@ def _press_fit(engine, parts, assembly, method):
     return out
 
 
-def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film):
+def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper"):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
     Engines with a bearing not assembled are skipped (``not_computed``).
@@ -242,14 +247,14 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film):
                                   journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
                                   journal_eccentricity=parts.journal_eccentricity[rows][built],
                                   crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method,
-                                  life_film=life_film)
+                                  life_film=life_film, bearing_law=bearing_law)
         for name, value in values.items():
             out[name][built] = value
     return out
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method, life_film="cycle-mean"):
+                     film_method, life_film="cycle-mean", bearing_law="paper"):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
     Parameters
@@ -262,15 +267,29 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         Misalignment of the bores and journals [m].
     crank_angle : numpy.ndarray
         [deg]
-    crank_method, film_method : str
-        Tiers of the crankshaft supports and the steady film.
+    crank_method : str
+        Tier of the crankshaft supports.
+    film_method : str
+        Film method of :func:`stackup.film.cycle.bearing_films` (quasi-static steady tier or dynamic tier).
     life_film : {"cycle-mean", "cycle-minimum"}
         The film statistic Levanov's method 1 reads (:func:`stackup.life.cycle_film`).
+    bearing_law : {"paper", "fitted"}
+        With ``crank_method="bearing-law"``: the engine's law (the paper's
+        constants, J scaled with each clearance) or J and dx fitted per engine
+        and bearing to the steady film (:func:`fitted_law`).
     """
-    r = engine_cycles(engine.crank, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
-                      clearance=clearance, crank_angle=crank_angle, method=crank_method)
-    films = bearing_films(engine.crank, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
-                          journal_d=journal_d, steady_method=film_method)
+    spec = engine.crank
+    law, law_error = None, np.full(np.shape(clearance), np.nan)
+    if bearing_law == "fitted" and crank_method == "bearing-law":
+        law, law_error = fitted_law(engine, clearance=clearance, journal_d=journal_d, bore_offset=bore_offset,
+                                    journal_eccentricity=journal_eccentricity, crank_angle=crank_angle)
+    r = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
+                      clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
+    # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
+    # journals bend the beam; the line-bored bores stay parallel to the line)
+    tilt = support_slopes(spec.pin_loads(crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
+    films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
+                          journal_d=journal_d, method=film_method, tilt=tilt)
     wear = engine.wear
     journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
     chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
@@ -283,6 +302,12 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     return {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
             "crank_status": worst_status(r.status),
             "h_min": films.h_min.min(axis=-1),
+            "h_min_edge": films.h_min_edge.min(axis=-1),
+            "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
+            "tilt_max": np.linalg.norm(tilt, axis=-1).max(axis=1),
+            "p_max": films.p_max.max(axis=-1),
+            "film_status": films.status,
+            "law_fit_error": law_error,
             "h_min_mean": cycle_film(films.h_min, statistic="cycle-mean"),
             "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
             "life": life.life,
@@ -296,6 +321,36 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "film_valid": films.valid,
             "load_history": np.moveaxis(r.reactions, 1, 2),
             "h_min_history": films.h_min}
+
+
+def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):
+    """The Bellakhdhar law with J and dx fitted per engine and bearing to the steady film.
+
+    A first crankshaft cycle on the engine's law gives each bearing's loads, the
+    quasi-static heat balance its effective viscosity; the law is then fitted
+    (:func:`stackup.crank.law.fit_bellakhdhar`) to the finite tier's
+    load-displacement curve (:func:`stackup.film.bearing_law.load_displacement`,
+    up to 1.5 times the bearing's peak load) at the engine's speed, that
+    viscosity and the bearing's clearance; stiffnesses and sigmoid stay the
+    engine's. Returns (law with parameters (engines, 1, bearings), rms fit error
+    (engines, bearings) [m]).
+    """
+    spec = engine.crank
+    first = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
+                          clearance=clearance, crank_angle=crank_angle)
+    loads = np.moveaxis(first.reactions, 1, 2)
+    step = float(crank_angle[1] - crank_angle[0]) if len(crank_angle) > 1 else 720.0
+    heat = heat_balance(loads[..., ::max(1, int(round(HEAT_STEP / step))), :], diameter=journal_d,
+                        length=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
+                        supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed, method="finite")
+    peak = np.linalg.norm(loads, axis=-1).max(axis=-1)
+    load, displacement = load_displacement(max_load=1.5 * peak, diameter=journal_d, length=spec.bearing_width,
+                                           clearance=clearance, viscosity=heat.viscosity, speed=spec.speed)
+    p = spec.law_parameters
+    stiff = {k: p.get(k, getattr(BellakhdharLaw, k)) for k in ("k_lv", "k_hv", "theta0", "dtheta")}
+    fit = fit_bellakhdhar(load, displacement, **stiff, clearance_guess=np.asarray(clearance) / 2)
+    law = BellakhdharLaw(clearance=fit.law.clearance[:, None, :], dx=fit.law.dx[:, None, :], **stiff)
+    return law, fit.rms_error
 
 
 def _film_error(h_min, h_min_before):

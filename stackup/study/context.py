@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import __version__
 from .._random import seed_sequence
-from ..film import cheapest_tier
+from ..film.cycle import cheapest_film_method
 from ..scenarios import apply as apply_scenario
 from .inputs import digest, load_inputs
 from .pilot import pilot_parts, shell_plan
@@ -36,7 +36,7 @@ class Context:
     mechanics : int
         Engines the mechanical chain may run on (0 without a crank section).
     film_method : str
-        Steady film tier used (``"auto"`` resolved).
+        Film method used (``"auto"`` resolved, :data:`stackup.film.cycle.FILM_METHODS`).
     crank_angle : numpy.ndarray
         Crank-angle grid [deg].
     files : dict
@@ -93,7 +93,7 @@ def context(study):
             root=seed_sequence(study.seed), lot=lot, n_engines=study.n_engines,
             n_lots=math.ceil(study.n_engines / lot),
             mechanics=min(study.mechanics_engines, study.n_engines) if engine.crank is not None else 0,
-            film_method=cheapest_tier(study.film_error) if study.film_method == "auto" else study.film_method,
+            film_method=cheapest_film_method(study.film_error) if study.film_method == "auto" else study.film_method,
             crank_angle=np.arange(0.0, 720.0, study.crank_angle_step), files=files)
     return _CACHE[key]
 

@@ -17,7 +17,11 @@ import xarray as xr
 
 from ..assembly import NOT_GRADED, STATUS
 from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+from ..film.cycle import FILM_STATUS
 from ..film.heat import STATUS as HEAT_STATUS
+
+#: Film status in a dataset: the film stage's codes, then bearings the stage did not run on.
+FILM_STATUS_FLAGS = (*FILM_STATUS, "not_computed")
 
 SED = ("scheme", "engine", "bearing")
 SMB = ("scheme", "mech_engine", "bearing")
@@ -67,8 +71,20 @@ class Var:
 #: Per-bearing results of the mechanical chain (crankshaft, film, life).
 MECHANICS = {
     "reaction_max": Var(SMB, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
-    "h_min": Var(SMB, "m", "minimum oil film thickness over the engine cycle (the film tier of film_method_used)"),
+    "h_min": Var(SMB, "m", "minimum oil film thickness in the bearing's mid-plane over the engine cycle (the film "
+                           "tier of film_method_used)"),
     "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness (the film of Levanov's method 1)"),
+    "h_min_edge": Var(SMB, "m", "minimum oil film thickness over the bearing width and the engine cycle, with the "
+                                "journal's tilt (edge film)"),
+    "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min - h_min_edge"),
+    "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (crankshaft slope "
+                                "at the support)"),
+    "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle"),
+    "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "
+                                 "orbit became periodic, and why not)", FILM_STATUS_FLAGS, "i1",
+                       len(FILM_STATUS)),
+    "law_fit_error": Var(SMB, "m", "rms displacement error of the bearing law fitted to the bearing's steady film "
+                                   "(NaN: the engine's law, bearing_law='paper')"),
     "alpha": Var(SMB, "1", "share of the cycle with the film below the critical film (boundary friction)"),
     "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 on the film the study names (life_film)"),
     "life_wear_chart": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 2 (wear chart over the bearing "

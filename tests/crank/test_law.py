@@ -88,3 +88,35 @@ def test_bad_law_parameters():
         BellakhdharLaw(dx=-1e-6)
     with pytest.raises(ValueError, match="law k_lv: 0.0 is not valid"):
         BellakhdharLaw(k_lv=0.0)
+
+
+def test_law_displacement_inverts_the_law():
+    from stackup.crank.law import displacement
+
+    load = np.geomspace(1.0, 1e5, 50)
+    u = displacement(load, 37e-6, 9.65e-6, 0.98e9)
+    g, _ = gap_function(u, 37e-6, 9.65e-6)
+    np.testing.assert_allclose(0.98e9 * g, load, rtol=1e-10)
+
+
+def test_fit_recovers_the_law_that_made_the_curve():
+    from stackup.crank.law import displacement, fit_bellakhdhar
+
+    # a "film" curve built from a known law: U_film = U_law(R) - R / K_d (per direction: use k_lv = k_hv)
+    load = np.geomspace(10.0, 8e4, 40)
+    j, dx, k = np.array([25e-6, 40e-6]), np.array([4e-6, 12e-6]), 1.2e9
+    film = displacement(load, j[:, None], dx[:, None], k) - load / k
+    fit = fit_bellakhdhar(np.tile(load, (2, 1)), film, k_lv=k, k_hv=k, theta0=np.radians(97.0),
+                          dtheta=np.radians(15.0), clearance_guess=np.array([30e-6, 30e-6]))
+    assert fit.converged.all()
+    np.testing.assert_allclose(fit.law.clearance, j, rtol=1e-6)
+    np.testing.assert_allclose(fit.law.dx, dx, rtol=1e-5)
+    assert np.all(fit.rms_error < 1e-10)
+
+
+def test_fit_rejects_mismatched_samples():
+    from stackup.crank.law import fit_bellakhdhar
+
+    with pytest.raises(ValueError, match="film_displacement: shape"):
+        fit_bellakhdhar(np.ones((2, 5)), np.ones((2, 4)), k_lv=1e9, k_hv=1e9, theta0=1.0, dtheta=0.3,
+                        clearance_guess=30e-6)

@@ -1,0 +1,377 @@
+r"""Reference cycle tier: the transient Reynolds equation with mass-conserving cavitation, journal orbit integrated.
+
+The film of a bearing of radius :math:`R`, length :math:`L`, radial clearance
+:math:`c`, journal turning at :math:`\omega`, bearing fixed, journal centre
+:math:`\mathbf x(t)` and tilt :math:`\boldsymbol\gamma(t)` (slope of the journal axis
+relative to the bearing axis):
+
+.. math:: h(\Theta, z, t) = c - (\mathbf x + z\boldsymbol\gamma)\cdot\mathbf n(\Theta), \qquad
+          z \in [-L/2, L/2]
+
+Elrod-Adams form of the Jakobsson-Floberg-Olsson (JFO) mass-conserving
+cavitation, dimensionless (:math:`\bar h = h/c`, :math:`\bar z = z/R`, :math:`\tau = \omega t`,
+:math:`\bar p = p c^2/(\mu\omega R^2)`, fill fraction :math:`g`):
+
+.. math:: \bar\nabla\cdot(\bar h^3\bar\nabla\bar p) = 6\,\partial_\Theta(g\bar h) + 12\,\partial_\tau(g\bar h),
+          \qquad \bar p \ge 0,\; g \le 1,\; \bar p\,(1 - g) = 0
+
+Finite volumes on a uniform grid (Couette flux with the fill upwind and the film at the face), BDF2 in time (backward
+Euler for the first step), :math:`\bar p = 0, g = 1` at both ends and a feed hole held
+at the supply pressure (full of oil), solved per step by Gauss-Seidel with the
+Ausas et al. switching between pressure and fill. The journal is massless:
+at each step its centre :math:`\mathbf x_{n+1}` is found by a Broyden iteration so that
+the film force equals the load (each residual one field solve, warm-started);
+the tilt is imposed; each step starts from the ``mobility-finite`` tier's
+prediction. Cycles are repeated from the ``mobility-finite`` orbit's
+position until the orbit closes. With ``cavitation="reynolds"`` the fill stays 1
+and :math:`\bar p \ge 0` is a projection (Swift-Stieber, not mass-conserving): the
+finite-length counterpart of the mobility tiers' film.
+
+Outputs per angle: mid-plane and edge minimum films, the peak of the pressure
+field, friction torque on the journal
+:math:`T = \frac{\mu\omega R^4}{c}\iint (g/\bar h + \tfrac12\bar h\,\partial_\Theta\bar p)\,d\Theta\,d\bar z`
+(shear of the oil present, plus the pressure term) and the side flow
+:math:`Q = \frac{\omega R^2 c}{12}\sum_{ends}\int\bar h^3|\partial_{\bar z}\bar p|\,d\Theta`.
+
+References
+----------
+.. [1] Elrod, H. G., "A cavitation algorithm", J. Lubr. Technol. 103 (1981) 350-354.
+.. [2] Ausas, R. F., Jai, M., Buscaglia, G. C., "A mass-conserving algorithm for
+   dynamical lubrication problems with cavitation", J. Tribol. 131 (2009) 031702.
+.. [3] Booker, J. F., J. Basic Eng. 87 (1965) 537-546 (the massless journal's force balance).
+.. [4] Rozhdestvensky, Y. et al., Tribology in Industry 40 (2018), eq. 4 (film with skewed axes).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _validate as check
+from .._kernels import mobility as _mobility
+from .._kernels.reynolds import elrod_adams
+
+CAVITATION = ("elrod-adams", "reynolds")
+#: Grid: angles around the bearing and axial nodes over the width (ends included).
+N_THETA = 180
+N_Z = 21
+RELAXATION = 1.7
+#: Field solve: stop when a sweep changes p by less than this share of its peak (and the fill by less).
+FIELD_TOLERANCE = 1e-9
+MAX_SWEEPS = 20_000
+#: Force balance: stop when the film force is within this share of the cycle's largest load.
+FORCE_TOLERANCE = 1e-6
+MAX_BROYDEN = 40
+#: Periodic when the journal returns after a cycle to within this share of the thinnest film.
+PERIODIC = 2e-3
+#: Oil supply: hole on the block side (opposite the cap, Theta = pi), its width [rad] and share of the length.
+FEED_ANGLE = np.pi
+FEED_WIDTH = np.radians(6.0)
+FEED_LENGTH_SHARE = 0.3
+
+
+class _Film:
+    """Grid and dimensionless film of one bearing."""
+
+    def __init__(self, *, length_over_radius, clearance_over_radius, n_theta, n_z, feed_arc, feed_length_share,
+                 feed_pressure, limit=0.995):
+        self.limit = limit
+        self.theta = 2 * np.pi * np.arange(n_theta) / n_theta
+        self.dtheta = 2 * np.pi / n_theta
+        self.z = np.linspace(-length_over_radius / 2, length_over_radius / 2, n_z)
+        self.dz = self.z[1] - self.z[0]
+        self.n = np.stack([np.cos(self.theta), np.sin(self.theta)])  # (2, n_t)
+        east = self.theta + 0.5 * self.dtheta
+        self.n_east = np.stack([np.cos(east), np.sin(east)])
+        self.z_north = self.z + 0.5 * self.dz
+        self.tilt_scale = 1.0 / clearance_over_radius  # z is in R, h in c: z gamma / c = z_bar gamma R / c
+        self.fixed = np.zeros((n_theta, n_z), bool)
+        self.fixed[:, [0, -1]] = True
+        self.p_fixed = np.zeros((n_theta, n_z))
+        start, end = feed_arc
+        near = np.mod(self.theta - start + 1e-12, 2 * np.pi) <= (end - start) + 2e-12
+        along = np.abs(self.z) <= feed_length_share * length_over_radius / 2 + 1e-12
+        hole = near[:, None] & along[None, :]
+        self.fixed |= hole
+        self.p_fixed[hole] = feed_pressure
+        self.weights = np.full(n_z, self.dz)
+        self.weights[[0, -1]] = self.dz / 2
+
+    def thickness(self, xi, gamma):
+        """h at the nodes, h and h^3 at the east faces, h^3 at the north faces (centre xi [c], tilt gamma [rad]).
+
+        Where a tilted journal's edge would reach the wall the film is held at the
+        thinnest film the tiers allow (the orbit reports that as ``edge_contact``).
+        """
+        t = self.tilt_scale * gamma
+        floor = 1.0 - self.limit
+        h = np.maximum(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z[None, :], floor)
+        h_e = np.maximum(1.0 - (xi @ self.n_east)[:, None] - (t @ self.n_east)[:, None] * self.z[None, :], floor)
+        h_n = np.maximum(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z_north[None, :], floor)
+        return h, h_e, h_e**3, h_n**3
+
+    def force(self, p):
+        """Film force on the bearing (2,) per unit of mu omega R^4 / c^2."""
+        return self.n @ (p @ self.weights) * self.dtheta
+
+
+def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, viscosity, speed, tilt=None, cycles=8,
+                    cavitation="elrod-adams", n_theta=N_THETA, n_z=N_Z, time_order=2, feed_pressure=0.0,
+                    feed_angle=FEED_ANGLE, feed=None, start=None):
+    """Orbit of each bearing by the transient Reynolds tier (called by :func:`stackup.film.orbit.orbit`).
+
+    Parameters as :func:`stackup.film.orbit.orbit` (arrays over the leading shape, SI), and
+    cavitation : {"elrod-adams", "reynolds"}
+    n_theta, n_z : int
+        Grid around the bearing and over its width.
+    time_order : {1, 2}
+        Backward Euler or BDF2.
+    feed_pressure : float
+        Supply pressure at the feed hole [Pa] (gauge; 0 keeps it full at ambient pressure).
+    feed_angle : float
+        Angle of the feed hole from load axis 0 [rad].
+    feed : stackup.film.heat.OilFeed, optional
+        The engine's oil feed: its supply pressure and groove (arc and axial width)
+        or hole replace ``feed_pressure`` and ``feed_angle`` (a hole is a
+        :data:`FEED_WIDTH` wide patch at ``feed.hole_angle``, the hole's diameter
+        long).
+    start : array_like (..., 2), optional
+        Journal centre at the first angle [m]; default from the ``mobility-finite`` tier
+        (``mobility`` where the table does not cover the L/D).
+
+    Returns
+    -------
+    stackup.film.orbit.Orbit
+    """
+    from .orbit import ECCENTRICITY_LIMIT, Orbit, edge_film, mobility_table, orbit
+
+    check.one_of("cavitation", cavitation, CAVITATION)
+    if time_order not in (1, 2):
+        raise ValueError(f"time_order: {time_order!r} is not one of 1, 2")
+    n_theta = check.integer("n_theta", n_theta, minimum=24)
+    n_z = check.integer("n_z", n_z, minimum=5)
+    feed_pressure = float(check.positive("feed_pressure", feed_pressure, allow_zero=True))
+    feed_angle = float(check.finite("feed_angle", feed_angle))
+    lead = loads.shape[:-2]
+    n = crank_angle.size
+    tau = np.radians(np.append(crank_angle, crank_angle[0] + 720.0) - crank_angle[0])
+    if tilt is None:
+        tilt = np.zeros(loads.shape)
+    if start is None:
+        try:
+            seed = orbit(loads, crank_angle, diameter=2 * radius, length=length, clearance=2 * radial_clearance,
+                         viscosity=viscosity, speed=speed, method="mobility-finite", tilt=tilt)
+        except ValueError:
+            seed = orbit(loads, crank_angle, diameter=2 * radius, length=length, clearance=2 * radial_clearance,
+                         viscosity=viscosity, speed=speed, method="mobility", tilt=tilt)
+        start = seed.position[..., 0, :]
+    start = np.broadcast_to(start, (*lead, 2))
+    out = {k: np.empty((*lead, n)) for k in ("peak", "torque", "flow")}
+    ld_nodes, stretched, tables = mobility_table()
+    position = np.empty((*lead, n, 2))
+    status = np.empty(lead, np.int8)
+    used = np.empty(lead)
+    for idx in np.ndindex(lead):
+        r, l, c, mu, w = (float(a[idx]) for a in (radius, length, radial_clearance, viscosity, speed))
+        unit_force = mu * w * r**4 / c**2
+        unit_pressure = mu * w * r**2 / c**2
+        if feed is None:
+            arc, share, supply = (feed_angle - FEED_WIDTH / 2, feed_angle + FEED_WIDTH / 2), FEED_LENGTH_SHARE, \
+                feed_pressure
+        elif feed.kind == "groove":
+            arc, share, supply = feed.groove_arc, feed.groove_width / l, feed.supply_pressure
+        else:
+            arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
+            share, supply = feed.hole_diameter / l, feed.supply_pressure
+        film = _Film(length_over_radius=l / r, clearance_over_radius=c / r, n_theta=n_theta, n_z=n_z,
+                     feed_arc=arc, feed_length_share=share, feed_pressure=supply / unit_pressure,
+                     limit=ECCENTRICITY_LIMIT)
+        ld = l / (2 * r)
+        finite = ld_nodes[0] <= ld <= ld_nodes[-1]
+        i, t = _mobility._locate(ld_nodes, ld)
+        table = (1 - t) * tables[i] + t * tables[i + 1]
+        result = _bearing_orbit(film, loads[idx] / unit_force, tau, tilt[idx], start[idx] / c, cycles,
+                                cavitation == "elrod-adams", time_order, ECCENTRICITY_LIMIT, table, stretched, finite)
+        xi, peak, friction, flow, status[idx], used[idx] = result
+        position[idx] = xi * c
+        out["peak"][idx] = peak * unit_pressure
+        out["torque"][idx] = friction * mu * w * r**4 / c
+        out["flow"][idx] = flow * w * r**2 * c / 12
+    ecc = np.linalg.norm(position, axis=-1) / radial_clearance[..., None]
+    h_min = radial_clearance[..., None] * (1 - ecc)
+    h_edge, status = edge_film(position, tilt, length, radial_clearance, h_min, status)
+    return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
+                 np.asarray(speed, dtype=float))
+
+
+def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order, limit, table, stretched, finite):
+    """Periodic orbit of one bearing; dimensionless loads w (n, 2). Returns per-angle arrays, status, cycles.
+
+    Each step: predict the centre with the mobility tier's rate (``table``), then
+    solve the force balance by damped Newton with Broyden updates.
+    """
+    n = w.shape[0]
+    shape = (film.theta.size, film.z.size)
+    p = np.zeros(shape)
+    fill = np.ones(shape)
+    p[film.fixed] = film.p_fixed[film.fixed]
+    scale = np.abs(w).max() + 1e-300
+    xi = np.array(xi0, dtype=float)
+    h = film.thickness(xi, tilt[0])[0]
+    content = [fill * h]  # film content g h of the latest steps
+    dtau_prev = None
+    jac = None
+    alpha = -0.5 * np.pi
+    record = np.empty((n, 2))
+    peak = np.empty(n)
+    friction = np.empty(n)
+    flow = np.empty(n)
+    for cycle in range(1, cycles + 1):
+        start = xi.copy()
+        thinnest = 0.0
+        collapsed = False
+        for k in range(n):
+            record[k] = xi
+            peak[k], friction[k], flow[k] = _outputs(film, p, fill, h)
+            thinnest = max(thinnest, float(np.hypot(*xi)))
+            kn = (k + 1) % n
+            dtau = tau[k + 1] - tau[k]
+            if time_order == 2 and dtau_prev is not None and len(content) == 2:
+                r = dtau / dtau_prev
+                a0, a1, a2 = (1 + 2 * r) / (1 + r), 1 + r, r * r / (1 + r)
+                history = 12 * (a1 * content[-1] - a2 * content[-2]) / dtau
+            else:
+                a0 = 1.0
+                history = 12 * content[-1] / dtau
+            c_time = 12 * a0 / dtau
+            gamma = tilt[kn]
+            target = w[kn]
+
+            def residual(x):
+                hh, he, h3e, h3n = film.thickness(x, gamma)
+                sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta, film.dz,
+                                     RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, mass_conserving)
+                if sweeps < 0:
+                    # over-relaxation can cycle between cavitated and full nodes in a thin, starved film;
+                    # plain Gauss-Seidel from where it stopped is slower but settles
+                    sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta,
+                                         film.dz, 1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, mass_conserving)
+                if sweeps < 0:
+                    raise RuntimeError("field solve did not converge")
+                return film.force(p) - target, hh
+
+            predicted, alpha = _predict(xi, w[k], 0.5 * (w[k] + target), dtau, alpha, limit, table, stretched, finite)
+            try:
+                x, h, jac = _force_balance(residual, predicted, jac, limit, FORCE_TOLERANCE * scale)
+            except (RuntimeError, np.linalg.LinAlgError):
+                return _failed(record, peak, friction, flow, k, cycle)
+            if np.hypot(*x) >= limit * (1 - 1e-12):
+                collapsed = True
+            xi = x
+            content = [content[-1], fill * h]
+            dtau_prev = dtau
+        film_left = 1 - (limit if collapsed else thinnest)
+        closure = float(np.hypot(*(xi - start)))
+        if cycle > 1 and closure <= PERIODIC * film_left:
+            return record, peak, friction, flow, (2 if collapsed else 0), cycle
+    return record, peak, friction, flow, (2 if collapsed else 1), cycles
+
+
+def _predict(xi, w0, w_mid, dtau, alpha, limit, table, stretched, finite):
+    """Centre at the end of the step by the mobility tier's midpoint rule (a starting point for the balance)."""
+    a0, a1, _, _, alpha, _ = _mobility.rate(xi[0], xi[1], w0[0], w0[1], alpha, limit, table, stretched, finite)
+    b0, b1, _, _, _, _ = _mobility.rate(xi[0] + 0.5 * dtau * a0, xi[1] + 0.5 * dtau * a1, w_mid[0], w_mid[1], alpha,
+                                        limit, table, stretched, finite)
+    return _inside(xi + dtau * np.array([b0, b1]), limit), alpha
+
+
+def _force_balance(residual, x, jac, limit, tolerance):
+    """Centre x where the film force balances the load: damped Newton with Broyden updates.
+
+    Steps are damped by Deuflhard's natural monotonicity test (the next Newton
+    correction, with the same Jacobian, must shrink), which is blind to the
+    scaling of the force components: the film is far stiffer along the line
+    of centres than across it. A stale Jacobian is replaced by differences;
+    where even that makes no progress (the force has a kink where a starved
+    film fills), Levenberg-Marquardt takes over. Returns (x, film thickness at x, Jacobian); the field is left at x.
+    """
+    f, h = residual(x)
+    if jac is None:
+        jac = _difference_jacobian(residual, x, f)
+        f, h = residual(x)
+    fresh = False  # the Jacobian is a difference Jacobian at x
+    for _ in range(MAX_BROYDEN):
+        if np.linalg.norm(f) <= tolerance:
+            return x, h, jac
+        try:
+            step = -np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:  # a film that carries nothing in one direction (starved): no Newton step
+            return _least_squares_balance(residual, x, tolerance)
+        size = np.linalg.norm(step)
+        damping = 1.0
+        accepted = False
+        while damping >= 1.0 / 32:
+            trial = _inside(x + damping * step, limit)
+            f_trial, h_trial = residual(trial)
+            if np.linalg.norm(f_trial) <= tolerance or \
+                    np.linalg.norm(np.linalg.solve(jac, f_trial)) <= (1 - damping / 4) * size:
+                accepted = True
+                break
+            damping /= 2
+        if accepted:
+            taken = trial - x
+            # Broyden's good update (the Jacobian carries on to the next step)
+            jac = jac + np.outer(f_trial - f - jac @ taken, taken) / max(taken @ taken, 1e-300)
+            x, f, h = trial, f_trial, h_trial
+            fresh = False
+        elif fresh:
+            return _least_squares_balance(residual, x, tolerance)
+        else:
+            jac = _difference_jacobian(residual, x, f)
+            f, h = residual(x)  # the field back at x
+            fresh = True
+    return _least_squares_balance(residual, x, tolerance)
+
+
+def _least_squares_balance(residual, x, tolerance):
+    """Fallback where the force has a kink (a starved film filling up): Levenberg-Marquardt (MINPACK)."""
+    from scipy import optimize
+
+    solution = optimize.root(lambda y: residual(y)[0], x, method="lm", options={"xtol": 1e-12, "ftol": 1e-14})
+    f, h = residual(solution.x)
+    if not np.linalg.norm(f) <= tolerance:
+        raise RuntimeError("force balance: Levenberg-Marquardt did not balance the load")
+    return solution.x, h, _difference_jacobian(residual, solution.x, f)
+
+
+def _failed(record, peak, friction, flow, k, cycle):
+    """Status 'failed': angles from k on were not solved in this cycle and carry NaN (flagged by the status)."""
+    for a in (record, peak, friction, flow):
+        a[k:] = np.nan
+    return record, peak, friction, flow, 3, cycle
+
+
+def _difference_jacobian(residual, x, f):
+    """Forward-difference Jacobian of the force balance (two field solves)."""
+    delta = 1e-4 * max(1 - float(np.hypot(*x)), 1e-3)
+    jac = np.empty((2, 2))
+    for i in range(2):
+        e = np.zeros(2)
+        e[i] = delta
+        jac[:, i] = (residual(x + e)[0] - f) / delta
+    return jac
+
+
+def _inside(x, limit):
+    e = float(np.hypot(*x))
+    return x * (limit / e) if e > limit else x
+
+
+def _outputs(film, p, fill, h):
+    """Peak pressure, friction integral and side-flow integral of a field (dimensionless)."""
+    dp = (np.roll(p, -1, axis=0) - np.roll(p, 1, axis=0)) / (2 * film.dtheta)
+    shear = fill / h + 0.5 * h * dp
+    friction = float((shear @ film.weights).sum() * film.dtheta)
+    dz = film.dz
+    ends = (h[:, 0] ** 3 * (4 * p[:, 1] - p[:, 2]) + h[:, -1] ** 3 * (4 * p[:, -2] - p[:, -3])) / (2 * dz)
+    flow = float(ends.sum() * film.dtheta)
+    return float(p.max()), friction, flow
