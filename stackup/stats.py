@@ -46,7 +46,11 @@ def quantile_ci(values, q, *, confidence=0.95):
     hi_rank = int(stats.binom.ppf(1 - alpha / 2, n, q)) + 1
     lower = x[lo_rank - 1] if lo_rank >= 1 else -np.inf
     upper = x[hi_rank - 1] if hi_rank <= n else np.inf
-    return float(np.quantile(x, q)), float(lower), float(upper)
+    with np.errstate(invalid="ignore"):  # between a finite value and inf (a life never reached) the mean is NaN
+        estimate = np.quantile(x, q)
+    if np.isnan(estimate):  # then the order statistic above: inf where the quantile falls among the infinities
+        estimate = np.quantile(x, q, method="higher")
+    return float(estimate), float(lower), float(upper)
 
 
 #: Two-sided 95 % quantile of the standard normal, as the project has always rounded it.

@@ -36,7 +36,7 @@ from . import oil as oils
 from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, feed_flow, heat_balance
 from .orbit import STATUS as ORBIT_STATUS
-from .orbit import cheapest_cycle_tier, orbit
+from .orbit import cheapest_cycle_tier, cycle_tier_errors, orbit
 
 #: Crank-angle spacing of the load history the heat balance reads [deg]: its cycle means barely change
 #: below it (reports/bearing_life.md), at a quarter of the cost on a 1 deg grid.
@@ -54,6 +54,16 @@ FILM_STATUS = (*ORBIT_STATUS, "quasi_static")
 #: nearly linear, so the step's own error is a small fraction of it (hundredths of a kelvin).
 HEAT_TOLERANCE = 0.5
 HEAT_ITERATIONS = 8
+
+
+def film_method_errors(method):
+    """The measured errors of a study's film ``method`` against the transient reference (mass-conserving).
+
+    ``{"seconds", "h_min", "h_min_mean", ...}`` from :func:`stackup.film.orbit.cycle_tier_errors`; the
+    quasi-static methods are the tiers ``quasi-static-<method>``.
+    """
+    tier = DYNAMIC.get(method, f"quasi-static-{method}")
+    return {k: v for k, v in cycle_tier_errors()[tier].items() if not isinstance(v, dict)}
 
 
 def cheapest_film_method(max_error):

@@ -346,7 +346,7 @@ def _film_section(ds, out):
         "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
         "life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],
         "life median [h]": [_sig(q[0]) for q in film.life_median_h],
-        "method 2 life B10 [h]": [_fmt_q(q) for q in film.wear_chart_b10_h],
+        "method 2 life B10 [h] (∞: never below h_lim,cr)": [_fmt_q(q) for q in film.wear_chart_b10_h],
         f"engines < {target:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
     })
     per_bearing = bearing_summary(ds).reset_index()
@@ -383,33 +383,49 @@ def _film_detail(ds):
             done = converged_engines(ds, i)
             if not done.any():
                 continue
+            contact = (ds.film_status.values[i, done] == flag(ds.film_status, "edge_contact")
+                       if "film_status" in ds else np.zeros(ds.h_min_edge.values[i, done].shape, bool))
             for b, bearing in enumerate(ds.bearing.values):
-                edge, loss, peak = (ds[name].values[i, done, b] for name in names)
+                edge, peak = ds.h_min_edge.values[i, done, b], ds.p_max.values[i, done, b]
+                tilt = ds.tilt_max.values[i, done, b] if "tilt_max" in ds else np.full(edge.shape, np.nan)
+                touching = contact[:, b]
+                film = ("edge contact" if touching.mean() >= 0.5 else f"{np.nanmedian(edge[~touching]) * UM:.2f} µm")
                 rows.append({"scheme": str(scheme), "bearing": int(bearing),
-                             "text": f"{np.nanmedian(edge) * UM:.2f} / {np.nanmedian(loss) * UM:.2f} / "
+                             "text": f"{np.nanmedian(tilt) * 1e3:.2f} / {100 * touching.mean():.0f} % / {film} / "
                                      f"{np.nanmedian(peak) / 1e6:.0f}"})
         if rows:
             table = pd.DataFrame(rows).pivot(index="scheme", columns="bearing", values="text")
             table.columns = [f"bearing {b}" for b in table.columns]
             lines += ["Misalignment reaches the film: the journal tilts in its bearing by the crankshaft's slope at "
-                      "the support (beam solution with the engine's sampled bore coaxiality and journal run-out), so "
-                      "the film is thinnest at an edge. Per position, median over engines: edge film with tilt [µm] "
-                      "/ film lost to the tilt [µm] / peak film pressure [MPa]:", "",
+                      "the support (the beam bent by the loads and by the engine's sampled bore coaxiality and "
+                      "journal run-out), so the film is thinnest at an edge. Per position: largest tilt over the cycle "
+                      "[mrad, median over engines] / engines whose journal edge touches the bearing / median edge "
+                      "film (where most do not touch) / peak film pressure [MPa, median]:", "",
                       markdown_table(table.reset_index()), ""]
     if "film_status" in ds:
         status = ds.film_status
         meanings = status.attrs["flag_meanings"].split()
         ran = status.values != flag(status, "not_computed") if "not_computed" in meanings else np.ones(status.shape, bool)
-        counts = {m: int(np.count_nonzero(ran & (status.values == flag(status, m)))) for m in meanings
-                  if m not in ("periodic", "quasi_static", "not_computed")}
-        counts = {m: k for m, k in counts.items() if k}
-        total = int(np.count_nonzero(ran))
-        if counts:
-            lines += [f"Orbits that did not become periodic, of {total:,} bearing-cycles: "
-                      + ", ".join(f"{k:,} {m.replace('_', ' ')}" for m, k in counts.items())
-                      + " (marked in `film_status`; a collapsed film is flagged, not given a number).", ""]
-        elif total:
-            lines += [f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).", ""]
+        def count(meaning):
+            return int(np.count_nonzero(ran & (status.values == flag(status, meaning)))) if meaning in meanings else 0
+
+        failed = {m: count(m) for m in ("not_periodic", "collapsed", "failed") if count(m)}
+        total, edge = int(np.count_nonzero(ran)), count("edge_contact")
+        text = []
+        if failed:
+            text.append(f"Orbits that did not become periodic, of {total:,} bearing-cycles: "
+                        + ", ".join(f"{k:,} {m.replace('_', ' ')}" for m, k in failed.items())
+                        + " (marked in `film_status`, left out of the film and life statistics; a collapsed film "
+                        "is flagged, not given a number).")
+        elif total and (count("periodic") or edge):
+            text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).")
+        if edge:
+            text.append(f"In {edge:,} of them ({100 * edge / max(total, 1):.0f} %) the tilted journal reaches the "
+                        "bearing's edge at some crank angle (`edge_contact`): the tilt here is the beam's free slope "
+                        "at the support, an upper bound, since the film's restoring moment is not modelled, so the "
+                        "edge film is a worst case and the life uses the mid-plane film.")
+        if text:
+            lines += [" ".join(text), ""]
     return lines
 
 

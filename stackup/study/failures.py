@@ -16,6 +16,7 @@ import numpy as np
 
 from ..assembly import BLOCK_SCRAPPED, CRANK_SCRAPPED, NOT_GRADED, STATUS
 from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+from ..film.cycle import FILM_STATUS
 
 #: Failures of each stage, what they are counted among, and their likely cause.
 STAGES = {
@@ -25,6 +26,10 @@ STAGES = {
     "crankshaft": ("engines of the mechanical chain",
                    "the crankshaft beam did not converge: check the engine's [crank] section (spans, section "
                    "inertias, loads, units) and its [bearing_law]"),
+    "film": ("bearings of the mechanical chain",
+             "the journal orbit did not become periodic, or the film collapsed (a load turning at half the shaft "
+             "speed, or too little film for the load): check the engine's loads, speed, bearing width and "
+             "clearance, and the oil"),
     "heat balance": ("bearings of the mechanical chain",
                      "no oil temperature balances the film's friction below 250 degC: check the engine's [oil] and "
                      "[oil_feed] (supply pressure, groove or hole) and the bearing's clearance and width"),
@@ -40,10 +45,11 @@ class FailureCount:
     failed: dict = field(default_factory=lambda: {stage: 0 for stage in STAGES})
     counted: dict = field(default_factory=lambda: {stage: 0 for stage in STAGES})
 
-    def add(self, status_counts, crank_status, heat_status=None):
-        """Add bearings per assembly status (:data:`stackup.assembly.STATUS` codes), crank and heat status codes.
+    def add(self, status_counts, crank_status, heat_status=None, film_status=None):
+        """Add bearings per assembly status (:data:`stackup.assembly.STATUS` codes), crank, heat and film codes.
 
-        ``heat_status`` (engines, bearings) of the engines the crankshaft stage ran on, or None.
+        ``heat_status`` and ``film_status`` (engines, bearings) of the engines the crankshaft stage ran on,
+        or None. A film whose orbit touched an edge is a result, not a failure.
         """
         counts = np.asarray(status_counts)  # a stock-out is a result of the shell supply, not a failure
         self.failed["grading"] += int(counts[NOT_GRADED])
@@ -55,6 +61,10 @@ class FailureCount:
             heat = np.asarray(heat_status)[np.asarray(crank) != NOT_COMPUTED]
             self.failed["heat balance"] += int(np.count_nonzero(heat != 0))
             self.counted["heat balance"] += int(heat.size)
+        if film_status is not None:
+            film = np.asarray(film_status)[np.asarray(crank) != NOT_COMPUTED]
+            self.failed["film"] += int(np.count_nonzero(np.isin(film, _FILM_FAILED)))
+            self.counted["film"] += int(film.size)
         return self
 
     def merge(self, other):
@@ -68,7 +78,8 @@ class FailureCount:
     def of_chunk(cls, result):
         """The failures of a :class:`~stackup.study.chain.ChunkResult`."""
         counts = np.bincount(result.per_engine["status"].ravel(), minlength=len(STATUS))
-        return cls().add(counts, result.per_mech["crank_status"], result.per_mech["heat_status"])
+        return cls().add(counts, result.per_mech["crank_status"], result.per_mech["heat_status"],
+                         result.per_mech.get("film_status"))
 
     @classmethod
     def of_dataset(cls, ds):
@@ -78,7 +89,8 @@ class FailureCount:
         else:
             counts = np.bincount(ds.status.values.ravel(), minlength=len(STATUS))
         return cls().add(counts, ds.crank_status.values,
-                         ds.heat_status.values if "heat_status" in ds else None)
+                         ds.heat_status.values if "heat_status" in ds else None,
+                         ds.film_status.values if "film_status" in ds else None)
 
     def shares(self):
         """Share of failures per stage (NaN where nothing was counted)."""
@@ -104,3 +116,4 @@ class StageFailure(ValueError):
 
 
 _CRANK_FAILED = [CYCLE_STATUS.index("max_iterations"), CYCLE_STATUS.index("not_finite")]
+_FILM_FAILED = [FILM_STATUS.index(s) for s in ("not_periodic", "collapsed", "failed")]

@@ -13,6 +13,7 @@ import time
 import numpy as np
 import xarray as xr
 
+from ..film.cycle import film_method_errors
 from .. import __version__
 from ..tolerances import process_mean
 from . import schema
@@ -123,6 +124,7 @@ def attributes(study, ctx, mechanics_used):
         "shell_supply": engine.shell_wall.mode,
         "pilot_engines": study.pilot_engines,
         "film_method_used": ctx.film_method,
+        "film_method_errors": json.dumps(film_method_errors(ctx.film_method)),
         "mechanics_engines_used": mechanics_used,
         "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
         "press_fit": json.dumps(engine.press_fit.kwargs()),
