@@ -91,9 +91,20 @@ def verdict(ds, ranking, scenario_rankings):
                      f"the window's middle is {_um(middle)} µm).")
     else:
         cheapest = min(best, key=lambda n: (ranking.loc[n, "shell_grades"], ranking.loc[n, "surplus_pct"]))
-        lines.append(f"{_names(best)} tie: their 95 % intervals overlap on every ranking metric. Of these, "
-                     f"**{cheapest}** needs the fewest shell grades and the least surplus: use it unless another "
-                     "reason decides.")
+        c = ranking.loc[cheapest]
+        others = [n for n in best if n != cheapest]
+        versus = ", ".join(f"{ranking.loc[n, 'shell_grades']} and {ranking.loc[n, 'surplus_pct']:.1f} % for {n}"
+                           for n in others)
+        text = (f"{_names(best)} tie: their 95 % intervals overlap on every ranking metric. Of these, "
+                f"**{cheapest}** needs the fewest shell grades, then the least surplus ({c.shell_grades} grades, "
+                f"{c.surplus_pct:.1f} % of the shells left over, against {versus}): use it unless another reason "
+                "decides")
+        more_stockouts = [n for n in others if ranking.loc[n, "stockout_ppm"] < c.stockout_ppm]
+        if more_stockouts:
+            text += (f"; it has more stock-outs, though ({c.stockout_ppm:.0f} ppm of bearings waiting for a shell "
+                     "against " + ", ".join(f"{ranking.loc[n, 'stockout_ppm']:.0f} ppm for {n}" for n in more_stockouts)
+                     + ")")
+        lines.append(text + ".")
         first = ranking.loc[cheapest]
         best = [cheapest]
     lines.append(f"**What it costs:** {int(first.shell_grades)} shell grade{'s' if first.shell_grades > 1 else ''} "
