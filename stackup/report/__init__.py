@@ -387,12 +387,13 @@ def _film_detail(ds):
                        if "film_status" in ds else np.zeros(ds.h_min_edge.values[i, done].shape, bool))
             for b, bearing in enumerate(ds.bearing.values):
                 edge, peak = ds.h_min_edge.values[i, done, b], ds.p_max.values[i, done, b]
+                mean_peak = ds.p_max_mean.values[i, done, b] if "p_max_mean" in ds else np.full(peak.shape, np.nan)
                 tilt = ds.tilt_max.values[i, done, b] if "tilt_max" in ds else np.full(edge.shape, np.nan)
                 touching = contact[:, b]
                 film = ("edge contact" if touching.mean() >= 0.5 else f"{np.nanmedian(edge[~touching]) * UM:.2f} µm")
                 rows.append({"scheme": str(scheme), "bearing": int(bearing),
                              "text": f"{np.nanmedian(tilt) * 1e3:.2f} / {100 * touching.mean():.0f} % / {film} / "
-                                     f"{np.nanmedian(peak) / 1e6:.0f}"})
+                                     f"{np.nanmedian(peak) / 1e6:.0f} / {np.nanmedian(mean_peak) / 1e6:.0f}"})
         if rows:
             table = pd.DataFrame(rows).pivot(index="scheme", columns="bearing", values="text")
             table.columns = [f"bearing {b}" for b in table.columns]
@@ -400,7 +401,8 @@ def _film_detail(ds):
                       "the support (the beam bent by the loads and by the engine's sampled bore coaxiality and "
                       "journal run-out), so the film is thinnest at an edge. Per position: largest tilt over the cycle "
                       "[mrad, median over engines] / engines whose journal edge touches the bearing / median edge "
-                      "film (where most do not touch) / peak film pressure [MPa, median]:", "",
+                      "film (where most do not touch) / peak film pressure over the cycle and its cycle mean "
+                      "[MPa, medians]:", "",
                       markdown_table(table.reset_index()), ""]
     if "film_status" in ds:
         status = ds.film_status

@@ -306,6 +306,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
             "tilt_max": np.linalg.norm(tilt, axis=-1).max(axis=1),
             "p_max": films.p_max.max(axis=-1),
+            "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,
             "law_fit_error": law_error,
             "h_min_mean": cycle_film(films.h_min, statistic="cycle-mean"),

@@ -79,7 +79,8 @@ MECHANICS = {
     "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min - h_min_edge"),
     "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (crankshaft slope "
                                 "at the support)"),
-    "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle"),
+    "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle (Rozhdestvensky et al.'s p_max)"),
+    "p_max_mean": Var(SMB, "Pa", "cycle mean of the peak oil film pressure (Rozhdestvensky et al.'s p*_max)"),
     "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "
                                  "orbit became periodic, and why not)", FILM_STATUS_FLAGS, "i1",
                        len(FILM_STATUS)),
