@@ -37,11 +37,9 @@ def element_stiffness(length, ei):
     ])
 
 
-def condensed(spans, ei, load_positions):
-    """Support stiffness K_b (N+1, N+1) [N/m] and load transfer T (N+1, N) [-] of one bending plane.
-
-    Nodes: support 0, load 0, support 1, load 1, ..., support N.
-    """
+def _assembled(spans, ei, load_positions):
+    """Stiffness (2 n_nodes, 2 n_nodes) of one bending plane, nodes support 0, load 0, support 1, ..., and the
+    kept (support deflection), load-point deflection and eliminated degrees of freedom."""
     spans = np.asarray(spans, dtype=float)
     n = spans.size
     n_nodes = 2 * n + 1
@@ -55,6 +53,15 @@ def condensed(spans, ei, load_positions):
     kept = np.array([2 * (2 * j) for j in range(n + 1)])  # support deflections
     loads = np.array([2 * (2 * i + 1) for i in range(n)])  # load-point deflections
     gone = np.setdiff1d(np.arange(2 * n_nodes), kept)
+    return k, kept, loads, gone
+
+
+def condensed(spans, ei, load_positions):
+    """Support stiffness K_b (N+1, N+1) [N/m] and load transfer T (N+1, N) [-] of one bending plane.
+
+    Nodes: support 0, load 0, support 1, load 1, ..., support N.
+    """
+    k, kept, loads, gone = _assembled(spans, ei, load_positions)
     k_ee = k[np.ix_(gone, gone)]
     k_re = k[np.ix_(kept, gone)]
     k_b = k[np.ix_(kept, kept)] - k_re @ np.linalg.solve(k_ee, k_re.T)
@@ -71,19 +78,8 @@ def slope_matrices(spans, ei, load_positions):
     static condensation of :func:`condensed` eliminated,
     :math:`u_e = K_{ee}^{-1}(F_e - K_{er}\\,w)`, at the support nodes.
     """
-    spans = np.asarray(spans, dtype=float)
-    n = spans.size
-    n_nodes = 2 * n + 1
-    k = np.zeros((2 * n_nodes, 2 * n_nodes))
-    for i in range(n):
-        a = load_positions[i] * spans[i]
-        for j, length in enumerate((a, spans[i] - a)):
-            first = 2 * i + j
-            dofs = [2 * first, 2 * first + 1, 2 * first + 2, 2 * first + 3]
-            k[np.ix_(dofs, dofs)] += element_stiffness(length, ei[i])
-    kept = np.array([2 * (2 * j) for j in range(n + 1)])
-    loads = np.array([2 * (2 * i + 1) for i in range(n)])
-    gone = np.setdiff1d(np.arange(2 * n_nodes), kept)
+    k, kept, loads, gone = _assembled(spans, ei, load_positions)
+    n = len(kept) - 1
     k_ee = k[np.ix_(gone, gone)]
     k_er = k[np.ix_(gone, kept)]
     select = (gone[:, None] == loads[None, :]).astype(float)
