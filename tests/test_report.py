@@ -143,3 +143,13 @@ def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
     report = write_report(ds, tmp_path / "report").read_text()
     row = next(line for line in report.splitlines() if line.startswith("| unstated | — (none stated) |"))
     assert row.rstrip(" |").endswith("—")
+
+
+def test_a_study_without_the_mechanical_chain_says_so(tmp_path):
+    from stackup.report.prose import run_notes
+    from stackup.study import Study
+
+    ds = Study(schemes=("iso13778-4",), n_engines=200, mechanics_engines=0, progress=False, pilot_engines=1000).run()
+    notes = run_notes(ds)
+    assert any("did not run: the study asked for none" in note for note in notes)
+    assert "did not run" in write_report(ds, tmp_path).read_text().split("<!-- /verdict -->")[0]

@@ -119,7 +119,7 @@ def verdict(ds, ranking, scenario_rankings):
                      f"{first.worst_life_median_h:+.3g} h")
         lines.append(text + ".")
     lines.append("**When another scheme would win:** " + _would_win(ds, ranking, scenario_rankings, best[0], window))
-    notes = _run_notes(ds)
+    notes = run_notes(ds)
     if notes:
         lines.append("**Note:** " + " ".join(notes))
     return ["<!-- verdict -->", *[x for line in lines for x in (line, "")], "<!-- /verdict -->"]
@@ -150,7 +150,7 @@ def _would_win(ds, ranking, scenario_rankings, chosen, window):
     return "; ".join(parts) + "."
 
 
-def _run_notes(ds):
+def run_notes(ds):
     """Stages that failed on some engines, or did not run, said in words."""
     notes = []
     failures = FailureCount.of_dataset(ds).lines()
