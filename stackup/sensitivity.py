@@ -254,8 +254,11 @@ def _analyse(problem, y, groups, u, seed, bootstrap, max_missing):
         raise ValueError(f"{missing.mean():.1%} of the samples could not be evaluated (not graded or the chain "
                          "failed); the indices would be meaningless")
     y = np.where(missing, np.nanmean(y), y)
+    # SALib seeds its bootstrap only for a truthy seed (``if seed:``); seed 0 would draw from numpy's global
+    # state and the intervals would change from run to run: pass a nonzero seed derived from ours
+    bootstrap_seed = int(np.random.SeedSequence(seed).generate_state(1)[0]) or 1
     result = analyse.analyze(problem, y, calc_second_order=False, num_resamples=bootstrap, conf_level=0.95,
-                             seed=seed)
+                             seed=bootstrap_seed)
     frame = pd.DataFrame({
         "S1": result["S1"], "S1_lo": result["S1"] - result["S1_conf"], "S1_hi": result["S1"] + result["S1_conf"],
         "ST": result["ST"], "ST_lo": result["ST"] - result["ST_conf"], "ST_hi": result["ST"] + result["ST_conf"],
