@@ -478,16 +478,23 @@ def available():
     return sorted(files())
 
 
+def scheme_path(name_or_path):
+    """The file of a scheme name (``"iso13778-4"``, shipped or the user's) or of a path."""
+    text = os.fspath(name_or_path)
+    path = Path(text)
+    if path.suffix == ".toml" or os.sep in text or path.exists():
+        return path
+    found = files().get(text)
+    if found is None:
+        raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file")
+    return found
+
+
 def load(name_or_path):
     """Load a scheme by name (``"iso13778-4"``) or from a TOML file path."""
     if isinstance(name_or_path, Scheme):
         return name_or_path
-    text = os.fspath(name_or_path)
-    path = Path(text)
-    if not (path.suffix == ".toml" or os.sep in text or path.exists()):
-        path = files().get(text)
-        if path is None:
-            raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file")
+    path = scheme_path(name_or_path)
     data, _ = read_toml(path, kind="scheme")
     return _from_dict(data, where=f"scheme file {path.name!r}", path=str(path))
 

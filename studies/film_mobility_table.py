@@ -118,7 +118,7 @@ def main(argv=None):
         "",
         "## Interpolation error between the nodes",
         "",
-        f"150 random points half-way between the nodes in L/D, eccentricity and direction (trilinear lookup, "
+        "150 random points half-way between the nodes in L/D, eccentricity and direction (trilinear lookup, "
         "linear in L/D, -ln(1 - eps) and alpha, against a fresh solve):",
         "",
         "| quantity | mean abs error | worst error | at (L/D, eps, alpha) |",

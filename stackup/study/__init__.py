@@ -139,7 +139,8 @@ class Study:
     files : dict or None
         The texts of the input files, ``{"engine": {"name", "text",
         "extra"}, "schemes": {label: text}}`` (:mod:`stackup.study.inputs`);
-        what it holds is used instead of the disk, the rest is read. Every
+        what it holds is used instead of the disk, the rest is read when the
+        study is made (so a changed file does not change a study). Every
         dataset stores the full set (attribute ``input_files``), and
         :meth:`from_dataset` passes it here, so a rerun needs no file.
         Schemes given as :class:`~stackup.schemes.Scheme` objects (a
@@ -198,10 +199,7 @@ class Study:
         self.failure_limit = float(check.in_range("failure_limit", self.failure_limit, 0.0, 1.0))
         if (720.0 / self.crank_angle_step) % 1:
             raise ValueError(f"crank_angle_step: {self.crank_angle_step!r} deg does not divide 720 deg")
-        given = [s for s in self.schemes if isinstance(s, Scheme)]
-        if given:
-            self.files = {**(self.files or {}), "schemes": {**(self.files or {}).get("schemes", {}),
-                                                            **{s.name: s.to_toml_text() for s in given}}}
+        given = {s.name: s.to_toml_text() for s in self.schemes if isinstance(s, Scheme)}
         self.schemes = tuple(s.name if isinstance(s, Scheme) else str(s) for s in self.schemes)
         if not self.schemes:
             raise ValueError("schemes: give at least one scheme")
@@ -209,16 +207,16 @@ class Study:
             raise ValueError(f"schemes: {list(self.schemes)!r} names a scheme twice")
         seed_sequence(self.seed)
         self.engine = str(self.engine)
+        # the texts are read once, here: every chunk (and a worker without the files) uses these
+        files = self.files or {}
+        self.files = inputs.input_files(self.engine, self.schemes,
+                                        {**files, "schemes": {**files.get("schemes", {}), **given}})
         if self.window is not None:
             self.window = check.clearance_window("window", self.window)
 
     def parameters(self):
         """The study's parameters as plain data (stored in the dataset's attrs)."""
         return {k: v for k, v in asdict(self).items() if k not in ("progress", "store", "files")}
-
-    def input_files(self):
-        """The texts of the engine and scheme files this study reads (:func:`stackup.study.inputs.input_files`)."""
-        return inputs.input_files(self.engine, self.schemes, self.files)
 
     @classmethod
     def from_dataset(cls, ds, **changes):

@@ -108,7 +108,7 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
                                   else 0).run(where)
     if designed is not None:
         ds.attrs.update(designed_scheme=designed.scheme.name, design=json.dumps(design_record(designed)))
-    engine_used, loaded = load_inputs(study.input_files(), study.schemes)
+    engine_used, loaded = load_inputs(study.files, study.schemes)
     log("tails: shares beyond the design window by subset simulation")
     tails = tails_dataset(engine_used, loaded, window=study_options.get("window"), seed=seed,
                           pilot_engines=study.pilot_engines)

@@ -39,8 +39,6 @@ class Context:
         Film method used (``"auto"`` resolved, :data:`stackup.film.cycle.FILM_METHODS`).
     crank_angle : numpy.ndarray
         Crank-angle grid [deg].
-    files : dict
-        The texts of the engine and scheme files read (:mod:`stackup.study.inputs`).
     """
 
     engine: object
@@ -54,7 +52,6 @@ class Context:
     mechanics: int
     film_method: str
     crank_angle: np.ndarray
-    files: dict
 
     def bounds(self, first, chunk_lots):
         """Lots of chunk ``first`` and the study numbers of its first and past-last engines."""
@@ -62,10 +59,10 @@ class Context:
         return lots, lots[0] * self.lot, min((lots[-1] + 1) * self.lot, self.n_engines)
 
 
-def fingerprint(study, files=None):
+def fingerprint(study):
     """The study's identity: its parameters, the texts of its input files and the package version."""
-    files = study.input_files() if files is None else files
-    return json.dumps({"study": study.parameters(), "inputs": digest(files), "version": __version__}, sort_keys=True)
+    return json.dumps({"study": study.parameters(), "inputs": digest(study.files), "version": __version__},
+                      sort_keys=True)
 
 
 #: The context of the study this process works on (one at a time).
@@ -74,10 +71,9 @@ _CACHE = {}
 
 def context(study):
     """The :class:`Context` of ``study``, cached in this process (workers build it once)."""
-    files = study.input_files()
-    key = fingerprint(study, files)
+    key = fingerprint(study)
     if key not in _CACHE:
-        engine, schemes = load_inputs(files, study.schemes)
+        engine, schemes = load_inputs(study.files, study.schemes)
         engine = apply_scenario(engine, study.scenario)
         if study.window is not None:
             engine = replace(engine, clearance_window=study.window)
@@ -94,7 +90,7 @@ def context(study):
             n_lots=math.ceil(study.n_engines / lot),
             mechanics=min(study.mechanics_engines, study.n_engines) if engine.crank is not None else 0,
             film_method=cheapest_film_method(study.film_error) if study.film_method == "auto" else study.film_method,
-            crank_angle=np.arange(0.0, 720.0, study.crank_angle_step), files=files)
+            crank_angle=np.arange(0.0, 720.0, study.crank_angle_step))
     return _CACHE[key]
 
 

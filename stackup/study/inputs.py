@@ -14,12 +14,10 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import tomllib
-from pathlib import Path
 
 from ..engines import engine_files, load_engine
-from ..schemes import Scheme, files as scheme_locations, from_dict
+from ..schemes import Scheme, from_dict, scheme_path
 from ..schemes import load as load_scheme_file
 
 
@@ -27,11 +25,8 @@ def scheme_text(name_or_path):
     """The TOML text of a scheme given by name, path or :class:`~stackup.schemes.Scheme`."""
     if isinstance(name_or_path, Scheme):
         return name_or_path.to_toml_text()
-    load_scheme_file(name_or_path)  # its errors name the file, the key and the value
-    text = os.fspath(name_or_path)
-    path = Path(text)
-    if not path.is_file():
-        path = scheme_locations()[text]
+    path = scheme_path(name_or_path)
+    load_scheme_file(path)  # its errors name the file, the key and the value
     return path.read_text()
 
 

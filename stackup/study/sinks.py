@@ -129,7 +129,7 @@ def attributes(study, ctx, mechanics_used):
         "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
         "press_fit": json.dumps(engine.press_fit.kwargs()),
         "press_fit_limits_source": engine.press_fit_limits.source,
-        "input_files": json.dumps(ctx.files),
+        "input_files": json.dumps(study.files),
         "crush_height_source": engine.press_fit.crush_source,
         "clearance_window_source": engine.clearance_window_source,
         "engine_processes": json.dumps(processes(engine)),
