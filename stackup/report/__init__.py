@@ -371,63 +371,57 @@ def _film_section(ds, out):
 
 
 def _film_detail(ds):
-    """Edge film with the journal's tilt, tilt loss and peak film pressure per position; orbits that did not close.
-
-    Only for datasets whose film stage stores them (``h_min_edge``, ``tilt_loss``, ``p_max``, ``film_status``).
-    """
+    """Tilt, edge contact, edge film and peak film pressure per position; orbits that did not close."""
+    if "film_status" not in ds:  # a study without the mechanical chain's film
+        return []
+    status = ds.film_status
+    rows = []
+    for i, scheme in enumerate(ds.scheme.values):
+        done = converged_engines(ds, i)
+        if not done.any():
+            continue
+        contact = status.values[i, done] == flag(status, "edge_contact")
+        for b, bearing in enumerate(ds.bearing.values):
+            edge, touching = ds.h_min_edge.values[i, done, b], contact[:, b]
+            film = "edge contact" if touching.mean() >= 0.5 else f"{np.nanmedian(edge[~touching]) * UM:.2f} µm"
+            tilt, peak, mean_peak = (np.nanmedian(ds[name].values[i, done, b])
+                                     for name in ("tilt_max", "p_max", "p_max_mean"))
+            rows.append({"scheme": str(scheme), "bearing": int(bearing),
+                         "text": f"{tilt * 1e3:.2f} / {100 * touching.mean():.0f} % / {film} / {peak / 1e6:.0f} / "
+                                 f"{mean_peak / 1e6:.0f}"})
     lines = []
-    names = ("h_min_edge", "tilt_loss", "p_max")
-    if all(name in ds for name in names):
-        rows = []
-        for i, scheme in enumerate(ds.scheme.values):
-            done = converged_engines(ds, i)
-            if not done.any():
-                continue
-            contact = (ds.film_status.values[i, done] == flag(ds.film_status, "edge_contact")
-                       if "film_status" in ds else np.zeros(ds.h_min_edge.values[i, done].shape, bool))
-            for b, bearing in enumerate(ds.bearing.values):
-                edge, peak = ds.h_min_edge.values[i, done, b], ds.p_max.values[i, done, b]
-                mean_peak = ds.p_max_mean.values[i, done, b] if "p_max_mean" in ds else np.full(peak.shape, np.nan)
-                tilt = ds.tilt_max.values[i, done, b] if "tilt_max" in ds else np.full(edge.shape, np.nan)
-                touching = contact[:, b]
-                film = ("edge contact" if touching.mean() >= 0.5 else f"{np.nanmedian(edge[~touching]) * UM:.2f} µm")
-                rows.append({"scheme": str(scheme), "bearing": int(bearing),
-                             "text": f"{np.nanmedian(tilt) * 1e3:.2f} / {100 * touching.mean():.0f} % / {film} / "
-                                     f"{np.nanmedian(peak) / 1e6:.0f} / {np.nanmedian(mean_peak) / 1e6:.0f}"})
-        if rows:
-            table = pd.DataFrame(rows).pivot(index="scheme", columns="bearing", values="text")
-            table.columns = [f"bearing {b}" for b in table.columns]
-            lines += ["Misalignment reaches the film: the journal tilts in its bearing by the crankshaft's slope at "
-                      "the support (the beam bent by the loads and by the engine's sampled bore coaxiality and "
-                      "journal run-out), so the film is thinnest at an edge. Per position: largest tilt over the cycle "
-                      "[mrad, median over engines] / engines whose journal edge touches the bearing / median edge "
-                      "film (where most do not touch) / peak film pressure over the cycle and its cycle mean "
-                      "[MPa, medians]:", "",
-                      markdown_table(table.reset_index()), ""]
-    if "film_status" in ds:
-        status = ds.film_status
-        meanings = status.attrs["flag_meanings"].split()
-        ran = status.values != flag(status, "not_computed") if "not_computed" in meanings else np.ones(status.shape, bool)
-        def count(meaning):
-            return int(np.count_nonzero(ran & (status.values == flag(status, meaning)))) if meaning in meanings else 0
+    if rows:
+        table = pd.DataFrame(rows).pivot(index="scheme", columns="bearing", values="text")
+        table.columns = [f"bearing {b}" for b in table.columns]
+        lines += ["Misalignment reaches the film: the journal tilts in its bearing by the crankshaft's slope at "
+                  "the support (the beam bent by the loads and by the engine's sampled bore coaxiality and "
+                  "journal run-out), so the film is thinnest at an edge. Per position: largest tilt over the cycle "
+                  "[mrad, median over engines] / engines whose journal edge touches the bearing / median edge "
+                  "film (where most do not touch) / peak film pressure over the cycle and its cycle mean "
+                  "[MPa, medians]:", "",
+                  markdown_table(table.reset_index()), ""]
+    ran = status.values != flag(status, "not_computed")
 
-        failed = {m: count(m) for m in ("not_periodic", "collapsed", "failed") if count(m)}
-        total, edge = int(np.count_nonzero(ran)), count("edge_contact")
-        text = []
-        if failed:
-            text.append(f"Orbits that did not become periodic, of {total:,} bearing-cycles: "
-                        + ", ".join(f"{k:,} {m.replace('_', ' ')}" for m, k in failed.items())
-                        + " (marked in `film_status`, left out of the film and life statistics; a collapsed film "
-                        "is flagged, not given a number).")
-        elif total and (count("periodic") or edge):
-            text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).")
-        if edge:
-            text.append(f"In {edge:,} of them ({100 * edge / max(total, 1):.0f} %) the tilted journal reaches the "
-                        "bearing's edge at some crank angle (`edge_contact`): the tilt here is the beam's free slope "
-                        "at the support, an upper bound, since the film's restoring moment is not modelled, so the "
-                        "edge film is a worst case and the life uses the mid-plane film.")
-        if text:
-            lines += [" ".join(text), ""]
+    def count(meaning):
+        return int(np.count_nonzero(ran & (status.values == flag(status, meaning))))
+
+    failed = {m: count(m) for m in ("not_periodic", "collapsed", "failed") if count(m)}
+    total, edge = int(np.count_nonzero(ran)), count("edge_contact")
+    text = []
+    if failed:
+        text.append(f"Orbits that did not become periodic, of {total:,} bearing-cycles: "
+                    + ", ".join(f"{k:,} {m.replace('_', ' ')}" for m, k in failed.items())
+                    + " (marked in `film_status` and `film_valid`; their films and lives are still in the tables "
+                    "above, so read those bearings' numbers with care).")
+    elif total and (count("periodic") or edge):
+        text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).")
+    if edge:
+        text.append(f"In {edge:,} of them ({100 * edge / max(total, 1):.0f} %) the tilted journal reaches the "
+                    "bearing's edge at some crank angle (`edge_contact`): the tilt here is the beam's free slope "
+                    "at the support, an upper bound, since the film's restoring moment is not modelled, so the "
+                    "edge film is a worst case and the life uses the mid-plane film.")
+    if text:
+        lines += [" ".join(text), ""]
     return lines
 
 
