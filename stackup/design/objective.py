@@ -108,6 +108,8 @@ class SchemeScore:
     ----------
     outside : float
         Expected share of the assembled bearings outside the window [-].
+    below, above : float
+        The part of it below the window's lower clearance and above its upper one [-].
     demand : numpy.ndarray
         Shells of each grade the sample's preferred pairs ask for, per bearing (grades,).
     ungraded : float
@@ -118,6 +120,8 @@ class SchemeScore:
     demand: np.ndarray
     ungraded: float
     mean_clearance: float
+    below: float
+    above: float
 
 
 def demand_share(scheme, sample):
@@ -139,15 +143,20 @@ def score(scheme, sample, window):
     n = len(scheme.shell.labels)
     code = np.where(up >= 0, up * n + lo, -1)
     thin, thick = sample.ideal_wall_sum(window[1]), sample.ideal_wall_sum(window[0])
-    total, count, clearance = 0.0, 0, 0.0
+    # one side at a time: a wall sum past the end of every distribution reads 0 (thin) or 1 (thick)
+    never = np.full(thin.size, np.inf)
+    total, below, above, count, clearance = 0.0, 0.0, 0.0, 0, 0.0
     for c in np.unique(code[code >= 0]):
         rows = code == c
-        outside = outside_sums(sums, [c // n], [c % n], thin[rows], thick[rows], np.zeros(rows.sum(), np.int64), 1)
-        if np.isnan(outside[0, 0]):
+        m = int(rows.sum())
+        sides = [outside_sums(sums, [c // n], [c % n], a, b, np.zeros(m, np.int64), 1)[0, 0]
+                 for a, b in ((thin[rows], thick[rows]), (-never[:m], thick[rows]), (thin[rows], never[:m]))]
+        if np.isnan(sides[0]):
             continue
-        total += outside[0, 0]
-        count += int(rows.sum())
+        total, below, above = total + sides[0], below + sides[1], above + sides[2]
+        count += m
         level = sums.mean[c // n] + sums.mean[c % n]
         clearance += sample.operating_clearance(level)[rows].sum()
-    return SchemeScore(total / max(count, 1), demand, float(np.mean(code < 0)), clearance / max(count, 1))
-
+    count = max(count, 1)
+    return SchemeScore(total / count, demand, float(np.mean(code < 0)), clearance / count, below / count,
+                       above / count)
