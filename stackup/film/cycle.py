@@ -50,6 +50,10 @@ DYNAMIC = {"mobility": "mobility", "mobility-finite": "mobility-finite", "transi
 FILM_METHODS = (*QUASI_STATIC, *DYNAMIC)
 #: Orbit status per bearing in a study: the orbit's, then the quasi-static tiers' (no orbit to close).
 FILM_STATUS = (*ORBIT_STATUS, "quasi_static")
+#: Statuses whose film is not a number: the orbit did not become periodic, the film collapsed (the journal held
+#: at the eccentricity limit, or a quasi-static tier's steady film beyond it) or the solve failed. The film
+#: stage still returns the film where it was held; a study stores NaN for these bearings' films and lives.
+NOT_A_NUMBER = ("not_periodic", "collapsed", "failed")
 #: The dynamic heat balance stops when a secant step moves the temperature less than this [K]: g(T) is
 #: nearly linear, so the step's own error is a small fraction of it (hundredths of a kelvin).
 HEAT_TOLERANCE = 0.5
@@ -95,8 +99,9 @@ class BearingFilms:
     status : numpy.ndarray of int8
         Index into :data:`FILM_STATUS`.
     valid : numpy.ndarray of bool
-        The film tier was inside its checked range at every angle (a dynamic
-        tier: its orbit closed, ``status`` periodic or edge_contact).
+        The film is a number: ``status`` is none of :data:`NOT_A_NUMBER` (a
+        dynamic tier's orbit closed; a quasi-static tier's steady film stayed
+        within :data:`stackup.film.ECCENTRICITY_VALID` at every angle).
     temperature : numpy.ndarray
         Effective film temperature [degC].
     friction_power, oil_flow, feed_flow : numpy.ndarray
@@ -155,10 +160,11 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         film = orbit(loads, crank_angle, **geometry, viscosity=heat.viscosity, method="quasi-static",
                      steady_method=method, tilt=tilt)
         status = np.where(film.status == ORBIT_STATUS.index("edge_contact"), film.status,
-                          FILM_STATUS.index("quasi_static")).astype(np.int8)
-        valid = _steady_valid(film)
-        return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, valid, heat.temperature,
-                            heat.friction_power, heat.flow, heat.feed_flow, heat.status)
+                          FILM_STATUS.index("quasi_static"))
+        # a load the steady film carries only beyond the eccentricity limit: the film has collapsed
+        status = np.where(_steady_valid(film), status, FILM_STATUS.index("collapsed")).astype(np.int8)
+        return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
+                            heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status)
     tier = DYNAMIC[method]
     options = {"feed": feed} if tier == "reynolds-transient" else {}
     balance = dynamic_heat_balance(loads, crank_angle, tier=tier, oil=spec.oil,
@@ -168,9 +174,12 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
     film = orbit(loads, crank_angle, **geometry, viscosity=balance.viscosity, method=tier, tilt=tilt,
                  start=balance.start, **options)
     fed = _feed_flow(film, feed, clearance, balance.viscosity, journal_d, spec.bearing_width)
-    valid = np.isin(film.status, (ORBIT_STATUS.index("periodic"), ORBIT_STATUS.index("edge_contact")))
-    return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, valid,
+    return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
                         balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status)
+
+
+def _is_number(status):
+    return ~np.isin(status, [FILM_STATUS.index(s) for s in NOT_A_NUMBER])
 
 
 def _steady_valid(film):

@@ -277,6 +277,10 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         With ``crank_method="bearing-law"``: the engine's law (the paper's
         constants, J scaled with each clearance) or J and dx fitted per engine
         and bearing to the steady film (:func:`fitted_law`).
+
+    A bearing whose film is not a number (``film_status`` collapsed,
+    not_periodic or failed; ``film_valid`` false) has NaN for every value
+    that comes from the film (:data:`schema.FILM_NUMBERS`).
     """
     spec = engine.crank
     law, law_error = None, np.full(np.shape(clearance), np.nan)
@@ -299,7 +303,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                                                             lining.poisson), wear_limit=wear.wear_limit)
     life = levanov_method1(cycle_film(films.h_min, statistic=life_film), h_lim_cr=wear.critical_film,
                            wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
-    return {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
+    out = {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
             "crank_status": worst_status(r.status),
             "h_min": films.h_min.min(axis=-1),
             "h_min_edge": films.h_min_edge.min(axis=-1),
@@ -322,6 +326,24 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "film_valid": films.valid,
             "load_history": np.moveaxis(r.reactions, 1, 2),
             "h_min_history": films.h_min}
+    return _not_a_number(out, films.valid)
+
+
+def _not_a_number(values, valid):
+    """``values`` with NaN for the film's numbers (:data:`schema.FILM_NUMBERS`) of bearings whose film is not valid.
+
+    A collapsed film is the film held at the eccentricity limit and an orbit that did not close is not the
+    bearing's periodic film: neither is a number a statistic or a ranking may read. ``film_status`` keeps
+    the reason; the engine's life (its weakest bearing) becomes NaN with it.
+    """
+    lost = ~np.asarray(valid, bool)
+    if not lost.any():
+        return values
+    out = dict(values)
+    for name in schema.FILM_NUMBERS:
+        v = np.asarray(out[name], dtype=float)
+        out[name] = np.where(lost.reshape(lost.shape + (1,) * (v.ndim - lost.ndim)), np.nan, v)
+    return out
 
 
 def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):
