@@ -131,3 +131,15 @@ def test_a_collapsed_or_unsettled_orbit_reads_back_from_the_dataset_variable_by_
     assert int(da.values[0, 0, 0]) == flag(da, "collapsed")
     for reason in ("not_periodic", "failed", "edge_contact", "quasi_static", "not_computed"):
         assert flag(da, reason) != flag(da, "collapsed")
+
+
+@pytest.mark.parametrize("method", ["short", "finite"])
+def test_a_quasi_static_film_beyond_the_eccentricity_limit_is_collapsed_not_a_number(method):
+    from stackup.film import ECCENTRICITY_VALID
+    from stackup.film.cycle import NOT_A_NUMBER
+
+    light, crushing = (films(turning(size, 0.0), method) for size in (3e3, 3e7))  # a steady load, 3 kN and 30 MN
+    assert light.status[0, 0] == FILM_STATUS.index("quasi_static") and light.valid[0, 0]
+    assert crushing.h_min.min() < (1 - ECCENTRICITY_VALID) * C / 2  # the steady tier needs a film below the limit
+    assert crushing.status[0, 0] == FILM_STATUS.index("collapsed") and not crushing.valid[0, 0]
+    assert "collapsed" in NOT_A_NUMBER
