@@ -15,9 +15,10 @@ Film methods a study names (:data:`FILM_METHODS`):
   ``"reynolds-transient"`` reference, fed by the engine's groove or hole).
 
 With a dynamic tier the heat balance closes on the orbit's own friction power,
-side flow and feed flow (:func:`dynamic_heat_balance`): a secant iteration on coarse orbits
-(:data:`DYNAMIC_HEAT_STEP`) from the supply temperature finds the balanced temperature,
-and the orbit at full resolution runs at its viscosity.
+side flow and feed flow (:func:`dynamic_heat_balance`): the temperature rise of coarse
+orbits (:data:`DYNAMIC_HEAT_STEP`), fitted by an exponential in the temperature from the
+supply temperature on, gives the balanced temperature, and the orbit at full resolution
+runs at its viscosity.
 
 Journal tilt (``tilt``, the slope of the journal against the bearing over the
 cycle, :func:`stackup.crank.support_slopes`) gives the edge film: the
@@ -54,8 +55,8 @@ FILM_STATUS = (*ORBIT_STATUS, "quasi_static")
 #: at the eccentricity limit, or a quasi-static tier's steady film beyond it) or the solve failed. The film
 #: stage still returns the film where it was held; a study stores NaN for these bearings' films and lives.
 NOT_A_NUMBER = ("not_periodic", "collapsed", "failed")
-#: The dynamic heat balance stops when a secant step moves the temperature less than this [K]: g(T) is
-#: nearly linear, so the step's own error is a small fraction of it (hundredths of a kelvin).
+#: The dynamic heat balance stops when a step moves the temperature less than this [K]: the exponential rise
+#: fits the orbits' rise closely, so the step's own error is a small fraction of it (hundredths of a kelvin).
 HEAT_TOLERANCE = 0.5
 HEAT_ITERATIONS = 8
 
@@ -206,9 +207,24 @@ class DynamicHeat:
     start: np.ndarray  # (..., 2) journal centre at the first angle of the last coarse orbit [m]
 
 
-#: First secant step of the dynamic heat balance: dg/dT [-] (1.1-1.3 on the built-in engines' bearings: the
-#: rise falls as the oil thins); the secant replaces it from the second step on.
-SLOPE_GUESS = 1.2
+#: First step's guess of how fast the temperature rise falls with the temperature, per the oil's viscosity:
+#: d ln(rise)/dT = this times d ln(mu)/dT. Measured 1.17-1.41 on iso-example's bearings (friction power grows
+#: with the viscosity, the feed flow falls with it); the second orbit replaces it by the measured decay.
+RISE_DECAY_GUESS = 1.3
+
+
+def _balanced_rise(anchor_t, anchor_rise, decay, supply):
+    r"""Root of :math:`T - T_s = R_a e^{-k (T - T_a)}` [degC]: :math:`T = T_s + W(k A)/k`, :math:`A = R_a e^{-k (T_s - T_a)}`.
+
+    ``decay`` :math:`k \ge 0` [1/K]; :math:`k \to 0` gives the fixed-point step :math:`T_s + R_a`.
+    """
+    from scipy.special import lambertw
+
+    a = anchor_rise * np.exp(-decay * (supply - anchor_t))
+    small = decay * np.abs(a) < 1e-9
+    k = np.where(small, 1.0, decay)
+    x = np.where(small, a, np.real(lambertw(np.where(small, 0.0, k * a))) / k)
+    return supply + x
 
 
 def dynamic_heat_balance(loads, crank_angle, *, tier, diameter, length, clearance, speed, oil, supply_temperature,
@@ -217,14 +233,24 @@ def dynamic_heat_balance(loads, crank_angle, *, tier, diameter, length, clearanc
 
     The balance of :mod:`stackup.film.heat`,
 
-    .. math:: g(T) = T - T_{supply} - \tfrac12\,\frac{\bar N(T)}{\rho c_p\,(\bar Q_{side}(T) + \bar Q_{feed}(T))} = 0,
+    .. math:: T - T_{supply} = R(T) = \tfrac12\,\frac{\bar N(T)}{\rho c_p\,(\bar Q_{side}(T) + \bar Q_{feed}(T))},
 
     with the cycle means :math:`\bar N`, :math:`\bar Q_{side}` of the orbit
     (squeeze film included) and the feed flow at the orbit's journal positions,
-    solved by the secant method from the supply temperature (first slope
-    :data:`SLOPE_GUESS`) on orbits of every ``stride``-th crank angle, until the
-    temperature moves less than :data:`HEAT_TOLERANCE`. :math:`g` is nearly
-    linear in :math:`T`: two or three orbits per bearing.
+    on orbits of every ``stride``-th crank angle. The rise :math:`R` falls
+    nearly exponentially with the temperature (friction power with the
+    viscosity, the feed flow against it, the Vogel viscosity exponential):
+    through the last two orbits' rises,
+
+    .. math:: R(T) = R_b\,e^{-k (T - T_b)}, \qquad k = \ln(R_a/R_b)/(T_b - T_a),
+
+    and the balance is :math:`T = T_s + W(kA)/k`, :math:`A = R_b e^{-k(T_s - T_b)}`
+    (:math:`W` Lambert's function). The first orbit runs at the supply
+    temperature, the second at the root with :math:`k` guessed from the
+    viscosity (:data:`RISE_DECAY_GUESS`); the iteration stops when the root
+    moves less than :data:`HEAT_TOLERANCE`: two orbits per bearing on the
+    built-in engines (a linear secant on :math:`T - T_s - R` needs three for
+    the same temperature; ``reports/bench_chain.md``).
 
     Parameters
     ----------
@@ -253,41 +279,45 @@ def dynamic_heat_balance(loads, crank_angle, *, tier, diameter, length, clearanc
                              supply=supply_temperature).items()}
     shear_rate = each["speed"] * each["diameter"] / each["clearance"]
 
+    # the first orbit starts at the bearing centre with whole-angle steps (on a coarse grid the cold start's
+    # laps at two angles per step cost more than they save); each later one where the last one began
     start = np.zeros((flat.shape[0], 2))
 
-    def g(t, rows, warm=True):
+    def rise(t, rows):
         mu = oil.viscosity(t, shear_rate=shear_rate[rows])
         geo = {k: each[k][rows] for k in ("diameter", "length", "clearance", "speed")}
-        # each orbit starts where the last one began: it is near the periodic orbit, so no coarse laps
-        film = orbit(flat[rows], coarse_angle, **geo, viscosity=mu, method=tier, start=start[rows] if warm else None,
-                     **options)
+        film = orbit(flat[rows], coarse_angle, **geo, viscosity=mu, method=tier, start=start[rows], **options)
         start[rows] = film.position[:, 0]
         fed = _feed_flow(film, feed, geo["clearance"], mu, geo["diameter"], geo["length"])
-        rise = TEMPERATURE_SHARE * film.friction_power_mean / (oil.density(t) * oils.SPECIFIC_HEAT
+        return TEMPERATURE_SHARE * film.friction_power_mean / (oil.density(t) * oils.SPECIFIC_HEAT
                                                                * (film.side_flow_mean + fed))
-        return t - each["supply"][rows] - rise
 
     n = flat.shape[0]
-    everyone = np.arange(n)
-    t0 = each["supply"].copy()
-    g0 = g(t0, everyone, warm=False)
-    t1 = np.clip(t0 - g0 / SLOPE_GUESS, each["supply"], TEMPERATURE_LIMIT)
-    g1 = np.full(n, np.nan)
+    supply = each["supply"]
+    t_a = supply.copy()
+    r_a = rise(t_a, np.arange(n))
+    viscosity_decay = np.log(oil.viscosity(supply, shear_rate=shear_rate)
+                             / oil.viscosity(supply + 1.0, shear_rate=shear_rate))
+    t_b = np.clip(_balanced_rise(t_a, r_a, RISE_DECAY_GUESS * viscosity_decay, supply), supply, TEMPERATURE_LIMIT)
+    r_b = r_a.copy()
     done = np.zeros(n, bool)
     evaluations = 1
     while not done.all() and evaluations < HEAT_ITERATIONS:
         rows = np.flatnonzero(~done)
-        g1[rows] = g(t1[rows], rows)
+        r_b[rows] = rise(t_b[rows], rows)
         evaluations += 1
-        dt = t1[rows] - t0[rows]
-        slope = np.where(np.abs(dt) > 1e-9, (g1[rows] - g0[rows]) / np.where(dt != 0, dt, 1.0), SLOPE_GUESS)
-        slope = np.where(slope > 0.1, slope, SLOPE_GUESS)  # g rises with T; a flat or falling secant: first slope
-        t2 = np.clip(t1[rows] - g1[rows] / slope, each["supply"][rows], TEMPERATURE_LIMIT)
-        t0[rows], g0[rows] = t1[rows], g1[rows]
-        done[rows] = np.abs(t2 - t1[rows]) < HEAT_TOLERANCE
-        t1[rows] = t2
+        dt = t_b[rows] - t_a[rows]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            decay = np.log(r_a[rows] / r_b[rows]) / dt
+        # a rise that does not fall (or an orbit without friction) gives no decay: a fixed-point step
+        decay = np.where(np.isfinite(decay) & (decay > 0) & (np.abs(dt) > 1e-9), decay, 0.0)
+        t_c = np.clip(_balanced_rise(t_b[rows], r_b[rows], decay, supply[rows]), supply[rows], TEMPERATURE_LIMIT)
+        t_a[rows], r_a[rows] = t_b[rows], r_b[rows]
+        done[rows] = np.abs(t_c - t_b[rows]) < HEAT_TOLERANCE
+        t_b[rows] = t_c
+    residual = t_a - supply - r_a  # g at the last temperature evaluated
     status = np.where(done, HEAT_STATUS.index("balanced"), HEAT_STATUS.index("not_converged"))
-    status = np.where((t1 >= TEMPERATURE_LIMIT) & (g0 < 0), HEAT_STATUS.index("no_balance_below_limit"), status)
-    mu = oil.viscosity(t1, shear_rate=shear_rate)
-    return DynamicHeat(t1.reshape(lead), mu.reshape(lead), g0.reshape(lead), status.astype(np.int8).reshape(lead),
-                       evaluations, start.reshape(*lead, 2))
+    status = np.where((t_b >= TEMPERATURE_LIMIT) & (residual < 0), HEAT_STATUS.index("no_balance_below_limit"), status)
+    mu = oil.viscosity(t_b, shear_rate=shear_rate)
+    return DynamicHeat(t_b.reshape(lead), mu.reshape(lead), residual.reshape(lead),
+                       status.astype(np.int8).reshape(lead), evaluations, start.reshape(*lead, 2))
