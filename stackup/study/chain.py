@@ -291,7 +291,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                       clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
     # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
     # journals bend the beam; the line-bored bores stay parallel to the line)
-    tilt = support_slopes(spec.pin_loads(crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
+    tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
     films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
                           journal_d=journal_d, method=film_method, tilt=tilt)
     wear = engine.wear
@@ -344,6 +344,24 @@ def _not_a_number(values, valid):
         v = np.asarray(out[name], dtype=float)
         out[name] = np.where(lost.reshape(lost.shape + (1,) * (v.ndim - lost.ndim)), np.nan, v)
     return out
+
+
+#: Crank-pin loads of the last engines and grids the chain saw: (spec, crank angles, loads).
+_PINS = []
+
+
+def _pin_loads(spec, crank_angle):
+    """``spec.pin_loads(crank_angle)``, kept for the next batch: every batch of a study asks for the same loads.
+
+    The slider-crank and cylinder-pressure model costs as much as half the crankshaft stage on one engine.
+    """
+    for known, angle, loads in _PINS:
+        if known is spec and np.array_equal(angle, crank_angle):
+            return loads
+    loads = spec.pin_loads(crank_angle)
+    loads.setflags(write=False)
+    _PINS[:] = [*_PINS[-3:], (spec, np.array(crank_angle, copy=True), loads)]
+    return loads
 
 
 def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):
