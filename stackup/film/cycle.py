@@ -202,7 +202,7 @@ class DynamicHeat:
     viscosity: np.ndarray  # [Pa s]
     residual: np.ndarray  # T - T_supply - rise of the orbit at the temperature [K]
     status: np.ndarray  # int8 index into stackup.film.heat.STATUS
-    orbits: int  # orbits run per bearing that needed the most (coarse and full)
+    orbits: np.ndarray  # int: orbits run for each bearing (the coarse one and the full ones)
 
 
 #: First step's guess of how fast the temperature rise falls with the temperature, per the oil's viscosity:
@@ -315,9 +315,9 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     film, fed, r_b = run(t_b, slice(None), coarse.position[:, 0])
     fields = {name: np.array(getattr(film, name)) for name in film.__dataclass_fields__}
     residual = t_b - supply - r_b
-    orbits = 2
+    orbits = np.full(n, 2)
     done = np.abs(residual) < tolerance
-    while not done.all() and orbits < HEAT_ITERATIONS:
+    while not done.all() and orbits.max() < HEAT_ITERATIONS:
         rows = np.flatnonzero(~done)
         dt = t_b[rows] - t_a[rows]
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -326,7 +326,7 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         k = np.where(np.isfinite(k) & (k > 0) & (np.abs(dt) > 1e-9), k, 0.0)
         t_c = np.clip(_balanced_rise(t_b[rows], r_b[rows], k, supply[rows]), supply[rows], TEMPERATURE_LIMIT)
         again, fed_c, r_c = run(t_c, rows, fields["position"][rows, 0])
-        orbits += 1
+        orbits[rows] += 1
         for name in fields:
             if np.ndim(fields[name]):
                 fields[name][rows] = getattr(again, name)
@@ -341,5 +341,5 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     mu = viscosity  # of the last orbit of each bearing, at t_b
     shaped = {name: (v.reshape(*lead, *v.shape[1:]) if np.ndim(v) else v) for name, v in fields.items()}
     return (DynamicHeat(t_b.reshape(lead), mu.reshape(lead), residual.reshape(lead),
-                        status.astype(np.int8).reshape(lead), orbits),
+                        status.astype(np.int8).reshape(lead), orbits.reshape(lead)),
             type(film)(**shaped), fed.reshape(lead))

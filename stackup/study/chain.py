@@ -301,8 +301,9 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                             h_lim_cr=wear.critical_film, roughness=composite_roughness(wear.journal_rq, wear.shell_rq),
                             contact_modulus=contact_modulus(journal.modulus, journal.poisson, lining.modulus,
                                                             lining.poisson), wear_limit=wear.wear_limit)
-    life = levanov_method1(cycle_film(films.h_min, statistic=life_film), h_lim_cr=wear.critical_film,
-                           wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
+    h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
+    life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
+                           h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
     out = {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
             "crank_status": worst_status(r.status),
             "h_min": films.h_min.min(axis=-1),
@@ -313,7 +314,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,
             "law_fit_error": law_error,
-            "h_min_mean": cycle_film(films.h_min, statistic="cycle-mean"),
+            "h_min_mean": h_min_mean,
             "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
             "life": life.life,
             "life_wear_chart": chart.life,
