@@ -304,12 +304,12 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
     life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
                            h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
-    out = {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
+    out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
             "crank_status": worst_status(r.status),
             "h_min": films.h_min.min(axis=-1),
             "h_min_edge": films.h_min_edge.min(axis=-1),
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
-            "tilt_max": np.linalg.norm(tilt, axis=-1).max(axis=1),
+            "tilt_max": np.hypot(tilt[..., 0], tilt[..., 1]).max(axis=1),
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,
