@@ -7,6 +7,11 @@ intervals), shell stock (grades used, stock-outs, surplus) and, where
 scenario datasets are given, the worst-case degradation of each metric over
 them.
 
+Film and life metrics read the bearings whose film is a number: a bearing
+whose film collapsed, did not become periodic or failed is NaN in the dataset
+(``film_status`` says why), is left out of every metric and counted in
+``film_left_out``.
+
 Ranking rule (stated in the table's attrs): schemes are compared pairwise on
 the metrics in :data:`RULE`, in order; the first metric whose 95 % intervals
 do not overlap decides; if every metric's intervals overlap the two schemes
@@ -80,21 +85,28 @@ def _scheme_metrics(d, window, h_lim_cr, tail=None):
     }
     done = d.crank_status.values == flag(d.crank_status, "converged")
     if done.any() and "h_min" in d:
-        h = d.h_min.values[done].ravel()
-        a = d.alpha.values[done].ravel()
-        life = d.life.values[done].ravel() / 3600
+        # a bearing whose film is not a number (collapsed, not periodic, failed: NaN) is left out and counted
+        h, a, life = (_numbers(d[name].values[done]) for name in ("h_min", "alpha", "life"))
+        life = life / 3600
         below = proportion_ci(np.count_nonzero(h < h_lim_cr), h.size)
         scuff = proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size)
         b10 = quantile_ci(life, 0.10)
         median = quantile_ci(life, 0.5)
         row.update({
             "film_bearings": int(h.size),
+            "film_left_out": int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
             "h_min_below_critical_pct": 100 * below[0], "h_min_below_critical_pct_ci": (100 * below[1], 100 * below[2]),
             "alpha_over_limit_pct": 100 * scuff[0], "alpha_over_limit_pct_ci": (100 * scuff[1], 100 * scuff[2]),
             "life_b10_h": b10[0], "life_b10_h_ci": b10[1:],
             "life_median_h": median[0], "life_median_h_ci": median[1:],
         })
     return row
+
+
+def _numbers(values):
+    """The values that are numbers (NaN left out), flat."""
+    values = np.asarray(values, dtype=float).ravel()
+    return values[~np.isnan(values)]
 
 
 def _beats(a, b):
