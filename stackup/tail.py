@@ -189,7 +189,8 @@ def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_
         levels, last, spent = _subset_levels(margin, dim, rng, n_level=pilot, p0=elite, max_levels=max_levels)
         # chain steps per level: about as many bearings at every level as roots above the first
         splits = [int(round(1 / elite))] * (len(levels) - 1) + [max(1, int(round(1 / last)))] * bool(levels)
-        return _splitting(margin, dim, rng, n_roots=n_level, levels=levels, splits=splits, spent=spent, p0=elite)
+        return _splitting(margin, dim, rng, n_roots=n_level, levels=levels, splits=splits, spent=spent, p0=elite,
+                          reached=len(levels) < max_levels)
     return _cross_entropy(margin, dim, rng, n=n, n_level=n_level, elite=elite, defensive=defensive,
                           max_levels=max_levels)
 
@@ -260,8 +261,8 @@ def _estimate(values, bearings, effective, levels):
     share = float(values.mean())
     se = float(values.std(ddof=1) / np.sqrt(values.size))
     interval = share_interval(share, se)
-    if share == 0.0:  # nothing reached the tail: the rule of three at the run's resolution
-        interval = (0.0, 3.0 * float(np.max(values, initial=0.0) or 1.0) / values.size)
+    if share == 0.0:  # nothing reached the tail: the rule of three, as if the run were plain Monte Carlo
+        interval = (0.0, 3.0 / values.size)
     return TailEstimate(share, se, interval, int(bearings), float(effective), levels)
 
 
@@ -279,9 +280,10 @@ def _subset_levels(score, dim, rng, *, n_level, p0, max_levels):
     Level 0 is plain Monte Carlo; each level keeps the ``p0`` share of its
     bearings deepest towards the tail and grows Markov chains from them that
     stay above that level's threshold, until the threshold passes 0. Returns
-    the thresholds below 0, the share of the last level's bearings in the
-    tail and the evaluations (Au and Beck 2001; conditional sampling as in
-    Papaioannou et al. 2015).
+    the thresholds below 0 (``max_levels`` of them where the tail lies
+    deeper), the share of the last level's bearings in the tail and the
+    evaluations (Au and Beck 2001; conditional sampling as in Papaioannou et
+    al. 2015).
     """
     n_seeds = max(1, int(round(p0 * n_level)))
     steps = max(1, n_level // n_seeds)
@@ -305,7 +307,7 @@ def _subset_levels(score, dim, rng, *, n_level, p0, max_levels):
     return levels, max(float(np.mean(s > 0.0)), p0), spent
 
 
-def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0):
+def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0, reached=True):
     """Generalized splitting on fixed ``levels`` (< 0, increasing) with ``splits`` chain steps per level.
 
     Each root's bearings descend from it alone, so the roots' counts in the
@@ -314,6 +316,11 @@ def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0):
     (``n_roots * p0``; the pilot's levels are estimates) each is kept with
     probability :math:`q` and weighs :math:`1/q` from then on (Russian
     roulette: unbiased, and the cost stays bounded). Tail: margin > 0.
+
+    Where no bearing reaches the tail (or the pilot did not, ``reached``
+    False: the last level is then the deepest place sampled), the share is 0
+    and its upper bound is that of the deepest level reached, whose share
+    the same roots estimate: the tail lies inside every level.
     """
     z = rng.standard_normal((n_roots, dim))
     s = score(z)
@@ -321,11 +328,14 @@ def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0):
     if not levels:  # the pilot found the tail beyond its first quantile: plain Monte Carlo
         hit = (s > 0.0).astype(float)
         return _estimate(hit, spent, float(hit.sum()), 0)
-    alive = s >= levels[0]
+    bounds = [*levels, 0.0] if reached else list(levels)
+    alive = s >= bounds[0]
     state, state_s, root = z[alive], s[alive], np.flatnonzero(alive)
-    weight = np.ones(root.size)
-    bounds, expected = [*levels, 0.0], max(1.0, n_roots * p0)
-    for t in range(len(levels)):
+    weight, scale = np.ones(root.size), 1.0
+    # each level's share as the roots' mean count of bearings arriving there
+    arrived = [np.bincount(root, minlength=n_roots).astype(float)]
+    expected = max(1.0, n_roots * p0)
+    for t in range(len(bounds) - 1):
         if root.size > 2 * expected:
             q = expected / root.size
             kept = rng.random(root.size) < q
@@ -336,13 +346,19 @@ def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0):
                 break
             state, state_s = _move(score, state, state_s, bounds[t], rng)
             spent += root.size
-            beyond = state_s > 0.0 if t == len(levels) - 1 else state_s >= bounds[t + 1]
+            beyond = state_s > 0.0 if bounds[t + 1] == 0.0 else state_s >= bounds[t + 1]
             found.append((state[beyond], state_s[beyond], root[beyond], weight[beyond]))
+        scale *= splits[t]
         if not found:
             break
         state, state_s, root, weight = (np.concatenate(parts) for parts in zip(*found))
-    counts = np.bincount(root, weights=weight, minlength=n_roots) / float(np.prod(splits))
-    return _estimate(counts, spent, float(np.count_nonzero(counts)), len(levels))
+        arrived.append(np.bincount(root, weights=weight, minlength=n_roots) / scale)
+    if reached and len(arrived) == len(bounds) and arrived[-1].any():
+        return _estimate(arrived[-1], spent, float(np.count_nonzero(arrived[-1])), len(levels))
+    deepest = next(a for a in reversed(arrived) if a.any()) if any(a.any() for a in arrived) else None
+    upper = (share_interval(deepest.mean(), deepest.std(ddof=1) / np.sqrt(n_roots))[1] if deepest is not None
+             else 3.0 / n_roots)
+    return TailEstimate(0.0, float("nan"), (0.0, float(upper)), int(spent), 0.0, len(levels))
 
 
 def _cross_entropy(score, dim, rng, *, n, n_level, elite, defensive, max_levels):
