@@ -22,7 +22,7 @@ SCENARIO_MECHANICS_ENGINES = 50
 #: needs the cycle's shape, not its last tenth of a micrometre.
 SOBOL_CRANK_ANGLE_STEP = 4.0
 #: Root bearings of each tail estimate (:func:`stackup.tail.clearance_tail`'s ``n_level``).
-TAIL_ROOTS = 1_000
+TAIL_ROOTS = 2_000
 
 
 @dataclass(frozen=True)
