@@ -71,6 +71,7 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from scipy import special, stats
 
@@ -181,6 +182,18 @@ def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_
     defensive = float(check.in_range("defensive", defensive, 0.0, 1.0, lo_open=True))
     max_levels = check.integer("max_levels", max_levels, minimum=1)
     rng = as_generator(np.random.SeedSequence(seed).spawn(1)[0])
+    threads = numba.get_num_threads()
+    # the chains evaluate a few hundred bearings per call, where starting the kernels' threads costs more
+    # than it saves (half the time on two cores)
+    numba.set_num_threads(1)
+    try:
+        return _estimator(margin, dim, rng, method=method, n=n, n_level=n_level, elite=elite, defensive=defensive,
+                          max_levels=max_levels)
+    finally:
+        numba.set_num_threads(threads)
+
+
+def _estimator(margin, dim, rng, *, method, n, n_level, elite, defensive, max_levels):
     if method == "mc":
         hit = (margin(rng.standard_normal((n, dim))) > 0).astype(float)
         return _estimate(hit, n, float(hit.sum()), 0)
