@@ -28,7 +28,7 @@ import pandas as pd
 
 from .assembly import ASSEMBLED, SHELL_STOCKOUT
 from .life import ALPHA_SCUFFING
-from .stats import Z95, proportion_ci, quantile_ci
+from .stats import proportion_ci, quantile_ci
 from .study.schema import flag
 
 #: (column, better) in order of precedence: share outside the clearance window,
@@ -51,19 +51,26 @@ def _clearance_metrics(d, window):
 
 #: Fewest bearings counted outside the window for the count to decide; below it a tail estimate does, if given.
 MIN_COUNTED = 20
+#: ``outside_window_source`` of a share the ranking took from the tail estimates.
+TAIL_SOURCE = "generalized splitting"
 
 
 def _outside(counted, assembled, tail):
-    """Share outside the window [ppm] with its 95 % interval and where it comes from."""
+    """Share outside the window [ppm] with its 95 % interval and where it comes from.
+
+    From the tail estimates (both edges: independent runs, so shares add and
+    variances add) where the study counted fewer than :data:`MIN_COUNTED`,
+    with the interval of the equivalent count (:func:`stackup.tail.share_interval`);
+    an edge whose estimate found no bearing adds its upper bound.
+    """
     if counted < MIN_COUNTED and tail is not None and np.all(np.isfinite(tail.tail_share.values)):
-        share = float(tail.tail_share.sum())
-        se = tail.tail_standard_error.values
-        if np.all(np.isfinite(se)):
-            half = Z95 * float(np.hypot(*se))
-            return share * 1e6, (max(share - half, 0.0) * 1e6, (share + half) * 1e6), "subset simulation"
-        # a side no sample reached: its upper bound; the bounds add
-        bounds = tail.tail_interval.values.sum(axis=0)
-        return share * 1e6, (bounds[0] * 1e6, bounds[1] * 1e6), "subset simulation"
+        from .tail import share_interval
+
+        shares, errors = tail.tail_share.values, tail.tail_standard_error.values
+        share = float(shares.sum())
+        lo, hi = share_interval(share, float(np.hypot(*np.where(shares > 0, errors, 0.0))))
+        hi = (0.0 if share == 0 else hi) + float(tail.tail_interval.values[shares == 0, 1].sum())
+        return share * 1e6, (lo * 1e6, hi * 1e6), TAIL_SOURCE
     share, lo, hi = proportion_ci(counted, assembled)
     return share * 1e6, (lo * 1e6, hi * 1e6), "counted"
 
@@ -131,6 +138,12 @@ def _counted_window(ds):
     if not bool((window == first).all()):
         raise ValueError("clearance_window: the schemes of this dataset were counted against different windows")
     return tuple(float(v) for v in first.values)
+
+
+def counted_outside(ds):
+    """Bearings the study counted outside its design window, per scheme: ``{scheme: count}``."""
+    window = _counted_window(ds)
+    return {str(s): int(_clearance_metrics(ds.sel(scheme=s), window)[3]) for s in ds.scheme.values}
 
 
 def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):

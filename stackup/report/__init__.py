@@ -228,8 +228,9 @@ def _ranking_section(ds, ranking, scenarios):
     notes = []
     if (ranking.outside_window_source != "counted").any():
         notes.append(f"† Fewer than {MIN_COUNTED} bearings of the study fell outside the window, too few for a tight "
-                     "interval: the share is estimated by subset simulation through the same assembly chain "
-                     "(`stackup.tail`; bins never run short there), with its stated standard error; the study "
+                     "interval: the share is estimated by generalized splitting through the same assembly chain "
+                     "(`stackup.tail`; bins never run short there), its 95 % interval from the spread of the "
+                     "estimate's independent root bearings, as wide as the equivalent count; the study "
                      "counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
                      + ".")
     return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
