@@ -195,7 +195,9 @@ def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, 
     """
     rp = math.hypot(x0 + e0, x1 + e1)
     rm = math.hypot(x0 - e0, x1 - e1)
-    if rp >= rm:
+    # the thinner edge; a tie decided by the edges' positions alone, so the tilt reversed (the edges swapped) gives
+    # the same nodes
+    if rp > rm or rp == rm and (x0 + e0, x1 + e1) >= (x0 - e0, x1 - e1):
         r, c0, c1 = rp, x0 + e0, x1 + e1
     else:
         r, c0, c1 = rm, x0 - e0, x1 - e1

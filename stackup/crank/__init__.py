@@ -220,7 +220,7 @@ def support_slopes(pin_loads, displacements, *, spans, EI, load_positions=None):
 
 
 def support_compliance(*, spans, EI, load_positions=None, coupled=False):  # noqa: N803
-    """Rotational compliance of the crankshaft at its main bearings [rad/(N m)].
+    r"""Rotational compliance of the crankshaft at its main bearings [rad/(N m)].
 
     The slope a unit moment applied at a support gives there, per bending plane,
     with every support deflection held (the bearings carry the journal's

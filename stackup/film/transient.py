@@ -380,22 +380,26 @@ def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p
     def free_solve(j):
         x, h, j = _force_balance(residual, start, j, limit, tolerance)
         reach = max(np.hypot(*(x[:2] + x[2:])), np.hypot(*(x[:2] - x[2:])))
-        return (x, h, j) if reach <= limit * (1 + 1e-9) else None
+        return (x, h, j), reach <= limit * (1 + 1e-9)
 
     def held_solve(j):
         x, h, j = _force_balance(lambda y: residual(y, held=True), start, j, limit, tolerance)
         balance = x[2:] + kappa * film.moment(p) - free
-        return (x, h, j) if balance @ _wall_normal(x[:2], x[2:]) <= 0.0 else None
+        return (x, h, j), balance @ _wall_normal(x[:2], x[2:]) <= 0.0
 
     order = ((held_solve, True), (free_solve, False)) if held else ((free_solve, False), (held_solve, True))
+    found = []
     for attempt, mode in order:
         try:
-            result = attempt(jac if mode == held else None)
+            result, consistent = attempt(jac if mode == held else None)
         except (RuntimeError, np.linalg.LinAlgError):
-            result = None
-        if result is not None:
-            x, h, j = result
-            return x, h, j, mode
+            continue
+        if consistent:
+            return (*result, mode)
+        found.append((result, mode))
+    # at the switch both can be marginally inconsistent: the edge then sits at the limit either way
+    for result, mode in sorted(found, key=lambda item: not item[1]):
+        return (*result, mode)
     raise RuntimeError("tilt balance: neither free nor held at the limit")
 
 
