@@ -41,13 +41,17 @@ K4_SERIES = tuple([(2 * m + 1) * (2 * m + 2) / (2 * m + 5) for m in range(9)])
 #: Largest angle the tilt may move a boundary of the pressure-carrying arc from the untilted one [rad].
 CUT_SHIFT = 1.0
 #: Secant steps that place a boundary of that arc.
-CUT_STEPS = 6
+CUT_STEPS = 3
 #: Lines away from that arc count where P_0 > 0, fully once P_0 exceeds this share of |P_0| + |P_1| (a ramp
 #: keeps the moment continuous where a line turns wet).
 WET_RAMP = 0.1
 #: Tilt equilibrium: Newton steps per crank angle, halvings of a step.
-MAX_STEPS = 30
-MAX_HALVINGS = 12
+MAX_STEPS = 8
+#: Newton steps from the free tilt, where the continuation did not settle.
+MAX_COLD_STEPS = 40
+#: An angle whose Newton does not settle within this many thinnest films (1 - limit) of the wall is at the limit.
+NEAR_WALL = 2.0
+MAX_HALVINGS = 5
 #: Equilibrium states per angle.
 EQUILIBRIUM, AT_LIMIT, NOT_SOLVED = 0, 1, 2
 
@@ -273,11 +277,12 @@ def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, 
 
 
 @njit(cache=True)
-def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights,
-                nodes_dry, weights_dry, cap):
+def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, ratio, ct, st, limit, tolerance, nodes,
+                weights, nodes_dry, weights_dry, cap, steps=MAX_STEPS):
     """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``.
 
-    Damped Newton from the guess (g0, g1) with the Jacobian ``jac`` (2, 2), in and
+    Damped Newton from the guess (g0, g1) (moved onto the wall along its direction
+    where ``on_wall`` and beyond it, else inside) with the Jacobian ``jac`` (2, 2), in and
     out: Broyden's update after each step, differences where ``fresh`` is False
     (no usable Jacobian yet) or a step fails. A step that would take an edge
     past the limit stops there; where the root lies beyond it the iterates stay
@@ -287,11 +292,12 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, jac, fresh, ratio, ct, s
     """
     if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
         return 0.0, 0.0, (EQUILIBRIUM if f0 == 0.0 and f1 == 0.0 else AT_LIMIT), 0
-    # the guess inside the lens (towards the aligned journal)
+    # the guess inside the lens (towards the aligned journal), on the wall if it was there at the last angle
     room = _room(x0, x1, 0.0, 0.0, g0, g1, limit)
-    if room < 1.0:
-        g0 *= 0.99 * room
-        g1 *= 0.99 * room
+    if room < 1.0 or on_wall:
+        share = min(room, 1.0) if on_wall else 0.99 * room
+        g0 *= share
+        g1 *= share
     e0, e1 = g0, g1
     r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap)
     evaluations = 1
@@ -300,7 +306,7 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, jac, fresh, ratio, ct, s
                                             nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
         fresh = True
     differenced = fresh and evaluations > 1
-    for _ in range(MAX_STEPS):
+    for _ in range(steps):
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if det == 0.0 or not math.isfinite(det):
             evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
@@ -349,13 +355,22 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, jac, fresh, ratio, ct, s
                                                 nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
             differenced = True
         else:
-            return e0, e1, NOT_SOLVED, evaluations
+            break
+    return _unsettled(x0, x1, e0, e1, limit, evaluations)
+
+
+@njit(cache=True, inline="always")
+def _unsettled(x0, x1, e0, e1, limit, evaluations):
+    """A Newton that did not settle: at the limit (moved onto the wall along e) if it ended near it, else NOT_SOLVED."""
+    if _edge(x0, x1, e0, e1) <= (1.0 + NEAR_WALL) * (1.0 - limit):
+        room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
+        return e0 * room, e1 * room, AT_LIMIT, evaluations
     return e0, e1, NOT_SOLVED, evaluations
 
 
 @njit(cache=True)
-def _solve_at(b, k, g0, g1, xi, v, free, kappa, limit, tolerance, table, stretched, finite, nodes, weights, nodes_dry,
-              weights_dry, cap, jac, fresh, tilt, state):
+def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table, stretched, finite, nodes, weights,
+              nodes_dry, weights_dry, cap, jac, fresh, tilt, state):
     """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes tilt and state. Returns (evaluations, fresh)."""
     f0 = free[b, k, 0]
     f1 = free[b, k, 1]
@@ -374,8 +389,14 @@ def _solve_at(b, k, g0, g1, xi, v, free, kappa, limit, tolerance, table, stretch
         ratio = math.exp(log_ratio)
         ct = math.cos(turn)
         st = math.sin(turn)
-    e0, e1, s, used = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], g0, g1, jac,
-                                  fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry, cap)
+    e0, e1, s, used = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], g0, g1, on_wall,
+                                  jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry,
+                                  cap)
+    if s == NOT_SOLVED:  # start again from the free tilt, with a fresh Jacobian and more steps
+        e0, e1, s, more = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], f0, f1, False,
+                                      jac, False, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
+                                      weights_dry, cap, MAX_COLD_STEPS)
+        used += more
     tilt[b, k, 0] = e0
     tilt[b, k, 1] = e1
     state[b, k] = s
@@ -383,22 +404,21 @@ def _solve_at(b, k, g0, g1, xi, v, free, kappa, limit, tolerance, table, stretch
 
 
 @njit(cache=True, parallel=True)
-def equilibria(xi, v, free, kappa, limit, tolerance, stride, refine, tables, ld_nodes, stretched, ld, finite, nodes,
+def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, tables, ld_nodes, stretched, ld, finite, nodes,
                weights, nodes_dry, weights_dry, cap, tilt, state, evaluations):
-    """Tilt equilibrium over the cycle of many bearings (prange over bearings).
+    """Tilt equilibrium at every angle of many bearings (prange over bearings).
 
     xi, v (B, n, 2) the journal centre and squeeze velocity of each angle; free
     (B, n, 2) the free edge offset; kappa (B, 2) the dimensionless compliance
     per component. The short-bearing moment is scaled and turned by the finite
     tier's force correction at (|xi|, squeeze direction) where ``finite``.
 
-    Solved at every ``stride``-th angle, each from the last two solutions
-    extrapolated; then at every angle of an interval between them whose ends
-    differ in state or whose thinner edge film is within ``refine`` times the
-    thinnest of those solutions (the angles that set the cycle's edge film);
-    elsewhere the tilt is interpolated linearly (an interval between two
-    angles at the limit stays there). Writes tilt (B, n, 2), state (B, n) and
-    evaluations (B,): film moments computed.
+    The even angles are solved in turn, each from the last two solutions
+    extrapolated (on the wall where the last was at the limit) with the last
+    Jacobian; an odd angle between two of the same state whose edge offsets
+    differ by less than ``interpolate`` times their thinner edge film takes
+    their mean, the others are solved. Writes tilt (B, n, 2), state (B, n) and
+    evaluations (B, n): film moments computed at each angle.
     """
     n_b = xi.shape[0]
     n = xi.shape[1]
@@ -410,64 +430,43 @@ def equilibria(xi, v, free, kappa, limit, tolerance, stride, refine, tables, ld_
             table = tables[0]
         jac = np.eye(2)
         fresh = False
-        count = 0
-        # the coarse pass
         last = -1
         before = -1
-        for k in range(0, n, stride):
-            if last >= 0 and before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
-                u = (k - last) / (last - before)
-                g0 = tilt[b, last, 0] + u * (tilt[b, last, 0] - tilt[b, before, 0])
-                g1 = tilt[b, last, 1] + u * (tilt[b, last, 1] - tilt[b, before, 1])
+        for k in range(0, n, 2):
+            if before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
+                g0 = 2.0 * tilt[b, last, 0] - tilt[b, before, 0]
+                g1 = 2.0 * tilt[b, last, 1] - tilt[b, before, 1]
             elif last >= 0:
                 g0, g1 = tilt[b, last, 0], tilt[b, last, 1]
             else:
                 g0, g1 = free[b, k, 0], free[b, k, 1]
-            used, fresh = _solve_at(b, k, g0, g1, xi, v, free, kappa, limit, tolerance, table, stretched, finite,
-                                    nodes, weights, nodes_dry, weights_dry, cap, jac, fresh, tilt, state)
-            count += used
+            on_wall = last >= 0 and state[b, last] == AT_LIMIT
+            evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table,
+                                                 stretched, finite, nodes, weights, nodes_dry, weights_dry, cap, jac,
+                                                 fresh, tilt, state)
             before = last
             last = k
-        thinnest = 1.0
-        for k in range(0, n, stride):
-            thinnest = min(thinnest, _edge(xi[b, k, 0], xi[b, k, 1], tilt[b, k, 0], tilt[b, k, 1]))
-        # the intervals: solved where they matter, interpolated elsewhere
-        for k0 in range(0, n, stride):
-            k1 = k0 + stride
-            end = k1 if k1 < n else 0
-            if k1 > n:
-                k1 = n
-            if k1 - k0 < 2:
-                continue
-            s0 = state[b, k0]
-            s1 = state[b, end]
-            film = min(_edge(xi[b, k0, 0], xi[b, k0, 1], tilt[b, k0, 0], tilt[b, k0, 1]),
-                       _edge(xi[b, end, 0], xi[b, end, 1], tilt[b, end, 0], tilt[b, end, 1]))
-            both_at_limit = s0 == AT_LIMIT and s1 == AT_LIMIT
-            if s0 != s1 or s0 == NOT_SOLVED or (not both_at_limit and film <= refine * thinnest):
-                for k in range(k0 + 1, k1):
-                    if state[b, k - 1] == EQUILIBRIUM and k >= 2 and state[b, k - 2] == EQUILIBRIUM:
-                        g0 = 2.0 * tilt[b, k - 1, 0] - tilt[b, k - 2, 0]
-                        g1 = 2.0 * tilt[b, k - 1, 1] - tilt[b, k - 2, 1]
-                    else:
-                        g0, g1 = tilt[b, k - 1, 0], tilt[b, k - 1, 1]
-                    used, fresh = _solve_at(b, k, g0, g1, xi, v, free, kappa, limit, tolerance, table, stretched,
-                                            finite, nodes, weights, nodes_dry, weights_dry, cap, jac, fresh, tilt,
-                                            state)
-                    count += used
-            else:
-                for k in range(k0 + 1, k1):
-                    u = (k - k0) / (k1 - k0)
-                    e0 = (1.0 - u) * tilt[b, k0, 0] + u * tilt[b, end, 0]
-                    e1 = (1.0 - u) * tilt[b, k0, 1] + u * tilt[b, end, 1]
-                    x0 = xi[b, k, 0]
-                    x1 = xi[b, k, 1]
-                    state[b, k] = s0
-                    room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
-                    if room < 1.0:  # a wall between two walls: keep the interpolated tilt's direction, on the wall
-                        e0 *= room
-                        e1 *= room
-                        state[b, k] = AT_LIMIT
+        for k in range(1, n, 2):
+            kp = k - 1
+            kn = k + 1 if k + 1 < n else 0
+            evaluations[b, k] = 0
+            if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
+                gap = math.hypot(tilt[b, kn, 0] - tilt[b, kp, 0], tilt[b, kn, 1] - tilt[b, kp, 1])
+                film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
+                           _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
+                e0 = 0.5 * (tilt[b, kp, 0] + tilt[b, kn, 0])
+                e1 = 0.5 * (tilt[b, kp, 1] + tilt[b, kn, 1])
+                if gap <= interpolate * film:
+                    room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
+                    if state[b, kp] == AT_LIMIT or room < 1.0:  # on the wall, as its neighbours
+                        e0 *= min(room, 1.0)
+                        e1 *= min(room, 1.0)
                     tilt[b, k, 0] = e0
                     tilt[b, k, 1] = e1
-        evaluations[b] = count
+                    state[b, k] = state[b, kp]
+                    continue
+            else:
+                e0, e1 = tilt[b, kp, 0], tilt[b, kp, 1]
+            evaluations[b, k], fresh = _solve_at(b, k, e0, e1, state[b, kp] == AT_LIMIT, xi, v, free, kappa, limit,
+                                                 tolerance, table, stretched, finite, nodes, weights, nodes_dry,
+                                                 weights_dry, cap, jac, fresh, tilt, state)

@@ -68,16 +68,17 @@ from .._kernels import tilt as _kernel
 #: States of the tilt equilibrium at an angle (flag values 0..2).
 STATES = ("equilibrium", "at_limit", "not_solved")
 #: Gauss-Legendre nodes on the arc that carries pressure and on the rest of the bearing.
-GAUSS_NODES = 12
-DRY_NODES = 6
+GAUSS_NODES = 10
+DRY_NODES = 4
 #: Largest eccentricity of the thinnest edge Sommerfeld's angle clusters the nodes for.
 STRETCH_CAP = 0.95
 #: The equilibrium stops when the Newton step is below this share of the edge film.
-TOLERANCE = 1e-3
-#: Angles between the equilibria solved over the whole cycle, and the share of the cycle's thinnest edge film
-#: below which every angle between them is solved (elsewhere the tilt is interpolated).
-STRIDE = 4
-REFINE = 2.0
+TOLERANCE = 1e-2
+#: An odd crank angle takes the mean tilt of its neighbours (solved) where they are in the same state and their
+#: edge offsets differ by less than this share of their thinner edge film (the mean is then within about a
+#: quarter of that of the solution): a quarter of the cost, the edge film within 0.02 um (99 %, at most 0.3 um)
+#: of every angle solved on iso-example's main bearings.
+INTERPOLATE = 0.1
 METHODS = ("short", "finite")
 
 
@@ -255,8 +256,8 @@ class TiltEquilibrium:
         Slope of the journal against the bearing axis in the film [rad].
     state : numpy.ndarray of int8 (..., angles)
         Index into :data:`STATES`.
-    evaluations : numpy.ndarray of int (...)
-        Film moments computed (the cost).
+    evaluations : numpy.ndarray of int (..., angles)
+        Film moments computed at each angle (the cost).
     """
 
     tilt: np.ndarray
@@ -265,7 +266,7 @@ class TiltEquilibrium:
 
 
 def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, length, radial_clearance, viscosity,
-               speed, method="short", stride=STRIDE, refine=REFINE):
+               speed, method="short"):
     r"""The journal's tilt in its film at every angle of a cycle: :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M`.
 
     Parameters
@@ -281,10 +282,6 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
         As :func:`film_moment`.
     method : {"short", "finite"}
         Film moment of :func:`film_moment`.
-    stride, refine :
-        Angles between the equilibria solved over the whole cycle, and the share of
-        its thinnest edge film below which every angle between them is solved
-        (:data:`STRIDE`, :data:`REFINE`; ``stride=1`` solves every angle).
 
     Returns
     -------
@@ -304,8 +301,6 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     r, l, c, mu, w = (np.broadcast_to(check.positive(name, value), lead) for name, value in (
         ("radius", radius), ("length", length), ("radial_clearance", radial_clearance), ("viscosity", viscosity),
         ("speed", speed)))
-    stride = check.integer("stride", stride, minimum=1)
-    refine = float(check.positive("refine", refine))
     xi = np.ascontiguousarray((x / c[..., None, None]).reshape(-1, n, 2))
     v = np.ascontiguousarray((vs / (c * w)[..., None, None]).reshape(-1, n, 2))
     e_free = np.ascontiguousarray((free * (l / (2 * c))[..., None, None]).reshape(-1, n, 2))
@@ -321,10 +316,10 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
         ld = np.ones(xi.shape[0])
     tilt = np.empty(xi.shape)
     state = np.empty(xi.shape[:2], np.int8)
-    evaluations = np.empty(xi.shape[0], np.int64)
+    evaluations = np.empty(xi.shape[:2], np.int64)
     nodes, weights, dry_nodes, dry_weights = _quadrature()
-    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, stride, refine, tables, ld_nodes,
+    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, tables, ld_nodes,
                        stretched, np.ascontiguousarray(ld, dtype=float), method == "finite", nodes, weights, dry_nodes,
                        dry_weights, STRETCH_CAP, tilt, state, evaluations)
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
-    return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(lead))
+    return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))

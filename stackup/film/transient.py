@@ -229,7 +229,7 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         # an edge past the limit sits on the film the tiers hold there: no film holds the journal
         half = 0.5 * length[..., None, None] * film_tilt
         reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
-        tilt_state = np.where(reach >= radial_clearance[..., None] * ECCENTRICITY_LIMIT, STATES.index("at_limit"),
+        tilt_state = np.where(reach >= radial_clearance[..., None] * ECCENTRICITY_LIMIT * (1 - 1e-6), STATES.index("at_limit"),
                               STATES.index("equilibrium")).astype(np.int8)
     h_edge, status = edge_film(position, film_tilt, length, radial_clearance, h_min, status, at_limit=tilt_state)
     return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
