@@ -41,7 +41,7 @@ K4_SERIES = tuple([(2 * m + 1) * (2 * m + 2) / (2 * m + 5) for m in range(9)])
 #: Largest angle the tilt may move a boundary of the pressure-carrying arc from the untilted one [rad].
 CUT_SHIFT = 1.0
 #: Secant steps that place a boundary of that arc.
-CUT_STEPS = 3
+CUT_STEPS = 4
 #: Lines away from that arc count where P_0 > 0, fully once P_0 exceeds this share of |P_0| + |P_1| (a ramp
 #: keeps the moment continuous where a line turns wet).
 WET_RAMP = 0.1

@@ -68,8 +68,8 @@ from .._kernels import tilt as _kernel
 #: States of the tilt equilibrium at an angle (flag values 0..2).
 STATES = ("equilibrium", "at_limit", "not_solved")
 #: Gauss-Legendre nodes on the arc that carries pressure and on the rest of the bearing.
-GAUSS_NODES = 10
-DRY_NODES = 4
+GAUSS_NODES = 12
+DRY_NODES = 6
 #: Largest eccentricity of the thinnest edge Sommerfeld's angle clusters the nodes for.
 STRETCH_CAP = 0.95
 #: The equilibrium stops when the Newton step is below this share of the edge film.
