@@ -103,6 +103,8 @@ class BearingFilms:
         Cycle means [W], [m^3/s], [m^3/s].
     heat_status : numpy.ndarray of int8
         Index into :data:`stackup.film.heat.STATUS`.
+    tilt_max : numpy.ndarray
+        Cycle maximum of the journal's tilt in the film [rad] (0 without tilt).
     """
 
     h_min: np.ndarray
@@ -116,9 +118,11 @@ class BearingFilms:
     oil_flow: np.ndarray
     feed_flow: np.ndarray
     heat_status: np.ndarray
+    tilt_max: np.ndarray | None = None
 
 
-def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None):
+def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None,
+                  tilt_compliance=None):
     """Film over the cycle for bearings with given reaction histories.
 
     Parameters
@@ -137,6 +141,10 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         One of :data:`FILM_METHODS`.
     tilt : array_like (engines, angles, bearings, 2), optional
         Slope of the journal against the bearing axis [rad] (:func:`stackup.crank.support_slopes`).
+    tilt_compliance : array_like (bearings, 2), optional
+        Rotational compliance of the crankshaft at each bearing [rad/(N m)]
+        (:func:`stackup.crank.support_compliance`): ``tilt`` is then the free slope
+        and the tilt in the film balances the film's moment (:mod:`stackup.film.tilt`).
     """
     if method not in FILM_METHODS:
         raise ValueError(f"method: {method!r} is not one of {', '.join(FILM_METHODS)}")
@@ -153,12 +161,12 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                             supply_temperature=spec.oil_supply_temperature, feed=feed,
                             method="short" if method == "short" else "finite")
         film = orbit(loads, crank_angle, **geometry, viscosity=heat.viscosity, method="quasi-static",
-                     steady_method=method, tilt=tilt)
+                     steady_method=method, tilt=tilt, tilt_compliance=tilt_compliance)
         status = np.where(film.status == ORBIT_STATUS.index("edge_contact"), film.status,
                           FILM_STATUS.index("quasi_static")).astype(np.int8)
         valid = _steady_valid(film)
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, valid, heat.temperature,
-                            heat.friction_power, heat.flow, heat.feed_flow, heat.status)
+                            heat.friction_power, heat.flow, heat.feed_flow, heat.status, film.tilt_max)
     tier = DYNAMIC[method]
     options = {"feed": feed} if tier == "reynolds-transient" else {}
     balance = dynamic_heat_balance(loads, crank_angle, tier=tier, oil=spec.oil,
@@ -166,11 +174,12 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                                    stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))),
                                    options=options, **geometry)
     film = orbit(loads, crank_angle, **geometry, viscosity=balance.viscosity, method=tier, tilt=tilt,
-                 start=balance.start, **options)
+                 tilt_compliance=tilt_compliance, start=balance.start, **options)
     fed = _feed_flow(film, feed, clearance, balance.viscosity, journal_d, spec.bearing_width)
     valid = np.isin(film.status, (ORBIT_STATUS.index("periodic"), ORBIT_STATUS.index("edge_contact")))
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, valid,
-                        balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status)
+                        balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
+                        film.tilt_max)
 
 
 def _steady_valid(film):
