@@ -259,8 +259,8 @@ def _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weig
 
 
 @njit(cache=True)
-def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap,
-                         limit, jac):
+def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry,
+                         weights_dry, cap, limit, jac):
     """Forward differences into jac (2, 2), each step pointed away from the nearer wall. Returns evaluations."""
     delta = 1e-6 + 1e-4 * _edge(x0, x1, e0, e1)
     for j in range(2):
@@ -299,7 +299,8 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, rat
         g0 *= share
         g1 *= share
     e0, e1 = g0, g1
-    r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap)
+    r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
+                       cap)
     evaluations = 1
     if not fresh:
         evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
@@ -331,7 +332,8 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, rat
         for _ in range(MAX_HALVINGS):
             n0 = e0 + t * d0
             n1 = e1 + t * d1
-            q0, q1 = _residual(x0, x1, v0, v1, n0, n1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap)
+            q0, q1 = _residual(x0, x1, v0, v1, n0, n1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry,
+                               weights_dry, cap)
             evaluations += 1
             if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
                 accepted = True
@@ -371,7 +373,10 @@ def _unsettled(x0, x1, e0, e1, limit, evaluations):
 @njit(cache=True)
 def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table, stretched, finite, nodes, weights,
               nodes_dry, weights_dry, cap, jac, fresh, tilt, state):
-    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes tilt and state. Returns (evaluations, fresh)."""
+    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes tilt and state.
+
+    Returns (evaluations, whether the Jacobian is usable at the next angle).
+    """
     f0 = free[b, k, 0]
     f1 = free[b, k, 1]
     if f0 == 0.0 and f1 == 0.0:

@@ -21,7 +21,8 @@ film is
 Cheap tier (``"short"``): the short-bearing Reynolds equation line by line,
 :math:`\partial_z(h^3\partial_z p) = -12\mu(\mathbf v_s + z\mathbf u_s)\cdot\mathbf n`,
 :math:`p = 0` at both ends, with the local squeeze velocity of the tilted axis
-:math:`\mathbf v_s + z\mathbf u_s`, :math:`\mathbf u_s = \dot{\boldsymbol\gamma} - \tfrac\omega2\mathbf k\times\boldsymbol\gamma`
+:math:`\mathbf v_s + z\mathbf u_s`,
+:math:`\mathbf u_s = \dot{\boldsymbol\gamma} - \tfrac\omega2\mathbf k\times\boldsymbol\gamma`
 (:mod:`stackup.film.orbit`); with the film linear in :math:`z` its integrals over
 the width are closed forms (:mod:`stackup._kernels.tilt`). A line carries
 pressure where its pressure integral is positive (Gümbel's π-film, per line;
@@ -116,7 +117,8 @@ def short_film(position, squeeze, edge_offset, *, lines=4096):
     squeeze : array_like (..., 2)
         Squeeze velocity in the mid-plane :math:`\bar{\mathbf v} = \mathbf v_s/(c\omega)`.
     edge_offset : array_like (..., 2)
-        :math:`\mathbf e = \boldsymbol\gamma L/(2c)` (the journal centre at the ends is :math:`\boldsymbol\xi \pm \mathbf e`);
+        :math:`\mathbf e = \boldsymbol\gamma L/(2c)` (the journal centre at the ends is
+        :math:`\boldsymbol\xi \pm \mathbf e`);
         the tilt squeeze is :math:`\bar{\mathbf u} = -\tfrac12\mathbf k\times\mathbf e` (tilt held).
     lines : int
         Lines of the midpoint rule around the bearing.
@@ -267,7 +269,10 @@ class TiltEquilibrium:
 
 def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, length, radial_clearance, viscosity,
                speed, method="short"):
-    r"""The journal's tilt in its film at every angle of a cycle: :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M`.
+    r"""The journal's tilt in its film at every angle of a cycle: the free tilt turned back by the film's moment.
+
+    :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M(\boldsymbol\gamma)` on a given mid-plane orbit
+    (:mod:`stackup.film.tilt`), solved by the kernel :func:`stackup._kernels.tilt.equilibria`.
 
     Parameters
     ----------

@@ -27,9 +27,11 @@ journal's tilt balances the film's moment
 :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M` (:mod:`stackup.film.tilt`), the
 tilt's own squeeze in the film's content (``tilt_squeeze=False`` takes the
 earlier steps' content at the current tilt: the cheap tiers' simplification,
-measured); each step starts from the ``mobility-finite`` tier's prediction. Cycles are repeated from the ``mobility-finite`` orbit's
-position until the orbit closes. With ``cavitation="reynolds"`` the fill stays 1
-and :math:`\bar p \ge 0` is a projection (Swift-Stieber, not mass-conserving): the
+measured); an edge that would pass the wall is held on it (force balance, the
+edge on the limit, the moment's imbalance along the wall's normal only). Each
+step starts from the ``mobility-finite`` tier's prediction. Cycles are
+repeated from the ``mobility-finite`` orbit's position until the orbit closes.
+With ``cavitation="reynolds"`` the fill stays 1 and :math:`\bar p \ge 0` is a projection (Swift-Stieber, not mass-conserving): the
 finite-length counterpart of the mobility tiers' film.
 
 Outputs per angle: mid-plane and edge minimum films, the peak of the pressure
@@ -229,8 +231,8 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         # an edge past the limit sits on the film the tiers hold there: no film holds the journal
         half = 0.5 * length[..., None, None] * film_tilt
         reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
-        tilt_state = np.where(reach >= radial_clearance[..., None] * ECCENTRICITY_LIMIT * (1 - 1e-6), STATES.index("at_limit"),
-                              STATES.index("equilibrium")).astype(np.int8)
+        at_wall = reach >= radial_clearance[..., None] * ECCENTRICITY_LIMIT * (1 - 1e-6)
+        tilt_state = np.where(at_wall, STATES.index("at_limit"), STATES.index("equilibrium")).astype(np.int8)
     h_edge, status = edge_film(position, film_tilt, length, radial_clearance, h_min, status, at_limit=tilt_state)
     return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
                  np.asarray(speed, dtype=float), film_tilt, tilt, tilt_state)
@@ -293,7 +295,7 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
             target = w[kn]
 
             def history_at(gamma):
-                """12 d(content)/dtau's part from earlier steps; with the tilt's squeeze neglected, their content at gamma."""
+                """12 d(content)/dtau's part from earlier steps (at gamma where the tilt's squeeze is neglected)."""
                 contents = [g * (hh if tilt_squeeze or not coupled else film.thickness(x_old, gamma)[0])
                             for g, x_old, hh in steps]
                 if second_order:
