@@ -31,8 +31,9 @@ measured); an edge that would pass the wall is held on it (force balance, the
 edge on the limit, the moment's imbalance along the wall's normal only). Each
 step starts from the ``mobility-finite`` tier's prediction. Cycles are
 repeated from the ``mobility-finite`` orbit's position until the orbit closes.
-With ``cavitation="reynolds"`` the fill stays 1 and :math:`\bar p \ge 0` is a projection (Swift-Stieber, not mass-conserving): the
-finite-length counterpart of the mobility tiers' film.
+With ``cavitation="reynolds"`` the fill stays 1 and :math:`\bar p \ge 0` is a
+projection (Swift-Stieber, not mass-conserving): the finite-length counterpart
+of the mobility tiers' film.
 
 Outputs per angle: mid-plane and edge minimum films, the peak of the pressure
 field, friction torque on the journal
