@@ -386,9 +386,35 @@ def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p
         return (x, h, j), reach <= limit * (1 + 1e-9)
 
     def held_solve(j):
-        x, h, j = _force_balance(lambda y: residual(y, held=True), start, j, limit, tolerance)
+        # nested: the tilt's direction by the secant method on the moment's imbalance across the wall's normal,
+        # for each direction the centre by the force balance with the farther edge on the limit
+        inner = {"jac": j if j is not None and j.shape == (2, 2) else None, "x": centre.copy()}
+
+        def on_wall(angle):
+            direction = np.array([np.cos(angle), np.sin(angle)])
+
+            c, _, inner["jac"] = _force_balance(lambda y: _with_film(residual, y, direction, limit), inner["x"],
+                                                inner["jac"], limit, tolerance)
+            inner["x"] = c
+            e = _edge_on_wall(c, direction, limit)
+            f, h = residual(np.concatenate([c, e]), held=True)
+            return f[2], np.concatenate([c, e]), h
+
+        angle = np.arctan2(edge[1], edge[0])
+        g0, x, h = on_wall(angle)
+        step = 0.02
+        a1 = angle + step
+        for _ in range(HELD_STEPS):
+            g1, x, h = on_wall(a1)
+            if abs(g1) <= tolerance:
+                break
+            if g1 == g0:
+                raise RuntimeError("tilt held at the wall: the moment does not turn with the tilt")
+            a1, angle, g0 = a1 - g1 * (a1 - angle) / (g1 - g0), a1, g1
+        else:
+            raise RuntimeError("tilt held at the wall: the tilt's direction did not settle")
         balance = x[2:] + kappa * film.moment(p) - free
-        return (x, h, j), balance @ _wall_normal(x[:2], x[2:]) <= 0.0
+        return (x, h, inner["jac"]), balance @ _wall_normal(x[:2], x[2:]) <= 0.0
 
     order = ((held_solve, True), (free_solve, False)) if held else ((free_solve, False), (held_solve, True))
     found = []
@@ -404,6 +430,23 @@ def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p
     for result, mode in sorted(found, key=lambda item: not item[1]):
         return (*result, mode)
     raise RuntimeError("tilt balance: neither free nor held at the limit")
+
+
+#: Secant steps on the direction of a tilt held at the wall.
+HELD_STEPS = 12
+
+
+def _edge_on_wall(centre, direction, limit):
+    """Edge offset along ``direction`` that puts the farther edge of a journal centred at ``centre`` on the limit."""
+    from .._kernels.tilt import _room
+
+    return direction * _room(centre[0], centre[1], 0.0, 0.0, direction[0], direction[1], limit)
+
+
+def _with_film(residual, centre, direction, limit):
+    """The force residual (2,) and film of the journal at ``centre`` with its tilt along ``direction`` on the wall."""
+    f, h = residual(np.concatenate([centre, _edge_on_wall(centre, direction, limit)]), held=True)
+    return f[:2], h
 
 
 def _edges_inside(xi, e, limit):
@@ -437,6 +480,7 @@ def _force_balance(residual, x, jac, limit, tolerance):
         jac = _difference_jacobian(residual, x, f)
         f, h = residual(x)
     fresh = False  # the Jacobian is a difference Jacobian at x
+    creeping = 0
     for _ in range(MAX_BROYDEN):
         if np.linalg.norm(f) <= tolerance:
             return x, h, jac
@@ -461,6 +505,13 @@ def _force_balance(residual, x, jac, limit, tolerance):
             jac = jac + np.outer(f_trial - f - jac @ taken, taken) / max(taken @ taken, 1e-300)
             x, f, h = trial, f_trial, h_trial
             fresh = False
+            # with the tilt, steps that creep (an edge near the wall stiffens the moment fast) ask for differences
+            creeping = creeping + 1 if x.size > 2 and damping < 0.25 else 0
+            if creeping >= 2 and np.linalg.norm(f) > tolerance:
+                jac = _difference_jacobian(residual, x, f)
+                f, h = residual(x)
+                fresh = True
+                creeping = 0
         elif fresh:
             return _least_squares_balance(residual, x, tolerance)
         else:
@@ -471,7 +522,7 @@ def _force_balance(residual, x, jac, limit, tolerance):
 
 
 #: A step of the tilt unknowns may take an edge this many thinnest films (1 - limit) past the limit, no further.
-EDGE_OVERLAP = 1.0
+EDGE_OVERLAP = 0.0
 
 
 def _edge_room(x, step, limit):
