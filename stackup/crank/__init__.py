@@ -19,7 +19,7 @@ import numpy as np
 
 from .. import _validate as check
 from .._kernels import crank as _kernel
-from .beam import condensed, slope_matrices
+from .beam import condensed, rotational_compliance, slope_matrices
 from .law import REST, BellakhdharLaw
 
 #: Status codes of a solve, stored with CF flag attributes (defined with the kernel that sets them).
@@ -228,4 +228,47 @@ def _slope_planes(spans, ei, load_positions):
     return s_w, s_p
 
 
-__all__ = ["BellakhdharLaw", "CrankReactions", "STATUS", "reactions", "support_slopes"]
+def support_compliance(*, spans, EI, load_positions=None, coupled=False):  # noqa: N803
+    r"""Rotational compliance of the crankshaft at its main bearings [rad/(N m)].
+
+    The slope a unit moment applied at a support gives there, per bending plane,
+    with every support deflection held (the bearings carry the journal's
+    position; the moment of a bearing's film only turns the journal): the
+    compliance the film's restoring moment meets in the tilt equilibrium
+    :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\,\mathbf M_{film}`
+    (:func:`stackup.film.orbit.orbit`, ``tilt_compliance``).
+
+    Parameters
+    ----------
+    spans, EI, load_positions :
+        As :func:`reactions`.
+    coupled : bool
+        Return the whole matrix (a moment at one support turns the others
+        too) instead of its diagonal.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N+1, 2): the diagonal per load component; with ``coupled``
+        (2, N+1, N+1): :math:`C_{ij}`, the slope at support i per unit moment at j.
+
+    Notes
+    -----
+    :func:`stackup.crank.beam.rotational_compliance`: the support-rotation
+    block of the inverse of the stiffness the static condensation eliminates.
+    On the built-in engines the neighbour of a loaded support turns by about
+    a quarter of its rotation, the other way.
+    """
+    kb, _ = _geometry(spans, EI, load_positions)  # validates
+    spans_arr = np.asarray(spans, dtype=float)
+    n = spans_arr.size
+    ei = check.positive("EI", EI)
+    ei = np.full((n, 2), float(ei)) if ei.ndim == 0 else (np.stack([ei, ei], axis=-1) if ei.ndim == 1 else ei)
+    positions = np.full(n, 0.5) if load_positions is None else np.broadcast_to(load_positions, (n,))
+    matrices = np.stack([rotational_compliance(spans_arr, ei[:, c], positions) for c in range(2)])
+    if coupled:
+        return matrices
+    return np.stack([np.diag(m) for m in matrices], axis=-1)
+
+
+__all__ = ["BellakhdharLaw", "CrankReactions", "STATUS", "reactions", "support_compliance", "support_slopes"]

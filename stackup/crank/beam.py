@@ -87,3 +87,24 @@ def slope_matrices(spans, ei, load_positions):
     s_w = -np.linalg.solve(k_ee, k_er)[rotations]
     s_p = np.linalg.solve(k_ee, select)[rotations]
     return s_w, s_p
+
+
+def rotational_compliance(spans, ei, load_positions):
+    """Rotation of the beam at each support per unit moment applied at a support, deflections held.
+
+    Returns C (N+1, N+1) [rad/(N m)] of one bending plane: a moment :math:`M_j`
+    (conjugate to the slope :math:`dw/dz`) at support j turns support i by
+    :math:`C_{ij} M_j` with every support deflection held and no other moment
+    applied: the block of :math:`K_{ee}^{-1}` (the degrees of freedom the
+    condensation of :func:`condensed` eliminates) at the support rotations.
+    Its diagonal is the compliance a bearing's film moment meets; an end
+    support of equal spans :math:`l` with uniform :math:`EI` is near
+    :math:`l/(3EI)` (the far supports turn freely).
+    """
+    k, kept, _, gone = _assembled(spans, ei, load_positions)
+    k_ee = k[np.ix_(gone, gone)]
+    rotations = np.searchsorted(gone, [2 * (2 * j) + 1 for j in range(len(kept))])
+    select = np.zeros((gone.size, rotations.size))
+    select[rotations, np.arange(rotations.size)] = 1.0
+    c = np.linalg.solve(k_ee, select)[rotations]
+    return 0.5 * (c + c.T)

@@ -111,6 +111,8 @@ class BearingFilms:
         Cycle means [W], [m^3/s], [m^3/s].
     heat_status : numpy.ndarray of int8
         Index into :data:`stackup.film.heat.STATUS`.
+    tilt_max : numpy.ndarray
+        Cycle maximum of the journal's tilt in the film [rad] (0 without tilt).
     """
 
     h_min: np.ndarray
@@ -124,9 +126,11 @@ class BearingFilms:
     oil_flow: np.ndarray
     feed_flow: np.ndarray
     heat_status: np.ndarray
+    tilt_max: np.ndarray | None = None
 
 
-def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None):
+def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None,
+                  tilt_compliance=None):
     """Film over the cycle for bearings with given reaction histories.
 
     Parameters
@@ -145,6 +149,10 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         One of :data:`FILM_METHODS`.
     tilt : array_like (engines, angles, bearings, 2), optional
         Slope of the journal against the bearing axis [rad] (:func:`stackup.crank.support_slopes`).
+    tilt_compliance : array_like (bearings, 2), optional
+        Rotational compliance of the crankshaft at each bearing [rad/(N m)]
+        (:func:`stackup.crank.support_compliance`): ``tilt`` is then the free slope
+        and the tilt in the film balances the film's moment (:mod:`stackup.film.tilt`).
     """
     if method not in FILM_METHODS:
         raise ValueError(f"method: {method!r} is not one of {', '.join(FILM_METHODS)}")
@@ -161,21 +169,23 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                             supply_temperature=spec.oil_supply_temperature, feed=feed,
                             method="short" if method == "short" else "finite")
         film = orbit(loads, crank_angle, **geometry, viscosity=heat.viscosity, method="quasi-static",
-                     steady_method=method, tilt=tilt)
+                     steady_method=method, tilt=tilt, tilt_compliance=tilt_compliance)
         status = np.where(film.status == ORBIT_STATUS.index("edge_contact"), film.status,
                           FILM_STATUS.index("quasi_static"))
         # a load the steady film carries only beyond the eccentricity limit: the film has collapsed
         status = np.where(_steady_valid(film), status, FILM_STATUS.index("collapsed")).astype(np.int8)
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
-                            heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status)
+                            heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
+                            film.tilt_max)
     tier = DYNAMIC[method]
     options = {"feed": feed} if tier == "reynolds-transient" else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=tier, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
                                         stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))), tilt=tilt,
-                                        options=options, **geometry)
+                                        tilt_compliance=tilt_compliance, options=options, **geometry)
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
-                        balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status)
+                        balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
+                        film.tilt_max)
 
 
 def _is_number(status):
@@ -226,7 +236,7 @@ def _balanced_rise(anchor_t, anchor_rise, decay, supply):
 
 
 def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, speed, oil, supply_temperature, feed,
-                   stride=8, tilt=None, options=None, tolerance=HEAT_TOLERANCE):
+                   stride=8, tilt=None, tilt_compliance=None, options=None, tolerance=HEAT_TOLERANCE):
     r"""The orbit of bearings at the effective temperature where their heat balance closes on that orbit.
 
     The balance of :mod:`stackup.film.heat`,
@@ -271,6 +281,8 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         Crank angles between the points of the first, coarse orbit.
     tilt : numpy.ndarray (..., angles, 2), optional
         As :func:`stackup.film.orbit.orbit`.
+    tilt_compliance : array_like (..., 2), optional
+        As :func:`stackup.film.orbit.orbit` (the coarse orbit runs without tilt).
     options : dict, optional
         Options of the tier (e.g. ``feed`` of the transient tier).
     tolerance : float
@@ -287,6 +299,8 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     flat = loads.reshape(-1, *loads.shape[-2:])
     angle = np.asarray(crank_angle)
     flat_tilt = None if tilt is None else np.broadcast_to(tilt, loads.shape).reshape(flat.shape)
+    flat_compliance = None if tilt_compliance is None else \
+        np.broadcast_to(tilt_compliance, (*lead, 2)).reshape(flat.shape[0], 2)
     each = {k: np.broadcast_to(np.asarray(v, float), lead).ravel()
             for k, v in dict(diameter=diameter, length=length, clearance=clearance, speed=speed,
                              supply=supply_temperature).items()}
@@ -301,7 +315,9 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         mu = viscosity[rows] = oil.viscosity(t, shear_rate=shear_rate[rows])
         geo = {k: each[k][rows] for k in ("diameter", "length", "clearance", "speed")}
         film = orbit(flat[rows, ::step], angle[::step], **geo, viscosity=mu, method=tier, start=start,
-                     tilt=None if flat_tilt is None or step > 1 else flat_tilt[rows], **options)
+                     tilt=None if flat_tilt is None or step > 1 else flat_tilt[rows],
+                     tilt_compliance=None if flat_compliance is None or step > 1 else flat_compliance[rows],
+                     **options)
         fed = _feed_flow(film, feed, geo["clearance"], mu, geo["diameter"], geo["length"])
         rise = TEMPERATURE_SHARE * film.friction_power_mean / (oil.density(t) * oils.SPECIFIC_HEAT
                                                                * (film.side_flow_mean + fed))
@@ -314,7 +330,9 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     decay = RISE_DECAY_GUESS * np.log(viscosity / oil.viscosity(supply + 1.0, shear_rate=shear_rate))
     t_b = np.clip(_balanced_rise(t_a, r_a, decay, supply), supply, TEMPERATURE_LIMIT)
     film, fed, r_b = run(t_b, slice(None), coarse.position[:, 0])
-    fields = {name: np.array(getattr(film, name)) for name in film.__dataclass_fields__}
+    # every field an array (copied, so reruns fill their rows) except those the orbit leaves None (no tilt)
+    fields = {name: None if getattr(film, name) is None else np.array(getattr(film, name))
+              for name in film.__dataclass_fields__}
     residual = t_b - supply - r_b
     orbits = np.full(n, 2)
     done = (np.abs(residual) < tolerance) | ~_is_number(fields["status"])  # no balance on a film that is not one
@@ -329,7 +347,7 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         again, fed_c, r_c = run(t_c, rows, fields["position"][rows, 0])
         orbits[rows] += 1
         for name in fields:
-            if np.ndim(fields[name]):
+            if fields[name] is not None and np.ndim(fields[name]):
                 fields[name][rows] = getattr(again, name)
         fed[rows] = fed_c
         t_a[rows], r_a[rows], t_b[rows], r_b[rows] = t_b[rows], r_b[rows], t_c, r_c
@@ -341,7 +359,8 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
                       HEAT_STATUS.index("not_converged"))
     status = np.where((t_b >= TEMPERATURE_LIMIT) & (residual < 0), HEAT_STATUS.index("no_balance_below_limit"), status)
     mu = viscosity  # of the last orbit of each bearing, at t_b
-    shaped = {name: (v.reshape(*lead, *v.shape[1:]) if np.ndim(v) else v) for name, v in fields.items()}
+    shaped = {name: (v.reshape(*lead, *v.shape[1:]) if v is not None and np.ndim(v) else v)
+              for name, v in fields.items()}
     return (DynamicHeat(t_b.reshape(lead), mu.reshape(lead), residual.reshape(lead),
                         status.astype(np.int8).reshape(lead), orbits.reshape(lead)),
             type(film)(**shaped), fed.reshape(lead))

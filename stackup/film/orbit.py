@@ -52,17 +52,25 @@ friction torque on the journal :math:`T = \frac{2\pi\mu\omega R^3 L}{c\sqrt{1-\v
 
 Journal tilt (``tilt``, the slope :math:`\boldsymbol\gamma` of the journal axis relative to
 the bearing axis) makes the film :math:`h = c - (\mathbf x + z\boldsymbol\gamma)\cdot\mathbf n`,
-:math:`z \in [-L/2, L/2]`. Every tier but the transient one keeps the mid-plane
-orbit and reports the edge film geometrically,
-:math:`h_{edge} = c - \max_\pm|\mathbf x \pm \tfrac L2\boldsymbol\gamma|`; the transient tier
-carries the tilt in its film.
+:math:`z \in [-L/2, L/2]`. With ``tilt_compliance`` (the crankshaft's rotational
+compliance at the bearing, :func:`stackup.crank.support_compliance`) ``tilt`` is
+the beam's free slope and the tilt in the film is the equilibrium
+:math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\,\mathbf M_{film}` with the film's
+restoring moment (:mod:`stackup.film.tilt`): every tier but the transient one
+solves it at each angle on its own mid-plane orbit (the short-bearing moment,
+finite-corrected in the ``finite`` tiers; tilt squeeze neglected), the
+transient tier carries the tilt as two more unknowns of its balance (force
+and moment, tilt squeeze included). Without ``tilt_compliance`` the tilt is
+imposed as given. The edge film is then
+:math:`h_{edge} = c - \max_\pm|\mathbf x \pm \tfrac L2\boldsymbol\gamma|`.
 
 Status per bearing (:data:`STATUS`): ``periodic``; ``not_periodic`` (the orbit had not
 closed within ``cycles``); ``collapsed`` (the journal reached :data:`ECCENTRICITY_LIMIT`,
 or its film thinned cycle after cycle: a film collapse, e.g. a load turning at
 half the shaft speed; the film is reported where it was held); ``failed`` (the
 film solve failed; angles not solved are NaN); ``edge_contact`` (a periodic
-orbit whose tilted journal brings an edge to the limit: the edge film is held at
+orbit whose tilted journal brings an edge to the limit at some angle, where the
+film cannot hold the beam's slope: the edge film is held at
 :math:`c(1 - \varepsilon_{lim})`). Never a silent NaN.
 
 References
@@ -132,6 +140,14 @@ class Orbit:
         Cycles integrated (0 for the quasi-static tiers).
     speed : numpy.ndarray (...)
         Journal angular speed [rad/s] (for the friction power).
+    tilt : numpy.ndarray (..., angles, 2) or None
+        Slope of the journal against the bearing axis in the film [rad] (the
+        equilibrium with ``tilt_compliance``, else the tilt given).
+    free_tilt : numpy.ndarray (..., angles, 2) or None
+        The tilt given: the beam's slope without the film's moment [rad].
+    tilt_state : numpy.ndarray of int8 (..., angles) or None
+        Index into :data:`stackup.film.tilt.STATES` (``at_limit``: the film cannot
+        hold the journal, an edge at the limit).
     """
 
     h_min: np.ndarray
@@ -144,6 +160,9 @@ class Orbit:
     status: np.ndarray
     cycles: np.ndarray
     speed: np.ndarray
+    tilt: np.ndarray | None = None
+    free_tilt: np.ndarray | None = None
+    tilt_state: np.ndarray | None = None
 
     @property
     def converged(self):
@@ -164,6 +183,20 @@ class Orbit:
     def h_min_edge_cycle(self):
         """Cycle minimum of the film over the bearing width, with tilt [m]."""
         return self.h_min_edge.min(axis=-1)
+
+    @property
+    def tilt_max(self):
+        """Cycle maximum of the journal's tilt in the film [rad] (0 without tilt)."""
+        if self.tilt is None:
+            return np.zeros(self.status.shape)
+        return np.linalg.norm(self.tilt, axis=-1).max(axis=-1)
+
+    @property
+    def edge_contact_share(self):
+        """Share of the cycle's angles with an edge at the limit [-] (0 without tilt)."""
+        if self.tilt_state is None:
+            return np.zeros(self.status.shape)
+        return np.mean(self.tilt_state == 1, axis=-1)
 
     @property
     def p_max_cycle(self):
@@ -261,7 +294,7 @@ def resolve(method, steady_method="finite"):
 
 
 def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, speed, method="mobility",
-          steady_method="finite", tilt=None, cycles=None, start=None, **transient_options):
+          steady_method="finite", tilt=None, tilt_compliance=None, cycles=None, start=None, **transient_options):
     """Film over the engine cycle of dynamically loaded bearings.
 
     Parameters
@@ -284,7 +317,14 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     tilt : array_like (..., angles, 2), optional
         Slope of the journal axis relative to the bearing axis [rad], per
         component of the engine frame (the journal centre at axial position
-        :math:`z` from the mid-plane is :math:`\\mathbf x + z\\boldsymbol\\gamma`).
+        :math:`z` from the mid-plane is :math:`\\mathbf x + z\\boldsymbol\\gamma`): with
+        ``tilt_compliance`` the slope without the film's moment (the beam's free
+        slope, :func:`stackup.crank.support_slopes`), else the tilt imposed.
+    tilt_compliance : array_like (..., 2), optional
+        Rotational compliance of the journal at the bearing per component of the
+        engine frame [rad/(N m)] (:func:`stackup.crank.support_compliance`): the
+        tilt in the film balances the film's moment against it
+        (:mod:`stackup.film.tilt`).
     cycles : int, optional
         Most cycles a dynamic tier integrates to reach a periodic orbit
         (default 20 for the mobility tiers, 8 for ``"reynolds-transient"``).
@@ -320,31 +360,59 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     cycles = check.integer("cycles", cycles, minimum=1)
     if tilt is not None:
         tilt = np.broadcast_to(check.finite("tilt", tilt), loads.shape)
+    if tilt_compliance is not None:
+        if tilt is None:
+            raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
+        tilt_compliance = np.broadcast_to(check.positive("tilt_compliance", tilt_compliance, allow_zero=True),
+                                          (*lead, 2))
     geometry = dict(radius=radius, length=width, radial_clearance=c, viscosity=mu, speed=omega)
 
     if kind == "quasi-static":
         position, p_max, torque, flow = _quasi_static(loads, steady, **geometry)
         status, used = np.zeros(lead, np.int8), np.zeros(lead, int)
+        squeeze = -0.5 * omega[..., None, None] * np.stack([-position[..., 1], position[..., 0]], axis=-1)
+        finite = steady != "short"
     elif kind == "reynolds-transient":
         from .transient import transient_orbit
 
-        result = transient_orbit(loads, angle, tilt=tilt, cycles=cycles, start=start, **geometry,
-                                 **transient_options)
+        result = transient_orbit(loads, angle, tilt=tilt, tilt_compliance=tilt_compliance, cycles=cycles,
+                                 start=start, **geometry, **transient_options)
         return result
     else:
         if start is not None:
             start = np.broadcast_to(check.finite("start", start), (*lead, 2))
-        position, p_max, torque, flow, status, used = _mobility(loads, angle, finite=kind == "mobility-finite",
-                                                                cycles=cycles, start=start, **geometry)
+        finite = kind == "mobility-finite"
+        position, p_max, torque, flow, status, used, squeeze = _mobility(loads, angle, finite=finite, cycles=cycles,
+                                                                         start=start, **geometry)
     ecc = np.linalg.norm(position, axis=-1) / c[..., None]
     h_min = c[..., None] * (1 - ecc)
-    h_edge, status = edge_film(position, tilt, width, c, h_min, status)
-    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, omega)
+    film_tilt, tilt_state = tilt, None
+    if tilt_compliance is not None:
+        film_tilt, tilt_state = _tilt_in_film(position, squeeze, tilt, tilt_compliance, finite=finite, **geometry)
+    h_edge, status = edge_film(position, film_tilt, width, c, h_min, status, at_limit=tilt_state)
+    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, omega, film_tilt, tilt, tilt_state)
 
 
-def edge_film(position, tilt, width, c, h_min, status):
+def _tilt_in_film(position, squeeze, free_tilt, compliance, *, finite, radius, length, radial_clearance, viscosity,
+                  speed):
+    """Tilt equilibrium on a mid-plane orbit (:func:`stackup.film.tilt.cycle_tilt`): (tilt, state)."""
+    from .tilt import cycle_tilt
+
+    ld_nodes = mobility_table()[0]
+    ld = length / (2 * radius)
+    # the finite correction where its table covers the bearing (as the mobility-finite tier)
+    covered = bool(np.all((ld >= ld_nodes[0]) & (ld <= ld_nodes[-1])))
+    result = cycle_tilt(position, squeeze, free_tilt, compliance=compliance, radius=radius, length=length,
+                        radial_clearance=radial_clearance, viscosity=viscosity, speed=speed,
+                        method="finite" if finite and covered else "short")
+    return result.tilt, result.state
+
+
+def edge_film(position, tilt, width, c, h_min, status, at_limit=None):
     """Thinnest film over the width of a tilted journal (at an edge), held at the limit where an edge touches.
 
+    ``at_limit`` (..., angles): the tilt equilibrium's state per angle
+    (:data:`stackup.film.tilt.STATES`); an angle in state 1 has its edge at the limit.
     Returns (edge film (..., angles) [m], status with ``edge_contact`` where a periodic orbit's edge touched).
     """
     if tilt is None:
@@ -352,7 +420,9 @@ def edge_film(position, tilt, width, c, h_min, status):
     half = 0.5 * width[..., None, None] * tilt
     reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
     floor = (c * (1 - ECCENTRICITY_LIMIT))[..., None]
-    touching = c[..., None] - reach < floor
+    touching = c[..., None] - reach < floor * (1 + 1e-9)
+    if at_limit is not None:
+        touching = touching | (at_limit == 1)
     status = np.where((status == 0) & touching.any(axis=-1), STATUS.index("edge_contact"), status).astype(np.int8)
     return np.maximum(np.minimum(h_min, c[..., None] - reach), floor), status
 
@@ -385,12 +455,13 @@ def _mobility(loads, angle, *, finite, cycles, start, radius, length, radial_cle
     xi = xi.reshape(*lead, n, 2)
     v = v.reshape(*lead, n, 2)
     position = xi * c[..., None, None]
+    squeeze = v * (c * w)[..., None, None]
     ecc = np.linalg.norm(xi, axis=-1)
     p_max = 1.5 * (mu * w * (length / c) ** 2)[..., None] * peak.reshape(*lead, n)
     torque = (2 * np.pi * mu * w * radius**3 * length / c)[..., None] / np.sqrt(1 - ecc**2) \
         + 0.5 * (position[..., 1] * loads[..., 0] - position[..., 0] * loads[..., 1])
     flow = (2 * radius * length * c * w)[..., None] * np.linalg.norm(v, axis=-1)
-    return position, p_max, torque, flow, status.reshape(lead), used.reshape(lead)
+    return position, p_max, torque, flow, status.reshape(lead), used.reshape(lead), squeeze
 
 
 def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity, speed):

@@ -21,11 +21,19 @@ at the supply pressure (full of oil), solved per step by Gauss-Seidel with the
 Ausas et al. switching between pressure and fill. The journal is massless:
 at each step its centre :math:`\mathbf x_{n+1}` is found by a Broyden iteration so that
 the film force equals the load (each residual one field solve, warm-started);
-the tilt is imposed; each step starts from the ``mobility-finite`` tier's
-prediction. Cycles are repeated from the ``mobility-finite`` orbit's
-position until the orbit closes. With ``cavitation="reynolds"`` the fill stays 1
-and :math:`\bar p \ge 0` is a projection (Swift-Stieber, not mass-conserving): the
-finite-length counterpart of the mobility tiers' film.
+the tilt is imposed or, with ``tilt_compliance``, two more unknowns: the
+journal's tilt balances the film's moment
+:math:`\mathbf M = \iint p\,z\,\mathbf n\,dA` against the crankshaft,
+:math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M` (:mod:`stackup.film.tilt`), the
+tilt's own squeeze in the film's content (``tilt_squeeze=False`` takes the
+earlier steps' content at the current tilt: the cheap tiers' simplification,
+measured); an edge that would pass the wall is held on it (force balance, the
+edge on the limit, the moment's imbalance along the wall's normal only). Each
+step starts from the ``mobility-finite`` tier's prediction. Cycles are
+repeated from the ``mobility-finite`` orbit's position until the orbit closes.
+With ``cavitation="reynolds"`` the fill stays 1 and :math:`\bar p \ge 0` is a
+projection (Swift-Stieber, not mass-conserving): the finite-length counterpart
+of the mobility tiers' film.
 
 Outputs per angle: mid-plane and edge minimum films, the peak of the pressure
 field, friction torque on the journal
@@ -99,27 +107,41 @@ class _Film:
     def thickness(self, xi, gamma):
         """h at the nodes, h and h^3 at the east faces, h^3 at the north faces (centre xi [c], tilt gamma [rad]).
 
-        Where a tilted journal's edge would reach the wall the film is held at the
-        thinnest film the tiers allow (the orbit reports that as ``edge_contact``).
+        Where a tilted journal's edge would pass the thinnest film the tiers
+        allow, :math:`f = 1 - \\varepsilon_{lim}`, the film is
+        :math:`f/(2 - h/f)` instead (continuous with its slope at :math:`h = f`):
+        the overlap closes the film smoothly, so the balance stays smooth where the
+        film cannot hold the journal (the orbit reports that as ``edge_contact``).
         """
         t = self.tilt_scale * gamma
-        floor = 1.0 - self.limit
-        h = np.maximum(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z[None, :], floor)
-        h_e = np.maximum(1.0 - (xi @ self.n_east)[:, None] - (t @ self.n_east)[:, None] * self.z[None, :], floor)
-        h_n = np.maximum(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z_north[None, :], floor)
+        h = self._held(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z[None, :])
+        h_e = self._held(1.0 - (xi @ self.n_east)[:, None] - (t @ self.n_east)[:, None] * self.z[None, :])
+        h_n = self._held(1.0 - (xi @ self.n)[:, None] - (t @ self.n)[:, None] * self.z_north[None, :])
         return h, h_e, h_e**3, h_n**3
+
+    def _held(self, h):
+        floor = 1.0 - self.limit
+        return np.where(h >= floor, h, floor / (2.0 - np.minimum(h / floor, 1.0)))
 
     def force(self, p):
         """Film force on the bearing (2,) per unit of mu omega R^4 / c^2."""
         return self.n @ (p @ self.weights) * self.dtheta
 
+    def moment(self, p):
+        """Film moment on the bearing about the mid-plane, integral of p z n (2,), per unit of mu omega R^5 / c^2."""
+        return self.n @ (p @ (self.weights * self.z)) * self.dtheta
 
-def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, viscosity, speed, tilt=None, cycles=8,
-                    cavitation="elrod-adams", n_theta=N_THETA, n_z=N_Z, time_order=2, feed_pressure=0.0,
-                    feed_angle=FEED_ANGLE, feed=None, start=None):
+
+def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, viscosity, speed, tilt=None,
+                    tilt_compliance=None, tilt_squeeze=True, cycles=8, cavitation="elrod-adams", n_theta=N_THETA,
+                    n_z=N_Z, time_order=2, feed_pressure=0.0, feed_angle=FEED_ANGLE, feed=None, start=None):
     """Orbit of each bearing by the transient Reynolds tier (called by :func:`stackup.film.orbit.orbit`).
 
     Parameters as :func:`stackup.film.orbit.orbit` (arrays over the leading shape, SI), and
+    tilt_squeeze : bool
+        With ``tilt_compliance``: the film's content changes with the tilt
+        (True, the physics) or the earlier steps' content is taken at the
+        current tilt (False: the tilt's squeeze neglected, as the cheap tiers do).
     cavitation : {"elrod-adams", "reynolds"}
     n_theta, n_z : int
         Grid around the bearing and over its width.
@@ -143,6 +165,7 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
     stackup.film.orbit.Orbit
     """
     from .orbit import ECCENTRICITY_LIMIT, Orbit, edge_film, mobility_table, orbit
+    from .tilt import STATES
 
     check.one_of("cavitation", cavitation, CAVITATION)
     if time_order not in (1, 2):
@@ -165,7 +188,9 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
                          viscosity=viscosity, speed=speed, method="mobility", tilt=tilt)
         start = seed.position[..., 0, :]
     start = np.broadcast_to(start, (*lead, 2))
+    coupled = tilt_compliance is not None
     out = {k: np.empty((*lead, n)) for k in ("peak", "torque", "flow")}
+    film_tilt = np.array(tilt, dtype=float)
     ld_nodes, stretched, tables = mobility_table()
     position = np.empty((*lead, n, 2))
     status = np.empty(lead, np.int8)
@@ -189,25 +214,41 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
         finite = ld_nodes[0] <= ld <= ld_nodes[-1]
         i, t = _mobility._locate(ld_nodes, ld)
         table = (1 - t) * tables[i] + t * tables[i + 1]
+        # the tilt equilibrium in edge offsets e = gamma L/(2c): e + kappa M = e_free, M per mu omega R^5/c^2
+        kappa = (np.asarray(tilt_compliance[idx], float) * mu * w * r**5 * l / (2 * c**3)) if coupled else None
         result = _bearing_orbit(film, loads[idx] / unit_force, tau, tilt[idx], start[idx] / c, cycles,
-                                cavitation == "elrod-adams", time_order, ECCENTRICITY_LIMIT, table, stretched, finite)
-        xi, peak, friction, flow, status[idx], used[idx] = result
+                                cavitation == "elrod-adams", time_order, ECCENTRICITY_LIMIT, table, stretched, finite,
+                                kappa=kappa, edge_per_tilt=l / (2 * c), tilt_squeeze=tilt_squeeze)
+        xi, peak, friction, flow, status[idx], used[idx], gamma = result
+        film_tilt[idx] = gamma
         position[idx] = xi * c
         out["peak"][idx] = peak * unit_pressure
         out["torque"][idx] = friction * mu * w * r**4 / c
         out["flow"][idx] = flow * w * r**2 * c / 12
     ecc = np.linalg.norm(position, axis=-1) / radial_clearance[..., None]
     h_min = radial_clearance[..., None] * (1 - ecc)
-    h_edge, status = edge_film(position, tilt, length, radial_clearance, h_min, status)
+    tilt_state = None
+    if coupled:
+        # an edge past the limit sits on the film the tiers hold there: no film holds the journal
+        half = 0.5 * length[..., None, None] * film_tilt
+        reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
+        at_wall = reach >= radial_clearance[..., None] * ECCENTRICITY_LIMIT * (1 - 1e-6)
+        tilt_state = np.where(at_wall, STATES.index("at_limit"), STATES.index("equilibrium")).astype(np.int8)
+    h_edge, status = edge_film(position, film_tilt, length, radial_clearance, h_min, status, at_limit=tilt_state)
     return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
-                 np.asarray(speed, dtype=float))
+                 np.asarray(speed, dtype=float), film_tilt, tilt, tilt_state)
 
 
-def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order, limit, table, stretched, finite):
-    """Periodic orbit of one bearing; dimensionless loads w (n, 2). Returns per-angle arrays, status, cycles.
+def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order, limit, table, stretched, finite,
+                   kappa=None, edge_per_tilt=1.0, tilt_squeeze=True):
+    """Periodic orbit of one bearing; dimensionless loads w (n, 2). Returns per-angle arrays, status, cycles, tilt.
 
     Each step: predict the centre with the mobility tier's rate (``table``), then
-    solve the force balance by damped Newton with Broyden updates.
+    solve the force balance by damped Newton with Broyden updates. With
+    ``kappa`` (2,) the tilt is solved too (:func:`_tilted_balance`): unknowns
+    (centre, edge offset e = gamma * ``edge_per_tilt``), residual (force - load,
+    scale (e + kappa M - e_free)); where that would take an edge past the
+    limit, the edge is held on it (the film cannot hold the journal).
     """
     n = w.shape[0]
     shape = (film.theta.size, film.z.size)
@@ -215,13 +256,21 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
     fill = np.ones(shape)
     p[film.fixed] = film.p_fixed[film.fixed]
     scale = np.abs(w).max() + 1e-300
+    coupled = kappa is not None
+    free = tilt * edge_per_tilt  # (n, 2) edge offsets the beam alone would give
     xi = np.array(xi0, dtype=float)
-    h = film.thickness(xi, tilt[0])[0]
-    content = [fill * h]  # film content g h of the latest steps
+    e = free[0].copy() if coupled else None
+    if coupled:
+        e = _edges_inside(xi, e, limit)
+    gamma_now = e / edge_per_tilt if coupled else tilt[0]
+    h = film.thickness(xi, gamma_now)[0]
+    steps = [(fill.copy(), xi.copy(), h)]  # fill, centre and film of the latest steps (their content g h)
     dtau_prev = None
     jac = None
+    held = False  # the tilt held with an edge at the limit (the film cannot hold the journal)
     alpha = -0.5 * np.pi
     record = np.empty((n, 2))
+    record_tilt = np.array(tilt, dtype=float)
     peak = np.empty(n)
     friction = np.empty(n)
     flow = np.empty(n)
@@ -231,23 +280,34 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
         collapsed = False
         for k in range(n):
             record[k] = xi
+            if coupled:
+                record_tilt[k] = e / edge_per_tilt
             peak[k], friction[k], flow[k] = _outputs(film, p, fill, h)
             thinnest = max(thinnest, float(np.hypot(*xi)))
             kn = (k + 1) % n
             dtau = tau[k + 1] - tau[k]
-            if time_order == 2 and dtau_prev is not None and len(content) == 2:
+            second_order = time_order == 2 and dtau_prev is not None and len(steps) == 2
+            if second_order:
                 r = dtau / dtau_prev
                 a0, a1, a2 = (1 + 2 * r) / (1 + r), 1 + r, r * r / (1 + r)
-                history = 12 * (a1 * content[-1] - a2 * content[-2]) / dtau
             else:
                 a0 = 1.0
-                history = 12 * content[-1] / dtau
             c_time = 12 * a0 / dtau
-            gamma = tilt[kn]
             target = w[kn]
 
-            def residual(x):
-                hh, he, h3e, h3n = film.thickness(x, gamma)
+            def history_at(gamma):
+                """12 d(content)/dtau's part from earlier steps (at gamma where the tilt's squeeze is neglected)."""
+                contents = [g * (hh if tilt_squeeze or not coupled else film.thickness(x_old, gamma)[0])
+                            for g, x_old, hh in steps]
+                if second_order:
+                    return 12 * (a1 * contents[-1] - a2 * contents[-2]) / dtau
+                return 12 * contents[-1] / dtau
+
+            fixed_history = history_at(None) if tilt_squeeze or not coupled else None
+
+            def solve_field(centre, gamma):
+                hh, he, h3e, h3n = film.thickness(centre, gamma)
+                history = fixed_history if fixed_history is not None else history_at(gamma)
                 sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta, film.dz,
                                      RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, mass_conserving)
                 if sweeps < 0:
@@ -257,23 +317,144 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
                                          film.dz, 1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, mass_conserving)
                 if sweeps < 0:
                     raise RuntimeError("field solve did not converge")
-                return film.force(p) - target, hh
+                return hh
+
+            def residual(x, held=False):
+                """Unknowns: the centre and, with the tilt, its edge offset; ``held``: an edge on the limit."""
+                centre = x[:2]
+                if not coupled:
+                    hh = solve_field(centre, tilt[kn])
+                    return film.force(p) - target, hh
+                edge = x[2:]
+                hh = solve_field(centre, edge / edge_per_tilt)
+                balance = edge + kappa * film.moment(p) - free[kn]
+                if not held:
+                    return np.concatenate([film.force(p) - target, scale * balance]), hh
+                # held: the farther edge on the limit, the moment's imbalance only along the wall's normal
+                normal = _wall_normal(centre, edge)
+                reach = max(np.hypot(*(centre + edge)), np.hypot(*(centre - edge)))
+                return np.concatenate([film.force(p) - target, scale * np.array(
+                    [balance[0] * normal[1] - balance[1] * normal[0], reach - limit])]), hh
 
             predicted, alpha = _predict(xi, w[k], 0.5 * (w[k] + target), dtau, alpha, limit, table, stretched, finite)
             try:
-                x, h, jac = _force_balance(residual, predicted, jac, limit, FORCE_TOLERANCE * scale)
+                if coupled:
+                    x, h, jac, held = _tilted_balance(residual, predicted, e + (free[kn] - free[k]), jac, held,
+                                                      limit, FORCE_TOLERANCE * scale, film, p, kappa, free[kn])
+                else:
+                    x, h, jac = _force_balance(residual, predicted, jac, limit, FORCE_TOLERANCE * scale)
             except (RuntimeError, np.linalg.LinAlgError):
-                return _failed(record, peak, friction, flow, k, cycle)
-            if np.hypot(*x) >= limit * (1 - 1e-12):
+                return _failed(record, peak, friction, flow, k, cycle) + (record_tilt,)
+            if coupled:
+                e = x[2:].copy()
+            if np.hypot(*x[:2]) >= limit * (1 - 1e-12):
                 collapsed = True
-            xi = x
-            content = [content[-1], fill * h]
+            xi = x[:2].copy()
+            steps = [steps[-1], (fill.copy(), xi.copy(), h)]
             dtau_prev = dtau
         film_left = 1 - (limit if collapsed else thinnest)
         closure = float(np.hypot(*(xi - start)))
         if cycle > 1 and closure <= PERIODIC * film_left:
-            return record, peak, friction, flow, (2 if collapsed else 0), cycle
-    return record, peak, friction, flow, (2 if collapsed else 1), cycles
+            return record, peak, friction, flow, (2 if collapsed else 0), cycle, record_tilt
+    return record, peak, friction, flow, (2 if collapsed else 1), cycles, record_tilt
+
+
+def _wall_normal(centre, edge):
+    """Outward normal of the limit in edge-offset space at ``edge`` (the farther edge's direction)."""
+    plus, minus = centre + edge, centre - edge
+    if np.hypot(*plus) >= np.hypot(*minus):
+        return plus / np.hypot(*plus)
+    return -minus / np.hypot(*minus)
+
+
+def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p, kappa, free):
+    """Centre and edge offset of a step, the tilt free or held with an edge on the limit.
+
+    Free: force and moment balance. Held (the film cannot hold the journal):
+    force balance, the farther edge on the limit and the moment's imbalance
+    (e + kappa M - e_free) along the wall's normal only (the contact takes it).
+    Free first unless the last step was held; a free solution with an edge
+    past the limit, or one that fails, is solved held; a held one whose film
+    pushes the edge back inside (that imbalance along the outward normal > 0)
+    is solved free. Returns (x (4,), film, Jacobian, held).
+    """
+    start = np.concatenate([centre, _edges_inside(centre, edge, limit)])
+
+    def free_solve(j):
+        x, h, j = _force_balance(residual, start, j, limit, tolerance)
+        reach = max(np.hypot(*(x[:2] + x[2:])), np.hypot(*(x[:2] - x[2:])))
+        return (x, h, j), reach <= limit * (1 + 1e-9)
+
+    def held_solve(j):
+        # nested: the tilt's direction by the secant method on the moment's imbalance across the wall's normal,
+        # for each direction the centre by the force balance with the farther edge on the limit
+        inner = {"jac": j if j is not None and j.shape == (2, 2) else None, "x": centre.copy()}
+
+        def on_wall(angle):
+            direction = np.array([np.cos(angle), np.sin(angle)])
+
+            c, _, inner["jac"] = _force_balance(lambda y: _with_film(residual, y, direction, limit), inner["x"],
+                                                inner["jac"], limit, tolerance)
+            inner["x"] = c
+            e = _edge_on_wall(c, direction, limit)
+            f, h = residual(np.concatenate([c, e]), held=True)
+            return f[2], np.concatenate([c, e]), h
+
+        angle = np.arctan2(edge[1], edge[0])
+        g0, x, h = on_wall(angle)
+        step = 0.02
+        a1 = angle + step
+        for _ in range(HELD_STEPS):
+            g1, x, h = on_wall(a1)
+            if abs(g1) <= tolerance:
+                break
+            if g1 == g0:
+                raise RuntimeError("tilt held at the wall: the moment does not turn with the tilt")
+            a1, angle, g0 = a1 - g1 * (a1 - angle) / (g1 - g0), a1, g1
+        else:
+            raise RuntimeError("tilt held at the wall: the tilt's direction did not settle")
+        balance = x[2:] + kappa * film.moment(p) - free
+        return (x, h, inner["jac"]), balance @ _wall_normal(x[:2], x[2:]) <= 0.0
+
+    order = ((held_solve, True), (free_solve, False)) if held else ((free_solve, False), (held_solve, True))
+    found = []
+    for attempt, mode in order:
+        try:
+            result, consistent = attempt(jac if mode == held else None)
+        except (RuntimeError, np.linalg.LinAlgError):
+            continue
+        if consistent:
+            return (*result, mode)
+        found.append((result, mode))
+    # at the switch both can be marginally inconsistent: the edge then sits at the limit either way
+    for result, mode in sorted(found, key=lambda item: not item[1]):
+        return (*result, mode)
+    raise RuntimeError("tilt balance: neither free nor held at the limit")
+
+
+#: Secant steps on the direction of a tilt held at the wall.
+HELD_STEPS = 12
+
+
+def _edge_on_wall(centre, direction, limit):
+    """Edge offset along ``direction`` that puts the farther edge of a journal centred at ``centre`` on the limit."""
+    from .._kernels.tilt import _room
+
+    return direction * _room(centre[0], centre[1], 0.0, 0.0, direction[0], direction[1], limit)
+
+
+def _with_film(residual, centre, direction, limit):
+    """The force residual (2,) and film of the journal at ``centre`` with its tilt along ``direction`` on the wall."""
+    f, h = residual(np.concatenate([centre, _edge_on_wall(centre, direction, limit)]), held=True)
+    return f[:2], h
+
+
+def _edges_inside(xi, e, limit):
+    """The edge offset e scaled down until both edges of a journal centred at xi are inside 0.99 ``limit``."""
+    from .._kernels.tilt import _room
+
+    room = _room(xi[0], xi[1], 0.0, 0.0, e[0], e[1], 0.99 * limit)
+    return e * room if room < 1.0 else e
 
 
 def _predict(xi, w0, w_mid, dtau, alpha, limit, table, stretched, finite):
@@ -299,6 +480,7 @@ def _force_balance(residual, x, jac, limit, tolerance):
         jac = _difference_jacobian(residual, x, f)
         f, h = residual(x)
     fresh = False  # the Jacobian is a difference Jacobian at x
+    creeping = 0
     for _ in range(MAX_BROYDEN):
         if np.linalg.norm(f) <= tolerance:
             return x, h, jac
@@ -307,7 +489,7 @@ def _force_balance(residual, x, jac, limit, tolerance):
         except np.linalg.LinAlgError:  # a film that carries nothing in one direction (starved): no Newton step
             return _least_squares_balance(residual, x, tolerance)
         size = np.linalg.norm(step)
-        damping = 1.0
+        damping = _edge_room(x, step, limit)
         accepted = False
         while damping >= 1.0 / 32:
             trial = _inside(x + damping * step, limit)
@@ -323,6 +505,13 @@ def _force_balance(residual, x, jac, limit, tolerance):
             jac = jac + np.outer(f_trial - f - jac @ taken, taken) / max(taken @ taken, 1e-300)
             x, f, h = trial, f_trial, h_trial
             fresh = False
+            # with the tilt, steps that creep (an edge near the wall stiffens the moment fast) ask for differences
+            creeping = creeping + 1 if x.size > 2 and damping < 0.25 else 0
+            if creeping >= 2 and np.linalg.norm(f) > tolerance:
+                jac = _difference_jacobian(residual, x, f)
+                f, h = residual(x)
+                fresh = True
+                creeping = 0
         elif fresh:
             return _least_squares_balance(residual, x, tolerance)
         else:
@@ -330,6 +519,23 @@ def _force_balance(residual, x, jac, limit, tolerance):
             f, h = residual(x)  # the field back at x
             fresh = True
     return _least_squares_balance(residual, x, tolerance)
+
+
+#: A step of the tilt unknowns may take an edge this many thinnest films (1 - limit) past the limit, no further.
+EDGE_OVERLAP = 0.0
+
+
+def _edge_room(x, step, limit):
+    """Largest share (<= 1) of the step that keeps both edges within EDGE_OVERLAP thinnest films past the limit."""
+    if x.size == 2:
+        return 1.0
+    from .._kernels.tilt import _room
+
+    bound = limit + EDGE_OVERLAP * (1.0 - limit)
+    # the centre and the edge offset move together: the edges x[:2] +/- x[2:] along step[:2] +/- step[2:]
+    room = min(_room(x[0], x[1], x[2], x[3], step[0] + step[2], step[1] + step[3], bound),
+               _room(x[0], x[1], -x[2], -x[3], step[0] - step[2], step[1] - step[3], bound))
+    return min(1.0, room)
 
 
 def _least_squares_balance(residual, x, tolerance):
@@ -351,19 +557,31 @@ def _failed(record, peak, friction, flow, k, cycle):
 
 
 def _difference_jacobian(residual, x, f):
-    """Forward-difference Jacobian of the force balance (two field solves)."""
-    delta = 1e-4 * max(1 - float(np.hypot(*x)), 1e-3)
-    jac = np.empty((2, 2))
-    for i in range(2):
-        e = np.zeros(2)
+    """Forward-difference Jacobian of the balance (a field solve per unknown)."""
+    delta = 1e-4 * max(1 - float(np.hypot(*x[:2])), 1e-3)
+    jac = np.empty((f.size, x.size))
+    for i in range(x.size):
+        e = np.zeros(x.size)
         e[i] = delta
         jac[:, i] = (residual(x + e)[0] - f) / delta
     return jac
 
 
+#: Largest edge offset the tilt unknowns may take [c] (the journal's axis across the whole clearance).
+EDGE_OFFSET_LIMIT = 2.0
+
+
 def _inside(x, limit):
-    e = float(np.hypot(*x))
-    return x * (limit / e) if e > limit else x
+    """The centre (first two unknowns) within the limit eccentricity, an edge offset (the rest) within its limit."""
+    x = np.array(x, dtype=float)
+    e = float(np.hypot(*x[:2]))
+    if e > limit:
+        x[:2] *= limit / e
+    if x.size > 2:
+        t = float(np.hypot(*x[2:]))
+        if t > EDGE_OFFSET_LIMIT:
+            x[2:] *= EDGE_OFFSET_LIMIT / t
+    return x
 
 
 def _outputs(film, p, fill, h):

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..assembly import ASSEMBLED, assemble
-from ..crank import support_slopes
+from ..crank import support_compliance, support_slopes
 from ..crank.cycle import engine_cycles, worst_status
 from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
@@ -290,10 +290,12 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     r = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
                       clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
     # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
-    # journals bend the beam; the line-bored bores stay parallel to the line)
+    # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the film's
+    # moment against the crankshaft's rotational compliance there
     tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
     films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
-                          journal_d=journal_d, method=film_method, tilt=tilt)
+                          journal_d=journal_d, method=film_method, tilt=tilt,
+                          tilt_compliance=support_compliance(spans=spec.spans, EI=spec.ei))
     wear = engine.wear
     journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
     chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
@@ -309,7 +311,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "h_min": films.h_min.min(axis=-1),
             "h_min_edge": films.h_min_edge.min(axis=-1),
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
-            "tilt_max": np.hypot(tilt[..., 0], tilt[..., 1]).max(axis=1),
+            "tilt_max": films.tilt_max,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,

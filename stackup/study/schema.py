@@ -77,8 +77,8 @@ MECHANICS = {
     "h_min_edge": Var(SMB, "m", "minimum oil film thickness over the bearing width and the engine cycle, with the "
                                 "journal's tilt (edge film)"),
     "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min - h_min_edge"),
-    "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (crankshaft slope "
-                                "at the support)"),
+    "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (the crankshaft's "
+                                "slope at the support, turned back by the film's moment)"),
     "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle (Rozhdestvensky et al.'s p_max)"),
     "p_max_mean": Var(SMB, "Pa", "cycle mean of the peak oil film pressure (Rozhdestvensky et al.'s p*_max)"),
     "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "

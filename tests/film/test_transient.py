@@ -134,3 +134,33 @@ def test_tilt_thins_the_edge_and_thickens_the_mid_plane():
     assert tilted.h_min[-1] > plain.h_min[-1]  # the edge takes load: the journal lifts in the mid-plane
     assert tilted.h_min_edge[-1] < plain.h_min[-1]
     assert cheap.h_min_edge[-1] < tilted.h_min_edge[-1]  # the geometric edge film errs on the safe side
+
+
+def test_transient_tilt_equilibrium_limits():
+    # no free tilt: the tilt stays zero and the orbit is the aligned one; no compliance: the tilt is the free one
+    angle = np.arange(0.0, 720.0, 15.0)
+    loads = np.tile([8e3, 0.0], (angle.size, 1))
+    grid = dict(method="reynolds-transient", n_theta=72, n_z=9)
+    aligned = orbit(loads, angle, **GEOMETRY, **grid)
+    zero = orbit(loads, angle, **GEOMETRY, **grid, tilt=np.zeros(loads.shape), tilt_compliance=[1e-5, 1e-5])
+    np.testing.assert_allclose(zero.tilt, 0.0, atol=1e-9)  # edges within 1e-11 m of the axis
+    np.testing.assert_allclose(zero.position, aligned.position, rtol=0, atol=1e-4 * 30e-6)
+    free = np.tile([2e-4, 5e-5], (angle.size, 1))  # edges 2.3 um off the axis, inside the clearance
+    imposed = orbit(loads, angle, **GEOMETRY, **grid, tilt=free)
+    rigid = orbit(loads, angle, **GEOMETRY, **grid, tilt=free, tilt_compliance=[0.0, 0.0])
+    np.testing.assert_allclose(rigid.tilt, free, rtol=1e-6)
+    np.testing.assert_allclose(rigid.position, imposed.position, rtol=0, atol=1e-4 * 30e-6)
+
+
+@pytest.mark.slow
+def test_transient_film_turns_the_journal_back_as_the_cheap_tier_does():
+    # a support that lets the film work: the tilt in the film below the free tilt, the edge film above the
+    # free tilt's; the cheap tier's tilt close to the reference's
+    loads = np.tile([8e3, 0.0], (ANGLE.size, 1))
+    free = np.tile([1.5e-3, 0.0], (ANGLE.size, 1))  # edges 16.5 um off the axis: past the wall without the film
+    kw = dict(tilt=free, tilt_compliance=[1e-4, 1e-4])
+    reference = orbit(loads, ANGLE, **GEOMETRY, method="reynolds-transient", **kw)
+    cheap = orbit(loads, ANGLE, **GEOMETRY, method="mobility-finite", **kw)
+    assert np.all(reference.tilt_max < 1.5e-3) and np.all(cheap.tilt_max < 1.5e-3)
+    assert reference.h_min_edge[-1] > 0.1 * reference.h_min[-1]
+    assert cheap.tilt_max == pytest.approx(reference.tilt_max, rel=0.3)

@@ -1,0 +1,477 @@
+r"""Film force and moment on a tilted journal, and the journal's tilt equilibrium (numba).
+
+The readable statement is in :mod:`stackup.film.tilt`; ``tests/film/test_tilt.py`` holds
+the numpy twin these kernels must match. Everything is dimensionless as in
+:mod:`stackup._kernels.mobility`: journal centre :math:`\boldsymbol\xi` and edge offset
+:math:`\mathbf e = \boldsymbol\gamma L/(2c)` in clearances, squeeze velocity
+:math:`\bar{\mathbf v}` in :math:`c\omega`, force per :math:`\mu\omega R L^3/c^2`,
+moment per :math:`\mu\omega R L^4/c^2`.
+
+Short bearing per line of the film (angle :math:`\theta`, normal :math:`\mathbf n`):
+with :math:`\zeta = 2z/L`, :math:`\bar h = h_0(1 - s\zeta)`, :math:`h_0 = 1 - \boldsymbol\xi\cdot\mathbf n`,
+:math:`s = \mathbf e\cdot\mathbf n/h_0`, source :math:`a + b\zeta` (:math:`a = \bar{\mathbf v}\cdot\mathbf n`,
+:math:`b = \bar{\mathbf u}\cdot\mathbf n`, :math:`\bar{\mathbf u} = -\tfrac12\mathbf k\times\mathbf e`),
+the pressure :math:`p = 3\mu\omega(L/c)^2 P` solves :math:`(\bar h^3 P')' = -(a + b\zeta)`,
+:math:`P(\pm1) = 0`. Its integrals over the width follow from the axial moments
+:math:`H_k = \int_{-1}^{1}\zeta^k\bar h^{-3}d\zeta = K_k(s)/h_0^3`:
+
+.. math:: C = \frac{aH_1 + bH_2/2}{H_0}, \quad
+          P_0 = \int P\,d\zeta = aH_2 + \tfrac b2 H_3 - CH_1, \quad
+          P_1 = \int P\zeta\,d\zeta = -\tfrac12\left[C(H_2 - H_0) - a(H_3 - H_1) - \tfrac b2(H_4 - H_2)\right]
+
+and :math:`\bar{\mathbf F} = \tfrac32\oint\mathbf n P_0\,d\theta`,
+:math:`\bar{\mathbf M} = \tfrac34\oint\mathbf n P_1\,d\theta` over the lines that carry
+pressure (:math:`P_0 > 0`: Gümbel's π-film generalised per line; without tilt
+exactly the mobility tiers' film).
+"""
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from .mobility import _locate, table_lookup
+
+#: |s| below which the axial moments K_2..K_4 are summed as a series in s^2 (the closed forms lose 1/s^4 there).
+SERIES_BELOW = 0.15
+#: Series coefficients (in q = s^2) of K_2, K_3/s and K_4: nine terms leave 1e-12 at |s| = 0.15.
+K2_SERIES = tuple([(2 * m + 1) * (2 * m + 2) / (2 * m + 3) for m in range(9)])
+K3_SERIES = tuple([(2 * m + 2) * (2 * m + 3) / (2 * m + 5) for m in range(9)])
+K4_SERIES = tuple([(2 * m + 1) * (2 * m + 2) / (2 * m + 5) for m in range(9)])
+#: Largest angle the tilt may move a boundary of the pressure-carrying arc from the untilted one [rad].
+CUT_SHIFT = 1.0
+#: Secant steps that place a boundary of that arc.
+CUT_STEPS = 4
+#: Lines away from that arc count where P_0 > 0, fully once P_0 exceeds this share of |P_0| + |P_1| (a ramp
+#: keeps the moment continuous where a line turns wet).
+WET_RAMP = 0.1
+#: Tilt equilibrium: Newton steps per crank angle, halvings of a step.
+MAX_STEPS = 8
+#: Newton steps from the free tilt, where the continuation did not settle.
+MAX_COLD_STEPS = 40
+#: An angle whose Newton does not settle within this many thinnest films (1 - limit) of the wall is at the limit.
+NEAR_WALL = 2.0
+MAX_HALVINGS = 5
+#: Equilibrium states per angle.
+EQUILIBRIUM, AT_LIMIT, NOT_SOLVED = 0, 1, 2
+
+
+@njit(cache=True, inline="always")
+def _horner(coefficients, q):
+    out = 0.0
+    for i in range(len(coefficients) - 1, -1, -1):
+        out = out * q + coefficients[i]
+    return out
+
+
+@njit(cache=True, inline="always")
+def axial_moments(s):
+    """K_k(s) = integral over [-1, 1] of zeta^k / (1 - s zeta)^3, k = 0..4, for |s| < 1.
+
+    K_0 = 2/(1 - s^2)^2, K_1 = 2s/(1 - s^2)^2 and, with A_1 = ln((1 + s)/(1 - s))/s,
+    K_2 = (K_0 - 4/(1 - s^2) + A_1)/s^2, K_3 = (K_0 - 6/(1 - s^2) + 3A_1 - 2)/s^3,
+    K_4 = (K_0 - 8/(1 - s^2) + 6A_1 - 6)/s^4 (from z = (1 - u)/s, u = 1 - s z);
+    below :data:`SERIES_BELOW` the last three from (1 - s z)^-3 = sum (n+1)(n+2)/2 (s z)^n.
+    """
+    q = s * s
+    d = 1.0 - q
+    k0 = 2.0 / (d * d)
+    k1 = s * k0
+    if abs(s) < SERIES_BELOW:
+        return k0, k1, _horner(K2_SERIES, q), s * _horner(K3_SERIES, q), _horner(K4_SERIES, q)
+    a2 = 2.0 / d
+    a1 = math.log1p(2.0 * s / (1.0 - s)) / s
+    return k0, k1, (k0 - 2.0 * a2 + a1) / q, (k0 - 3.0 * a2 + 3.0 * a1 - 2.0) / (q * s), \
+        (k0 - 4.0 * a2 + 6.0 * a1 - 6.0) / (q * q)
+
+
+@njit(cache=True, inline="always")
+def line_integrals(h0, g, a, b):
+    """P_0 and P_1 of one line: film h0 - g zeta, source a + b zeta (module docstring)."""
+    k0, k1, k2, k3, k4 = axial_moments(g / h0)
+    c = (a * k1 + 0.5 * b * k2) / k0
+    scale = 1.0 / (h0 * h0 * h0)
+    p0 = (a * k2 + 0.5 * b * k3 - c * k1) * scale
+    p1 = -0.5 * (c * (k2 - k0) - a * (k3 - k1) - 0.5 * b * (k4 - k2)) * scale
+    return p0, p1
+
+
+@njit(cache=True, inline="always")
+def _line_p0(theta, x0, x1, v0, v1, e0, e1):
+    n0 = math.cos(theta)
+    n1 = math.sin(theta)
+    return line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, v0 * n0 + v1 * n1,
+                          0.5 * (e1 * n0 - e0 * n1))[0]
+
+
+@njit(cache=True, inline="always")
+def _cut(theta, x0, x1, v0, v1, e0, e1, step):
+    """The boundary of the pressure-carrying arc near ``theta`` (the untilted one): secant steps on P_0.
+
+    At most :data:`CUT_STEPS` steps, each kept within :data:`CUT_SHIFT` of ``theta``.
+    """
+    p = _line_p0(theta, x0, x1, v0, v1, e0, e1)
+    if p == 0.0:
+        return theta
+    t_prev, p_prev = theta, p
+    t = theta + step
+    for _ in range(CUT_STEPS):
+        p = _line_p0(t, x0, x1, v0, v1, e0, e1)
+        if p == p_prev or not math.isfinite(p):
+            break
+        t_new = t - p * (t - t_prev) / (p - p_prev)
+        t_new = max(theta - CUT_SHIFT, min(theta + CUT_SHIFT, t_new))
+        t_prev, p_prev = t, p
+        if abs(t_new - t) < 1e-7:
+            return t_new
+        t = t_new
+    return t
+
+
+@njit(cache=True, inline="always")
+def _wrap(a):
+    return a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))
+
+
+@njit(cache=True, inline="always")
+def _stretched(phi, k, root):
+    """Sommerfeld's angle psi of the film angle phi (from the thinnest film), eccentricity k."""
+    c = math.cos(phi)
+    d = 1.0 - k * c
+    return math.atan2(root * math.sin(phi) / d, (c - k) / d)
+
+
+@njit(cache=True)
+def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
+    """Gauss-Legendre over the film angles [lo, hi] in Sommerfeld's angle about (c0, c1).
+
+    ``wet``: the arc carries pressure (its lines count, P_0 clipped at 0);
+    else only lines with P_0 > 0 count, through the ramp :data:`WET_RAMP`.
+    Returns (F0, F1, M0, M1) before the factors 3/2 and 3/4.
+    """
+    centre = math.atan2(c1, c0)
+    psi_lo = _stretched(_wrap(lo - centre), k, root)
+    span = _stretched(_wrap(hi - centre), k, root) - psi_lo
+    if span <= 0.0:
+        span += 2.0 * math.pi
+    half = 0.5 * span
+    f0 = f1 = m0 = m1 = 0.0
+    u0 = 0.5 * e1  # u = -(1/2) k x e
+    u1 = -0.5 * e0
+    for j in range(nodes.shape[0]):
+        psi = psi_lo + half * (1.0 + nodes[j])
+        cp = math.cos(psi)
+        d = 1.0 + k * cp
+        cphi = (k + cp) / d
+        sphi = root * math.sin(psi) / d
+        n0 = c0 * cphi - c1 * sphi
+        n1 = c1 * cphi + c0 * sphi
+        h0 = 1.0 - x0 * n0 - x1 * n1
+        p0, p1 = line_integrals(h0, e0 * n0 + e1 * n1, v0 * n0 + v1 * n1, u0 * n0 + u1 * n1)
+        if p0 <= 0.0:
+            if not wet:
+                continue
+            p0 = 0.0
+        elif not wet:
+            p1 *= min(1.0, p0 / (WET_RAMP * (p0 + abs(p1))))
+        w = weights[j] * half * root / d
+        f0 += w * p0 * n0
+        f1 += w * p0 * n1
+        m0 += w * p1 * n0
+        m1 += w * p1 * n1
+    return f0, f1, m0, m1
+
+
+@njit(cache=True)
+def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, stretch_cap):
+    """Film force and moment (F0, F1, M0, M1) on the bearing under a tilted journal, short bearing.
+
+    The lines carry pressure (P_0 > 0) on the half of the bearing the squeeze
+    velocity points into when the journal is aligned; the tilt moves the two
+    boundaries, each found by a Newton step on P_0 from the untilted one. That
+    arc is integrated by Gauss-Legendre (``nodes``, ``weights`` on [-1, 1]) in
+    Sommerfeld's angle about the thinnest film over the width (eccentricity k
+    of that edge, capped at ``stretch_cap``), which makes the thin film's
+    peak smooth; every line of it counts (P_0 clipped at 0), so the moment
+    is continuous as the boundaries move. The rest of the bearing by
+    ``nodes_dry``, ``weights_dry``: pressure where the tilt makes any there
+    (lines with P_0 > 0, through the ramp :data:`WET_RAMP`).
+    """
+    rp = math.hypot(x0 + e0, x1 + e1)
+    rm = math.hypot(x0 - e0, x1 - e1)
+    # the thinner edge; a tie decided by the edges' positions alone, so the tilt reversed (the edges swapped) gives
+    # the same nodes
+    if rp > rm or rp == rm and (x0 + e0, x1 + e1) >= (x0 - e0, x1 - e1):
+        r, c0, c1 = rp, x0 + e0, x1 + e1
+    else:
+        r, c0, c1 = rm, x0 - e0, x1 - e1
+    if r > 0.0:
+        c0 /= r
+        c1 /= r
+    else:
+        c0, c1 = 1.0, 0.0
+    k = min(r, stretch_cap)
+    root = math.sqrt((1.0 - k) * (1.0 + k))
+    alpha = math.atan2(v1, v0)
+    # a step in theta of 1e-3 of the local spacing of Sommerfeld's angle
+    step = 1e-3 * root / (1.0 + k)
+    lo = _cut(alpha - 0.5 * math.pi, x0, x1, v0, v1, e0, e1, step)
+    hi = _cut(alpha + 0.5 * math.pi, x0, x1, v0, v1, e0, e1, step)
+    if hi <= lo:
+        hi = lo + 1e-12
+    f0, f1, m0, m1 = _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, True)
+    g0, g1, n0, n1 = _arc(hi, lo + 2.0 * math.pi, x0, x1, v0, v1, e0, e1, nodes_dry, weights_dry, c0, c1, k,
+                          root, False)
+    return 1.5 * (f0 + g0), 1.5 * (f1 + g1), 0.75 * (m0 + n0), 0.75 * (m1 + n1)
+
+
+@njit(cache=True, inline="always")
+def _room(x0, x1, e0, e1, d0, d1, limit):
+    """Largest t >= 0 with both edges inside the limit: |x + (e + t d)| <= limit and |x - (e + t d)| <= limit."""
+    best = math.inf
+    for sign in (1.0, -1.0):
+        px = x0 + sign * e0
+        py = x1 + sign * e1
+        qx = sign * d0
+        qy = sign * d1
+        a = qx * qx + qy * qy
+        if a == 0.0:
+            continue
+        b = px * qx + py * qy
+        c = px * px + py * py - limit * limit  # <= 0 inside
+        disc = b * b - a * c
+        t = (-b + math.sqrt(max(disc, 0.0))) / a
+        best = min(best, max(t, 0.0))
+    return best
+
+
+@njit(cache=True, inline="always")
+def _edge(x0, x1, e0, e1):
+    """Thinnest film over the width [c]: 1 - the larger eccentricity of the two edges."""
+    return 1.0 - max(math.hypot(x0 + e0, x1 + e1), math.hypot(x0 - e0, x1 - e1))
+
+
+@njit(cache=True)
+def _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap):
+    """e + kappa (rho R(turn) M(e)) - e_free."""
+    _, _, m0, m1 = film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, cap)
+    return e0 + k0 * ratio * (ct * m0 - st * m1) - f0, e1 + k1 * ratio * (st * m0 + ct * m1) - f1
+
+
+@njit(cache=True)
+def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry,
+                         weights_dry, cap, limit, jac):
+    """Forward differences into jac (2, 2), each step pointed away from the nearer wall. Returns evaluations."""
+    delta = 1e-6 + 1e-4 * _edge(x0, x1, e0, e1)
+    for j in range(2):
+        d0 = delta if j == 0 else 0.0
+        d1 = delta if j == 1 else 0.0
+        if _room(x0, x1, e0, e1, d0, d1, limit) < 1.0:
+            d0, d1 = -d0, -d1
+        q0, q1 = _residual(x0, x1, v0, v1, e0 + d0, e1 + d1, f0, f1, k0, k1, ratio, ct, st, nodes, weights,
+                           nodes_dry, weights_dry, cap)
+        h = d0 + d1
+        jac[0, j] = (q0 - r0) / h
+        jac[1, j] = (q1 - r1) / h
+    return 2
+
+
+@njit(cache=True)
+def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, ratio, ct, st, limit, tolerance, nodes,
+                weights, nodes_dry, weights_dry, cap, steps=MAX_STEPS):
+    """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``.
+
+    Damped Newton from the guess (g0, g1) (moved onto the wall along its direction
+    where ``on_wall`` and beyond it, else inside) with the Jacobian ``jac`` (2, 2), in and
+    out: Broyden's update after each step, differences where ``fresh`` is False
+    (no usable Jacobian yet) or a step fails. A step that would take an edge
+    past the limit stops there; where the root lies beyond it the iterates stay
+    on the wall and the state is AT_LIMIT (e on the wall, the film cannot hold
+    the journal: edge contact). Stops when the Newton step is below
+    ``tolerance`` times the edge film. Returns (e0, e1, state, evaluations).
+    """
+    if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
+        return 0.0, 0.0, (EQUILIBRIUM if f0 == 0.0 and f1 == 0.0 else AT_LIMIT), 0
+    # the guess inside the lens (towards the aligned journal), on the wall if it was there at the last angle
+    room = _room(x0, x1, 0.0, 0.0, g0, g1, limit)
+    if room < 1.0 or on_wall:
+        share = min(room, 1.0) if on_wall else 0.99 * room
+        g0 *= share
+        g1 *= share
+    e0, e1 = g0, g1
+    r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
+                       cap)
+    evaluations = 1
+    if not fresh:
+        evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
+                                            nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
+        fresh = True
+    differenced = fresh and evaluations > 1
+    for _ in range(steps):
+        det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+        if det == 0.0 or not math.isfinite(det):
+            evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
+                                                nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
+            differenced = True
+            det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+            if det == 0.0 or not math.isfinite(det):
+                return e0, e1, NOT_SOLVED, evaluations
+        d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
+        d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
+        edge = _edge(x0, x1, e0, e1)
+        size = math.hypot(d0, d1)
+        room = _room(x0, x1, e0, e1, d0, d1, limit)
+        if size <= tolerance * edge and room >= 1.0:
+            return e0 + d0, e1 + d1, EQUILIBRIUM, evaluations
+        if room < 1.0 and room * size <= tolerance * (1.0 - limit):
+            # at the wall and Newton points beyond it: the film cannot hold the journal
+            return e0 + room * d0, e1 + room * d1, AT_LIMIT, evaluations
+        t = min(1.0, room)  # an edge may go as far as the wall, not past it
+        merit = r0 * r0 + r1 * r1
+        accepted = False
+        for _ in range(MAX_HALVINGS):
+            n0 = e0 + t * d0
+            n1 = e1 + t * d1
+            q0, q1 = _residual(x0, x1, v0, v1, n0, n1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry,
+                               weights_dry, cap)
+            evaluations += 1
+            if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
+                accepted = True
+                break
+            t *= 0.5
+        if accepted:
+            s0 = n0 - e0
+            s1 = n1 - e1
+            ss = s0 * s0 + s1 * s1
+            if ss > 0.0:
+                y0 = q0 - r0 - (jac[0, 0] * s0 + jac[0, 1] * s1)
+                y1 = q1 - r1 - (jac[1, 0] * s0 + jac[1, 1] * s1)
+                jac[0, 0] += y0 * s0 / ss
+                jac[0, 1] += y0 * s1 / ss
+                jac[1, 0] += y1 * s0 / ss
+                jac[1, 1] += y1 * s1 / ss
+            e0, e1, r0, r1 = n0, n1, q0, q1
+            differenced = False
+        elif not differenced:
+            evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
+                                                nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
+            differenced = True
+        else:
+            break
+    return _unsettled(x0, x1, e0, e1, limit, evaluations)
+
+
+@njit(cache=True, inline="always")
+def _unsettled(x0, x1, e0, e1, limit, evaluations):
+    """A Newton that did not settle: at the limit (moved onto the wall along e) if it ended near it, else NOT_SOLVED."""
+    if _edge(x0, x1, e0, e1) <= (1.0 + NEAR_WALL) * (1.0 - limit):
+        room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
+        return e0 * room, e1 * room, AT_LIMIT, evaluations
+    return e0, e1, NOT_SOLVED, evaluations
+
+
+@njit(cache=True)
+def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table, stretched, finite, nodes, weights,
+              nodes_dry, weights_dry, cap, jac, fresh, tilt, state):
+    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes tilt and state.
+
+    Returns (evaluations, whether the Jacobian is usable at the next angle).
+    """
+    f0 = free[b, k, 0]
+    f1 = free[b, k, 1]
+    if f0 == 0.0 and f1 == 0.0:
+        tilt[b, k, 0] = 0.0
+        tilt[b, k, 1] = 0.0
+        state[b, k] = EQUILIBRIUM
+        return 0, fresh
+    x0 = xi[b, k, 0]
+    x1 = xi[b, k, 1]
+    ratio, ct, st = 1.0, 1.0, 0.0
+    if finite:
+        alpha = math.atan2(v[b, k, 1], v[b, k, 0]) - math.atan2(x1, x0)
+        alpha = math.atan2(math.sin(alpha), math.cos(alpha))
+        log_ratio, turn, _, _, _ = table_lookup(table, stretched, min(math.hypot(x0, x1), limit), alpha)
+        ratio = math.exp(log_ratio)
+        ct = math.cos(turn)
+        st = math.sin(turn)
+    e0, e1, s, used = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], g0, g1, on_wall,
+                                  jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry,
+                                  cap)
+    if s == NOT_SOLVED:  # start again from the free tilt, with a fresh Jacobian and more steps
+        e0, e1, s, more = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], f0, f1, False,
+                                      jac, False, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
+                                      weights_dry, cap, MAX_COLD_STEPS)
+        used += more
+    tilt[b, k, 0] = e0
+    tilt[b, k, 1] = e1
+    state[b, k] = s
+    return used, s != NOT_SOLVED
+
+
+@njit(cache=True, parallel=True)
+def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, tables, ld_nodes, stretched, ld, finite, nodes,
+               weights, nodes_dry, weights_dry, cap, tilt, state, evaluations):
+    """Tilt equilibrium at every angle of many bearings (prange over bearings).
+
+    xi, v (B, n, 2) the journal centre and squeeze velocity of each angle; free
+    (B, n, 2) the free edge offset; kappa (B, 2) the dimensionless compliance
+    per component. The short-bearing moment is scaled and turned by the finite
+    tier's force correction at (|xi|, squeeze direction) where ``finite``.
+
+    The even angles are solved in turn, each from the last two solutions
+    extrapolated (on the wall where the last was at the limit) with the last
+    Jacobian; an odd angle between two of the same state whose edge offsets
+    differ by less than ``interpolate`` times their thinner edge film takes
+    their mean, the others are solved. Writes tilt (B, n, 2), state (B, n) and
+    evaluations (B, n): film moments computed at each angle.
+    """
+    n_b = xi.shape[0]
+    n = xi.shape[1]
+    for b in prange(n_b):
+        if finite:
+            i, t = _locate(ld_nodes, ld[b])
+            table = (1.0 - t) * tables[i] + t * tables[i + 1]
+        else:
+            table = tables[0]
+        jac = np.eye(2)
+        fresh = False
+        last = -1
+        before = -1
+        for k in range(0, n, 2):
+            if before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
+                g0 = 2.0 * tilt[b, last, 0] - tilt[b, before, 0]
+                g1 = 2.0 * tilt[b, last, 1] - tilt[b, before, 1]
+            elif last >= 0:
+                g0, g1 = tilt[b, last, 0], tilt[b, last, 1]
+            else:
+                g0, g1 = free[b, k, 0], free[b, k, 1]
+            on_wall = last >= 0 and state[b, last] == AT_LIMIT
+            evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table,
+                                                 stretched, finite, nodes, weights, nodes_dry, weights_dry, cap, jac,
+                                                 fresh, tilt, state)
+            before = last
+            last = k
+        for k in range(1, n, 2):
+            kp = k - 1
+            kn = k + 1 if k + 1 < n else 0
+            evaluations[b, k] = 0
+            if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
+                gap = math.hypot(tilt[b, kn, 0] - tilt[b, kp, 0], tilt[b, kn, 1] - tilt[b, kp, 1])
+                film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
+                           _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
+                e0 = 0.5 * (tilt[b, kp, 0] + tilt[b, kn, 0])
+                e1 = 0.5 * (tilt[b, kp, 1] + tilt[b, kn, 1])
+                if gap <= interpolate * film:
+                    room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
+                    if state[b, kp] == AT_LIMIT or room < 1.0:  # on the wall, as its neighbours
+                        e0 *= min(room, 1.0)
+                        e1 *= min(room, 1.0)
+                    tilt[b, k, 0] = e0
+                    tilt[b, k, 1] = e1
+                    state[b, k] = state[b, kp]
+                    continue
+            else:
+                e0, e1 = tilt[b, kp, 0], tilt[b, kp, 1]
+            evaluations[b, k], fresh = _solve_at(b, k, e0, e1, state[b, kp] == AT_LIMIT, xi, v, free, kappa, limit,
+                                                 tolerance, table, stretched, finite, nodes, weights, nodes_dry,
+                                                 weights_dry, cap, jac, fresh, tilt, state)

@@ -1,0 +1,330 @@
+r"""The film under a tilted journal: its restoring moment and the journal's tilt equilibrium.
+
+A journal whose axis is tilted against the bearing's by :math:`\boldsymbol\gamma`
+(slope, engine frame) has the film (Rozhdestvensky et al. 2018, eq. 4)
+
+.. math:: h(\theta, z) = c - (\mathbf x + z\boldsymbol\gamma)\cdot\mathbf n(\theta),
+          \qquad z \in [-L/2, L/2]
+
+thinnest at an edge. Its pressure pushes the edges back: the film's moment
+on the bearing about the mid-plane, :math:`\mathbf M = \iint p\,z\,\mathbf n\,R\,d\theta\,dz`
+(conjugate to the slope), turns the journal back against the crankshaft's
+bending. With :math:`C` the crankshaft's rotational compliance at the support
+(:func:`stackup.crank.support_compliance`, per bending plane) the tilt in the
+film is
+
+.. math:: \boldsymbol\gamma = \boldsymbol\gamma_{free} - C\,\mathbf M(\boldsymbol\gamma;\ \mathbf x, \mathbf v_s)
+
+(:math:`\boldsymbol\gamma_{free}` the beam's slope without the film's moment,
+:func:`stackup.crank.support_slopes`), solved at each crank angle.
+
+Cheap tier (``"short"``): the short-bearing Reynolds equation line by line,
+:math:`\partial_z(h^3\partial_z p) = -12\mu(\mathbf v_s + z\mathbf u_s)\cdot\mathbf n`,
+:math:`p = 0` at both ends, with the local squeeze velocity of the tilted axis
+:math:`\mathbf v_s + z\mathbf u_s`,
+:math:`\mathbf u_s = \dot{\boldsymbol\gamma} - \tfrac\omega2\mathbf k\times\boldsymbol\gamma`
+(:mod:`stackup.film.orbit`); with the film linear in :math:`z` its integrals over
+the width are closed forms (:mod:`stackup._kernels.tilt`). A line carries
+pressure where its pressure integral is positive (Gümbel's π-film, per line;
+without tilt exactly the mobility tiers' film). ``"finite"``: that force and
+moment scaled and turned by the finite-length correction the
+``mobility-finite`` tier applies to the force at the same eccentricity and
+squeeze direction (measured against the Reynolds tier with tilt in
+``reports/film_speed_vs_error.md``).
+
+Simplifications of the equilibrium (each measured against the transient
+Reynolds tier with the tilt equilibrium in its film, the reference):
+
+- the mid-plane orbit is the film tier's without tilt (the tilt's share of
+  the force does not move the journal centre);
+- the tilt's own squeeze, :math:`\dot{\boldsymbol\gamma}` in :math:`\mathbf u_s`, is neglected:
+  the tilt follows the load quasi-statically;
+- each bearing meets its own support's compliance only (the diagonal of
+  :func:`stackup.crank.support_compliance`: a moment at a neighbour also turns
+  the journal, by about a quarter, the other way).
+
+Where no tilt with both edges off the wall balances the beam (the film's
+moment grows only like the logarithm of the edge film, so a beam bent
+further than the film can hold it brings the edge to the wall) the journal is
+held with an edge at the limit eccentricity and the angle's state is
+``at_limit`` (the orbit's status ``edge_contact``).
+
+References
+----------
+.. [1] Rozhdestvensky, Y. et al., Tribology in Industry 40 (2018), eqs. 1, 4-6
+   (film with skewed axes; moments and angular compliances of the supports).
+.. [2] Ocvirk, F. W., NACA TN 2808, 1952 (short bearing).
+.. [3] Booker, J. F., J. Basic Eng. 87 (1965) 537-546 (rotation and squeeze as one squeeze velocity).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _validate as check
+from .._kernels import tilt as _kernel
+
+#: States of the tilt equilibrium at an angle (flag values 0..2).
+STATES = ("equilibrium", "at_limit", "not_solved")
+#: Gauss-Legendre nodes on the arc that carries pressure and on the rest of the bearing.
+GAUSS_NODES = 12
+DRY_NODES = 6
+#: Largest eccentricity of the thinnest edge Sommerfeld's angle clusters the nodes for.
+STRETCH_CAP = 0.95
+#: The equilibrium stops when the Newton step is below this share of the edge film.
+TOLERANCE = 1e-2
+#: An odd crank angle takes the mean tilt of its neighbours (solved) where they are in the same state and their
+#: edge offsets differ by less than this share of their thinner edge film (the mean is then within about a
+#: quarter of that of the solution): a quarter of the cost, the edge film within 0.02 um (99 %, at most 0.3 um)
+#: of every angle solved on iso-example's main bearings.
+INTERPOLATE = 0.1
+METHODS = ("short", "finite")
+
+
+def axial_moments(s):
+    r"""Axial moments :math:`K_k(s) = \int_{-1}^{1}\zeta^k(1 - s\zeta)^{-3}d\zeta`, k = 0..4, for :math:`|s| < 1`.
+
+    Closed forms through :math:`u = 1 - s\zeta` (:math:`K_0 = 2/(1-s^2)^2`, :math:`K_1 = sK_0`,
+    the others with :math:`\ln\frac{1+s}{1-s}`), a series in :math:`s^2` where those cancel
+    (:math:`|s| < 0.15`). Returns an array (5, ...).
+    """
+    s = np.asarray(s, dtype=float)
+    q = s * s
+    k0 = 2.0 / (1.0 - q) ** 2
+    small = np.abs(s) < _kernel.SERIES_BELOW
+    qs = np.where(small, q, 0.0)
+    series = [np.polynomial.polynomial.polyval(qs, c) for c in (_kernel.K2_SERIES, _kernel.K3_SERIES,
+                                                                  _kernel.K4_SERIES)]
+    sl = np.where(small, 0.5, s)
+    ql = sl * sl
+    a2 = 2.0 / (1.0 - ql)
+    a1 = np.log((1.0 + sl) / (1.0 - sl)) / sl
+    k0l = 2.0 / (1.0 - ql) ** 2
+    closed = [(k0l - 2 * a2 + a1) / ql, (k0l - 3 * a2 + 3 * a1 - 2) / (ql * sl), (k0l - 4 * a2 + 6 * a1 - 6) / ql**2]
+    return np.stack([k0, s * k0, np.where(small, series[0], closed[0]), np.where(small, s * series[1], closed[1]),
+                     np.where(small, series[2], closed[2])])
+
+
+def short_film(position, squeeze, edge_offset, *, lines=4096):
+    r"""Force and moment of the short-bearing film under a tilted journal, dimensionless (the readable reference).
+
+    Parameters
+    ----------
+    position : array_like (..., 2)
+        Journal centre in the mid-plane :math:`\boldsymbol\xi = \mathbf x/c`.
+    squeeze : array_like (..., 2)
+        Squeeze velocity in the mid-plane :math:`\bar{\mathbf v} = \mathbf v_s/(c\omega)`.
+    edge_offset : array_like (..., 2)
+        :math:`\mathbf e = \boldsymbol\gamma L/(2c)` (the journal centre at the ends is
+        :math:`\boldsymbol\xi \pm \mathbf e`);
+        the tilt squeeze is :math:`\bar{\mathbf u} = -\tfrac12\mathbf k\times\mathbf e` (tilt held).
+    lines : int
+        Lines of the midpoint rule around the bearing.
+
+    Returns
+    -------
+    (force, moment) : numpy.ndarray (..., 2) each
+        Film force on the bearing per :math:`\mu\omega R L^3/c^2` and its moment about the
+        mid-plane per :math:`\mu\omega R L^4/c^2`.
+
+    Notes
+    -----
+    Per line, :math:`\zeta = 2z/L`, :math:`\bar h = h_0 - g\zeta`, source :math:`a + b\zeta`
+    (:mod:`stackup._kernels.tilt`): :math:`H_k = K_k(g/h_0)/h_0^3`,
+    :math:`C = (aH_1 + bH_2/2)/H_0`, :math:`P_0 = aH_2 + bH_3/2 - CH_1`,
+    :math:`P_1 = -\tfrac12[C(H_2 - H_0) - a(H_3 - H_1) - \tfrac b2(H_4 - H_2)]`, and
+    :math:`\bar{\mathbf F} = \tfrac32\oint\mathbf n P_0^+ d\theta`,
+    :math:`\bar{\mathbf M} = \tfrac34\oint_{P_0 > 0}\mathbf n P_1\,d\theta`.
+    """
+    xi, v, e = (np.asarray(a, dtype=float)[..., None, :] for a in (position, squeeze, edge_offset))
+    theta = 2 * np.pi * (np.arange(lines) + 0.5) / lines
+    n = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
+    h0 = 1 - (xi * n).sum(-1)
+    g = (e * n).sum(-1)
+    a = (v * n).sum(-1)
+    b = 0.5 * (e[..., 1] * n[..., 0] - e[..., 0] * n[..., 1])
+    k = axial_moments(g / h0) / h0**3
+    c = (a * k[1] + 0.5 * b * k[2]) / k[0]
+    p0 = a * k[2] + 0.5 * b * k[3] - c * k[1]
+    p1 = -0.5 * (c * (k[2] - k[0]) - a * (k[3] - k[1]) - 0.5 * b * (k[4] - k[2]))
+    wet = p0 > 0
+    step = 2 * np.pi / lines
+    force = 1.5 * step * (n * np.where(wet, p0, 0.0)[..., None]).sum(-2)
+    moment = 0.75 * step * (n * np.where(wet, p1, 0.0)[..., None]).sum(-2)
+    return force, moment
+
+
+def _quadrature():
+    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_NODES)
+    dry_nodes, dry_weights = np.polynomial.legendre.leggauss(DRY_NODES)
+    return nodes, weights, dry_nodes, dry_weights
+
+
+@dataclass(frozen=True)
+class TiltedFilm:
+    """Film force and moment under a tilted journal.
+
+    Attributes
+    ----------
+    force : numpy.ndarray (..., 2)
+        Force of the film on the bearing [N].
+    moment : numpy.ndarray (..., 2)
+        Its moment about the bearing's mid-plane, :math:`\\iint p\\,z\\,\\mathbf n\\,dA` [N m]
+        (conjugate to the slope: the journal receives :math:`-\\mathbf M`).
+    """
+
+    force: np.ndarray
+    moment: np.ndarray
+
+
+def film_moment(position, squeeze_velocity, tilt, *, radius, length, radial_clearance, viscosity, speed,
+                method="short"):
+    r"""Force and moment of the film on a tilted journal (the cheap tier; compiled).
+
+    Parameters
+    ----------
+    position : array_like (..., 2)
+        Journal centre in the mid-plane relative to the bearing centre [m].
+    squeeze_velocity : array_like (..., 2)
+        :math:`\mathbf v_s = \dot{\mathbf x} - \tfrac\omega2\mathbf k\times\mathbf x` [m/s] (steady
+        journal: :math:`-\tfrac\omega2\mathbf k\times\mathbf x`).
+    tilt : array_like (..., 2)
+        Slope of the journal axis against the bearing axis [rad] (held: no tilt squeeze).
+    radius, length, radial_clearance : float or array_like (...)
+        [m].
+    viscosity : float or array_like (...)
+        [Pa s].
+    speed : float or array_like (...)
+        Journal angular speed [rad/s].
+    method : {"short", "finite"}
+        Short-bearing film, or scaled and turned by the ``mobility-finite``
+        tier's finite-length correction (L/D 0.15-1).
+
+    Returns
+    -------
+    TiltedFilm
+    """
+    from .orbit import ECCENTRICITY_LIMIT, mobility_table
+
+    check.one_of("method", method, METHODS)
+    x = check.finite("position", position)
+    vs = check.finite("squeeze_velocity", squeeze_velocity)
+    gamma = check.finite("tilt", tilt)
+    lead = np.broadcast_shapes(x.shape[:-1], vs.shape[:-1], gamma.shape[:-1])
+    r, l, c, mu, w = (np.broadcast_to(check.positive(name, value), lead).ravel() for name, value in (
+        ("radius", radius), ("length", length), ("radial_clearance", radial_clearance), ("viscosity", viscosity),
+        ("speed", speed)))
+    xi = np.broadcast_to(x, (*lead, 2)).reshape(-1, 2) / c[:, None]
+    v = np.broadcast_to(vs, (*lead, 2)).reshape(-1, 2) / (c * w)[:, None]
+    e = np.broadcast_to(gamma, (*lead, 2)).reshape(-1, 2) * (l / (2 * c))[:, None]
+    reach = np.maximum(np.linalg.norm(xi + e, axis=-1), np.linalg.norm(xi - e, axis=-1))
+    if np.any(reach >= 1.0):
+        raise ValueError(f"tilt: an edge of the journal reaches the bearing (edge eccentricity {reach.max():.4g} >= 1)")
+    nodes, weights, dry_nodes, dry_weights = _quadrature()
+    out = np.empty((xi.shape[0], 4))
+    for i in range(xi.shape[0]):
+        out[i] = _kernel.film_moment(xi[i, 0], xi[i, 1], v[i, 0], v[i, 1], e[i, 0], e[i, 1], nodes, weights, dry_nodes,
+                                     dry_weights, STRETCH_CAP)
+    if method == "finite":
+        ld_nodes, stretched, tables = mobility_table()
+        ld = l / (2 * r)
+        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
+            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
+                             f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
+        for i in range(xi.shape[0]):
+            j, t = _kernel._locate(ld_nodes, ld[i])
+            table = (1 - t) * tables[j] + t * tables[j + 1]
+            alpha = np.angle(np.exp(1j * (np.arctan2(v[i, 1], v[i, 0]) - np.arctan2(xi[i, 1], xi[i, 0]))))
+            log_ratio, turn = _kernel.table_lookup(table, stretched, min(np.hypot(*xi[i]), ECCENTRICITY_LIMIT),
+                                                   alpha)[:2]
+            rotation = np.exp(log_ratio) * np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+            out[i, :2] = rotation @ out[i, :2]
+            out[i, 2:] = rotation @ out[i, 2:]
+    unit = mu * w * r * l**3 / c**2
+    force = (out[:, :2] * unit[:, None]).reshape(*lead, 2)
+    moment = (out[:, 2:] * (unit * l)[:, None]).reshape(*lead, 2)
+    return TiltedFilm(force, moment)
+
+
+@dataclass(frozen=True)
+class TiltEquilibrium:
+    """Tilt of journals in their films over a cycle (:func:`cycle_tilt`).
+
+    Attributes
+    ----------
+    tilt : numpy.ndarray (..., angles, 2)
+        Slope of the journal against the bearing axis in the film [rad].
+    state : numpy.ndarray of int8 (..., angles)
+        Index into :data:`STATES`.
+    evaluations : numpy.ndarray of int (..., angles)
+        Film moments computed at each angle (the cost).
+    """
+
+    tilt: np.ndarray
+    state: np.ndarray
+    evaluations: np.ndarray
+
+
+def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, length, radial_clearance, viscosity,
+               speed, method="short"):
+    r"""The journal's tilt in its film at every angle of a cycle: the free tilt turned back by the film's moment.
+
+    :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M(\boldsymbol\gamma)` on a given mid-plane orbit
+    (:mod:`stackup.film.tilt`), solved by the kernel :func:`stackup._kernels.tilt.equilibria`.
+
+    Parameters
+    ----------
+    position, squeeze_velocity : array_like (..., angles, 2)
+        The mid-plane orbit: journal centre [m] and squeeze velocity [m/s] at each angle.
+    free_tilt : array_like (..., angles, 2)
+        Slope of the journal against the bearing axis without the film's moment [rad].
+    compliance : array_like (..., 2)
+        Rotational compliance of the journal at the bearing per component [rad/(N m)]
+        (:func:`stackup.crank.support_compliance`); 0 holds the free tilt.
+    radius, length, radial_clearance, viscosity, speed : float or array_like (...)
+        As :func:`film_moment`.
+    method : {"short", "finite"}
+        Film moment of :func:`film_moment`.
+
+    Returns
+    -------
+    TiltEquilibrium
+    """
+    from .orbit import ECCENTRICITY_LIMIT, _short_table, mobility_table
+
+    check.one_of("method", method, METHODS)
+    x = check.finite("position", position)
+    if x.ndim < 2 or x.shape[-1] != 2:
+        raise ValueError(f"position: shape {x.shape} is not valid; expected (..., angles, 2)")
+    vs = np.broadcast_to(check.finite("squeeze_velocity", squeeze_velocity), x.shape)
+    free = np.broadcast_to(check.finite("free_tilt", free_tilt), x.shape)
+    lead = x.shape[:-2]
+    n = x.shape[-2]
+    compliance = np.broadcast_to(check.positive("compliance", compliance, allow_zero=True), (*lead, 2))
+    r, l, c, mu, w = (np.broadcast_to(check.positive(name, value), lead) for name, value in (
+        ("radius", radius), ("length", length), ("radial_clearance", radial_clearance), ("viscosity", viscosity),
+        ("speed", speed)))
+    xi = np.ascontiguousarray((x / c[..., None, None]).reshape(-1, n, 2))
+    v = np.ascontiguousarray((vs / (c * w)[..., None, None]).reshape(-1, n, 2))
+    e_free = np.ascontiguousarray((free * (l / (2 * c))[..., None, None]).reshape(-1, n, 2))
+    kappa = np.ascontiguousarray((compliance * (mu * w * r * l**5 / (2 * c**3))[..., None]).reshape(-1, 2))
+    if method == "finite":
+        ld_nodes, stretched, tables = mobility_table()
+        ld = (l / (2 * r)).reshape(-1)
+        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
+            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
+                             f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
+    else:
+        ld_nodes, stretched, tables = _short_table()
+        ld = np.ones(xi.shape[0])
+    tilt = np.empty(xi.shape)
+    state = np.empty(xi.shape[:2], np.int8)
+    evaluations = np.empty(xi.shape[:2], np.int64)
+    nodes, weights, dry_nodes, dry_weights = _quadrature()
+    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, tables, ld_nodes,
+                       stretched, np.ascontiguousarray(ld, dtype=float), method == "finite", nodes, weights, dry_nodes,
+                       dry_weights, STRETCH_CAP, tilt, state, evaluations)
+    gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
+    return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))
