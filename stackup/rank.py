@@ -51,18 +51,23 @@ def _clearance_metrics(d, window):
 
 #: Fewest bearings counted outside the window for the count to decide; below it a tail estimate does, if given.
 MIN_COUNTED = 20
-#: ``outside_window_source`` of a share the ranking took from the tail estimates.
-TAIL_SOURCE = "generalized splitting"
+#: ``outside_window_source`` of a share the ranking took from the tail estimates, per tails method.
+TAIL_SOURCES = {"conditional": "shells integrated out", "splitting": "generalized splitting"}
 
 
 def _outside(counted, assembled, tail):
     """Share outside the window [ppm] with its 95 % interval and where it comes from.
 
-    From the tail estimates (both edges: independent runs, so shares add and
-    variances add) where the study counted fewer than :data:`MIN_COUNTED`,
-    with the interval of the equivalent count (:func:`stackup.tail.share_interval`);
-    an edge whose estimate found no bearing adds its upper bound.
+    From the tail estimates where the study counted fewer than
+    :data:`MIN_COUNTED`: the conditional tier's share outside the window and
+    its Student interval, or generalized splitting's two edges (independent
+    runs, so shares add and variances add) with the interval of the
+    equivalent count (:func:`stackup.tail.share_interval`); an edge whose
+    estimate found no bearing adds its upper bound.
     """
+    if counted < MIN_COUNTED and tail is not None and "tail_outside_share" in tail:
+        share, (lo, hi) = float(tail.tail_outside_share), tail.tail_outside_interval.values
+        return share * 1e6, (float(lo) * 1e6, float(hi) * 1e6), TAIL_SOURCES["conditional"]
     if counted < MIN_COUNTED and tail is not None and np.all(np.isfinite(tail.tail_share.values)):
         from .tail import share_interval
 
@@ -70,7 +75,7 @@ def _outside(counted, assembled, tail):
         share = float(shares.sum())
         lo, hi = share_interval(share, float(np.hypot(*np.where(shares > 0, errors, 0.0))))
         hi = (0.0 if share == 0 else hi) + float(tail.tail_interval.values[shares == 0, 1].sum())
-        return share * 1e6, (lo * 1e6, hi * 1e6), TAIL_SOURCE
+        return share * 1e6, (lo * 1e6, hi * 1e6), TAIL_SOURCES["splitting"]
     share, lo, hi = proportion_ci(counted, assembled)
     return share * 1e6, (lo * 1e6, hi * 1e6), "counted"
 

@@ -97,16 +97,17 @@ def test_summaries_rank_like_the_full_dataset():
         rank(Study(**{**kw, "mechanics_engines": 0}, keep="summaries").run(), window=(40e-6, 70e-6))
 
 
-def test_too_few_counted_bearings_rank_on_the_tail_estimate(study):
-    from stackup.rank import MIN_COUNTED, TAIL_SOURCE
+@pytest.mark.parametrize("method", ["conditional", "splitting"])
+def test_too_few_counted_bearings_rank_on_the_tail_estimate(study, method):
+    from stackup.rank import MIN_COUNTED, TAIL_SOURCES
     from stackup.study.compare import tails_dataset
 
-    tails = tails_dataset("iso-example", list(study.scheme.values), n_level=1000)
+    tails = tails_dataset("iso-example", list(study.scheme.values), n_level=1000, method=method)
     ranking = stackup.rank(study, tails=tails)
     for name, row in ranking.iterrows():
         t = tails.sel(scheme=name)
         if row.outside_window_counted < MIN_COUNTED:
-            assert row.outside_window_source == TAIL_SOURCE
+            assert row.outside_window_source == TAIL_SOURCES[method]
             assert row.outside_window_ppm == pytest.approx(1e6 * float(t.tail_share.sum()))
             lo, hi = row.outside_window_ppm_ci
             assert lo <= row.outside_window_ppm <= hi and hi - lo > 0

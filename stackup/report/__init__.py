@@ -21,7 +21,7 @@ import pandas as pd
 
 from ..assembly import STATUS
 from ..film.cycle import NOT_A_NUMBER
-from ..rank import MIN_COUNTED
+from ..rank import MIN_COUNTED, TAIL_SOURCES
 from ..study.schema import flag
 from . import figures, prose
 from .html import anchor, markdown_to_html
@@ -201,7 +201,7 @@ def _ranking_section(ds, ranking, scenarios):
         "rank": ranking["rank"],
         "scheme": ranking.index,
         "operating mean ± std [µm]": [f"{m:.2f} ± {v:.2f}" for m, v in zip(ranking.clearance_mean_um, ranking.clearance_std_um)],
-        "outside window [ppm]": [_fmt_ci(v, ci, 0 if v >= 10 else 1) + ("" if src == "counted" else " †")
+        "outside window [ppm]": [_fmt_ci(v, ci, prose.ppm_digits(v)) + ("" if src == "counted" else " †")
                                  for v, ci, src in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
                                                        ranking.outside_window_source)],
         "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
@@ -227,11 +227,16 @@ def _ranking_section(ds, ranking, scenarios):
                  "each run with the same seed (counted shares).")
     notes = []
     if (ranking.outside_window_source != "counted").any():
+        how = ("estimated with the shells integrated out (`stackup.design.estimate.outside_share`: each "
+               "bearing's probability of ending outside the window with the shells its pair's grades hold, on "
+               "independent samples of the scheme's parts, aims and grading; its 95 % interval is Student's on "
+               "the samples' spread; its error against a study's counts: reports/design_scheme.md)"
+               if (ranking.outside_window_source == TAIL_SOURCES["conditional"]).any() else
+               "estimated by generalized splitting through the same assembly chain (`stackup.tail`; bins never "
+               "run short there), its 95 % interval from the spread of the estimate's independent root bearings, "
+               "as wide as the equivalent count")
         notes.append(f"† Fewer than {MIN_COUNTED} bearings of the study fell outside the window, too few for a tight "
-                     "interval: the share is estimated by generalized splitting through the same assembly chain "
-                     "(`stackup.tail`; bins never run short there), its 95 % interval from the spread of the "
-                     "estimate's independent root bearings, as wide as the equivalent count; the study "
-                     "counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
+                     f"interval: the share is {how}; the study counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
                      + ".")
     return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
 
@@ -427,9 +432,11 @@ def _film_detail(ds):
         text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).")
     if edge:
         text.append(f"In {edge:,} of them ({100 * edge / max(total, 1):.0f} %) the tilted journal reaches the "
-                    "bearing's edge at some crank angle (`edge_contact`): the tilt here is the beam's free slope "
-                    "at the support, an upper bound, since the film's restoring moment is not modelled, so the "
-                    "edge film is a worst case and the life uses the mid-plane film.")
+                    "bearing's edge at some crank angle (`edge_contact`): the tilt balances the film's restoring "
+                    "moment (short-bearing, tilt squeeze neglected) against the crankshaft's rotational "
+                    "compliance at the support, and where the film cannot hold the beam's slope the edge film is "
+                    "held at the eccentricity limit, so the edge film is a lower bound; the life uses the "
+                    "mid-plane film.")
     if text:
         lines += [" ".join(text), ""]
     return lines

@@ -46,16 +46,26 @@ def _um_edge(value):
     return f"{um:.0f}" if um == round(um) else f"{um:g}"
 
 
+def ppm_digits(value, upper=None):
+    """Decimals of a share in ppm: none from 10 ppm, a tenth below, two significant digits below 1 (0.05 is not 0)."""
+    if abs(value) >= 10 or (upper is not None and abs(upper) >= 10):
+        return 0
+    if not np.isfinite(value) or abs(value) >= 1 or value == 0:
+        return 1
+    return int(min(3, max(1, 1 - np.floor(np.log10(abs(value))))))
+
+
 def _ppm(value, ci=None):
-    """A share in ppm with its interval, to a tenth below 10 ppm (0.2 ppm is not 0)."""
-    digits = 1 if abs(value) < 10 and (ci is None or abs(ci[1]) < 10) else 0
+    """A share in ppm with its interval, to the value's precision (:func:`ppm_digits`)."""
+    digits = ppm_digits(value, None if ci is None else ci[1])
     text = f"{value:,.{digits}f} ppm"
     return text + (f" [{ci[0]:,.{digits}f}, {ci[1]:,.{digits}f}]" if ci is not None else "")
 
 
 def _source(row):
-    """' (estimated by generalized splitting †)' where the ranking took the share from the tails, else ''."""
-    return "" if row.get("outside_window_source", "counted") == "counted" else " (estimated by generalized splitting †)"
+    """' (estimated ... †)' where the ranking took the share from the tails, else ''."""
+    source = row.get("outside_window_source", "counted")
+    return "" if source == "counted" else f" (estimated: {source} †)"
 
 
 def _names(names):
@@ -342,8 +352,10 @@ def limits_of_validity(ds):
         "- The oil film is isothermal at the bearing's effective temperature; no elastic deformation of the "
         "bearing (EHD), no surface texture beyond the roughness in the critical film; the cheap dynamic film "
         "tiers do not model the oil groove, which is most of their error against the transient reference.",
-        "- The journal's tilt in its bearing is the beam's free slope at the support: the film's restoring moment "
-        "is not modelled, so the tilt and the edge film are worst cases; the life reads the mid-plane film.",
+        "- The journal's tilt in its bearing balances the film's restoring moment (short-bearing, tilt squeeze "
+        "neglected) against the crankshaft's rotational compliance at its support, a beam on point supports: "
+        "where the film cannot hold the slope the edge film is held at the eccentricity limit (a lower bound, "
+        "no elastic deformation of the shell edge); the life reads the mid-plane film.",
         "- Life follows Levanov et al. (2015), whose constants were fitted to another engine: compare schemes "
         "rather than read the hours as a guarantee.",
         "- Each scheme is judged on its preferred and allowed pairs as written in its file; the shell supply is "

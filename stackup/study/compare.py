@@ -9,6 +9,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
+from .. import _validate as check
 from ..scenarios import DECLARED
 from ..sensitivity import sobol
 from . import ISO_SCHEMES, Study
@@ -23,6 +24,9 @@ SCENARIO_MECHANICS_ENGINES = 50
 SOBOL_CRANK_ANGLE_STEP = 4.0
 #: Root bearings of each tail estimate (:func:`stackup.tail.clearance_tail`'s ``n_level``).
 TAIL_ROOTS = 2_000
+#: Independent samples and engines per sample of the conditional tail estimate: 0.05-0.8 ppm known to
+#: +-10-45 % on the example engine (reports/design_scheme.md) in about 1.5 s per scheme.
+TAIL_SAMPLES, TAIL_ENGINES = 10, 20_000
 
 
 @dataclass(frozen=True)
@@ -116,7 +120,7 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
 
     counted = counted_outside(ds)
     few = [s for s in loaded if counted[s.name] < MIN_COUNTED]
-    log(f"tails: shares beyond the design window by generalized splitting ({len(few)} schemes with fewer than "
+    log(f"tails: shares beyond the design window with the shells integrated out ({len(few)} schemes with fewer than "
         f"{MIN_COUNTED} bearings counted outside it)")
     tails = tails_dataset(engine_used, few, window=study_options.get("window"), seed=seed,
                           pilot_engines=study.pilot_engines)
@@ -196,26 +200,47 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
                                                             "chain (stackup.sensitivity.sobol, SALib)", "seed": seed})
 
 
-def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=TAIL_ROOTS):
-    """Share of bearings below and above the design window per scheme, by generalized splitting (:mod:`stackup.tail`).
+def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=TAIL_ROOTS,
+                  method="conditional"):
+    """Share of bearings below and above the design window per scheme, for the ranking's small shares.
+
+    ``method="conditional"`` (default): the designer's conditional tier, the
+    shells integrated out on :data:`TAIL_SAMPLES` independent samples of
+    :data:`TAIL_ENGINES` engines, Student intervals
+    (:func:`stackup.design.estimate.outside_share`); ``"splitting"``:
+    generalized splitting through the assembly chain (:mod:`stackup.tail`).
 
     Variables on (scheme, side): ``tail_share``, its ``tail_standard_error``
     and 95 % interval (``tail_interval`` on ``bound``; where no sample reaches
     the tail the share is 0 with an upper bound), with the chain evaluations
-    each estimate cost (``tail_bearings``) and the independent root bearings
-    it rests on (``tail_roots_in_tail``).
+    each estimate cost (``tail_bearings``); splitting adds the independent
+    root bearings it rests on (``tail_roots_in_tail``), the conditional tier
+    the share outside the window and its interval (``tail_outside_share``,
+    ``tail_outside_interval``: the two edges from the same samples).
     """
     from ..engines import load_engine
     from ..schemes import load as load_scheme
-    from ..tail import clearance_tail
 
+    check.one_of("method", method, ("conditional", "splitting"))
     engine = load_engine(engine)
     window = engine.clearance_window if window is None else window
     loaded = [load_scheme(s) for s in schemes]
     sides = ("lower", "upper")
     shares, errors, cost, roots = (np.full((len(loaded), 2), np.nan) for _ in range(4))
     interval = np.full((len(loaded), 2, 2), np.nan)
+    outside, outside_interval = np.full(len(loaded), np.nan), np.full((len(loaded), 2), np.nan)
     for i, scheme in enumerate(loaded):
+        if method == "conditional":
+            from ..design.estimate import outside_share
+
+            r = outside_share(engine, scheme, window=window, seed=seed, samples=TAIL_SAMPLES, n_engines=TAIL_ENGINES)
+            shares[i], errors[i] = (r.below, r.above), (r.below_error, r.above_error)
+            interval[i] = r.below_interval, r.above_interval
+            outside[i], outside_interval[i] = r.outside, r.outside_interval
+            cost[i] = r.samples * r.engines * engine.main_bearings
+            continue
+        from ..tail import clearance_tail
+
         for j, side in enumerate(sides):
             if not np.isfinite(window[j]) or (side == "lower" and window[j] <= 0):
                 continue
@@ -225,15 +250,24 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
                 t.effective_bearings
             interval[i, j] = t.interval
     dims = ("scheme", "side")
+    name = {"conditional": "the shells integrated out (stackup.design.estimate)",
+            "splitting": "generalized splitting (stackup.tail)"}[method]
+    data = {"tail_share": (dims, shares, {"units": "1", "long_name": f"share of assembled bearings beyond the window "
+                                                                      f"edge ({name})"}),
+            "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
+            "tail_interval": ((*dims, "bound"), interval, {"units": "1", "long_name": "95 % interval of tail_share"}),
+            "tail_bearings": (dims, cost, {"units": "1", "long_name": "bearings the estimate evaluated"})}
+    if method == "splitting":
+        data["tail_roots_in_tail"] = (dims, roots, {"units": "1", "long_name": "root bearings of the estimate with "
+                                                                                "descendants in the tail"})
+    else:
+        data["tail_outside_share"] = ("scheme", outside, {"units": "1", "long_name": f"share of assembled bearings "
+                                                                                      f"outside the window ({name})"})
+        data["tail_outside_interval"] = (("scheme", "bound"), outside_interval,
+                                         {"units": "1", "long_name": "95 % interval of tail_outside_share"})
     return xr.Dataset(
-        {"tail_share": (dims, shares, {"units": "1", "long_name": "share of assembled bearings beyond the window edge "
-                                                                   "(generalized splitting)"}),
-         "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
-         "tail_interval": ((*dims, "bound"), interval, {"units": "1", "long_name": "95 % interval of tail_share"}),
-         "tail_bearings": (dims, cost, {"units": "1", "long_name": "chain evaluations of the estimate"}),
-         "tail_roots_in_tail": (dims, roots, {"units": "1", "long_name": "root bearings of the estimate with "
-                                                                          "descendants in the tail"})},
+        data,
         coords={"scheme": ("scheme", [s.name for s in loaded], {"long_name": "selective-fitting scheme"}),
                 "side": ("side", list(sides), {"long_name": "edge of the design window"}),
                 "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"})},
-        attrs={"window": list(map(float, window)), "method": "generalized splitting (stackup.tail)", "seed": seed})
+        attrs={"window": list(map(float, window)), "method": name, "tail_method": method, "seed": seed})
