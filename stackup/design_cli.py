@@ -21,7 +21,7 @@ def add_parser(subparsers):
                                           "keep the operating clearance in the engine's window; write the scheme "
                                           "file (its comments explain the choices).")
     p.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file")
-    p.add_argument("--grades", type=int, default=3, help="shell grades (default 3)")
+    p.add_argument("--grades", type=int, default=4, help="shell grades (default 4)")
     p.add_argument("--housing-grades", type=int, default=3, help="housing bore grades (1: ungraded; default 3)")
     p.add_argument("--journal-grades", type=int, default=3, help="journal grades (1: ungraded; default 3)")
     p.add_argument("--window", type=float, nargs=2, metavar=("LO", "HI"),

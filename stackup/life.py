@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _validate as check
+from ._kernels import life as _kernel
 from .contact import TYPICAL_ASPERITIES, greenwood_tripp
 from .stats import proportion_ci, quantile_ci
 
@@ -307,10 +308,6 @@ class WearChart:
 
 #: Points of the wear chart around the bearing (0.5 deg apart).
 CHART_POINTS = 720
-#: Film rows (crank angle x bearing) handled at once by :func:`levanov_method2`, to bound memory.
-_BLOCK = 4096
-
-
 def _step_revolutions(crank_angle):
     """Journal revolutions each crank-angle sample stands for (periodic mid-point rule over 720 deg)."""
     a = check.finite("crank_angle", crank_angle)
@@ -331,27 +328,32 @@ def _prepare(lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, cont
     return revolutions, per_bearing, cycle_time
 
 
-def _accumulate(h, rows, steps, wear, peak, *, revolutions, radius, h_cr, sigma, modulus, k, m, asperities):
-    """Add eq. 6 for the film rows ``h`` (M, positions) of bearings ``rows`` at steps ``steps`` into ``wear``."""
-    n = h.shape[1]
-    zone = h < h_cr[rows][:, None]
-    half_angle = zone.sum(axis=1) * (np.pi / n)  # beta_c: half the arc below the critical film
-    r, j = np.nonzero(zone)
-    pressure = greenwood_tripp(h[r, j], roughness=sigma[rows][r], contact_modulus=modulus[rows][r],
-                               asperities=asperities)
-    depth = k * pressure**m * 2.0 * half_angle[r] * radius[rows][r] * revolutions[steps][r]
-    wear += np.bincount(rows[r] * n + j, weights=depth, minlength=wear.size).reshape(wear.shape)
-    np.maximum.at(peak, rows[r], pressure)
+def _wear(contacts, n_rows, points, *, revolutions, radius, sigma, modulus, k, m, asperities):
+    """Eq. 6 summed over the cycle at each chart point: (wear per cycle (rows, points) [m], peak pressure (rows,) [Pa]).
+
+    ``contacts``: (row, step, point, film, zone size) of every chart point in contact, as
+    :func:`stackup._kernels.life.contact_zones` lists them.
+    """
+    r, steps, j, h, zone = contacts
+    wear = np.zeros((n_rows, points))
+    peak = np.zeros(n_rows)
+    if r.size == 0:
+        return wear, peak
+    pressure = greenwood_tripp(h, roughness=sigma[r], contact_modulus=modulus[r], asperities=asperities)
+    half_angle = zone * (np.pi / points)  # beta_c: half the arc below the critical film
+    depth = k * pressure**m * 2.0 * half_angle * radius[r] * revolutions[steps]
+    wear += np.bincount(r * points + j, weights=depth, minlength=wear.size).reshape(wear.shape)
+    np.maximum.at(peak, r, pressure)
+    return wear, peak
 
 
-def _chart(wear, peak, below, lead, revolutions, cycle_time, wear_limit, angles):
+def _chart(wear, peak, share, lead, revolutions, cycle_time, wear_limit, angles):
     per_cycle = wear.reshape(*lead, angles.size)
     deepest = wear.max(axis=1)
     rate = deepest / cycle_time
     with np.errstate(divide="ignore"):
         life = np.where(rate > 0, wear_limit / np.where(rate > 0, rate, 1.0), np.inf)
     where = np.where(deepest > 0, angles[np.argmax(wear, axis=1)], np.nan)
-    share = below @ revolutions / revolutions.sum()
     return WearChart(angles, per_cycle, rate.reshape(lead), where.reshape(lead), life.reshape(lead),
                      share.reshape(lead), peak.reshape(lead))
 
@@ -426,19 +428,14 @@ def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_r
         raise ValueError(f"position: {x.shape[-2]} angles, crank_angle has {revolutions.size}")
     c = np.broadcast_to(check.positive("radial_clearance", radial_clearance), lead).ravel()
     check.integer("points", points, minimum=8)
-    x = x.reshape(count, -1, 2)
+    x = np.ascontiguousarray(x.reshape(count, -1, 2))
     angles = 2 * np.pi * np.arange(points) / points
-    normal = np.stack([np.cos(angles), np.sin(angles)])  # (2, points)
-    below = c[:, None] - np.linalg.norm(x, axis=-1) < h_cr[:, None]  # (bearings, angles)
-    wear = np.zeros((count, points))
-    peak = np.zeros(count)
-    rows, steps = np.nonzero(below)
-    for start in range(0, rows.size, _BLOCK):
-        r, s = rows[start:start + _BLOCK], steps[start:start + _BLOCK]
-        h = c[r, None] - x[r, s] @ normal
-        _accumulate(h, r, s, wear, peak, revolutions=revolutions, radius=radius, h_cr=h_cr, sigma=sigma,
-                    modulus=modulus, k=k, m=m, asperities=asperities)
-    return _chart(wear, peak, below, lead, revolutions, cycle_time, limit, angles)
+    share, *contacts = _kernel.contact_zones(x, np.ascontiguousarray(c, dtype=float),
+                                             np.ascontiguousarray(h_cr, dtype=float), np.cos(angles), np.sin(angles),
+                                             revolutions / revolutions.sum())
+    wear, peak = _wear(contacts, count, points, revolutions=revolutions, radius=radius, sigma=sigma, modulus=modulus,
+                       k=k, m=m, asperities=asperities)
+    return _chart(wear, peak, share, lead, revolutions, cycle_time, limit, angles)
 
 
 def levanov_method2_field(film_thickness, *, crank_angle, speed, bearing_radius, h_lim_cr, roughness,
@@ -468,11 +465,11 @@ def levanov_method2_field(film_thickness, *, crank_angle, speed, bearing_radius,
         raise ValueError(f"film_thickness: {h.shape[-2]} angles, crank_angle has {revolutions.size}")
     h = h.reshape(count, revolutions.size, points)
     below = h.min(axis=-1) < h_cr[:, None]
-    wear = np.zeros((count, points))
-    peak = np.zeros(count)
     rows, steps = np.nonzero(below)
-    for start in range(0, rows.size, _BLOCK):
-        r, s = rows[start:start + _BLOCK], steps[start:start + _BLOCK]
-        _accumulate(h[r, s], r, s, wear, peak, revolutions=revolutions, radius=radius, h_cr=h_cr, sigma=sigma,
-                    modulus=modulus, k=k, m=m, asperities=asperities)
-    return _chart(wear, peak, below, lead, revolutions, cycle_time, limit, 2 * np.pi * np.arange(points) / points)
+    zone = h[rows, steps] < h_cr[rows, None]
+    i, j = np.nonzero(zone)
+    contacts = (rows[i], steps[i], j, h[rows[i], steps[i], j], zone.sum(axis=1)[i])
+    wear, peak = _wear(contacts, count, points, revolutions=revolutions, radius=radius, sigma=sigma, modulus=modulus,
+                       k=k, m=m, asperities=asperities)
+    share = below @ revolutions / revolutions.sum()
+    return _chart(wear, peak, share, lead, revolutions, cycle_time, limit, 2 * np.pi * np.arange(points) / points)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -50,6 +51,21 @@ class ShellNormals:
     gauge: np.ndarray
     crush: np.ndarray
     order: np.ndarray | None = None
+
+    # A designer scores thousands of shell grades on the same normals: what follows from them alone is
+    # computed once (the caches live in the instance, so they go with the normals).
+
+    @cached_property
+    def arrival(self):
+        """Permutation of a lot's shells into the order they reach the bins (None: production order)."""
+        return None if self.order is None else np.argsort(self.order, kind="stable")
+
+    def gauge_error(self, gauge):
+        """Repeatability error of each shell's reading with ``gauge`` [m] (:meth:`Gauge.noise`), cached per gauge."""
+        cache = self.__dict__.setdefault("_gauge_error", {})
+        if gauge not in cache:
+            cache[gauge] = gauge.noise(self.gauge)
+        return cache[gauge]
 
 
 @dataclass(frozen=True)
@@ -260,9 +276,9 @@ class ShellSupply:
             centre = self._aim(scheme)
             quantity = apportion(aim_share, normals.size.size)
             wall = np.repeat(centre, quantity) + self.sigma * normals.size
-            if normals.order is not None:  # made grade after grade, mixed in the bins
-                wall = wall[np.argsort(normals.order, kind="stable")]
-        reading = self.gauge.read(wall, normals.gauge)
+            if normals.arrival is not None:  # made grade after grade, mixed in the bins
+                wall = wall[normals.arrival]
+        reading = self.gauge.reading(wall, normals.gauge_error(self.gauge))
         crush = self.crush.process.from_normal(normals.crush)
         grade = np.where(self.crush.outside(crush), -1, scheme.shell.classify(reading))
         return Shells(wall, reading, crush, grade)

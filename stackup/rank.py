@@ -7,6 +7,11 @@ intervals), shell stock (grades used, stock-outs, surplus) and, where
 scenario datasets are given, the worst-case degradation of each metric over
 them.
 
+Film and life metrics read the bearings whose film is a number: a bearing
+whose film collapsed, did not become periodic or failed is NaN in the dataset
+(``film_status`` says why), is left out of every metric and counted in
+``film_left_out``.
+
 Ranking rule (stated in the table's attrs): schemes are compared pairwise on
 the metrics in :data:`RULE`, in order; the first metric whose 95 % intervals
 do not overlap decides; if every metric's intervals overlap the two schemes
@@ -23,7 +28,7 @@ import pandas as pd
 
 from .assembly import ASSEMBLED, SHELL_STOCKOUT
 from .life import ALPHA_SCUFFING
-from .stats import Z95, proportion_ci, quantile_ci
+from .stats import proportion_ci, quantile_ci
 from .study.schema import flag
 
 #: (column, better) in order of precedence: share outside the clearance window,
@@ -46,19 +51,26 @@ def _clearance_metrics(d, window):
 
 #: Fewest bearings counted outside the window for the count to decide; below it a tail estimate does, if given.
 MIN_COUNTED = 20
+#: ``outside_window_source`` of a share the ranking took from the tail estimates.
+TAIL_SOURCE = "generalized splitting"
 
 
 def _outside(counted, assembled, tail):
-    """Share outside the window [ppm] with its 95 % interval and where it comes from."""
+    """Share outside the window [ppm] with its 95 % interval and where it comes from.
+
+    From the tail estimates (both edges: independent runs, so shares add and
+    variances add) where the study counted fewer than :data:`MIN_COUNTED`,
+    with the interval of the equivalent count (:func:`stackup.tail.share_interval`);
+    an edge whose estimate found no bearing adds its upper bound.
+    """
     if counted < MIN_COUNTED and tail is not None and np.all(np.isfinite(tail.tail_share.values)):
-        share = float(tail.tail_share.sum())
-        se = tail.tail_standard_error.values
-        if np.all(np.isfinite(se)):
-            half = Z95 * float(np.hypot(*se))
-            return share * 1e6, (max(share - half, 0.0) * 1e6, (share + half) * 1e6), "subset simulation"
-        # a side no sample reached: its upper bound; the bounds add
-        bounds = tail.tail_interval.values.sum(axis=0)
-        return share * 1e6, (bounds[0] * 1e6, bounds[1] * 1e6), "subset simulation"
+        from .tail import share_interval
+
+        shares, errors = tail.tail_share.values, tail.tail_standard_error.values
+        share = float(shares.sum())
+        lo, hi = share_interval(share, float(np.hypot(*np.where(shares > 0, errors, 0.0))))
+        hi = (0.0 if share == 0 else hi) + float(tail.tail_interval.values[shares == 0, 1].sum())
+        return share * 1e6, (lo * 1e6, hi * 1e6), TAIL_SOURCE
     share, lo, hi = proportion_ci(counted, assembled)
     return share * 1e6, (lo * 1e6, hi * 1e6), "counted"
 
@@ -80,21 +92,28 @@ def _scheme_metrics(d, window, h_lim_cr, tail=None):
     }
     done = d.crank_status.values == flag(d.crank_status, "converged")
     if done.any() and "h_min" in d:
-        h = d.h_min.values[done].ravel()
-        a = d.alpha.values[done].ravel()
-        life = d.life.values[done].ravel() / 3600
+        # a bearing whose film is not a number (collapsed, not periodic, failed: NaN) is left out and counted
+        h, a, life = (_numbers(d[name].values[done]) for name in ("h_min", "alpha", "life"))
+        life = life / 3600
         below = proportion_ci(np.count_nonzero(h < h_lim_cr), h.size)
         scuff = proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size)
         b10 = quantile_ci(life, 0.10)
         median = quantile_ci(life, 0.5)
         row.update({
             "film_bearings": int(h.size),
+            "film_left_out": int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
             "h_min_below_critical_pct": 100 * below[0], "h_min_below_critical_pct_ci": (100 * below[1], 100 * below[2]),
             "alpha_over_limit_pct": 100 * scuff[0], "alpha_over_limit_pct_ci": (100 * scuff[1], 100 * scuff[2]),
             "life_b10_h": b10[0], "life_b10_h_ci": b10[1:],
             "life_median_h": median[0], "life_median_h_ci": median[1:],
         })
     return row
+
+
+def _numbers(values):
+    """The values that are numbers (NaN left out), flat."""
+    values = np.asarray(values, dtype=float).ravel()
+    return values[~np.isnan(values)]
 
 
 def _beats(a, b):
@@ -119,6 +138,12 @@ def _counted_window(ds):
     if not bool((window == first).all()):
         raise ValueError("clearance_window: the schemes of this dataset were counted against different windows")
     return tuple(float(v) for v in first.values)
+
+
+def counted_outside(ds):
+    """Bearings the study counted outside its design window, per scheme: ``{scheme: count}``."""
+    window = _counted_window(ds)
+    return {str(s): int(_clearance_metrics(ds.sel(scheme=s), window)[3]) for s in ds.scheme.values}
 
 
 def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):

@@ -14,8 +14,9 @@ All sizes are in metres.
 
 from __future__ import annotations
 
+
 from dataclasses import dataclass, replace
-from functools import cached_property
+from functools import cache, cached_property
 
 import numpy as np
 from scipy import special, stats
@@ -305,6 +306,7 @@ class Gauge:
             return self.repeatability / np.sqrt(self.readings) * z
         return self.repeatability * special.ndtri(np.exp(special.log_ndtr(z) / self.readings))
 
+    @cache  # a quadrature; a gauge is frozen (hashable), and designers ask thousands of times
     def noise_moments(self):
         """Mean and standard deviation of the combined reading's repeatability error [m]."""
         if self.readings == 1 or self.combine == "mean":
@@ -318,7 +320,11 @@ class Gauge:
 
     def read(self, true_size, z):
         """Reading of parts of true size ``true_size`` [m], given standard normals ``z``."""
-        reading = true_size + self.bias + self.noise(z)
+        return self.reading(true_size, self.noise(z))
+
+    def reading(self, true_size, error):
+        """Reading of parts of true size ``true_size`` [m] whose repeatability error is ``error`` [m]."""
+        reading = true_size + self.bias + error
         if self.expansion_mismatch:
             reading = reading + true_size * self.expansion_mismatch * (self.temperature - 20.0)
         return quantize(reading, self.resolution)

@@ -254,3 +254,30 @@ def test_shell_search_starts_from_a_point_on_its_bounds():
     edges = search_shells(lambda e: float((np.diff(e)[0] - 2e-6) ** 2), [start], lower=lower, upper=upper,
                           generations=2, polish=20, seed=0)
     assert lower[1] - 1e-15 <= np.diff(edges)[0] <= upper[1] + 1e-15
+
+
+def test_outside_share_states_an_error_that_matches_its_spread_over_seeds():
+    from stackup.design.estimate import outside_share
+
+    runs = [outside_share("iso-example", "iso13778-3", seed=s, samples=4, n_engines=1500) for s in range(20)]
+    means = np.array([r.outside for r in runs])
+    stated = np.median([r.outside_error for r in runs])
+    assert 0.6 < stated / means.std(ddof=1) < 1.6
+    for r in runs:  # the sides add up to the share outside, and every interval holds its mean
+        assert r.below + r.above == pytest.approx(r.outside, rel=1e-9)
+        for name in ("below", "above", "outside"):
+            lo, hi = getattr(r, f"{name}_interval")
+            assert 0.0 <= lo <= getattr(r, name) <= hi
+
+
+def test_outside_share_agrees_with_the_study_count_where_the_study_counts_hundreds():
+    import stackup
+    from stackup.design.estimate import outside_share
+
+    ds = stackup.Study(engine="iso-example", schemes=["iso13778-3"], n_engines=20_000, seed=3, keep="summaries",
+                       mechanics_engines=0, progress=False).run()
+    row = stackup.rank(ds).loc["iso13778-3"]
+    counted_lo, counted_hi = row["outside_window_ppm_ci"]
+    estimate = outside_share("iso-example", "iso13778-3", seed=3, samples=4, n_engines=5000)
+    assert counted_lo < estimate.outside * 1e6 < counted_hi  # about 2400 ppm: some 240 bearings counted
+    assert estimate.above > 100 * estimate.below  # scheme 3's clearances sit high in the window

@@ -67,3 +67,34 @@ def test_take_shells_conserves_shells(case):
     made = np.bincount(grade[grade >= 0], minlength=n_grades)
     used = np.bincount(grade[taken], minlength=n_grades)
     np.testing.assert_array_equal(made, used + left.sum(axis=0))
+
+
+def cell_outside_reference(cdf, start, size, step, thin, thick, cell, n_cells):
+    """numpy twin of the designer's kernel: np.interp on each pair's points, bincount per cell."""
+    out = np.zeros((cdf.shape[0], n_cells))
+    for p in range(cdf.shape[0]):
+        x = start[p] + step * np.arange(size[p])
+        f = cdf[p, :size[p]]
+        inside = np.interp(thick, x, f) - np.interp(thin, x, f)
+        out[p] = np.bincount(cell, weights=np.clip(1.0 - inside, 0.0, 1.0), minlength=n_cells)
+    return out
+
+
+@given(st.integers(1, 4), st.integers(2, 40), st.integers(0, 60), st.integers(1, 7), st.integers(0, 2**32 - 1))
+def test_cell_outside_matches_reference(n_pairs, points, n_bearings, n_cells, seed):
+    from stackup._kernels.design import cell_outside
+
+    rng = np.random.default_rng(seed)
+    step = 2e-8
+    size = rng.integers(2, points + 1, n_pairs).astype(np.int64)
+    cdf = np.zeros((n_pairs, points))
+    for p in range(n_pairs):
+        cdf[p, :size[p]] = np.concatenate(([0.0], np.sort(rng.random(size[p] - 1))))
+    start = 3.9e-3 + rng.normal(0.0, 1e-7, n_pairs)
+    # wall sums inside, below and beyond every distribution (the interpolation clips at both ends)
+    thin = 3.9e-3 + rng.normal(0.0, 3e-7, n_bearings)
+    thick = thin + rng.uniform(0.0, 6e-7, n_bearings)
+    cell = rng.integers(0, n_cells, n_bearings).astype(np.int64)
+    got = cell_outside(cdf, start, size, step, thin, thick, cell, n_cells)
+    want = cell_outside_reference(cdf, start, size, step, thin, thick, cell, n_cells)
+    np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-9)  # np.interp rounds its slope differently

@@ -98,7 +98,7 @@ def test_summaries_rank_like_the_full_dataset():
 
 
 def test_too_few_counted_bearings_rank_on_the_tail_estimate(study):
-    from stackup.rank import MIN_COUNTED
+    from stackup.rank import MIN_COUNTED, TAIL_SOURCE
     from stackup.study.compare import tails_dataset
 
     tails = tails_dataset("iso-example", list(study.scheme.values), n_level=1000)
@@ -106,7 +106,7 @@ def test_too_few_counted_bearings_rank_on_the_tail_estimate(study):
     for name, row in ranking.iterrows():
         t = tails.sel(scheme=name)
         if row.outside_window_counted < MIN_COUNTED:
-            assert row.outside_window_source == "subset simulation"
+            assert row.outside_window_source == TAIL_SOURCE
             assert row.outside_window_ppm == pytest.approx(1e6 * float(t.tail_share.sum()))
             lo, hi = row.outside_window_ppm_ci
             assert lo <= row.outside_window_ppm <= hi and hi - lo > 0

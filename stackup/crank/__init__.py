@@ -212,11 +212,20 @@ def support_slopes(pin_loads, displacements, *, spans, EI, load_positions=None):
     ei = np.broadcast_to(ei if ei.ndim < 2 else ei, (n,) if ei.ndim < 2 else (n, 2))
     ei = np.stack([ei, ei], axis=-1) if ei.ndim == 1 else ei
     positions = np.full(n, 0.5) if load_positions is None else np.broadcast_to(load_positions, (n,))
-    out = np.empty(np.broadcast_shapes(loads.shape[:-2], w.shape[:-2]) + (n + 1, 2))
-    for c in range(2):
-        s_w, s_p = slope_matrices(spans_arr, ei[:, c], positions)
-        out[..., c] = np.einsum("pq,...q->...p", s_w, w[..., c]) + np.einsum("pi,...i->...p", s_p, loads[..., c])
-    return out
+    s_w, s_p = _slope_planes(tuple(spans_arr), tuple(map(tuple, ei)), tuple(positions))
+    # both bending planes in one product each (plane c: s_w[c] w[..., c] + s_p[c] P[..., c])
+    return (np.einsum("cpq,...qc->...pc", s_w, w, optimize=True)
+            + np.einsum("cpi,...ic->...pc", s_p, loads, optimize=True))
+
+
+@lru_cache(maxsize=64)
+def _slope_planes(spans, ei, load_positions):
+    """:func:`stackup.crank.beam.slope_matrices` of both bending planes, stacked (2, ...); kept for the next call."""
+    ei = np.array(ei)
+    planes = [slope_matrices(np.array(spans), ei[:, c], np.array(load_positions)) for c in range(2)]
+    s_w, s_p = np.stack([p[0] for p in planes]), np.stack([p[1] for p in planes])
+    s_w.flags.writeable = s_p.flags.writeable = False
+    return s_w, s_p
 
 
 def support_compliance(*, spans, EI, load_positions=None, coupled=False):  # noqa: N803

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import schemes as schemes_mod
+from .._kernels import design as _kernel
 
 #: Step of the wall and wall-sum histograms [m].
 WALL_BIN = 2e-8
@@ -71,27 +72,32 @@ def wall_sums(scheme, supply, normals, aim_share=None):
     return WallSums(origin, pmf, mean, total / shells.wall.size)
 
 
-def outside_probability(sample, sums, upper, lower, window, *, wall_sums=None):
-    """Probability that each bearing of ``sample`` is outside ``window`` with shells of grades ``upper``+``lower``.
+def outside_sums(sums, upper, lower, thin, thick, cell, n_cells):
+    """Expected bearings outside the window per cell, for shells of grades ``upper[p]`` + ``lower[p]``.
 
-    ``wall_sums`` = (smallest, largest) wall sum [m] that keeps each bearing
-    in the window, if already known (:meth:`DesignSample.ideal_wall_sum`).
+    ``thin``, ``thick`` (bearings,) are the wall sums that put each bearing
+    at the window's upper and lower clearance [m]
+    (:meth:`DesignSample.ideal_wall_sum`), ``cell`` (bearings,) its cell in
+    ``[0, n_cells)``. Returns (pairs, n_cells): the sum over each cell's
+    bearings of :math:`P_{out}`; NaN rows for a pair with a grade no shell
+    lands in (every bearing needing it is a stock-out, not a clearance).
     """
-    table = sums.cdf(upper, lower)
-    if table is None:  # no shell of the grade: every bearing needing it is a stock-out, not a clearance
-        return np.full(sample.bearings, np.nan)
-    x, f = table
-    if wall_sums is None:
-        wall_sums = sample.ideal_wall_sum(window[1]), sample.ideal_wall_sum(window[0])
-    inside = _uniform_interp(wall_sums[1], x[0], f) - _uniform_interp(wall_sums[0], x[0], f)
-    return np.clip(1.0 - inside, 0.0, 1.0)
-
-
-def _uniform_interp(t, start, f):
-    """``np.interp(t, start + WALL_BIN * arange(f.size), f)`` by index arithmetic (the points are evenly spaced)."""
-    u = np.clip((t - start) / WALL_BIN, 0.0, f.size - 1.0)
-    i = np.minimum(u.astype(np.int64), f.size - 2)
-    return f[i] + (u - i) * (f[i + 1] - f[i])
+    tables = [sums.cdf(u, l) for u, l in zip(upper, lower)]
+    made = [p for p, t in enumerate(tables) if t is not None]
+    out = np.full((len(tables), n_cells), np.nan)
+    if not made:
+        return out
+    points = max(tables[p][1].size for p in made)
+    cdf = np.zeros((len(made), points))
+    for row, p in enumerate(made):
+        f = tables[p][1]
+        cdf[row, :f.size] = f
+    start = np.array([tables[p][0][0] for p in made])
+    size = np.array([tables[p][1].size for p in made], np.int64)
+    out[made] = _kernel.cell_outside(cdf, start, size, WALL_BIN, np.ascontiguousarray(thin, dtype=float),
+                                     np.ascontiguousarray(thick, dtype=float),
+                                     np.ascontiguousarray(cell, dtype=np.int64), int(n_cells))
+    return out
 
 
 @dataclass(frozen=True)
@@ -102,6 +108,8 @@ class SchemeScore:
     ----------
     outside : float
         Expected share of the assembled bearings outside the window [-].
+    below, above : float
+        The part of it below the window's lower clearance and above its upper one [-].
     demand : numpy.ndarray
         Shells of each grade the sample's preferred pairs ask for, per bearing (grades,).
     ungraded : float
@@ -112,6 +120,8 @@ class SchemeScore:
     demand: np.ndarray
     ungraded: float
     mean_clearance: float
+    below: float
+    above: float
 
 
 def demand_share(scheme, sample):
@@ -132,20 +142,21 @@ def score(scheme, sample, window):
     up, lo = scheme.pair_indices(*scheme.grade_indices(sample.housing_reading, sample.journal_reading))
     n = len(scheme.shell.labels)
     code = np.where(up >= 0, up * n + lo, -1)
-    total, count, clearance = 0.0, 0, 0.0
+    thin, thick = sample.ideal_wall_sum(window[1]), sample.ideal_wall_sum(window[0])
+    # one side at a time: a wall sum past the end of every distribution reads 0 (thin) or 1 (thick)
+    never = np.full(thin.size, np.inf)
+    total, below, above, count, clearance = 0.0, 0.0, 0.0, 0, 0.0
     for c in np.unique(code[code >= 0]):
         rows = code == c
-        p = outside_probability(_rows(sample, rows), sums, c // n, c % n, window)
-        ok = np.isfinite(p)
-        total += p[ok].sum()
-        count += int(ok.sum())
+        m = int(rows.sum())
+        sides = [outside_sums(sums, [c // n], [c % n], a, b, np.zeros(m, np.int64), 1)[0, 0]
+                 for a, b in ((thin[rows], thick[rows]), (-never[:m], thick[rows]), (thin[rows], never[:m]))]
+        if np.isnan(sides[0]):
+            continue
+        total, below, above = total + sides[0], below + sides[1], above + sides[2]
+        count += m
         level = sums.mean[c // n] + sums.mean[c % n]
-        clearance += sample.operating_clearance(level)[rows][ok].sum()
-    return SchemeScore(total / max(count, 1), demand, float(np.mean(code < 0)), clearance / max(count, 1))
-
-
-def _rows(sample, rows):
-    from dataclasses import replace
-
-    return replace(sample, housing_reading=sample.housing_reading[rows], journal_reading=sample.journal_reading[rows],
-                   clearance_offset=sample.clearance_offset[rows], wall_factor=sample.wall_factor[rows])
+        clearance += sample.operating_clearance(level)[rows].sum()
+    count = max(count, 1)
+    return SchemeScore(total / count, demand, float(np.mean(code < 0)), clearance / count, below / count,
+                       above / count)

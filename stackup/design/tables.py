@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .objective import outside_probability, wall_sums
+from .objective import outside_sums, wall_sums
 
 NM = 1e-9
 
@@ -162,10 +162,10 @@ def cell_tables(binned, shell_scheme, window, *, mixed, demand=None):
         sums = wall_sums(shell_scheme, supply, sample.shell_normals, aim)
         if level is None:
             level = sums.mean[upper] + sums.mean[lower]
-        for p, (u, l) in enumerate(zip(upper, lower)):
-            prob = outside_probability(sample, sums, u, l, window, wall_sums=binned.wall_sums[s])
-            prob = np.where(np.isfinite(prob), prob, 1.0)  # a grade no shell lands in: counted as lost
-            outside[s, p] = np.bincount(binned.cell[s], weights=prob, minlength=nh * nj)
+        thin, thick = binned.wall_sums[s]
+        expected = outside_sums(sums, upper, lower, thin, thick, binned.cell[s], nh * nj)
+        # a grade no shell lands in: its bearings are counted as lost
+        outside[s] = np.where(np.isnan(expected), np.bincount(binned.cell[s], minlength=nh * nj), expected)
     return CellTables(_prefix(outside.reshape(len(binned.samples), upper.size, nh, nj)), binned.count,
                       binned.bearings, Pairs(upper, lower, level))
 

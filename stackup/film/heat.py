@@ -111,15 +111,16 @@ class OilFeed:
     source: str = ""
 
 
-def _arc_integral_h3(c, e, psi, start, end):
-    """Closed form of the integral of (c - e cos(theta - psi))^3 over start..end."""
-    def antiderivative(theta):
-        t = theta - psi
-        s = np.sin(t)
-        return (c**3 * theta - 3 * c**2 * e * s + 3 * c * e**2 * (t / 2 + np.sin(2 * t) / 4)
-                - e**3 * (s - s**3 / 3))
+def _arc_trig_integrals(start, end):
+    """Integrals over start..end of cos^i sin^j, i + j <= 3 (closed forms), by (i, j)."""
+    def antiderivatives(t):
+        c, s = np.cos(t), np.sin(t)
+        return {(0, 0): t, (1, 0): s, (0, 1): -c, (2, 0): t / 2 + s * c / 2, (1, 1): s * s / 2,
+                (0, 2): t / 2 - s * c / 2, (3, 0): s - s**3 / 3, (2, 1): -c**3 / 3, (1, 2): s**3 / 3,
+                (0, 3): -c + c**3 / 3}
 
-    return antiderivative(end) - antiderivative(start)
+    a, b = antiderivatives(start), antiderivatives(end)
+    return {k: b[k] - a[k] for k in a}
 
 
 def groove_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, radius, length, groove_width,
@@ -144,10 +145,20 @@ def groove_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, 
     numpy.ndarray (...)
     """
     x = np.asarray(position, dtype=float)
-    c = np.asarray(radial_clearance, dtype=float)[..., None]
-    e = np.linalg.norm(x, axis=-1)
-    psi = np.arctan2(x[..., 1], x[..., 0])
-    integral = _arc_integral_h3(c, e, psi, groove_arc[0], groove_arc[1]).mean(axis=-1)
+    c = np.asarray(radial_clearance, dtype=float)
+    # (c - x0 cos - x1 sin)^3 expanded: the arc integrals of the trigonometric monomials times the cycle means
+    # of the position's monomials (exact, and one pass over the angles instead of trigonometry at each)
+    s = _arc_trig_integrals(*groove_arc)
+    x0, x1 = x[..., 0], x[..., 1]
+    x00, x01, x11 = x0 * x0, x0 * x1, x1 * x1
+
+    def mean(a):
+        return a.mean(axis=-1)
+
+    integral = (c**3 * s[0, 0] - 3 * c**2 * (mean(x0) * s[1, 0] + mean(x1) * s[0, 1])
+                + 3 * c * (mean(x00) * s[2, 0] + 2 * mean(x01) * s[1, 1] + mean(x11) * s[0, 2])
+                - (mean(x00 * x0) * s[3, 0] + 3 * mean(x00 * x1) * s[2, 1] + 3 * mean(x01 * x1) * s[1, 2]
+                   + mean(x11 * x1) * s[0, 3]))
     land = (np.asarray(length) - groove_width) / 2
     return np.asarray(supply_pressure) * np.asarray(radius) / (6 * np.asarray(viscosity) * land) * integral
 

@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 
 from ..assembly import STATUS
+from ..film.cycle import NOT_A_NUMBER
 from ..rank import MIN_COUNTED
 from ..study.schema import flag
 from . import figures, prose
@@ -227,8 +228,9 @@ def _ranking_section(ds, ranking, scenarios):
     notes = []
     if (ranking.outside_window_source != "counted").any():
         notes.append(f"† Fewer than {MIN_COUNTED} bearings of the study fell outside the window, too few for a tight "
-                     "interval: the share is estimated by subset simulation through the same assembly chain "
-                     "(`stackup.tail`; bins never run short there), with its stated standard error; the study "
+                     "interval: the share is estimated by generalized splitting through the same assembly chain "
+                     "(`stackup.tail`; bins never run short there), its 95 % interval from the spread of the "
+                     "estimate's independent root bearings, as wide as the equivalent count; the study "
                      "counted " + ", ".join(f"{c} ({n})" for n, c in zip(ranking.index, ranking.outside_window_counted))
                      + ".")
     return _section("Ranking", rule, "", markdown_table(table), "", *notes, *prose.non_discriminating(ranking))
@@ -382,10 +384,13 @@ def _film_detail(ds):
             continue
         contact = status.values[i, done] == flag(status, "edge_contact")
         for b, bearing in enumerate(ds.bearing.values):
-            edge, touching = ds.h_min_edge.values[i, done, b], contact[:, b]
+            number = ds.film_valid.values[i, done, b]  # films that are not a number are NaN: left out
+            if not number.any():
+                continue
+            edge, touching = ds.h_min_edge.values[i, done, b][number], contact[number, b]
             film = "edge contact" if touching.mean() >= 0.5 else f"{np.nanmedian(edge[~touching]) * UM:.2f} µm"
-            tilt, peak, mean_peak = (np.nanmedian(ds[name].values[i, done, b])
-                                     for name in ("tilt_max", "p_max", "p_max_mean"))
+            tilt = np.nanmedian(ds.tilt_max.values[i, done, b])
+            peak, mean_peak = (np.nanmedian(ds[name].values[i, done, b]) for name in ("p_max", "p_max_mean"))
             rows.append({"scheme": str(scheme), "bearing": int(bearing),
                          "text": f"{tilt * 1e3:.2f} / {100 * touching.mean():.0f} % / {film} / {peak / 1e6:.0f} / "
                                  f"{mean_peak / 1e6:.0f}"})
@@ -405,14 +410,19 @@ def _film_detail(ds):
     def count(meaning):
         return int(np.count_nonzero(ran & (status.values == flag(status, meaning))))
 
-    failed = {m: count(m) for m in ("not_periodic", "collapsed", "failed") if count(m)}
+    failed = {m: count(m) for m in NOT_A_NUMBER if count(m)}
     total, edge = int(np.count_nonzero(ran)), count("edge_contact")
     text = []
     if failed:
-        text.append(f"Orbits that did not become periodic, of {total:,} bearing-cycles: "
+        lost = sum(failed.values())
+        engines = int(np.count_nonzero(np.any(ran & ~ds.film_valid.values, axis=-1)))
+        text.append(f"Films that are not a number, of {total:,} bearing-cycles: "
                     + ", ".join(f"{k:,} {m.replace('_', ' ')}" for m, k in failed.items())
-                    + " (marked in `film_status` and `film_valid`; their films and lives are still in the tables "
-                    "above, so read those bearings' numbers with care).")
+                    + f". Their films and lives are NaN in the dataset (the reason in `film_status`, `film_valid` "
+                    f"false) and left out of every film and life statistic above and of the ranking ({lost:,} "
+                    f"bearing{'s' if lost != 1 else ''}); the {engines:,} engine{'s' if engines != 1 else ''} with such a bearing "
+                    f"{'have' if engines != 1 else 'has'} no engine life and {'are' if engines != 1 else 'is'} left "
+                    "out of the share of engines below the life target.")
     elif total and (count("periodic") or edge):
         text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).")
     if edge:

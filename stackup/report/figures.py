@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..study import summaries
-from .tables import UM, _assembled, converged_engines, grade_usage, kept_summaries
+from .tables import UM, _assembled, _numbers, converged_engines, grade_usage, kept_summaries
 
 #: Width of a full-page figure [in] at DPI: the HTML page is 1200 px wide.
 WIDTH, DPI = 11.0, 110
@@ -87,8 +87,9 @@ def film_by_bearing(ds, path):
         i = names.index(name)
         done = converged_engines(ds, i)
         offset = (k - (len(names) - 1) / 2) * width
-        h = [ds.h_min.values[i, done, b] * UM for b in range(len(bearings))]
-        life = [ds.life.values[i, done, b] / 3600 for b in range(len(bearings))]
+        # a bearing whose film is not a number (NaN: collapsed, not periodic, failed) has no box point
+        h = [_numbers(ds.h_min.values[i, done, b] * UM) for b in range(len(bearings))]
+        life = [_numbers(ds.life.values[i, done, b] / 3600) for b in range(len(bearings))]
         colour = f"C{k}"
         for ax, values in ((ax_h, h), (ax_l, life)):
             if not done.any():

@@ -54,8 +54,8 @@ def _ppm(value, ci=None):
 
 
 def _source(row):
-    """' (estimated by subset simulation)' where the ranking took the share from the tails, else ''."""
-    return "" if row.get("outside_window_source", "counted") == "counted" else " (estimated by subset simulation †)"
+    """' (estimated by generalized splitting †)' where the ranking took the share from the tails, else ''."""
+    return "" if row.get("outside_window_source", "counted") == "counted" else " (estimated by generalized splitting †)"
 
 
 def _names(names):

@@ -171,11 +171,20 @@ def converged_engines(ds, i):
     return ds.crank_status.values[i] == flag(ds.crank_status, "converged")
 
 
+def _numbers(values):
+    """The values that are numbers, flat: a bearing whose film is not a number is NaN and left out."""
+    values = np.asarray(values, dtype=float).ravel()
+    return values[~np.isnan(values)]
+
+
 def film_summary(ds):
     """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals.
 
     The share of engines below the life target uses the engine's own target
-    (``life_target``).
+    (``life_target``). Bearings whose film is not a number (NaN: collapsed,
+    not periodic, failed) are left out and counted (``left_out``); so are
+    the engines with one of them, whose life (their weakest bearing's) is
+    not a number either (``engines_left_out``).
     """
     from ..life import ALPHA_SCUFFING
 
@@ -183,17 +192,20 @@ def film_summary(ds):
     rows = []
     for i, name in enumerate(ds.scheme.values):
         done = converged_engines(ds, i)
-        h = ds.h_min.values[i, done].ravel() * UM
-        a = ds.alpha.values[i, done].ravel()
-        life = ds.life.values[i, done].ravel() / 3600
-        chart = ds.life_wear_chart.values[i, done].ravel() / 3600
-        engine_life = ds.life.values[i, done].min(axis=1) / 3600 if done.any() else np.array([])
+        h = _numbers(ds.h_min.values[i, done] * UM)
+        a = _numbers(ds.alpha.values[i, done])
+        life = _numbers(ds.life.values[i, done] / 3600)
+        chart = _numbers(ds.life_wear_chart.values[i, done] / 3600)
+        engine_life = ds.life.values[i, done].min(axis=1) / 3600 if done.any() else np.array([])  # NaN stays NaN
         if h.size == 0:
             continue
         scuff = proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size)
-        short = proportion_ci(np.count_nonzero(engine_life < life_target_hours), engine_life.size)
+        lived = engine_life[~np.isnan(engine_life)]
+        short = proportion_ci(np.count_nonzero(lived < life_target_hours), lived.size)
         rows.append({
             "scheme": str(name), "engines": int(done.sum()),
+            "left_out": int(np.count_nonzero(np.isnan(ds.h_min.values[i, done]))),
+            "engines_left_out": int(engine_life.size - lived.size),
             "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
             "alpha_mean": a.mean(), "alpha_over_20_pct": tuple(100 * v for v in scuff),
             "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5),
@@ -206,9 +218,10 @@ def film_summary(ds):
 def bearing_summary(ds):
     """Per scheme and main-bearing position: film and life of the engines the mechanical chain ran on.
 
-    Columns: ``engines``, ``h_min_p05_um`` and ``h_min_median_um`` (cycle
-    minimum), ``life_b10_h`` and ``life_median_h``, each a (value, lower,
-    upper) 95 % interval.
+    Columns: ``engines`` (whose film at the position is a number: NaN left
+    out), ``h_min_p05_um`` and ``h_min_median_um`` (cycle minimum),
+    ``life_b10_h`` and ``life_median_h``, each a (value, lower, upper) 95 %
+    interval.
     """
     rows = []
     for i, name in enumerate(ds.scheme.values):
@@ -216,9 +229,9 @@ def bearing_summary(ds):
         if not done.any():
             continue
         for b, bearing in enumerate(ds.bearing.values):
-            h = ds.h_min.values[i, done, b] * UM
-            life = ds.life.values[i, done, b] / 3600
-            rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(done.sum()),
+            h = _numbers(ds.h_min.values[i, done, b] * UM)
+            life = _numbers(ds.life.values[i, done, b] / 3600)
+            rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(h.size),
                          "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
                          "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5)})
     return pd.DataFrame(rows).set_index(["scheme", "bearing"]) if rows else pd.DataFrame()

@@ -277,6 +277,10 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         With ``crank_method="bearing-law"``: the engine's law (the paper's
         constants, J scaled with each clearance) or J and dx fitted per engine
         and bearing to the steady film (:func:`fitted_law`).
+
+    A bearing whose film is not a number (``film_status`` collapsed,
+    not_periodic or failed; ``film_valid`` false) has NaN for every value
+    that comes from the film (:data:`schema.FILM_NUMBERS`).
     """
     spec = engine.crank
     law, law_error = None, np.full(np.shape(clearance), np.nan)
@@ -288,7 +292,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
     # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the film's
     # moment against the crankshaft's rotational compliance there
-    tilt = support_slopes(spec.pin_loads(crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
+    tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
     films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
                           journal_d=journal_d, method=film_method, tilt=tilt,
                           tilt_compliance=support_compliance(spans=spec.spans, EI=spec.ei))
@@ -299,9 +303,10 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                             h_lim_cr=wear.critical_film, roughness=composite_roughness(wear.journal_rq, wear.shell_rq),
                             contact_modulus=contact_modulus(journal.modulus, journal.poisson, lining.modulus,
                                                             lining.poisson), wear_limit=wear.wear_limit)
-    life = levanov_method1(cycle_film(films.h_min, statistic=life_film), h_lim_cr=wear.critical_film,
-                           wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
-    return {"reaction_max": np.linalg.norm(r.reactions, axis=-1).max(axis=1),
+    h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
+    life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
+                           h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
+    out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
             "crank_status": worst_status(r.status),
             "h_min": films.h_min.min(axis=-1),
             "h_min_edge": films.h_min_edge.min(axis=-1),
@@ -311,7 +316,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,
             "law_fit_error": law_error,
-            "h_min_mean": cycle_film(films.h_min, statistic="cycle-mean"),
+            "h_min_mean": h_min_mean,
             "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
             "life": life.life,
             "life_wear_chart": chart.life,
@@ -324,6 +329,42 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "film_valid": films.valid,
             "load_history": np.moveaxis(r.reactions, 1, 2),
             "h_min_history": films.h_min}
+    return _not_a_number(out, films.valid)
+
+
+def _not_a_number(values, valid):
+    """``values`` with NaN for the film's numbers (:data:`schema.FILM_NUMBERS`) of bearings whose film is not valid.
+
+    A collapsed film is the film held at the eccentricity limit and an orbit that did not close is not the
+    bearing's periodic film: neither is a number a statistic or a ranking may read. ``film_status`` keeps
+    the reason; the engine's life (its weakest bearing) becomes NaN with it.
+    """
+    lost = ~np.asarray(valid, bool)
+    if not lost.any():
+        return values
+    out = dict(values)
+    for name in schema.FILM_NUMBERS:
+        v = np.asarray(out[name], dtype=float)
+        out[name] = np.where(lost.reshape(lost.shape + (1,) * (v.ndim - lost.ndim)), np.nan, v)
+    return out
+
+
+#: Crank-pin loads of the last engines and grids the chain saw: (spec, crank angles, loads).
+_PINS = []
+
+
+def _pin_loads(spec, crank_angle):
+    """``spec.pin_loads(crank_angle)``, kept for the next batch: every batch of a study asks for the same loads.
+
+    The slider-crank and cylinder-pressure model costs as much as half the crankshaft stage on one engine.
+    """
+    for known, angle, loads in _PINS:
+        if known is spec and np.array_equal(angle, crank_angle):
+            return loads
+    loads = spec.pin_loads(crank_angle)
+    loads.setflags(write=False)
+    _PINS[:] = [*_PINS[-3:], (spec, np.array(crank_angle, copy=True), loads)]
+    return loads
 
 
 def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):

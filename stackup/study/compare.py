@@ -21,6 +21,8 @@ SCENARIO_MECHANICS_ENGINES = 50
 #: Crank-angle step of the film and life Sobol samples [deg]: coarser than a study's, as ranking the inputs
 #: needs the cycle's shape, not its last tenth of a micrometre.
 SOBOL_CRANK_ANGLE_STEP = 4.0
+#: Root bearings of each tail estimate (:func:`stackup.tail.clearance_tail`'s ``n_level``).
+TAIL_ROOTS = 2_000
 
 
 @dataclass(frozen=True)
@@ -37,9 +39,10 @@ class Comparison:
     sensitivity : xarray.Dataset
         Sobol indices of the root inputs per output and scheme (:func:`sensitivity_dataset`).
     tails : xarray.Dataset
-        Shares of bearings beyond each edge of the design window per scheme,
-        by subset simulation (:func:`tails_dataset`), which the ranking uses
-        where the study counts too few bearings outside the window.
+        Shares of bearings beyond each edge of the design window by
+        generalized splitting (:func:`tails_dataset`) for the schemes whose
+        study counted too few bearings outside the window
+        (:data:`stackup.rank.MIN_COUNTED`), which the ranking uses.
     """
 
     dataset: xr.Dataset
@@ -109,8 +112,13 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     if designed is not None:
         ds.attrs.update(designed_scheme=designed.scheme.name, design=json.dumps(design_record(designed)))
     engine_used, loaded = load_inputs(study.files, study.schemes)
-    log("tails: shares beyond the design window by subset simulation")
-    tails = tails_dataset(engine_used, loaded, window=study_options.get("window"), seed=seed,
+    from ..rank import MIN_COUNTED, counted_outside
+
+    counted = counted_outside(ds)
+    few = [s for s in loaded if counted[s.name] < MIN_COUNTED]
+    log(f"tails: shares beyond the design window by generalized splitting ({len(few)} schemes with fewer than "
+        f"{MIN_COUNTED} bearings counted outside it)")
+    tails = tails_dataset(engine_used, few, window=study_options.get("window"), seed=seed,
                           pilot_engines=study.pilot_engines)
     log("sensitivity: Sobol indices of the root inputs")
     sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails)
@@ -188,13 +196,14 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
                                                             "chain (stackup.sensitivity.sobol, SALib)", "seed": seed})
 
 
-def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=1_000):
-    """Share of bearings below and above the design window per scheme, by subset simulation (:mod:`stackup.tail`).
+def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=TAIL_ROOTS):
+    """Share of bearings below and above the design window per scheme, by generalized splitting (:mod:`stackup.tail`).
 
     Variables on (scheme, side): ``tail_share``, its ``tail_standard_error``
     and 95 % interval (``tail_interval`` on ``bound``; where no sample reaches
-    the tail the share is 0 with an upper bound and no standard error), with
-    the chain evaluations each estimate cost (``tail_bearings``).
+    the tail the share is 0 with an upper bound), with the chain evaluations
+    each estimate cost (``tail_bearings``) and the independent root bearings
+    it rests on (``tail_roots_in_tail``).
     """
     from ..engines import load_engine
     from ..schemes import load as load_scheme
@@ -204,7 +213,7 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     window = engine.clearance_window if window is None else window
     loaded = [load_scheme(s) for s in schemes]
     sides = ("lower", "upper")
-    shares, errors, cost = (np.full((len(loaded), 2), np.nan) for _ in range(3))
+    shares, errors, cost, roots = (np.full((len(loaded), 2), np.nan) for _ in range(4))
     interval = np.full((len(loaded), 2, 2), np.nan)
     for i, scheme in enumerate(loaded):
         for j, side in enumerate(sides):
@@ -212,16 +221,19 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
                 continue
             t = clearance_tail(engine, scheme, side=side, threshold=window[j], seed=seed,
                                pilot_engines=pilot_engines, n_level=n_level)
-            shares[i, j], errors[i, j], cost[i, j] = t.share, t.standard_error, t.bearings
+            shares[i, j], errors[i, j], cost[i, j], roots[i, j] = t.share, t.standard_error, t.bearings, \
+                t.effective_bearings
             interval[i, j] = t.interval
     dims = ("scheme", "side")
     return xr.Dataset(
         {"tail_share": (dims, shares, {"units": "1", "long_name": "share of assembled bearings beyond the window edge "
-                                                                   "(subset simulation)"}),
+                                                                   "(generalized splitting)"}),
          "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
          "tail_interval": ((*dims, "bound"), interval, {"units": "1", "long_name": "95 % interval of tail_share"}),
-         "tail_bearings": (dims, cost, {"units": "1", "long_name": "chain evaluations of the estimate"})},
+         "tail_bearings": (dims, cost, {"units": "1", "long_name": "chain evaluations of the estimate"}),
+         "tail_roots_in_tail": (dims, roots, {"units": "1", "long_name": "root bearings of the estimate with "
+                                                                          "descendants in the tail"})},
         coords={"scheme": ("scheme", [s.name for s in loaded], {"long_name": "selective-fitting scheme"}),
                 "side": ("side", list(sides), {"long_name": "edge of the design window"}),
                 "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"})},
-        attrs={"window": list(map(float, window)), "method": "subset simulation (stackup.tail)", "seed": seed})
+        attrs={"window": list(map(float, window)), "method": "generalized splitting (stackup.tail)", "seed": seed})

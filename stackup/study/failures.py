@@ -16,7 +16,7 @@ import numpy as np
 
 from ..assembly import BLOCK_SCRAPPED, CRANK_SCRAPPED, NOT_GRADED, STATUS
 from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
-from ..film.cycle import FILM_STATUS
+from ..film.cycle import FILM_STATUS, NOT_A_NUMBER
 
 #: Failures of each stage, what they are counted among, and their likely cause.
 STAGES = {
@@ -28,7 +28,7 @@ STAGES = {
                    "inertias, loads, units) and its [bearing_law]"),
     "film": ("bearings of the mechanical chain",
              "the journal orbit did not become periodic, or the film collapsed (a load turning at half the shaft "
-             "speed, or too little film for the load): check the engine's loads, speed, bearing width and "
+             "speed, or too little film for the load; those bearings' films and lives are NaN): check the engine's loads, speed, bearing width and "
              "clearance, and the oil"),
     "heat balance": ("bearings of the mechanical chain",
                      "no oil temperature balances the film's friction below 250 degC: check the engine's [oil] and "
@@ -116,4 +116,4 @@ class StageFailure(ValueError):
 
 
 _CRANK_FAILED = [CYCLE_STATUS.index("max_iterations"), CYCLE_STATUS.index("not_finite")]
-_FILM_FAILED = [FILM_STATUS.index(s) for s in ("not_periodic", "collapsed", "failed")]
+_FILM_FAILED = [FILM_STATUS.index(s) for s in NOT_A_NUMBER]

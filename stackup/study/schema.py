@@ -10,7 +10,7 @@ of the engine on ``"engine"``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
@@ -96,11 +96,21 @@ MECHANICS = {
     "oil_flow": Var(SMB, "m3 s-1", "oil flow through the bearing (feed and side flow), cycle mean"),
     "feed_flow": Var(SMB, "m3 s-1", "pressure-driven feed flow through the groove or hole, cycle mean"),
     "heat_status": Var(SMB, "1", "status of the bearing's heat balance", HEAT_STATUS, "i1", 0),
-    "film_valid": Var(SMB, "1", "the film tier was inside its checked range at every crank angle", dtype="?",
-                      fill=False),
+    "film_valid": Var(SMB, "1", "the bearing's film is a number: its orbit became periodic (or its quasi-static "
+                                "film stayed within the eccentricity limit) and did not fail", dtype="?", fill=False),
     "crank_status": Var(("scheme", "mech_engine"), "1", "status of the crankshaft beam stage", CYCLE_STATUS, "i1",
                         NOT_COMPUTED),
 }
+
+#: The mechanical chain's values that come from the film: NaN for a bearing whose film is not a number
+#: (``film_valid`` false; ``film_status`` says why: collapsed, not_periodic or failed), so that no statistic
+#: or ranking reads a film held at the eccentricity limit or an orbit that did not close.
+FILM_NUMBERS = ("h_min", "h_min_mean", "h_min_edge", "tilt_loss", "p_max", "p_max_mean", "alpha", "life",
+                "life_wear_chart", "wear_rate", "film_temperature", "friction_power", "oil_flow", "feed_flow",
+                "h_min_history")
+_NOT_A_NUMBER = "; NaN where film_valid is false (film_status collapsed, not_periodic or failed)"
+MECHANICS = {name: replace(var, long_name=var.long_name + _NOT_A_NUMBER) if name in FILM_NUMBERS else var
+             for name, var in MECHANICS.items()}
 
 #: Press-fit results per bearing.
 FIT = {
@@ -162,7 +172,7 @@ FULL = {
 HISTORY = {
     "load_history": Var((*SMB, "crank_angle", "axis"), "N",
                         "bearing load over the cycle (force of the journal on the bearing)"),
-    "h_min_history": Var((*SMB, "crank_angle"), "m", "minimum oil film thickness over the cycle"),
+    "h_min_history": Var((*SMB, "crank_angle"), "m", "minimum oil film thickness over the cycle" + _NOT_A_NUMBER),
 }
 
 #: Variables a chunk computes for each of its engines.

@@ -131,3 +131,32 @@ def test_a_collapsed_or_unsettled_orbit_reads_back_from_the_dataset_variable_by_
     assert int(da.values[0, 0, 0]) == flag(da, "collapsed")
     for reason in ("not_periodic", "failed", "edge_contact", "quasi_static", "not_computed"):
         assert flag(da, reason) != flag(da, "collapsed")
+
+
+@pytest.mark.parametrize("method", ["short", "finite"])
+def test_a_quasi_static_film_beyond_the_eccentricity_limit_is_collapsed_not_a_number(method):
+    from stackup.film import ECCENTRICITY_VALID
+    from stackup.film.cycle import NOT_A_NUMBER
+
+    light, crushing = (films(turning(size, 0.0), method) for size in (3e3, 3e7))  # a steady load, 3 kN and 30 MN
+    assert light.status[0, 0] == FILM_STATUS.index("quasi_static") and light.valid[0, 0]
+    assert crushing.h_min.min() < (1 - ECCENTRICITY_VALID) * C / 2  # the steady tier needs a film below the limit
+    assert crushing.status[0, 0] == FILM_STATUS.index("collapsed") and not crushing.valid[0, 0]
+    assert "collapsed" in NOT_A_NUMBER
+
+
+def test_the_balance_kept_at_its_tolerance_is_within_it_of_the_balance_closed_tightly():
+    from stackup.film.cycle import balanced_orbit
+
+    load = np.concatenate([engine_like_load(), 0.5 * engine_like_load()[..., ::-1, :]], axis=2)  # two bearings
+    loads = np.moveaxis(load, 1, 2)
+    kw = dict(tier="mobility-finite", diameter=D, length=SPEC.bearing_width, clearance=C, speed=SPEC.speed,
+              oil=SPEC.oil, supply_temperature=SPEC.oil_supply_temperature, feed=ENGINE.oil_feed,
+              stride=int(DYNAMIC_HEAT_STEP / 2))
+    heat, film, _ = balanced_orbit(loads, ANGLE, **kw)
+    tight, tight_film, _ = balanced_orbit(loads, ANGLE, **kw, tolerance=1e-3)
+    assert np.all(np.abs(tight.residual) < 1e-3) and np.all(tight.orbits > heat.orbits - 1)
+    assert np.all(np.abs(heat.residual) < HEAT_TOLERANCE)
+    # g rises faster than T (g' > 1): the temperature is within the tolerance of the tight balance
+    assert np.all(np.abs(heat.temperature - tight.temperature) < HEAT_TOLERANCE)
+    np.testing.assert_allclose(film.h_min.min(axis=-1), tight_film.h_min.min(axis=-1), rtol=0.01)

@@ -8,18 +8,25 @@ from scipy import integrate, sparse
 from scipy.sparse.linalg import spsolve
 
 from stackup.film import oil
-from stackup.film.heat import (STATUS, TEMPERATURE_LIMIT, OilFeed, _arc_integral_h3, groove_feed_flow, heat_balance,
-                               hole_feed_flow)
+from stackup.film.heat import STATUS, TEMPERATURE_LIMIT, OilFeed, groove_feed_flow, heat_balance, hole_feed_flow
 
 GROOVE = OilFeed("groove", 0.35e6, (0.5 * np.pi, 1.5 * np.pi), 3e-3)
 BEARING = dict(diameter=0.046, length=0.022, clearance=55e-6, speed=419.0, oil="SAE-5W-30", supply_temperature=90.0)
 
 
-def test_arc_integral_of_the_film_cubed_against_quadrature():
-    c, e, psi = 30e-6, 21e-6, 0.7
-    for start, end in ((0.0, 2 * np.pi), (1.0, 2.5), (-0.4, 5.0)):
-        reference = integrate.quad(lambda t: (c - e * np.cos(t - psi)) ** 3, start, end, epsrel=1e-12)[0]
-        assert _arc_integral_h3(c, e, psi, start, end) == pytest.approx(reference, rel=1e-10)
+def test_groove_flow_is_the_cycle_mean_of_the_film_cubed_over_the_arc_by_quadrature():
+    # Q = p_s R / (6 mu l') * mean over the positions of the integral of h^3 over the groove's arc
+    c, mu, ps, r, length, b = 30e-6, 0.008, 0.3e6, 0.023, 0.022, 4e-3
+    rng = np.random.default_rng(3)
+    radius, angle = 0.97 * c * np.sqrt(rng.uniform(size=12)), rng.uniform(0, 2 * np.pi, size=12)
+    position = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
+    for start, end in ((0.0, 2 * np.pi), (1.0, 2.5), (-0.4, 5.0), (0.5 * np.pi, 1.5 * np.pi)):
+        integrals = [integrate.quad(lambda t, x=x: (c - x[0] * np.cos(t) - x[1] * np.sin(t)) ** 3, start, end,
+                                    epsrel=1e-12)[0] for x in position]
+        reference = ps * r / (6 * mu * (length - b) / 2) * np.mean(integrals)
+        q = groove_feed_flow(position, radial_clearance=c, supply_pressure=ps, viscosity=mu, radius=r, length=length,
+                             groove_width=b, groove_arc=(start, end))
+        assert float(q) == pytest.approx(reference, rel=1e-10)
 
 
 def test_full_groove_flow_is_the_classical_circumferential_groove_formula():
