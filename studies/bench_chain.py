@@ -180,7 +180,7 @@ def main(argv=None):
         "That engine on `mobility-finite`: cycle-minimum film "
         f"{', '.join(f'{1e6 * h:.2f}' for h in hm['h_min'][0])} µm, cycle mean "
         f"{', '.join(f'{1e6 * h:.2f}' for h in hm['h_min_mean'][0])} µm, effective temperature "
-        f"{', '.join(f'{x:.1f}' for x in hm['film_temperature'][0])} °C; edge film with the beam's tilt "
+        f"{', '.join(f'{x:.1f}' for x in hm['film_temperature'][0])} °C; edge film with the balanced tilt "
         f"{', '.join(f'{1e6 * h:.2f}' for h in hm['h_min_edge'][0])} µm (largest tilt "
         f"{', '.join(f'{1e3 * x:.2f}' for x in hm['tilt_max'][0])} mrad).",
         "",
@@ -192,8 +192,9 @@ def main(argv=None):
         "",
         f"Over the {args.engines} engines: film status counts ({', '.join(FILM_STATUS)}) = {status.tolist()}; "
         f"median life (method 1, cycle-mean film) {np.nanmedian(batch['life']) / 3600:,.0f} h. The edge contacts "
-        "come from the tilt the beam's free support rotation gives: the bearing's moment restraint is not in the "
-        "beam model, so that tilt is an upper bound (see reports/film_speed_vs_error.md).",
+        "remain with the tilt balanced against the film's restoring moment (the crankshaft's rotational "
+        "compliance at the support): the film cannot hold the crankshaft's slope under the peak loads, and the "
+        "edge film is held at the eccentricity limit (see reports/film_speed_vs_error.md, tilt section).",
         "",
         "## The film stage's heat balance against the balance closed tightly",
         "",
