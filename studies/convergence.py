@@ -79,7 +79,7 @@ def main():
         "",
     ]
     lines += [
-        "The ppm tails by subset simulation and cross-entropy importance sampling, against plain Monte Carlo "
+        "The ppm tails by generalized splitting and cross-entropy importance sampling, against plain Monte Carlo "
         "and an established reliability library, are in `reports/tails_vs_peers.md`.",
         "",
         "Reproduce: `python studies/convergence.py`.",
