@@ -156,7 +156,6 @@ def squeeze_field(eps, alpha, length_over_radius, *, n_theta=N_THETA_SQUEEZE, n_
     (Hintermüller, Ito, Kunisch 2003), exact for the discrete problem.
     """
     from scipy import sparse
-    from scipy.sparse.linalg import spsolve
 
     theta = stretched_angles(eps, n_theta)
     half = length_over_radius / 2
@@ -195,20 +194,7 @@ def squeeze_field(eps, alpha, length_over_radius, *, n_theta=N_THETA_SQUEEZE, n_
     m = sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nt * nz,) * 2)
     b = (12 * np.cos(theta - alpha) * width)[:, None] * cell_z[None, :]
     b = b.ravel()
-    active = b <= 0
-    p = np.zeros(b.size)
-    for iteration in range(1, 200):
-        free = ~active
-        p[:] = 0.0
-        if free.any():
-            p[free] = spsolve(m[free][:, free].tocsc(), b[free])
-        residual = m @ p - b
-        new_active = residual > p  # primal-dual active set with c = 1
-        if np.array_equal(new_active, active):
-            break
-        active = new_active
-    else:
-        raise RuntimeError(f"squeeze_field: active set did not settle at eps = {eps}, alpha = {alpha}")
+    p, iteration = _cavitated_solve(m, b, f"squeeze_field: active set did not settle at eps = {eps}, alpha = {alpha}")
     pressure = np.concatenate([p.reshape(nt, nz), np.zeros((nt, 1))], axis=1)
     weights = np.full(n_z, dz)
     weights[[0, -1]] = dz / 2
@@ -272,7 +258,6 @@ def tilted_field(position, squeeze, edge_offset, length_over_radius, *, edge_squ
         :math:`\bar{\mathbf u}` [c omega].
     """
     from scipy import sparse
-    from scipy.sparse.linalg import spsolve
 
     xi = np.asarray(position, float)
     v = np.asarray(squeeze, float)
@@ -296,7 +281,6 @@ def tilted_field(position, squeeze, edge_offset, length_over_radius, *, edge_squ
         return 1 - (xi[0] + z * e[0]) * np.cos(angle) - (xi[1] + z * e[1]) * np.sin(angle)
 
     inner = zeta[1:-1]
-    h = film(theta[:, None], inner[None, :])
     if np.any(film(theta[:, None], zeta[None, :]) <= 0):
         raise ValueError("tilted_field: the journal touches the bearing")
     h_east = film((theta + 0.5 * gap_east)[:, None], inner[None, :])
@@ -324,20 +308,7 @@ def tilted_field(position, squeeze, edge_offset, length_over_radius, *, edge_squ
     normal = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
     source = (normal @ v)[:, None] + inner[None, :] * (normal @ u)[:, None]
     b = (12 * source * width[:, None] * dz).ravel()
-    active = b <= 0
-    p = np.zeros(b.size)
-    for iteration in range(1, 200):
-        free = ~active
-        p[:] = 0.0
-        if free.any():
-            p[free] = spsolve(m[free][:, free].tocsc(), b[free])
-        residual = m @ p - b
-        new_active = residual > p
-        if np.array_equal(new_active, active):
-            break
-        active = new_active
-    else:
-        raise RuntimeError("tilted_field: active set did not settle")
+    p, iteration = _cavitated_solve(m, b, "tilted_field: active set did not settle")
     pressure = np.zeros((nt, n_z))
     pressure[:, 1:-1] = p.reshape(nt, nz)
     weights = np.full(n_z, dzeta)
@@ -349,3 +320,22 @@ def tilted_field(position, squeeze, edge_offset, length_over_radius, *, edge_squ
     force = scale * (normal * (line * width)[:, None]).sum(axis=0)
     moment = 0.5 * scale * (normal * (line_z * width)[:, None]).sum(axis=0)
     return TiltedField(theta, zeta, film(theta[:, None], zeta[None, :]), pressure, force, moment, iteration)
+
+
+def _cavitated_solve(m, b, message):
+    """Pressure p >= 0 with m p = b where p > 0 (Swift-Stieber), by a primal-dual active set; (p, iterations)."""
+    from scipy.sparse.linalg import spsolve
+
+    active = b <= 0
+    p = np.zeros(b.size)
+    for iteration in range(1, 200):
+        free = ~active
+        p[:] = 0.0
+        if free.any():
+            p[free] = spsolve(m[free][:, free].tocsc(), b[free])
+        residual = m @ p - b
+        new_active = residual > p  # primal-dual active set with c = 1
+        if np.array_equal(new_active, active):
+            return p, iteration
+        active = new_active
+    raise RuntimeError(message)
