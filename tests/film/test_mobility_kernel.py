@@ -49,7 +49,11 @@ def squeeze_velocity_twin(eps, load, guess=None):
         ga, gb = gap(a), gap(b)
         if ga <= 0 <= gb and gb - ga < np.pi:
             alpha = optimize.brentq(gap, a, b, xtol=1e-13)
-            return np.linalg.norm(load) / np.linalg.norm(force_twin(eps, alpha)) * np.array([np.cos(alpha), np.sin(alpha)])
+        elif abs(ga) < 1e-12:  # a root on a grid point at the circle's seam (+-pi), where rounding flips the sign
+            alpha = a
+        else:
+            continue
+        return np.linalg.norm(load) / np.linalg.norm(force_twin(eps, alpha)) * np.array([np.cos(alpha), np.sin(alpha)])
     raise AssertionError("no squeeze direction found")
 
 
