@@ -168,8 +168,11 @@ def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
         sphi = root * math.sin(psi) / d
         n0 = c0 * cphi - c1 * sphi
         n1 = c1 * cphi + c0 * sphi
-        h0 = 1.0 - x0 * n0 - x1 * n1
-        p0, p1 = line_integrals(h0, e0 * n0 + e1 * n1, v0 * n0 + v1 * n1, u0 * n0 + u1 * n1)
+        a = v0 * n0 + v1 * n1
+        b = u0 * n0 + u1 * n1
+        if not wet and a + abs(b) <= 0.0:
+            continue  # the source is negative over the whole width: no pressure on this line
+        p0, p1 = line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, a, b)
         if p0 <= 0.0:
             if not wet:
                 continue
