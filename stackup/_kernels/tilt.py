@@ -45,10 +45,12 @@ CUT_STEPS = 4
 #: Lines away from that arc count where P_0 > 0, fully once P_0 exceeds this share of |P_0| + |P_1| (a ramp
 #: keeps the moment continuous where a line turns wet).
 WET_RAMP = 0.1
-#: Tilt equilibrium: Newton steps per crank angle, halvings of a step.
-MAX_STEPS = 8
-#: Newton steps from the free tilt, where the continuation did not settle.
-MAX_COLD_STEPS = 40
+#: Tilt equilibrium: film moments computed at most per crank angle by the continuation, halvings of a step.
+MAX_EVALUATIONS = 10
+#: Film moments at most from the free tilt, where the continuation did not settle further than COLD_FROM thinnest
+#: films (1 - limit) from the wall (nearer, the free tilt lies beyond the wall and leads back there).
+MAX_COLD_EVALUATIONS = 16
+COLD_FROM = 10.0
 #: An angle whose Newton does not settle within this many thinnest films (1 - limit) of the wall is at the limit.
 NEAR_WALL = 2.0
 MAX_HALVINGS = 5
@@ -166,8 +168,11 @@ def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
         sphi = root * math.sin(psi) / d
         n0 = c0 * cphi - c1 * sphi
         n1 = c1 * cphi + c0 * sphi
-        h0 = 1.0 - x0 * n0 - x1 * n1
-        p0, p1 = line_integrals(h0, e0 * n0 + e1 * n1, v0 * n0 + v1 * n1, u0 * n0 + u1 * n1)
+        a = v0 * n0 + v1 * n1
+        b = u0 * n0 + u1 * n1
+        if not wet and a + abs(b) <= 0.0:
+            continue  # the source is negative over the whole width: no pressure on this line
+        p0, p1 = line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, a, b)
         if p0 <= 0.0:
             if not wet:
                 continue
@@ -278,7 +283,7 @@ def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, 
 
 @njit(cache=True)
 def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, ratio, ct, st, limit, tolerance, nodes,
-                weights, nodes_dry, weights_dry, cap, steps=MAX_STEPS):
+                weights, nodes_dry, weights_dry, cap, budget=MAX_EVALUATIONS):
     """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``.
 
     Damped Newton from the guess (g0, g1) (moved onto the wall along its direction
@@ -307,7 +312,7 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, rat
                                             nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
         fresh = True
     differenced = fresh and evaluations > 1
-    for _ in range(steps):
+    while evaluations < budget:
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if det == 0.0 or not math.isfinite(det):
             evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
@@ -397,10 +402,11 @@ def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table
     e0, e1, s, used = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], g0, g1, on_wall,
                                   jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry,
                                   cap)
-    if s == NOT_SOLVED:  # start again from the free tilt, with a fresh Jacobian and more steps
+    if s == NOT_SOLVED and _edge(x0, x1, e0, e1) > COLD_FROM * (1.0 - limit):
+        # far from the wall: start again from the free tilt, with a fresh Jacobian and more film moments
         e0, e1, s, more = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], f0, f1, False,
                                       jac, False, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
-                                      weights_dry, cap, MAX_COLD_STEPS)
+                                      weights_dry, cap, MAX_COLD_EVALUATIONS)
         used += more
     tilt[b, k, 0] = e0
     tilt[b, k, 1] = e1
