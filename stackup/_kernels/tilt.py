@@ -415,8 +415,8 @@ def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table
 
 
 @njit(cache=True, parallel=True)
-def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, tables, ld_nodes, stretched, ld, finite, nodes,
-               weights, nodes_dry, weights_dry, cap, tilt, state, evaluations):
+def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables, ld_nodes, stretched, ld, finite,
+               nodes, weights, nodes_dry, weights_dry, cap, tilt, state, evaluations):
     """Tilt equilibrium at every angle of many bearings (prange over bearings).
 
     xi, v (B, n, 2) the journal centre and squeeze velocity of each angle; free
@@ -424,12 +424,13 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, tables, ld_nod
     per component. The short-bearing moment is scaled and turned by the finite
     tier's force correction at (|xi|, squeeze direction) where ``finite``.
 
-    The even angles are solved in turn, each from the last two solutions
-    extrapolated (on the wall where the last was at the limit) with the last
-    Jacobian; an odd angle between two of the same state whose edge offsets
-    differ by less than ``interpolate`` times their thinner edge film takes
-    their mean, the others are solved. Writes tilt (B, n, 2), state (B, n) and
-    evaluations (B, n): film moments computed at each angle.
+    Every ``stride``-th angle (a power of two) is solved in turn, each from the
+    last two solutions extrapolated (on the wall where the last was at the
+    limit) with the last Jacobian. Then, halving the spacing down to one
+    angle, each angle midway between two known ones of the same state whose
+    edge offsets differ by less than ``interpolate`` times their thinner edge
+    film takes their mean; the others are solved. Writes tilt (B, n, 2), state
+    (B, n) and evaluations (B, n): film moments computed at each angle.
     """
     n_b = xi.shape[0]
     n = xi.shape[1]
@@ -443,7 +444,7 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, tables, ld_nod
         fresh = False
         last = -1
         before = -1
-        for k in range(0, n, 2):
+        for k in range(0, n, stride):
             if before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
                 g0 = 2.0 * tilt[b, last, 0] - tilt[b, before, 0]
                 g1 = 2.0 * tilt[b, last, 1] - tilt[b, before, 1]
@@ -457,27 +458,34 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, tables, ld_nod
                                                  fresh, tilt, state)
             before = last
             last = k
-        for k in range(1, n, 2):
-            kp = k - 1
-            kn = k + 1 if k + 1 < n else 0
-            evaluations[b, k] = 0
-            if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
-                gap = math.hypot(tilt[b, kn, 0] - tilt[b, kp, 0], tilt[b, kn, 1] - tilt[b, kp, 1])
-                film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
-                           _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
-                e0 = 0.5 * (tilt[b, kp, 0] + tilt[b, kn, 0])
-                e1 = 0.5 * (tilt[b, kp, 1] + tilt[b, kn, 1])
-                if gap <= interpolate * film:
-                    room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
-                    if state[b, kp] == AT_LIMIT or room < 1.0:  # on the wall, as its neighbours
-                        e0 *= min(room, 1.0)
-                        e1 *= min(room, 1.0)
-                    tilt[b, k, 0] = e0
-                    tilt[b, k, 1] = e1
-                    state[b, k] = state[b, kp]
-                    continue
-            else:
-                e0, e1 = tilt[b, kp, 0], tilt[b, kp, 1]
-            evaluations[b, k], fresh = _solve_at(b, k, e0, e1, state[b, kp] == AT_LIMIT, xi, v, free, kappa, limit,
-                                                 tolerance, table, stretched, finite, nodes, weights, nodes_dry,
-                                                 weights_dry, cap, jac, fresh, tilt, state)
+        half = stride // 2
+        while half >= 1:
+            for k in range(half, n, 2 * half):
+                kp = k - half
+                kn = k + half if k + half < n else 0  # the cycle closes on its first angle
+                evaluations[b, k] = 0
+                if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
+                    gap = math.hypot(tilt[b, kn, 0] - tilt[b, kp, 0], tilt[b, kn, 1] - tilt[b, kp, 1])
+                    film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
+                               _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
+                    e0 = 0.5 * (tilt[b, kp, 0] + tilt[b, kn, 0])
+                    e1 = 0.5 * (tilt[b, kp, 1] + tilt[b, kn, 1])
+                    if state[b, kp] == AT_LIMIT:
+                        # both on the wall: the edge film is the limit's whatever the tilt, whose direction the
+                        # mean keeps within about interpolate / 2 rad
+                        film = max(film, math.hypot(e0, e1))
+                    if gap <= interpolate * film:
+                        room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
+                        if state[b, kp] == AT_LIMIT or room < 1.0:  # on the wall, as its neighbours
+                            e0 *= min(room, 1.0)
+                            e1 *= min(room, 1.0)
+                        tilt[b, k, 0] = e0
+                        tilt[b, k, 1] = e1
+                        state[b, k] = state[b, kp]
+                        continue
+                else:
+                    e0, e1 = tilt[b, kp, 0], tilt[b, kp, 1]
+                evaluations[b, k], fresh = _solve_at(b, k, e0, e1, state[b, kp] == AT_LIMIT, xi, v, free, kappa,
+                                                     limit, tolerance, table, stretched, finite, nodes, weights,
+                                                     nodes_dry, weights_dry, cap, jac, fresh, tilt, state)
+            half //= 2

@@ -265,10 +265,19 @@ def support_compliance(*, spans, EI, load_positions=None, coupled=False):  # noq
     ei = check.positive("EI", EI)
     ei = np.full((n, 2), float(ei)) if ei.ndim == 0 else (np.stack([ei, ei], axis=-1) if ei.ndim == 1 else ei)
     positions = np.full(n, 0.5) if load_positions is None else np.broadcast_to(load_positions, (n,))
-    matrices = np.stack([rotational_compliance(spans_arr, ei[:, c], positions) for c in range(2)])
+    matrices = _compliance_planes(tuple(spans_arr), tuple(map(tuple, ei)), tuple(positions))
     if coupled:
-        return matrices
+        return matrices.copy()
     return np.stack([np.diag(m) for m in matrices], axis=-1)
+
+
+@lru_cache(maxsize=64)
+def _compliance_planes(spans, ei, load_positions):
+    """:func:`stackup.crank.beam.rotational_compliance` of both bending planes (2, N+1, N+1); kept for the next call."""
+    ei = np.array(ei)
+    matrices = np.stack([rotational_compliance(np.array(spans), ei[:, c], np.array(load_positions)) for c in range(2)])
+    matrices.flags.writeable = False
+    return matrices
 
 
 __all__ = ["BellakhdharLaw", "CrankReactions", "STATUS", "reactions", "support_compliance", "support_slopes"]

@@ -37,7 +37,7 @@ from . import oil as oils
 from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, feed_flow, heat_balance
 from .orbit import STATUS as ORBIT_STATUS
-from .orbit import cheapest_cycle_tier, cycle_tier_errors, orbit
+from .orbit import ECCENTRICITY_LIMIT, cheapest_cycle_tier, cycle_tier_errors, orbit
 
 #: Crank-angle spacing of the load history the heat balance reads [deg]: its cycle means barely change
 #: below it (reports/bearing_life.md), at a quarter of the cost on a 1 deg grid.
@@ -113,6 +113,9 @@ class BearingFilms:
         Index into :data:`stackup.film.heat.STATUS`.
     tilt_max : numpy.ndarray
         Cycle maximum of the journal's tilt in the film [rad] (0 without tilt).
+    edge_contact_share : numpy.ndarray
+        Share of the crank angles at which the film over the width is at its
+        limit, :math:`c(1 - \varepsilon_{lim})` (an edge, or the journal, at the wall) [-].
     """
 
     h_min: np.ndarray
@@ -127,6 +130,7 @@ class BearingFilms:
     feed_flow: np.ndarray
     heat_status: np.ndarray
     tilt_max: np.ndarray | None = None
+    edge_contact_share: np.ndarray | None = None
 
 
 def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None,
@@ -176,7 +180,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         status = np.where(_steady_valid(film), status, FILM_STATUS.index("collapsed")).astype(np.int8)
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
-                            film.tilt_max)
+                            film.tilt_max, _at_limit_share(film.h_min_edge, clearance))
     tier = DYNAMIC[method]
     options = {"feed": feed} if tier == "reynolds-transient" else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=tier, oil=spec.oil,
@@ -185,7 +189,13 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                                         tilt_compliance=tilt_compliance, options=options, **geometry)
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
                         balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
-                        film.tilt_max)
+                        film.tilt_max, _at_limit_share(film.h_min_edge, clearance))
+
+
+def _at_limit_share(h_min_edge, clearance):
+    """Share of the angles whose film over the width is held at the limit film c (1 - ECCENTRICITY_LIMIT)."""
+    floor = 0.5 * np.asarray(clearance)[..., None] * (1 - ECCENTRICITY_LIMIT)
+    return (h_min_edge <= floor * (1 + 1e-9)).mean(axis=-1)
 
 
 def _is_number(status):

@@ -59,6 +59,7 @@ References
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -75,11 +76,15 @@ DRY_NODES = 6
 STRETCH_CAP = 0.95
 #: The equilibrium stops when the Newton step is below this share of the edge film.
 TOLERANCE = 1e-2
-#: An odd crank angle takes the mean tilt of its neighbours (solved) where they are in the same state and their
-#: edge offsets differ by less than this share of their thinner edge film (the mean is then within about a
-#: quarter of that of the solution): a quarter of the cost, the edge film within 0.02 um (99 %, at most 0.3 um)
-#: of every angle solved on iso-example's main bearings.
+#: The continuation solves every STRIDE-th crank angle; halving the spacing, each angle between two of the same
+#: state takes their mean tilt where their edge offsets differ by less than INTERPOLATE times their thinner edge
+#: film (on the wall: times the tilt; the edge film is the limit's there), the others are solved. On 20 sampled
+#: iso-example engines (100 bearings, 720 angles): 631 film moments per bearing-cycle against 978 with every angle
+#: solved (710 before the wall rule); the cycle-minimum edge film the same, the edge film within 0.20 um on 99 % of
+#: the angles, the largest tilt within 6.8 %, the share of the cycle at the limit within 3.2 points. STRIDE 4
+#: would save a fifth more but leaves Broyden's continuation 5 % of the edge film off on a 4-degree grid.
 INTERPOLATE = 0.1
+STRIDE = 2
 METHODS = ("short", "finite")
 
 
@@ -156,10 +161,13 @@ def short_film(position, squeeze, edge_offset, *, lines=4096):
     return force, moment
 
 
+@functools.cache
 def _quadrature():
-    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_NODES)
-    dry_nodes, dry_weights = np.polynomial.legendre.leggauss(DRY_NODES)
-    return nodes, weights, dry_nodes, dry_weights
+    """Gauss-Legendre nodes and weights on the wet arc and on the rest (read-only; computed once)."""
+    out = (*np.polynomial.legendre.leggauss(GAUSS_NODES), *np.polynomial.legendre.leggauss(DRY_NODES))
+    for array in out:
+        array.setflags(write=False)
+    return out
 
 
 @dataclass(frozen=True)
@@ -323,7 +331,7 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     state = np.empty(xi.shape[:2], np.int8)
     evaluations = np.empty(xi.shape[:2], np.int64)
     nodes, weights, dry_nodes, dry_weights = _quadrature()
-    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, tables, ld_nodes,
+    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, STRIDE, tables, ld_nodes,
                        stretched, np.ascontiguousarray(ld, dtype=float), method == "finite", nodes, weights, dry_nodes,
                        dry_weights, STRETCH_CAP, tilt, state, evaluations)
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]

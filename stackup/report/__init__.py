@@ -396,9 +396,11 @@ def _film_detail(ds):
             film = "edge contact" if touching.mean() >= 0.5 else f"{np.nanmedian(edge[~touching]) * UM:.2f} µm"
             tilt = np.nanmedian(ds.tilt_max.values[i, done, b])
             peak, mean_peak = (np.nanmedian(ds[name].values[i, done, b]) for name in ("p_max", "p_max_mean"))
+            touch = f"{100 * touching.mean():.0f} %"
+            if "edge_contact_share" in ds and touching.any():  # datasets before it have no share of the cycle
+                touch += f" ({100 * np.nanmedian(ds.edge_contact_share.values[i, done, b][number][touching]):.0f} %)"
             rows.append({"scheme": str(scheme), "bearing": int(bearing),
-                         "text": f"{tilt * 1e3:.2f} / {100 * touching.mean():.0f} % / {film} / {peak / 1e6:.0f} / "
-                                 f"{mean_peak / 1e6:.0f}"})
+                         "text": f"{tilt * 1e3:.2f} / {touch} / {film} / {peak / 1e6:.0f} / {mean_peak / 1e6:.0f}"})
     lines = []
     if rows:
         table = pd.DataFrame(rows).pivot(index="scheme", columns="bearing", values="text")
@@ -406,8 +408,9 @@ def _film_detail(ds):
         lines += ["Misalignment reaches the film: the journal tilts in its bearing by the crankshaft's slope at "
                   "the support (the beam bent by the loads and by the engine's sampled bore coaxiality and "
                   "journal run-out), so the film is thinnest at an edge. Per position: largest tilt over the cycle "
-                  "[mrad, median over engines] / engines whose journal edge touches the bearing / median edge "
-                  "film (where most do not touch) / peak film pressure over the cycle and its cycle mean "
+                  "[mrad, median over engines] / engines whose journal edge touches the bearing (in brackets the "
+                  "share of the cycle it touches, median over those engines) / median edge film (where most do "
+                  "not touch) / peak film pressure over the cycle and its cycle mean "
                   "[MPa, medians]:", "",
                   markdown_table(table.reset_index()), ""]
     ran = status.values != flag(status, "not_computed")

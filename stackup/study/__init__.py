@@ -121,6 +121,14 @@ class Study:
         bearing to the steady film at its viscosity and clearance
         (:func:`stackup.study.chain.fitted_law`; a second crankshaft cycle per
         engine).
+    tilt_method : {"equilibrium", "free"}
+        The journal's tilt in the film (the edge film, ``edge_contact_share``):
+        the crankshaft's slope at the support turned back by the film's
+        restoring moment against the crankshaft's rotational compliance
+        (default; :mod:`stackup.film.tilt`), or that slope held, an upper bound
+        of the tilt that skips the equilibrium's film moments (measured in
+        reports/bench_chain.md: the chain's cost and the difference in edge
+        film and contact share). Only the edge-film variables depend on it.
     life_film : {"cycle-mean", "cycle-minimum"}
         The film Levanov's method 1 reads (:func:`stackup.life.cycle_film`):
         the cycle mean of the minimum film, as the paper's results imply, or
@@ -177,6 +185,7 @@ class Study:
     film_method: str = "auto"
     film_error: float = 0.5
     bearing_law: str = "paper"
+    tilt_method: str = "equilibrium"
     life_film: str = "cycle-mean"
     progress: bool | None = None
     sampler: str = "mc"
@@ -200,6 +209,7 @@ class Study:
         check.one_of("crank_method", self.crank_method, CRANK_METHODS)
         check.one_of("film_method", self.film_method, (*FILM_METHODS, "auto"))
         check.one_of("bearing_law", self.bearing_law, ("paper", "fitted"))
+        check.one_of("tilt_method", self.tilt_method, chain.TILT_METHODS)
         self.film_error = float(check.in_range("film_error", self.film_error, 0.0, 1.0))
         check.one_of("life_film", self.life_film, FILM_STATISTICS)
         self.failure_limit = float(check.in_range("failure_limit", self.failure_limit, 0.0, 1.0))

@@ -34,6 +34,8 @@ from . import schema
 
 #: Engines per step of the mechanical chain when it runs to a target error.
 MECHANICS_BATCH = 25
+#: The journal's tilt in the film: balanced against the film's moment, or the beam's slope held (upper bound).
+TILT_METHODS = ("equilibrium", "free")
 
 
 @dataclass
@@ -159,7 +161,7 @@ def run_chunk(ctx, study, first, progress=None):
         rows = slice(a - e0, stop - e0)
         for i, (result, fit) in enumerate(stages):
             for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film,
-                                          study.bearing_law).items():
+                                          study.bearing_law, study.tilt_method).items():
                 if name in mech:
                     mech[name][i, rows] = value
         a = state.next = stop
@@ -230,7 +232,8 @@ def _press_fit(engine, parts, assembly, method):
     return out
 
 
-def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper"):
+def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper",
+               tilt_method="equilibrium"):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
     Engines with a bearing not assembled are skipped (``not_computed``).
@@ -247,14 +250,14 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing
                                   journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
                                   journal_eccentricity=parts.journal_eccentricity[rows][built],
                                   crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method,
-                                  life_film=life_film, bearing_law=bearing_law)
+                                  life_film=life_film, bearing_law=bearing_law, tilt_method=tilt_method)
         for name, value in values.items():
             out[name][built] = value
     return out
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method, life_film="cycle-mean", bearing_law="paper"):
+                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="equilibrium"):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
     Parameters
@@ -277,6 +280,12 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         With ``crank_method="bearing-law"``: the engine's law (the paper's
         constants, J scaled with each clearance) or J and dx fitted per engine
         and bearing to the steady film (:func:`fitted_law`).
+    tilt_method : {"equilibrium", "free"}
+        The journal's tilt in the film (:data:`TILT_METHODS`): the beam's
+        slope at the support turned back by the film's moment against the
+        crankshaft's rotational compliance (:mod:`stackup.film.tilt`), or that
+        slope held (the film's moment neglected: an upper bound of the tilt,
+        cheaper by the equilibrium's film moments).
 
     A bearing whose film is not a number (``film_status`` collapsed,
     not_periodic or failed; ``film_valid`` false) has NaN for every value
@@ -295,7 +304,8 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
     films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
                           journal_d=journal_d, method=film_method, tilt=tilt,
-                          tilt_compliance=support_compliance(spans=spec.spans, EI=spec.ei))
+                          tilt_compliance=support_compliance(spans=spec.spans, EI=spec.ei)
+                          if tilt_method == "equilibrium" else None)
     wear = engine.wear
     journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
     chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
@@ -312,6 +322,8 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "h_min_edge": films.h_min_edge.min(axis=-1),
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
             "tilt_max": films.tilt_max,
+            "tilt_free_max": np.linalg.norm(tilt, axis=-1).max(axis=1),
+            "edge_contact_share": films.edge_contact_share,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,

@@ -78,7 +78,12 @@ MECHANICS = {
                                 "journal's tilt (edge film)"),
     "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min - h_min_edge"),
     "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (the crankshaft's "
-                                "slope at the support, turned back by the film's moment)"),
+                                "slope at the support, turned back by the film's moment where tilt_method is "
+                                "equilibrium)"),
+    "tilt_free_max": Var(SMB, "rad", "largest slope of the crankshaft at the support over the cycle, without the "
+                                     "film's moment (the tilt's upper bound)"),
+    "edge_contact_share": Var(SMB, "1", "share of the engine cycle at which the film over the bearing width is at "
+                                        "the limit film (an edge of the tilted journal at the wall)"),
     "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle (Rozhdestvensky et al.'s p_max)"),
     "p_max_mean": Var(SMB, "Pa", "cycle mean of the peak oil film pressure (Rozhdestvensky et al.'s p*_max)"),
     "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "
@@ -105,7 +110,7 @@ MECHANICS = {
 #: The mechanical chain's values that come from the film: NaN for a bearing whose film is not a number
 #: (``film_valid`` false; ``film_status`` says why: collapsed, not_periodic or failed), so that no statistic
 #: or ranking reads a film held at the eccentricity limit or an orbit that did not close.
-FILM_NUMBERS = ("h_min", "h_min_mean", "h_min_edge", "tilt_loss", "p_max", "p_max_mean", "alpha", "life",
+FILM_NUMBERS = ("h_min", "h_min_mean", "h_min_edge", "tilt_loss", "edge_contact_share", "p_max", "p_max_mean", "alpha", "life",
                 "life_wear_chart", "wear_rate", "film_temperature", "friction_power", "oil_flow", "feed_flow",
                 "h_min_history")
 _NOT_A_NUMBER = "; NaN where film_valid is false (film_status collapsed, not_periodic or failed)"

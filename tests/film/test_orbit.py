@@ -1,5 +1,7 @@
 """Film over the cycle: quasi-static and mobility tiers, pure squeeze, load reversal, the study stage."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -111,6 +113,36 @@ def test_study_stores_the_film_status_tilt_and_peak_pressure_with_their_flags():
     for name in ("h_min_edge", "tilt_loss", "tilt_max", "p_max", "film_status", "law_fit_error"):
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
 
+
+
+def test_tilt_method_free_holds_the_beams_slope_and_changes_only_the_edge_film():
+    from stackup.study import Study
+
+    common = dict(n_engines=10, mechanics_engines=2, crank_angle_step=4.0, schemes=("iso13778-5",), seed=3,
+                  pilot_engines=2000, progress=False, film_method="mobility-finite")
+    balanced = Study(**common).run().sel(scheme="iso13778-5").isel(mech_engine=slice(0, 2))
+    held = Study(**common, tilt_method="free").run().sel(scheme="iso13778-5").isel(mech_engine=slice(0, 2))
+    assert json.loads(held.attrs["study"])["tilt_method"] == "free"
+    # the free tilt is the beam's slope: the film holds it exactly, the equilibrium turns it back
+    np.testing.assert_allclose(held.tilt_max.values, held.tilt_free_max.values, rtol=1e-12)
+    np.testing.assert_array_equal(balanced.tilt_free_max.values, held.tilt_free_max.values)
+    assert np.all(balanced.tilt_max.values < balanced.tilt_free_max.values)
+    assert np.all((balanced.tilt_free_max.values > 1e-5) & (balanced.tilt_free_max.values < 0.01))
+    for ds in (balanced, held):
+        share = ds.edge_contact_share.values
+        assert np.all((share >= 0) & (share <= 1))
+        assert ds.edge_contact_share.attrs["units"] == "1" and ds.tilt_free_max.attrs["units"] == "rad"
+    # the mid-plane film, and the lives that read it, do not depend on the tilt
+    for name in ("h_min", "h_min_mean", "life", "p_max"):
+        np.testing.assert_array_equal(balanced[name].values, held[name].values)
+    assert np.nanmean(held.edge_contact_share.values) >= np.nanmean(balanced.edge_contact_share.values)
+
+
+def test_study_rejects_an_unknown_tilt_method():
+    from stackup.study import Study
+
+    with pytest.raises(ValueError, match="tilt_method.*'rigid'.*equilibrium"):
+        Study(tilt_method="rigid")
 
 # Hard cases. A load of constant size turning at the rate Omega: in the frame turning with it the
 # journal stands still, v_s = (Omega - omega/2) k x x, so the film is the steady film at the speed
