@@ -163,13 +163,14 @@ def _design_section(ds, ranking):
     samples = list(record["outside"])
     shares = pd.DataFrame({
         "design sample": samples,
-        f"{start} [ppm]": [f"{1e6 * record['start_outside'].get(k, np.nan):.1f}" for k in samples],
-        f"{name} [ppm]": [f"{1e6 * record['outside'][k]:.1f}" for k in samples],
+        f"{start} [ppm]": [_ppm_text(1e6 * record['start_outside'].get(k, np.nan)) for k in samples],
+        f"{name} [ppm]": [_ppm_text(1e6 * record['outside'][k]) for k in samples],
     })
 
     def outcome(scheme):
         row = ranking.loc[scheme]
-        return (f"rank {row['rank']}, {_fmt_ci(row.outside_window_ppm, row.outside_window_ppm_ci, 1)} ppm outside "
+        digits = prose.ppm_digits(row.outside_window_ppm, row.outside_window_ppm_ci[1])
+        return (f"rank {row['rank']}, {_fmt_ci(row.outside_window_ppm, row.outside_window_ppm_ci, digits)} ppm outside "
                 f"the window{'' if row.outside_window_source == 'counted' else ' †'}")
 
     lines = [
@@ -375,6 +376,11 @@ def _film_section(ds, out):
         markdown_table(both), "",
         *_film_detail(ds),
         "![Oil film and life per bearing position](film_life.png)")
+
+
+def _ppm_text(value):
+    """A share in ppm to its precision (:func:`prose.ppm_digits`: two significant digits below 1 ppm)."""
+    return f"{value:,.{prose.ppm_digits(value)}f}"
 
 
 def _film_detail(ds):
