@@ -100,6 +100,15 @@ def _locate(nodes, x):
 
 
 @njit(cache=True)
+def bearing_table(tables, ld_nodes, ld, finite):
+    """The finite correction's table at a bearing's L/D (linear between the tabulated L/D), or the short one."""
+    if not finite:
+        return tables[0]
+    i, t = _locate(ld_nodes, ld)
+    return (1.0 - t) * tables[i] + t * tables[i + 1]
+
+
+@njit(cache=True)
 def table_lookup(table, stretched, eps, alpha):
     """Finite-length correction at (eps, alpha) from ``table`` (n_eps, n_alpha, 3).
 
@@ -380,11 +389,7 @@ def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld
     n_b = w.shape[0]
     n = w.shape[1]
     for b in prange(n_b):
-        if finite:
-            i, t = _locate(ld_nodes, ld[b])
-            table = (1.0 - t) * tables[i] + t * tables[i + 1]
-        else:
-            table = tables[0]
+        table = bearing_table(tables, ld_nodes, ld[b], finite)
         alpha = np.empty(n)
         s, c = _orbit(w[b], tau, limit, tolerance, max_cycles, table, stretched, finite, xi[b], v[b], alpha,
                       start[b, 0], start[b, 1], warm)
@@ -411,7 +416,5 @@ def steady_peak_factors(eps, ld, tables, ld_nodes, stretched, finite, out):
     for m in range(eps.shape[0]):
         g = peak_factor(eps[m], alpha, 0.0)[0]
         if finite:
-            i, t = _locate(ld_nodes, ld[m])
-            table = (1.0 - t) * tables[i] + t * tables[i + 1]
-            g *= math.exp(table_lookup(table, stretched, eps[m], alpha)[4])
+            g *= math.exp(table_lookup(bearing_table(tables, ld_nodes, ld[m], True), stretched, eps[m], alpha)[4])
         out[m] = g

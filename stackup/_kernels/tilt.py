@@ -30,7 +30,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .mobility import _locate, table_lookup
+from .mobility import bearing_table, table_lookup
 
 #: |s| below which the axial moments K_2..K_4 are summed as a series in s^2 (the closed forms lose 1/s^4 there).
 SERIES_BELOW = 0.15
@@ -435,11 +435,7 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
     n_b = xi.shape[0]
     n = xi.shape[1]
     for b in prange(n_b):
-        if finite:
-            i, t = _locate(ld_nodes, ld[b])
-            table = (1.0 - t) * tables[i] + t * tables[i + 1]
-        else:
-            table = tables[0]
+        table = bearing_table(tables, ld_nodes, ld[b], finite)
         jac = np.eye(2)
         fresh = False
         last = -1
