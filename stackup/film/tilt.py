@@ -242,8 +242,7 @@ def film_moment(position, squeeze_velocity, tilt, *, radius, length, radial_clea
             raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
                              f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
         for i in range(xi.shape[0]):
-            j, t = _kernel._locate(ld_nodes, ld[i])
-            table = (1 - t) * tables[j] + t * tables[j + 1]
+            table = _kernel.bearing_table(tables, ld_nodes, ld[i], True)
             alpha = np.angle(np.exp(1j * (np.arctan2(v[i, 1], v[i, 0]) - np.arctan2(xi[i, 1], xi[i, 0]))))
             log_ratio, turn = _kernel.table_lookup(table, stretched, min(np.hypot(*xi[i]), ECCENTRICITY_LIMIT),
                                                    alpha)[:2]

@@ -54,13 +54,13 @@ def clearance_histogram(ds, path):
             ax.axvspan(*window, color="tab:red", alpha=0.08, label="design window (operating)")
             for x in window:
                 ax.axvline(x, color="tab:red", lw=1.0, ls="--")
-        if edges is None:
-            ax.hist(nominal, bins=bins, color="tab:blue", alpha=0.7, label="nominal")
-            ax.hist(operating, bins=bins, color="tab:red", alpha=0.55, label="operating")
-        else:  # re-binned from the summaries' 0.1 um bins
-            centres = 0.5 * (edges[1:] + edges[:-1])
-            ax.hist(centres, bins=bins, weights=nominal, color="tab:blue", alpha=0.7, label="nominal")
-            ax.hist(centres, bins=bins, weights=operating, color="tab:red", alpha=0.55, label="operating")
+        for values, colour, alpha, label in ((nominal, "tab:blue", 0.7, "nominal"),
+                                             (operating, "tab:red", 0.55, "operating")):
+            # counted first, drawn as one filled step artist (a bar per bin costs seconds per figure)
+            counts = np.histogram(values, bins=bins)[0] if edges is None else \
+                np.histogram(0.5 * (edges[1:] + edges[:-1]), bins=bins, weights=values)[0]  # re-binned summaries
+            ax.stairs(np.where(counts > 0, counts, np.nan), bins, fill=True, baseline=0.5, color=colour,
+                      alpha=alpha, label=label)
         ax.set_yscale("log")
         ax.set_ylabel("bearings")
         ax.set_title(str(name), fontsize=10, loc="left")

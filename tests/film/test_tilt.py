@@ -139,6 +139,25 @@ def test_short_film_approaches_the_reynolds_tier_with_tilt_for_a_short_bearing()
     assert np.linalg.norm(moment - field.moment) <= 0.03 * np.linalg.norm(field.moment)
 
 
+
+@pytest.mark.parametrize("eps", [0.6, 0.8])
+def test_finite_film_moment_follows_the_reynolds_tier_where_the_short_film_does_not(eps):
+    # L/D 0.4, as the example engine's bearings: the short film overestimates the force by 20-50 %; the finite
+    # correction (measured on the untilted film) brings the force within 1 % and the moment within 5 % at a small tilt
+    length = 0.8
+    xi, e = np.array([eps, 0.0]), np.array([0.05, 0.02])
+    v = rotation_squeeze(xi) + np.array([0.2, 0.0])
+    field = reynolds.tilted_field(xi, v, e, length, n_theta=360, n_z=31)
+    unit = dict(radius=1.0, length=length, radial_clearance=1.0, viscosity=1.0, speed=1.0)
+    short, finite = (film_moment(xi, v, 2 * e / length, **unit, method=m) for m in ("short", "finite"))
+    for out, force_error, moment_error in ((finite, 0.01, 0.05), (short, None, None)):
+        force = np.linalg.norm(out.force / length**3 - field.force) / np.linalg.norm(field.force)
+        moment = np.linalg.norm(out.moment / length**4 - field.moment) / np.linalg.norm(field.moment)
+        if force_error is None:
+            assert force > 0.15 and moment > 0.15
+        else:
+            assert force <= force_error and moment <= moment_error
+
 def test_reynolds_tilted_field_without_tilt_is_the_squeeze_field():
     eps, alpha, lr = 0.7, -1.2, 22 / 23
     v = np.array([np.cos(alpha), np.sin(alpha)])
