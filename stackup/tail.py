@@ -15,10 +15,18 @@ study), and three estimators sample it:
     levels: ``n_level`` root bearings drawn from the nominal density; each
     bearing above :math:`\gamma_t` grows a Markov chain of
     :math:`s_t \approx 1/\rho_t` steps that keeps the nominal density within
-    :math:`\{\text{margin} \ge \gamma_t\}` (conditional sampling,
-    :math:`\rho z + \sqrt{1 - \rho^2}\,\xi`, accepted where it stays
-    above the level), and every state beyond :math:`\gamma_{t+1}` becomes a
-    bearing of the next level. Root :math:`i` ends with :math:`C_i` bearings
+    :math:`\{\text{score} \ge \gamma_t\}` (conditional sampling,
+    :math:`\sqrt{1 - \sigma_j^2}\,z_j + \sigma_j\,\xi_j`, accepted where it
+    stays above the level, with the step sizes :math:`\sigma_j` the pilot's
+    chains adapted to an acceptance of 0.44 at that level, Papaioannou et al.
+    2015, and then frozen so that the roots stay independent), and every
+    state beyond :math:`\gamma_{t+1}` becomes a bearing of the next level.
+    The score is the margin's upper bound with the shells' readings at the
+    edge of their bins until that bound is reached, then the margin
+    (:func:`_ranked`): levels on the margin alone select bearings whose
+    shells already sit at the thick (thin) end of their bins, and their
+    parts cannot take them deeper (dead ends that make the roots' counts
+    heavy-tailed). Root :math:`i` ends with :math:`C_i` bearings
     in the tail, and
 
     .. math:: \hat p = \frac{1}{N}\sum_i \frac{C_i}{\prod_t s_t}, \qquad
@@ -26,9 +34,15 @@ study), and three estimators sample it:
 
     is unbiased for any levels and any such chain, and the roots' trees are
     independent, so the standard error is that of a mean of :math:`N`
-    independent values: honest however poorly the chains move between the
-    separate tail regions that grading creates (they cannot cross from one
-    grade pair's region to the next: the clearance drops in between).
+    independent values, whatever the chains do between the separate tail
+    regions that grading creates. That error is honest only where enough
+    roots reach the tail for the mean of their counts to be normal: below a
+    few ppm on graded schemes the counts are heavy-tailed (a few roots in
+    ten thousand enter the regions that hold most of the tail and then
+    carry most of it), so a typical run of 2000 roots, with one to four
+    roots in the tail, understates both the share and its error
+    (``effective_bearings`` says how many roots it rests on; the diagnosis
+    and the numbers are in reports/tails_vs_peers.md).
     Subset simulation alone states its error from within-chain correlations
     (Au and Beck, eqs. 28-32), which misses exactly that: its stated error
     was 0.92, 0.65 and 0.28 of the real spread at 1000, 100 and 20 ppm on
@@ -69,7 +83,7 @@ References
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba
 import numpy as np
@@ -80,13 +94,13 @@ from ._random import as_generator
 from .engines import load_engine
 from .schemes import load as load_scheme
 from .study.pilot import pilot_parts, shell_plan
-from .study.roots import RootModel
+from .study.roots import Z_MAX, RootModel
 
 #: Root inputs a bearing's clearance does not depend on, or that are the scenarios' business.
 NOT_TAIL_GROUPS = ("bore process mean", "journal process mean", "misalignment")
 METHODS = ("splitting", "cross-entropy", "mc")
-#: Correlation of a conditional-sampling step with its state (Papaioannou et al. 2015 recommend 0.8).
-CHAIN_RHO = 0.8
+#: Acceptance rate the pilot's chains adapt their steps to, and the first step's scale (Papaioannou et al. 2015).
+TARGET_ACCEPTANCE, INITIAL_SCALE = 0.44, 0.6
 #: Bearings per level of the pilot subset simulation that places the levels, as a share of ``n_level``.
 PILOT_SHARE = 0.25
 
@@ -164,11 +178,15 @@ def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="spli
 
 
 def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_000, elite=0.1, defensive=0.1,
-               seed=0, max_levels=14):
+               seed=0, max_levels=14, bound=None):
     """Probability that ``margin(z) > 0`` for ``z`` standard normal in ``dim`` dimensions.
 
     The estimators of :func:`clearance_tail` (see the module docstring) for
-    any vectorised ``margin`` ((n, dim) -> (n,)); same parameters.
+    any vectorised ``margin`` ((n, dim) -> (n,)); same parameters, and
+    ``bound``, a vectorised upper bound of the margin that splitting places
+    its first levels on (:func:`_ranked`; default ``margin.bound`` where the
+    margin has one, as :func:`clearance_margin`'s has). ``bearings`` of the
+    result counts every evaluation of ``margin`` and ``bound``.
 
     Returns
     -------
@@ -186,23 +204,63 @@ def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_
     # the chains evaluate a few hundred bearings per call, where starting the kernels' threads costs more
     # than it saves (half the time on two cores)
     numba.set_num_threads(1)
+    bound = getattr(margin, "bound", None) if bound is None else bound
+    count = _Counted(margin)
     try:
-        return _estimator(margin, dim, rng, method=method, n=n, n_level=n_level, elite=elite, defensive=defensive,
-                          max_levels=max_levels)
+        estimate = _estimator(count, dim, rng, method=method, n=n, n_level=n_level, elite=elite,
+                              defensive=defensive, max_levels=max_levels,
+                              bound=None if bound is None else _Counted(bound, count))
     finally:
         numba.set_num_threads(threads)
+    return replace(estimate, bearings=count.rows)
 
 
-def _estimator(margin, dim, rng, *, method, n, n_level, elite, defensive, max_levels):
+class _Counted:
+    """A margin that counts the bearings it evaluates (in ``counter``'s tally when given)."""
+
+    def __init__(self, margin, counter=None):
+        self.margin, self.counter, self.rows = margin, counter, 0
+
+    def __call__(self, z):
+        (self.counter or self).rows += len(z)
+        return self.margin(z)
+
+
+def _ranked(margin, bound):
+    r"""The score the splitting's levels are placed on: the bound first, the margin once the bound is reached.
+
+    ``bound`` :math:`b(z) \ge m(z)` is the margin :math:`m` with inputs the
+    tail can always reach set to their extreme (the shells' readings at the
+    edge of their bins). The score is :math:`b - 1` where :math:`b < 0` and
+    :math:`m` (which exceeds :math:`-1`: margins are in metres) where
+    :math:`b \ge 0`, so its levels first select bearings whose *parts*
+    allow the tail, then the shells that take them there; its superlevel
+    sets are nested and the tail is :math:`\{m > 0\}` as before. The
+    margin is evaluated only where the bound is reached.
+    """
+    def score(z):
+        out = bound(z) - 1.0
+        ok = out >= -1.0
+        if ok.any():
+            out[ok] = margin(z[ok])
+        return out
+
+    return score
+
+
+def _estimator(margin, dim, rng, *, method, n, n_level, elite, defensive, max_levels, bound=None):
     if method == "mc":
         hit = (margin(rng.standard_normal((n, dim))) > 0).astype(float)
         return _estimate(hit, n, float(hit.sum()), 0)
     if method == "splitting":
+        margin = margin if bound is None else _ranked(margin, bound)
         pilot = max(100, int(round(PILOT_SHARE * n_level)))
-        levels, last, spent = _subset_levels(margin, dim, rng, n_level=pilot, p0=elite, max_levels=max_levels)
+        levels, kernels, last, spent = _subset_levels(margin, dim, rng, n_level=pilot, p0=elite,
+                                                      max_levels=max_levels)
         # chain steps per level: about as many bearings at every level as roots above the first
         splits = [int(round(1 / elite))] * (len(levels) - 1) + [max(1, int(round(1 / last)))] * bool(levels)
-        return _splitting(margin, dim, rng, n_roots=n_level, levels=levels, splits=splits, spent=spent, p0=elite,
+        return _splitting(margin, dim, rng, n_roots=n_level, levels=levels, kernels=kernels, splits=splits,
+                          spent=spent, p0=elite,
                           reached=len(levels) < max_levels)
     return _cross_entropy(margin, dim, rng, n=n, n_level=n_level, elite=elite, defensive=defensive,
                           max_levels=max_levels)
@@ -244,6 +302,9 @@ def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pi
     the shell taken from its grade's bin and the press fit
     (:class:`~stackup.study.roots.RootModel` of one bearing). The function a
     reliability library sees.
+    ``margin.bound(z)`` is the same margin with the shells' readings at the
+    edge of their bins towards the tail (thick shells close a clearance),
+    an upper bound of ``margin(z)``, for the splitting's first levels.
     """
     engine = load_engine(engine)
     scheme = load_scheme(scheme)
@@ -257,11 +318,21 @@ def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pi
 
     groups = tuple(g for g in model.groups if g not in NOT_TAIL_GROUPS)
 
+    names, owners = model.columns(groups)
+    wall = np.array(owners) == "shell wall"
+
     def margin(z):
         c = model.engines(special.ndtr(z), groups=groups)["clearance_operating"][:, 0]
         return np.where(np.isfinite(c), sign * (c - threshold), -np.inf)
 
-    return margin, len(model.columns(groups)[0])
+    def bound(z):
+        # thick shells close a clearance, thin ones open it: each reading at its bin's edge towards the tail
+        z = np.array(z, dtype=float)
+        z[:, wall] = -sign * Z_MAX
+        return margin(z)
+
+    margin.bound = bound
+    return margin, len(names)
 
 
 def _several_pairs(scheme):
@@ -279,30 +350,40 @@ def _estimate(values, bearings, effective, levels):
     return TailEstimate(share, se, interval, int(bearings), float(effective), levels)
 
 
-def _move(score, state, state_s, level, rng):
-    """One conditional-sampling step of each chain: keeps the standard normal density above ``level``."""
-    candidate = CHAIN_RHO * state + np.sqrt(1 - CHAIN_RHO**2) * rng.standard_normal(state.shape)
+def _move(score, state, state_s, level, rng, sigma):
+    r"""One conditional-sampling step of each chain: keeps the standard normal density above ``level``.
+
+    Coordinate j moves to :math:`\rho_j z_j + \sigma_j \xi_j`, :math:`\rho_j = \sqrt{1 - \sigma_j^2}`
+    (each marginal stays standard normal whatever ``sigma``), accepted where the score stays above ``level``.
+    Returns the new states, their scores and which moved.
+    """
+    rho = np.sqrt(1.0 - sigma**2)
+    candidate = rho * state + sigma * rng.standard_normal(state.shape)
     candidate_s = score(candidate)
     move = candidate_s >= level
-    return np.where(move[:, None], candidate, state), np.where(move, candidate_s, state_s)
+    return np.where(move[:, None], candidate, state), np.where(move, candidate_s, state_s), move
 
 
 def _subset_levels(score, dim, rng, *, n_level, p0, max_levels):
-    r"""Levels of a subset simulation: each the :math:`p_0` upper quantile of the previous level's chains.
+    r"""Levels of a subset simulation, each the :math:`p_0` upper quantile of the previous level's chains, and
+    the chains' kernel at each level.
 
     Level 0 is plain Monte Carlo; each level keeps the ``p0`` share of its
     bearings deepest towards the tail and grows Markov chains from them that
-    stay above that level's threshold, until the threshold passes 0. Returns
-    the thresholds below 0 (``max_levels`` of them where the tail lies
-    deeper), the share of the last level's bearings in the tail and the
-    evaluations (Au and Beck 2001; conditional sampling as in Papaioannou et
-    al. 2015).
+    stay above that level's threshold, until the threshold passes 0. The
+    chains are adaptive conditional sampling (Papaioannou et al. 2015, alg.
+    5): coordinate j's step :math:`\sigma_j = \min(1, \lambda\,\hat\sigma_j)`
+    with :math:`\hat\sigma_j` the spread of the level's seeds in j and
+    :math:`\lambda` driven towards :data:`TARGET_ACCEPTANCE` after every
+    step. Returns the thresholds below 0 (``max_levels`` of them where the
+    tail lies deeper), each level's final step sizes, the share of the last
+    level's bearings in the tail and the evaluations (Au and Beck 2001).
     """
-    n_seeds = max(1, int(round(p0 * n_level)))
+    n_seeds = max(2, int(round(p0 * n_level)))
     steps = max(1, n_level // n_seeds)
     z = rng.standard_normal((n_level, dim))
     s = score(z)
-    spent, levels = n_level, []
+    spent, levels, kernels, scale = n_level, [], [], INITIAL_SCALE
     while len(levels) < max_levels:
         order = np.argsort(s)
         threshold = s[order[-n_seeds]]
@@ -310,17 +391,20 @@ def _subset_levels(score, dim, rng, *, n_level, p0, max_levels):
             break
         levels.append(float(threshold))
         state, state_s = z[order[-n_seeds:]], s[order[-n_seeds:]]
+        spread = np.maximum(state.std(axis=0, ddof=1), 1e-3)
         zs, ss = [], []
-        for _ in range(steps):
-            state, state_s = _move(score, state, state_s, threshold, rng)
+        for k in range(steps):
+            state, state_s, moved = _move(score, state, state_s, threshold, rng, np.minimum(1.0, scale * spread))
+            scale *= np.exp((moved.mean() - TARGET_ACCEPTANCE) / np.sqrt(k + 1))
             spent += state_s.size
             zs.append(state)
             ss.append(state_s)
+        kernels.append(np.minimum(1.0, scale * spread))
         z, s = np.concatenate(zs), np.concatenate(ss)
-    return levels, max(float(np.mean(s > 0.0)), p0), spent
+    return levels, kernels, max(float(np.mean(s > 0.0)), p0), spent
 
 
-def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0, reached=True):
+def _splitting(score, dim, rng, *, n_roots, levels, kernels, splits, spent, p0, reached=True):
     """Generalized splitting on fixed ``levels`` (< 0, increasing) with ``splits`` chain steps per level.
 
     Each root's bearings descend from it alone, so the roots' counts in the
@@ -357,7 +441,7 @@ def _splitting(score, dim, rng, *, n_roots, levels, splits, spent, p0, reached=T
         for _ in range(splits[t]):
             if not root.size:
                 break
-            state, state_s = _move(score, state, state_s, bounds[t], rng)
+            state, state_s, _ = _move(score, state, state_s, bounds[t], rng, kernels[t])
             spent += root.size
             beyond = state_s > 0.0 if bounds[t + 1] == 0.0 else state_s >= bounds[t + 1]
             found.append((state[beyond], state_s[beyond], root[beyond], weight[beyond]))
