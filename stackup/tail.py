@@ -21,12 +21,7 @@ study), and three estimators sample it:
     chains adapted to an acceptance of 0.44 at that level, Papaioannou et al.
     2015, and then frozen so that the roots stay independent), and every
     state beyond :math:`\gamma_{t+1}` becomes a bearing of the next level.
-    The score is the margin's upper bound with the shells' readings at the
-    edge of their bins until that bound is reached, then the margin
-    (:func:`_ranked`): levels on the margin alone select bearings whose
-    shells already sit at the thick (thin) end of their bins, and their
-    parts cannot take them deeper (dead ends that make the roots' counts
-    heavy-tailed). Root :math:`i` ends with :math:`C_i` bearings
+Root :math:`i` ends with :math:`C_i` bearings
     in the tail, and
 
     .. math:: \hat p = \frac{1}{N}\sum_i \frac{C_i}{\prod_t s_t}, \qquad
@@ -94,7 +89,7 @@ from ._random import as_generator
 from .engines import load_engine
 from .schemes import load as load_scheme
 from .study.pilot import pilot_parts, shell_plan
-from .study.roots import Z_MAX, RootModel
+from .study.roots import RootModel
 
 #: Root inputs a bearing's clearance does not depend on, or that are the scenarios' business.
 NOT_TAIL_GROUPS = ("bore process mean", "journal process mean", "misalignment")
@@ -103,6 +98,13 @@ METHODS = ("splitting", "cross-entropy", "mc")
 TARGET_ACCEPTANCE, INITIAL_SCALE = 0.44, 0.6
 #: Bearings per level of the pilot subset simulation that places the levels, as a share of ``n_level``.
 PILOT_SHARE = 0.25
+#: Roots in the tail an estimate asks for (the count of roots is raised until about this many reach it), and
+#: the most roots it may draw, as a multiple of ``n_level``: below a few ppm on graded schemes the roots' counts
+#: are heavy-tailed and a mean of fewer is not normal (its stated error was 0.33 of the real spread in the median
+#: run at 2 ppm with 2000 roots and one to four roots in the tail; module docstring).
+MIN_ROOTS, MAX_ROOTS_SHARE = 20, 16
+#: Roots of the trial that sets the estimate's count of roots, as a share of ``n_level``.
+TRIAL_SHARE = 0.1
 
 
 @dataclass(frozen=True)
@@ -126,7 +128,8 @@ class TailEstimate:
 
 
 def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="splitting", n_bearings=20_000,
-                   n_level=2_000, elite=0.1, defensive=0.1, seed=0, pilot_engines=20_000, max_levels=14):
+                   n_level=2_000, elite=0.1, defensive=0.1, seed=0, pilot_engines=20_000, max_levels=14,
+                   min_roots=MIN_ROOTS, max_roots=None):
     """Share of bearings whose operating clearance is beyond ``threshold``, through the assembly chain.
 
     Parameters
@@ -159,6 +162,14 @@ def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="spli
         Pilot sample of the shell plan, as in a study.
     max_levels : int
         Most levels (splitting) or cross-entropy steps.
+    min_roots : int
+        Roots in the tail the splitting asks for: a trial of ``TRIAL_SHARE``
+        of ``n_level`` roots on the same levels, then thrown away, gives the
+        roots in the tail per root, and the estimate draws ``n_level`` roots
+        or as many as that rate needs for ``min_roots`` of them in the tail,
+        whichever is more (0: ``n_level``, no trial).
+    max_roots : int, optional
+        Most roots of the estimate (default ``MAX_ROOTS_SHARE * n_level``).
 
     Returns
     -------
@@ -174,19 +185,17 @@ def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="spli
                       "several separate regions that one normal density does not cover; the stated error is "
                       "understated there (use method='splitting')", UserWarning, stacklevel=2)
     return tail_share(score, dim, method=method, n_bearings=n_bearings, n_level=n_level, elite=elite,
-                      defensive=defensive, seed=seed, max_levels=max_levels)
+                      defensive=defensive, seed=seed, max_levels=max_levels, min_roots=min_roots,
+                      max_roots=max_roots)
 
 
 def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_000, elite=0.1, defensive=0.1,
-               seed=0, max_levels=14, bound=None):
+               seed=0, max_levels=14, min_roots=MIN_ROOTS, max_roots=None):
     """Probability that ``margin(z) > 0`` for ``z`` standard normal in ``dim`` dimensions.
 
     The estimators of :func:`clearance_tail` (see the module docstring) for
-    any vectorised ``margin`` ((n, dim) -> (n,)); same parameters, and
-    ``bound``, a vectorised upper bound of the margin that splitting places
-    its first levels on (:func:`_ranked`; default ``margin.bound`` where the
-    margin has one, as :func:`clearance_margin`'s has). ``bearings`` of the
-    result counts every evaluation of ``margin`` and ``bound``.
+    any vectorised ``margin`` ((n, dim) -> (n,)); same parameters.
+    ``bearings`` of the result counts every evaluation of ``margin``.
 
     Returns
     -------
@@ -199,69 +208,54 @@ def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_
     elite = float(check.in_range("elite", elite, 0.0, 0.5, lo_open=True))
     defensive = float(check.in_range("defensive", defensive, 0.0, 1.0, lo_open=True))
     max_levels = check.integer("max_levels", max_levels, minimum=1)
+    min_roots = check.integer("min_roots", min_roots, minimum=0)
+    if max_roots is not None:
+        max_roots = check.integer("max_roots", max_roots, minimum=n_level)
     rng = as_generator(np.random.SeedSequence(seed).spawn(1)[0])
     threads = numba.get_num_threads()
     # the chains evaluate a few hundred bearings per call, where starting the kernels' threads costs more
     # than it saves (half the time on two cores)
     numba.set_num_threads(1)
-    bound = getattr(margin, "bound", None) if bound is None else bound
     count = _Counted(margin)
     try:
         estimate = _estimator(count, dim, rng, method=method, n=n, n_level=n_level, elite=elite,
-                              defensive=defensive, max_levels=max_levels,
-                              bound=None if bound is None else _Counted(bound, count))
+                              defensive=defensive, max_levels=max_levels, min_roots=min_roots,
+                              max_roots=max_roots)
     finally:
         numba.set_num_threads(threads)
     return replace(estimate, bearings=count.rows)
 
 
 class _Counted:
-    """A margin that counts the bearings it evaluates (in ``counter``'s tally when given)."""
+    """A margin that counts the bearings it evaluates."""
 
-    def __init__(self, margin, counter=None):
-        self.margin, self.counter, self.rows = margin, counter, 0
+    def __init__(self, margin):
+        self.margin, self.rows = margin, 0
 
     def __call__(self, z):
-        (self.counter or self).rows += len(z)
+        self.rows += len(z)
         return self.margin(z)
 
 
-def _ranked(margin, bound):
-    r"""The score the splitting's levels are placed on: the bound first, the margin once the bound is reached.
-
-    ``bound`` :math:`b(z) \ge m(z)` is the margin :math:`m` with inputs the
-    tail can always reach set to their extreme (the shells' readings at the
-    edge of their bins). The score is :math:`b - 1` where :math:`b < 0` and
-    :math:`m` (which exceeds :math:`-1`: margins are in metres) where
-    :math:`b \ge 0`, so its levels first select bearings whose *parts*
-    allow the tail, then the shells that take them there; its superlevel
-    sets are nested and the tail is :math:`\{m > 0\}` as before. The
-    margin is evaluated only where the bound is reached.
-    """
-    def score(z):
-        out = bound(z) - 1.0
-        ok = out >= -1.0
-        if ok.any():
-            out[ok] = margin(z[ok])
-        return out
-
-    return score
-
-
-def _estimator(margin, dim, rng, *, method, n, n_level, elite, defensive, max_levels, bound=None):
+def _estimator(margin, dim, rng, *, method, n, n_level, elite, defensive, max_levels, min_roots, max_roots):
     if method == "mc":
         hit = (margin(rng.standard_normal((n, dim))) > 0).astype(float)
         return _estimate(hit, n, float(hit.sum()), 0)
     if method == "splitting":
-        margin = margin if bound is None else _ranked(margin, bound)
         pilot = max(100, int(round(PILOT_SHARE * n_level)))
-        levels, kernels, last, spent = _subset_levels(margin, dim, rng, n_level=pilot, p0=elite,
-                                                      max_levels=max_levels)
+        levels, kernels, last = _subset_levels(margin, dim, rng, n_level=pilot, p0=elite, max_levels=max_levels)
         # chain steps per level: about as many bearings at every level as roots above the first
         splits = [int(round(1 / elite))] * (len(levels) - 1) + [max(1, int(round(1 / last)))] * bool(levels)
-        return _splitting(margin, dim, rng, n_roots=n_level, levels=levels, kernels=kernels, splits=splits,
-                          spent=spent, p0=elite,
-                          reached=len(levels) < max_levels)
+        plan = dict(levels=levels, kernels=kernels, splits=splits, p0=elite, reached=len(levels) < max_levels)
+        n_roots = n_level
+        if levels and min_roots:
+            # a trial on the same levels, thrown away, says how many roots reach the tail per root; the estimate's
+            # roots are then drawn afresh, so their number does not depend on them (unbiased)
+            n_trial = max(100, int(round(TRIAL_SHARE * n_level)))
+            trial = _splitting(margin, dim, rng, n_roots=n_trial, **plan)
+            rate = max(trial.effective_bearings, 0.5) / n_trial
+            n_roots = int(np.clip(np.ceil(min_roots / rate), n_level, max_roots or MAX_ROOTS_SHARE * n_level))
+        return _splitting(margin, dim, rng, n_roots=n_roots, **plan)
     return _cross_entropy(margin, dim, rng, n=n, n_level=n_level, elite=elite, defensive=defensive,
                           max_levels=max_levels)
 
@@ -302,9 +296,6 @@ def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pi
     the shell taken from its grade's bin and the press fit
     (:class:`~stackup.study.roots.RootModel` of one bearing). The function a
     reliability library sees.
-    ``margin.bound(z)`` is the same margin with the shells' readings at the
-    edge of their bins towards the tail (thick shells close a clearance),
-    an upper bound of ``margin(z)``, for the splitting's first levels.
     """
     engine = load_engine(engine)
     scheme = load_scheme(scheme)
@@ -318,21 +309,11 @@ def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pi
 
     groups = tuple(g for g in model.groups if g not in NOT_TAIL_GROUPS)
 
-    names, owners = model.columns(groups)
-    wall = np.array(owners) == "shell wall"
-
     def margin(z):
         c = model.engines(special.ndtr(z), groups=groups)["clearance_operating"][:, 0]
         return np.where(np.isfinite(c), sign * (c - threshold), -np.inf)
 
-    def bound(z):
-        # thick shells close a clearance, thin ones open it: each reading at its bin's edge towards the tail
-        z = np.array(z, dtype=float)
-        z[:, wall] = -sign * Z_MAX
-        return margin(z)
-
-    margin.bound = bound
-    return margin, len(names)
+    return margin, len(model.columns(groups)[0])
 
 
 def _several_pairs(scheme):
@@ -377,13 +358,13 @@ def _subset_levels(score, dim, rng, *, n_level, p0, max_levels):
     :math:`\lambda` driven towards :data:`TARGET_ACCEPTANCE` after every
     step. Returns the thresholds below 0 (``max_levels`` of them where the
     tail lies deeper), each level's final step sizes, the share of the last
-    level's bearings in the tail and the evaluations (Au and Beck 2001).
+    level's bearings in the tail (Au and Beck 2001).
     """
     n_seeds = max(2, int(round(p0 * n_level)))
     steps = max(1, n_level // n_seeds)
     z = rng.standard_normal((n_level, dim))
     s = score(z)
-    spent, levels, kernels, scale = n_level, [], [], INITIAL_SCALE
+    levels, kernels, scale = [], [], INITIAL_SCALE
     while len(levels) < max_levels:
         order = np.argsort(s)
         threshold = s[order[-n_seeds]]
@@ -396,15 +377,14 @@ def _subset_levels(score, dim, rng, *, n_level, p0, max_levels):
         for k in range(steps):
             state, state_s, moved = _move(score, state, state_s, threshold, rng, np.minimum(1.0, scale * spread))
             scale *= np.exp((moved.mean() - TARGET_ACCEPTANCE) / np.sqrt(k + 1))
-            spent += state_s.size
             zs.append(state)
             ss.append(state_s)
         kernels.append(np.minimum(1.0, scale * spread))
         z, s = np.concatenate(zs), np.concatenate(ss)
-    return levels, kernels, max(float(np.mean(s > 0.0)), p0), spent
+    return levels, kernels, max(float(np.mean(s > 0.0)), p0)
 
 
-def _splitting(score, dim, rng, *, n_roots, levels, kernels, splits, spent, p0, reached=True):
+def _splitting(score, dim, rng, *, n_roots, levels, kernels, splits, p0, reached=True):
     """Generalized splitting on fixed ``levels`` (< 0, increasing) with ``splits`` chain steps per level.
 
     Each root's bearings descend from it alone, so the roots' counts in the
@@ -421,7 +401,7 @@ def _splitting(score, dim, rng, *, n_roots, levels, kernels, splits, spent, p0, 
     """
     z = rng.standard_normal((n_roots, dim))
     s = score(z)
-    spent += n_roots
+    spent = n_roots
     if not levels:  # the pilot found the tail beyond its first quantile: plain Monte Carlo
         hit = (s > 0.0).astype(float)
         return _estimate(hit, spent, float(hit.sum()), 0)
