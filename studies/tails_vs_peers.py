@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import multiprocessing
 import time
 import warnings
 from concurrent.futures import ProcessPoolExecutor
@@ -93,7 +94,7 @@ def ours(margin, dim, scheme, side, threshold, method, seeds, n_level, reference
     t0 = time.perf_counter()
     caught = []
     if method == "splitting":
-        with ProcessPoolExecutor(workers) as pool:
+        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
             out = list(pool.map(_splitting_run, [(scheme, side, threshold, n_level, s) for s in range(seeds)]))
         runs, per_run = [r for r, _ in out], float(np.mean([t for _, t in out]))
     else:

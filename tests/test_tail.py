@@ -33,8 +33,9 @@ def _runs(margin, seeds, **kw):
 
 @pytest.mark.parametrize("margin, p", [
     (lambda z: z.sum(axis=1) / np.sqrt(DIM) - 4.0, float(special.ndtr(-4.0))),  # a plane at beta = 4: Phi(-4)
+    (lambda z: np.abs(z[:, 0]) - 4.0, float(2 * special.ndtr(-4.0))),  # two regions, 63 ppm
     (_slabs, P_SLABS),
-], ids=["plane", "three-regions"])
+], ids=["plane", "two-sides", "three-regions"])
 def test_splitting_is_unbiased_and_states_its_error_on_closed_form_tails(margin, p):
     runs, shares, stated = _runs(margin, range(30))
     spread = shares.std(ddof=1)
@@ -43,6 +44,29 @@ def test_splitting_is_unbiased_and_states_its_error_on_closed_form_tails(margin,
     assert np.mean([r.interval[0] <= p <= r.interval[1] for r in runs]) >= 0.85  # 95 % intervals, 30 runs
     # plain Monte Carlo needs (1 - p) / (p cv^2) bearings for the same coefficient of variation
     assert (1 - p) / (p * (spread / p) ** 2) > 5 * np.mean([r.bearings for r in runs])
+
+
+def _deep_slabs(z):
+    return np.minimum(HALF - np.min(np.abs(z[:, :1] - CENTRES), axis=1), z[:, 1] - DEEP_CUT)
+
+
+DEEP_CUT = 4.5
+P_DEEP = float((special.ndtr(CENTRES + HALF) - special.ndtr(CENTRES - HALF)).sum() * special.ndtr(-DEEP_CUT))
+
+
+def test_splitting_states_its_error_on_a_ppm_tail_in_separate_regions_and_draws_the_roots_asked_for():
+    # 1.1 ppm in three slabs a chain cannot cross between: the stated error matches the spread over 24 seeds
+    runs, shares, stated = _runs(_deep_slabs, range(24))
+    spread = shares.std(ddof=1)
+    assert abs(shares.mean() - P_DEEP) < 3 * spread / np.sqrt(shares.size)
+    assert 0.75 < stated / spread < 1.33
+    assert np.mean([r.interval[0] <= P_DEEP <= r.interval[1] for r in runs]) >= 0.8
+    assert np.median([r.effective_bearings for r in runs]) >= 10
+    assert (1 - P_DEEP) / (P_DEEP * (spread / P_DEEP) ** 2) > 5 * np.mean([r.bearings for r in runs])
+    # asking for 200 roots in the tail (about 30 reach it from 2000) draws about seven times the roots
+    many = tail_share(_deep_slabs, DIM, seed=1, min_roots=200)
+    assert many.effective_bearings > 100 and many.bearings > 4 * np.mean([r.bearings for r in runs])
+    assert abs(many.share - P_DEEP) < 3 * many.standard_error
 
 
 def test_splitting_through_the_assembly_chain_agrees_with_plain_mc_and_states_its_error():
