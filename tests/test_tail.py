@@ -131,3 +131,21 @@ def test_a_tail_beyond_the_deepest_level_is_zero_below_that_level_s_share():
     t = tail_share(lambda z: z[:, 0] - 4.5, 3, n_level=1000, max_levels=3, seed=2)
     assert t.share == 0 and np.isnan(t.standard_error) and t.levels == 3
     assert special.ndtr(-4.5) < t.interval[1] < 0.01  # the third level's share, about 1e-3, bounds the tail
+
+
+@pytest.mark.slow
+def test_splitting_states_its_error_at_2_ppm_through_the_assembly_chain():
+    # iso13778-6's lower window edge, about 2 ppm, its tail spread over many cells of the fine matrix; the
+    # conditional tier (the shells integrated out) as the reference
+    from stackup.design.estimate import outside_share
+
+    ref = outside_share("iso-example", "iso13778-6", window=(34.5e-6, 9.99e-4), samples=10, n_engines=20_000)
+    margin, dim = clearance_margin("iso-example", "iso13778-6", side="lower", threshold=34.5e-6)
+    runs = [tail_share(margin, dim, seed=s) for s in range(20)]
+    shares = np.array([r.share for r in runs])
+    spread, stated = shares.std(ddof=1), np.sqrt(np.mean([r.standard_error**2 for r in runs]))
+    assert abs(shares.mean() - ref.below) < 3 * np.hypot(spread / np.sqrt(20), ref.below_error)
+    assert 0.75 < stated / spread < 1.33
+    assert np.mean([r.interval[0] <= ref.below <= r.interval[1] for r in runs]) >= 0.8
+    # plain Monte Carlo needs (1 - p) / (p cv^2) bearings for the same coefficient of variation
+    assert (1 - ref.below) / (ref.below * (spread / ref.below) ** 2) > 5 * np.mean([r.bearings for r in runs])
