@@ -85,12 +85,14 @@ def test_splitting_states_its_error_and_beats_plain_mc_5x_at_100_ppm():
     # about 100 ppm above 59.8 um for scheme 3; plain MC on the same model as the reference
     margin, dim = clearance_margin("iso-example", "iso13778-3", threshold=59.8e-6)
     mc = tail_share(margin, dim, method="mc", n_bearings=1_000_000, seed=5)
-    runs = [tail_share(margin, dim, seed=s) for s in range(20)]
+    # 40 seeds: the runs' shares are skewed, and the spread of 20 of them is often well below the real one
+    # (seeds 0-19 alone: 0.65 of the spread of 40)
+    runs = [tail_share(margin, dim, seed=s) for s in range(40)]
     shares = np.array([r.share for r in runs])
     spread, stated = shares.std(ddof=1), np.sqrt(np.mean([r.standard_error**2 for r in runs]))
     assert shares.mean() < 1.2e-4
-    assert abs(shares.mean() - mc.share) < 3 * np.hypot(spread / np.sqrt(20), mc.standard_error)
-    assert 0.75 < stated / spread < 1.33  # the stated error matches the spread over 20 seeds
+    assert abs(shares.mean() - mc.share) < 3 * np.hypot(spread / np.sqrt(40), mc.standard_error)
+    assert 0.75 < stated / spread < 1.33  # the stated error matches the spread over 40 seeds
     mc_bearings = (1 - mc.share) / (mc.share * (spread / shares.mean()) ** 2)
     assert mc_bearings > 5 * np.mean([r.bearings for r in runs])
 
