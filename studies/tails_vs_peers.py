@@ -19,7 +19,7 @@ operating clearance is beyond a threshold), the same probability from:
   and its own subset sampling.
 
     pip install ".[bench]"          # OpenTURNS, for this study only
-    python studies/tails_vs_peers.py [--bearings 100000000] [--seeds 20]
+    python studies/tails_vs_peers.py [--seeds 20] [--bearings 100000000 --fresh]
 
 Writes reports/tails_vs_peers.md.
 """
@@ -243,7 +243,9 @@ def main():
              f"{MAX_ROOTS_SHARE * TAIL_ROOTS:,}). The conditional tier is the main job's ranking estimate (10 "
              "independent samples of 20 000 engines, the shells integrated out; its spread is its standard error). "
              "'cost for 10 % error' is evaluations × (relative spread / 0.1)²: what one run needs for "
-             "a 10 % error; plain MC needs (1 − p) / (0.01 p).", ""]
+             "a 10 % error; plain MC needs (1 − p) / (0.01 p). The plain-MC, cross-entropy and OpenTURNS rows of "
+             "the first four cases are stored from a run with 40 seeds (commit 386626a; " + str(CACHE) + ", "
+             "--fresh recomputes them); the last case's model plain MC is 2·10^7 bearings.", ""]
     for scheme, side, threshold, model_bearings in CASES:
         print(scheme, side, threshold, flush=True)
         margin, dim = clearance_margin(ENGINE, scheme, side=side, threshold=threshold)
@@ -345,8 +347,10 @@ def main():
         "fresh, so their number does not depend on them and the estimate stays unbiased). At iso13778-5's lower "
         "edge (40 seeds) asking for 20 roots took the median run's stated error from 0.17 to 0.62 of the real "
         "spread and the intervals that held the share from 28 to 33 of 40, for 53 000 instead of 18 000 "
-        "evaluations; asking for 20 everywhere (a first run of this study) cost the 22 and 120 ppm tails half "
-        "their gain over plain MC (4.7 and 4.6 ×) without better intervals, hence the raise only below 10. Tried and dropped: levels first on the margin with the "
+        "evaluations; asking for 20 everywhere (a first run of this study, steps then adapted to 0.44) left the "
+        "22 and 120 ppm tails 4.7 and 4.6 × fewer evaluations than plain MC without better intervals, hence the "
+        "raise only below 10 (this run: 5.9 and 4.3 ×; from 20 runs of skewed shares a gain is known to about "
+        "±30 %). Tried and dropped: levels first on the margin with the "
         "shells at the edge of their bins (three times fewer roots in the tail per evaluation), and Metropolis "
         "moves that shift the housing bore or the journal by one grade width (the chains then cross between "
         "cells, but the roots in the tail and the spread did not change, for 1.6 times the evaluations): the "
