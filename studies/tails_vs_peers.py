@@ -331,7 +331,8 @@ def main():
         "ppm it was compared with is the conditional tier's share outside the window, both edges; below the lower "
         "edge alone it is 0.44 ppm, and plain MC of the root-input model counts about 0.3 ppm.) iso13778-6's "
         "lower edge: acceptance 28 % down to 3 %, roots 58, 18, 12, 7, 6, 5 and 4 at successive levels. The chains "
-        "do cross between cells (7 % of the moves changed a housing or journal grade, read or true, at the first level, 2 % at "
+        "do cross between cells (7 % of the moves changed a housing or journal grade, read or true, at the "
+        "first level, 2 % at "
         "the last), so the regions are not sealed off; what fails is the number of roots: a root's tree thins "
         "out from level to level like a critical branching process, and 2000 roots leave one to four in a "
         "sub-ppm tail, whose counts then decide the share and its error.",
