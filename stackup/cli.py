@@ -105,6 +105,28 @@ def _compare(args, state):
     return 0
 
 
+def _report(args, state):
+    from .io import open_comparison
+    from .report import write_report
+
+    path = Path(args.dataset)
+    if not path.is_file():
+        raise ValueError(f"dataset: {str(path)!r} is not a file; give the compare.nc `stackup compare` wrote")
+    try:
+        saved = open_comparison(path)
+    except (OSError, KeyError) as error:
+        raise ValueError(f"dataset: {str(path)!r} is not a comparison `stackup compare` saved ({error})") from None
+    if "study" not in saved.dataset.attrs:
+        raise ValueError(f"dataset: {str(path)!r} is not a comparison `stackup compare` saved (no study attribute)")
+    out = Path(args.out) if args.out else path.parent
+    out.mkdir(parents=True, exist_ok=True)
+    same = out.resolve() == path.parent.resolve()
+    write_report(saved.dataset, out, scenarios=saved.scenarios, sensitivity=saved.sensitivity, tails=saved.tails,
+                 dataset_file=path.name if same else str(path.resolve()))
+    print(f"report:  {out / 'report.md'} (and report.html)")
+    return 0
+
+
 def _window(window_um):
     """The --window in m from LO HI in um, or None."""
     if window_um is None:
@@ -323,6 +345,15 @@ def parser():
     cmp_.add_argument("--force", action="store_true",
                       help="replace another run in the output folder (the same run again is always replaced)")
     cmp_.set_defaults(func=_compare)
+
+    rpt = sub.add_parser("report", formatter_class=_Formatter, help="write the report of a saved comparison again",
+                         description="Write the report (report.md, report.html and its figures) from a dataset "
+                         "`stackup compare` saved, and from nothing else: after an update of stackup's report, or "
+                         "to look at a dataset someone sent.",
+                         epilog="example:\n  stackup report reports/compare/compare.nc")
+    rpt.add_argument("dataset", metavar="DATASET", help="compare.nc written by `stackup compare`")
+    rpt.add_argument("--out", metavar="FOLDER", help="folder for the report (default: the dataset's folder)")
+    rpt.set_defaults(func=_report)
 
     pln = sub.add_parser("plan", formatter_class=_Formatter, help="shells (or graded parts) per grade for a volume",
                          description="How many shells of each grade to make and stock for a production volume (whole "

@@ -56,6 +56,23 @@ def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison
     assert "## Planning: shells per grade" in text and "misalignment ×2" in text
 
 
+
+def test_the_command_line_writes_the_report_of_a_saved_comparison_again(comparison, tmp_path, capsys):
+    from stackup.cli import main
+
+    path = save_comparison(comparison, tmp_path / "compare.nc")
+    saved = open_comparison(path)
+    expected = write_report(saved.dataset, tmp_path / "library", scenarios=saved.scenarios,
+                            sensitivity=saved.sensitivity, tails=saved.tails, dataset_file="compare.nc").read_text()
+    assert main(["report", str(path)]) == 0
+    assert (tmp_path / "report.md").read_text() == expected  # next to the dataset, naming it
+    assert {"report.html", "clearance_histogram.png"} <= {p.name for p in tmp_path.iterdir()}
+    assert main(["report", str(tmp_path / "compare.md")]) == 2
+    assert "dataset: " in capsys.readouterr().err
+    (tmp_path / "notes.nc").write_text("not a dataset")
+    assert main(["report", str(tmp_path / "notes.nc"), "--out", str(tmp_path / "elsewhere")]) == 2
+    assert "is not a comparison `stackup compare` saved" in capsys.readouterr().err
+
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
     ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
     text = write_report(ds, tmp_path).read_text()

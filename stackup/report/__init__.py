@@ -231,7 +231,9 @@ def _ranking_section(ds, ranking, scenarios):
         how = ("estimated with the shells integrated out (`stackup.design.estimate.outside_share`: each "
                "bearing's probability of ending outside the window with the shells its pair's grades hold, on "
                "independent samples of the scheme's parts, aims and grading; its 95 % interval is Student's on "
-               "the samples' spread; its error against a study's counts: reports/design_scheme.md)"
+               "the samples' spread, which leaves out that the estimate sees no lots, stock-outs or "
+               "substitutions: against a study's counts see reports/design_scheme.md, against plain Monte Carlo "
+               "of the whole study chain on 10^8 bearings reports/tails_vs_peers.md)"
                if (ranking.outside_window_source == TAIL_SOURCES["conditional"]).any() else
                "estimated by generalized splitting through the same assembly chain (`stackup.tail`; bins never "
                "run short there), its 95 % interval from the spread of the estimate's independent root bearings, "
