@@ -73,6 +73,17 @@ def test_the_command_line_writes_the_report_of_a_saved_comparison_again(comparis
     assert main(["report", str(tmp_path / "notes.nc"), "--out", str(tmp_path / "elsewhere")]) == 2
     assert "is not a comparison `stackup compare` saved" in capsys.readouterr().err
 
+
+def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
+    from stackup.rank import rank
+    from stackup.report.prose import verdict
+
+    ds = comparison.dataset
+    text = " ".join(verdict(ds, rank(ds, window=(1e-6, 2e-6)), {}))
+    assert "**No scheme meets the window 1–2 µm:**" in text
+    text = " ".join(verdict(ds, rank(ds), {}))
+    assert "No scheme meets" not in text
+
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
     ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
     text = write_report(ds, tmp_path).read_text()

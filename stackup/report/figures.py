@@ -122,10 +122,13 @@ def sensitivity_chart(sensitivity, path):
     fig = Figure(figsize=(WIDTH, 2.9 * rows + 0.9), layout="constrained")
     axes = np.atleast_2d(fig.subplots(rows, columns, sharex=True, squeeze=False))
     labels = {"clearance_operating": "operating clearance", "h_min": "engine's smallest film", "life": "engine life"}
+    # every panel on the same rows (the inputs of any panel), so the first column's labels name every row; an
+    # input that is not one of a panel's outputs' (misalignment for the clearance) has no bar there
+    analysed = np.isfinite(sensitivity.ST.values).any(axis=(0, 1))
+    rows_used = np.flatnonzero(analysed)[::-1]
     for k, (output, scheme) in enumerate(panels):
         ax = axes[k // columns, k % columns]
-        d = sensitivity.sel(output=output, scheme=scheme)
-        d = d.isel(input=np.flatnonzero(np.isfinite(d.ST.values))[::-1])  # the same order in every panel
+        d = sensitivity.sel(output=output, scheme=scheme).isel(input=rows_used)
         y = np.arange(d.sizes["input"])
         for index, offset, colour in (("ST", 0.2, "tab:blue"), ("S1", -0.2, "tab:orange")):
             value = d[index].values
@@ -133,6 +136,7 @@ def sensitivity_chart(sensitivity, path):
             ax.barh(y + offset, value, height=0.4, xerr=err, color=colour, alpha=0.85,
                     label="total index S_T" if index == "ST" else "first-order index S_1")
         ax.set_yticks(y, [str(i) for i in d.input.values] if k % columns == 0 else [""] * len(y), fontsize=8)
+        ax.set_ylim(-0.6, len(y) - 0.4)  # the same rows in every panel, whatever it has bars on
         ax.set_title(f"{scheme}: {labels.get(output, output)}", fontsize=9)
         ax.axvline(0, color="k", lw=0.5)
     for k in range(len(panels), rows * columns):

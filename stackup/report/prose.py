@@ -28,6 +28,8 @@ CRANK_TIERS = {
     "linear": "continuous beam on linear springs (the bearing law's low stiffness)",
     "rigid": "continuous beam on rigid supports",
 }
+#: A best share outside the window at or above this [ppm] (1 %) means that no scheme meets the window.
+MEETS_WINDOW_PPM = 10_000
 #: Names of the ranking metrics in words.
 METRICS = {"outside_window_ppm": "share outside the design window",
            "alpha_over_limit_pct": "share of bearings with more than 20 % of the cycle in boundary friction",
@@ -88,6 +90,12 @@ def verdict(ds, ranking, scenario_rankings):
         lines.append("The engine file gives no operating-clearance design window (`[targets] operating_clearance`), "
                      "so no scheme can be judged by the share of bearings outside it; give one in the engine file "
                      "or with `stackup compare --window LO HI`. The ranking below uses the other metrics only.")
+    if np.isfinite(window[1]) and np.nanmin(ranking.outside_window_ppm) >= MEETS_WINDOW_PPM:
+        lo_um, hi_um = _um_edge(window[0]), _um_edge(window[1])
+        lines.append(f"**No scheme meets the window {lo_um}–{hi_um} µm:** the best puts "
+                     f"{_ppm(np.nanmin(ranking.outside_window_ppm))} of its bearings outside it. Check the window "
+                     "against the operating clearances below (nominal clearance plus the housing's swell) before "
+                     "choosing a scheme; the ranking orders the schemes all the same.")
     if len(best) == 1:
         others = ranking.drop(index=best)
         runner = others.index[0] if len(others) else None
@@ -148,15 +156,23 @@ def _would_win(ds, ranking, scenario_rankings, chosen, window):
         share, _, upper = proportion_ci(outside, bearings)
         n = ranking.loc[narrowest]
         verb = "thinner" if shift > 0 else "thicker"
+        chosen_hi = ranking.loc[chosen, "outside_window_ppm_ci"][1]
+        if outside and 1e6 * share > chosen_hi:
+            narrowest = None  # centred, it would still put more outside than the chosen scheme: no case for it
+    if narrowest not in (None, chosen) and np.isfinite(window[1]):
+        doubt = ("" if 1e6 * upper <= ranking.loc[chosen, "outside_window_ppm"] else
+                 f", too few to tell it from {chosen}'s {_ppm(ranking.loc[chosen, 'outside_window_ppm'])}")
         parts.append(f"{narrowest} has the narrowest operating clearance ({n.clearance_std_um:.2f} µm standard "
                      f"deviation against {ranking.loc[chosen, 'clearance_std_um']:.2f} µm) but its mean sits "
                      f"{abs(shift) * UM:.1f} µm {'below' if shift > 0 else 'above'} the window's middle: with "
                      f"shells aimed {abs(shift) * UM / 2:.1f} µm {verb} each it would put "
                      + (f"about {_ppm(1e6 * share)} outside" if outside else
-                        f"none of its {bearings:,} bearings outside (below {_ppm(1e6 * upper)} at 95 %)")
+                        f"none of its {bearings:,} bearings outside (below {_ppm(1e6 * upper)} at 95 %{doubt})")
                      + "; `stackup design` designs such a scheme")
     if not parts:
-        return f"no declared scenario changes the choice, and {chosen} also has the narrowest clearance."
+        return ("no declared scenario changes the choice, and "
+                + (f"{chosen} also has the narrowest clearance." if ranking.clearance_std_um.idxmin() == chosen else
+                   "centring a scheme with a narrower clearance would not put fewer bearings outside the window."))
     return "; ".join(parts) + "."
 
 
