@@ -115,6 +115,20 @@ def _scheme_metrics(d, window, h_lim_cr, tail=None):
     return row
 
 
+def _same_engines(ds, other, counted, window, h_lim_cr):
+    """The study's metrics on the engines a scenario ran its mechanical chain on (its first ones).
+
+    A scenario may run the crankshaft, film and life on fewer engines than the
+    study; its changes are taken against the study's same engines (the same
+    parts: common random numbers), not against a larger sample.
+    """
+    m = other.sizes.get("mech_engine")
+    if not m or "mech_engine" not in ds.sizes or m >= ds.sizes["mech_engine"]:
+        return counted
+    same = ds.isel(mech_engine=slice(0, m))
+    return {str(s): _scheme_metrics(same.sel(scheme=s), window, h_lim_cr) for s in ds.scheme.values}
+
+
 def _numbers(values):
     """The values that are numbers (NaN left out), flat."""
     values = np.asarray(values, dtype=float).ravel()
@@ -209,7 +223,8 @@ def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
             changes = {}
             for label, other in scenarios.items():
                 alt = {str(s): _scheme_metrics(other.sel(scheme=s), window, h_lim_cr) for s in other.scheme.values}
-                changes[label] = pd.Series({s: alt[s].get(column, np.nan) - counted[s][column] for s in names})
+                base = _same_engines(ds, other, counted, window, h_lim_cr)
+                changes[label] = pd.Series({s: alt[s].get(column, np.nan) - base[s].get(column, np.nan) for s in names})
             table = pd.DataFrame(changes).dropna(axis=1, how="all")  # scenarios without this metric
             if table.empty:
                 continue

@@ -54,6 +54,15 @@ def test_scenarios_give_the_worst_degradation(study):
     assert ranking.loc["iso13778-1", "worst_outside_window_ppm"] > 0
 
 
+
+def test_a_scenario_on_fewer_engines_is_compared_on_the_same_engines(study):
+    # the study's own first 10 engines of the mechanical chain as a "scenario": nothing changed, so no change,
+    # although their life median differs from that of all 30 engines
+    same = study.isel(mech_engine=slice(0, 10))
+    r = stackup.rank(study, scenarios={"first ten": same}, window=(40e-6, 70e-6))
+    np.testing.assert_array_equal(r.worst_life_median_h.to_numpy(), 0.0)
+    assert np.any(stackup.rank(same, window=(40e-6, 70e-6)).life_median_h != r.life_median_h)
+
 def test_bad_window(study):
     with pytest.raises(ValueError, match="window: .* is not a"):
         stackup.rank(study, window=(70e-6, 40e-6))

@@ -207,7 +207,7 @@ def _ranking_section(ds, ranking, scenarios):
                                                        ranking.outside_window_source)],
         "α > 20 % [%]": [_fmt_ci(v, ci, 1) if isinstance(ci, tuple) else "—"
                          for v, ci in zip(column("alpha_over_limit_pct"), column("alpha_over_limit_pct_ci"))],
-        "life median [h]": [_fmt_q((v, *ci)) if isinstance(ci, tuple) else "—"
+        "bearing life median [h]": [_fmt_q((v, *ci)) if isinstance(ci, tuple) else "—"
                             for v, ci in zip(column("life_median_h"), column("life_median_h_ci"))],
         "shell grades": ranking.shell_grades,
         "stock-outs [ppm]": ranking.stockout_ppm.map("{:.0f}".format),
@@ -217,7 +217,7 @@ def _ranking_section(ds, ranking, scenarios):
         table["worst scenario: Δ outside window [ppm]"] = [
             f"{v:+.0f} ({name})" for v, name in zip(ranking.worst_outside_window_ppm, ranking.worst_outside_window_ppm_scenario)]
         if "worst_life_median_h" in ranking:
-            table["worst scenario: Δ life median [h]"] = [
+            table["worst scenario: Δ bearing life median [h]"] = [
                 f"{v:+.3g} ({name})" if isinstance(name, str) else "—"
                 for v, name in zip(ranking.worst_life_median_h, ranking.worst_life_median_h_scenario)]
     whose = "the study's" if json.loads(ds.attrs["study"]).get("window") else "the engine's"
@@ -354,8 +354,9 @@ def _film_section(ds, out):
         "h_min median [µm]": [f"{q[0]:.2f}" for q in film.h_min_median_um],
         "α mean [%]": (100 * film.alpha_mean).map("{:.1f}".format),
         "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
-        "life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],
-        "life median [h]": [_sig(q[0]) for q in film.life_median_h],
+        "bearing life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],
+        "bearing life median [h]": [_sig(q[0]) for q in film.life_median_h],
+        "engine life B10 [h] (weakest bearing)": [_fmt_q(q) for q in film.engine_life_b10_h],
         "method 2 life B10 [h] (∞: never below h_lim,cr)": [_fmt_q(q) for q in film.wear_chart_b10_h],
         f"engines < {target:.0f} h [%]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.engines_below_target_pct],
     })
@@ -365,14 +366,15 @@ def _film_section(ds, out):
     life_table = per_bearing.assign(text=[_sig(q[0]) for q in per_bearing.life_median_h]).pivot(
         index="scheme", columns="bearing", values="text")
     both = pd.concat([h_table.add_prefix("h_min median [µm], bearing "),
-                      life_table.add_prefix("life median [h], bearing ")], axis=1).reset_index()
+                      life_table.add_prefix("bearing life median [h], bearing ")], axis=1).reset_index()
     return _section(
         "Oil film and bearing life per bearing position",
         f"Minimum film thickness of each bearing over the cycle (`{ds.attrs['film_method_used']}` tier) at its "
         "effective oil temperature; α is the share of the cycle with the film below the critical film h_lim,cr = "
         f"{float(ds.critical_film) * 1e6:.2f} µm (above 20 % the risk of scuffing rises sharply); life by Levanov et "
-        "al. (2015): method 1 on the film the methods section names, and method 2's wear chart. An engine's life "
-        f"is that of its weakest bearing; the life target is {target:,.0f} h (the engine's).", "",
+        "al. (2015): method 1 on the film the methods section names, and method 2's wear chart. Bearing lives pool "
+        "every bearing of the engines; an engine's life is that of its weakest bearing (its B10 and the share of "
+        f"engines below the life target, {target:,.0f} h, the engine's).", "",
         markdown_table(overall), "",
         _positions_text(ds), "",
         markdown_table(both), "",

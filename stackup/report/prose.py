@@ -130,12 +130,15 @@ def verdict(ds, ranking, scenario_rankings):
                  f"{_ppm(first.stockout_ppm)} of bearings waiting for a shell (stock-outs); the planning section "
                  "gives the quantities per grade.")
     if "worst_outside_window_ppm" in ranking:
+        # the worst change of each metric over the declared scenarios; a change for the better is no fragility
         change, scenario = first.worst_outside_window_ppm, first.worst_outside_window_ppm_scenario
-        text = f"**What it is fragile to:** {scenario}, which adds {_ppm(change)} outside the window"
-        if "worst_life_median_h" in ranking and np.isfinite(first.get("worst_life_median_h", np.nan)):
-            text += (f"; {first.worst_life_median_h_scenario} changes its median life by "
-                     f"{first.worst_life_median_h:+.3g} h")
-        lines.append(text + ".")
+        fragile = [f"{scenario}, which adds {_ppm(change)} outside the window"] if change > 0 else []
+        life = first.get("worst_life_median_h", np.nan)
+        if "worst_life_median_h" in ranking and np.isfinite(life) and life < 0:
+            fragile.append(f"{first.worst_life_median_h_scenario}, which shortens its median bearing life by "
+                           f"{-life:.3g} h (on the engines the scenario ran its crankshaft and film on)")
+        lines.append("**What it is fragile to:** " + ("; ".join(fragile) if fragile else
+                     "none of the declared scenarios makes it worse on the window or the life") + ".")
     lines.append("**When another scheme would win:** " + _would_win(ds, ranking, scenario_rankings, best[0], window))
     notes = run_notes(ds)
     if notes:
