@@ -257,7 +257,10 @@ def _sensitivity_section(sensitivity, ranking, out):
         "for the film and the life through the crankshaft and the oil film). The first-order index S_1 is the share "
         "of the output's variance an input explains alone; the total index S_T adds its interactions. The gap "
         "between them, and a sum of S_1 below one, is the grading: a reading near a grade boundary sends a part "
-        "to another pair. Process mean shifts are not inputs here: the declared scenarios shift them.", "",
+        "to another pair. Process mean shifts are not inputs here: the declared scenarios shift them. Every "
+        "index is an estimate from a finite sample: an S_1 above its S_T, or an interval reaching below 0 or "
+        "above 1, is that sample's error (the film and life use far fewer engines than the clearance), not a "
+        "share; read the intervals.", "",
         "![What drives the spread](sensitivity.png)")
 
 
@@ -352,6 +355,7 @@ def _film_section(ds, out):
         "scheme": film.index, "engines": film.engines,
         "h_min P5 [µm]": [f"{q[0]:.2f} [{q[1]:.2f}, {q[2]:.2f}]" for q in film.h_min_p05_um],
         "h_min median [µm]": [f"{q[0]:.2f}" for q in film.h_min_median_um],
+        "cycle-mean film median [µm] (the life's)": [f"{q[0]:.2f}" for q in film.h_min_mean_median_um],
         "α mean [%]": (100 * film.alpha_mean).map("{:.1f}".format),
         "α > 20 % [% of bearings]": [f"{v[0]:.1f} [{v[1]:.1f}, {v[2]:.1f}]" for v in film.alpha_over_20_pct],
         "bearing life B10 [h]": [_fmt_q(q) for q in film.life_b10_h],

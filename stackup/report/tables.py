@@ -207,6 +207,7 @@ def film_summary(ds):
             "left_out": int(np.count_nonzero(np.isnan(ds.h_min.values[i, done]))),
             "engines_left_out": int(engine_life.size - lived.size),
             "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
+            "h_min_mean_median_um": quantile_ci(_numbers(ds.h_min_mean.values[i, done] * UM), 0.5),
             "alpha_mean": a.mean(), "alpha_over_20_pct": tuple(100 * v for v in scuff),
             "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5),
             "wear_chart_b10_h": quantile_ci(chart, 0.10), "engine_life_b10_h": quantile_ci(lived, 0.10),
