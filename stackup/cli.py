@@ -102,7 +102,16 @@ def _compare(args, state):
     for note in run_notes(ds):  # stages that failed on some engines, or did not run: said here too
         print(f"note: {note}")
     print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")
+    print(f"verdict: {_verdict_line(folder / 'report.md')}")
     return 0
+
+
+def _verdict_line(report):
+    """The report's first verdict paragraph (which scheme to use and why), without its Markdown emphasis."""
+    text = report.read_text(encoding="utf-8")
+    block = text.split("<!-- verdict -->", 1)[-1].split("<!-- /verdict -->", 1)[0]
+    first = next((line for line in block.splitlines() if line.strip()), "")
+    return first.replace("**", "").replace("`", "")
 
 
 def _report(args, state):

@@ -249,6 +249,15 @@ def test_compare_refuses_to_replace_another_run_without_force(tmp_path):
     assert listing(tmp_path) == before
 
 
+
+def test_the_terminal_verdict_is_the_reports_first_verdict_line(tmp_path):
+    from stackup.cli import _verdict_line
+
+    report = tmp_path / "report.md"
+    report.write_text("# title\n\n<!-- verdict -->\n**Use B** for e: 1 ppm of `x`.\n\n**What it costs:** 2.\n"
+                      "<!-- /verdict -->\n", encoding="utf-8")
+    assert _verdict_line(report) == "Use B for e: 1 ppm of x."
+
 @pytest.fixture(scope="module")
 def small_run(tmp_path_factory):
     """The smallest comparison written by the command line (25 s here, mostly the tails and Sobol stages)."""
@@ -264,6 +273,8 @@ def test_a_run_logs_each_stage_and_writes_its_files_whole(small_run):
     assert stages[0].startswith("study: 100 engines x 1 scheme")
     assert [s.split(":")[0] for s in stages[1:-2]] == ["tails", "sensitivity"]  # the library's own stages
     assert stages[-2:] == [f"saving the dataset: {out}/compare.nc", f"writing the report: {out}/report.md and report.html"]
+    assert result.stdout.splitlines()[-1].startswith("verdict: ")  # the report's first verdict line, plain
+    assert "**" not in result.stdout.splitlines()[-1]
     names = {p.name for p in out.iterdir()}
     assert {"compare.nc", "report.md", "report.html", "clearance_histogram.png"} <= names
     assert not any(name.startswith(".stackup-partial") for name in names)
