@@ -69,11 +69,14 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
     ]
     if design.aim_share is not None:
         lines.append("  made to order: share of each lot aimed at each grade centre "
-                     + ", ".join(f"{lab} {q:.3f}" for lab, q in zip(s.shell.labels, design.aim_share)) + ";")
-    lines += [f"  one process sorted into these grades: centre it at {design.supply_mean * 1e3:.5f} mm "
-              f"(stackup.plan.optimise_supply: surplus + 10 x shortfall {design.supply_mean_objective:.0f}",
-              f"  shells per 10 000 engines, {design.supply_centred_objective:.0f} with the process centred on the "
-              "grades).",
+                     + ", ".join(f"{lab} {q:.3f}" for lab, q in zip(s.shell.labels, design.aim_share))
+                     + ";")
+        lines.append("  (where the shells are aimed: each is then sorted into the grade its reading falls in, so the")
+        lines.append("  shells per grade, made and fitted, differ from these shares; the planning section gives them);")
+    lines += [f"  or one process sorted into these grades: centre it at {design.supply_mean * 1e3:.5f} mm, which "
+              "minimises the shells left over plus 10 x the shells short",
+              f"  (stackup.plan.optimise_supply): {design.supply_mean_objective:.0f} per 10 000 engines, against "
+              f"{design.supply_centred_objective:.0f} with the process centred on the grades.",
               f"Design time {design.seconds:.1f} s, {design.evaluations:,} sets of housing and journal limits scored."]
     return lines
 
