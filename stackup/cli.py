@@ -343,7 +343,8 @@ def parser():
                       help=f"output folder for the dataset and the report (default: {COMPARE_OUT}; {QUICK_OUT} "
                            "with --quick)")
     cmp_.add_argument("--quick", action="store_true",
-                      help=f"a small, fast run: {QUICK_ENGINES} engines, written to {QUICK_OUT}")
+                      help=f"a smaller run: {QUICK_ENGINES} engines, written to {QUICK_OUT} (the designer, tails and "
+                           "Sobol stages do not shrink with it: add --no-design to skip the designer)")
     cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
     cmp_.add_argument("--processes", action="store_true",
                       help="run the study and its scenarios on one local worker process per core (dask; the same "
