@@ -98,7 +98,7 @@ def _compare(args, state):
     for name, row in clearance_summary(ds).iterrows():
         stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
                   "        — (no stated range)")
-        print(f"  {name:<20} mean {row.mean_um:6.2f} um  std {row.std_um:5.2f} um  outside stated {stated}")
+        print(f"  {name:<20} mean {row.mean_um:6.2f} µm  std {row.std_um:5.2f} µm  outside stated {stated}")
     for note in run_notes(ds):  # stages that failed on some engines, or did not run: said here too
         print(f"note: {note}")
     print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")

@@ -222,7 +222,7 @@ def _ranking_section(ds, ranking, scenarios):
                 for v, name in zip(ranking.worst_life_median_h, ranking.worst_life_median_h_scenario)]
     whose = "the study's" if json.loads(ds.attrs["study"]).get("window") else "the engine's"
     rule = (f"Operating-clearance design window {prose._um_edge(window[0])}–{prose._um_edge(window[1])} µm ({whose}). "
-            f"Rule: {ranking.attrs['rule']}. Tied schemes share a rank.")
+            f"Rule: {_rule_in_words(ranking.attrs['rule'])}. Tied schemes share a rank.")
     if scenarios:
         rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "
                  "each run with the same seed (counted shares).")
@@ -384,6 +384,13 @@ def _film_section(ds, out):
         markdown_table(both), "",
         *_film_detail(ds),
         "![Oil film and life per bearing position](film_life.png)")
+
+
+def _rule_in_words(rule):
+    """The ranking's rule with its metrics named in words (:data:`prose.METRICS`) instead of column names."""
+    for column, words in prose.METRICS.items():
+        rule = rule.replace(column, words)
+    return rule
 
 
 def _ppm_text(value):
