@@ -28,6 +28,14 @@ def finite(field, value):
     return arr
 
 
+def angle_vectors(field, value):
+    """Return ``value`` as a finite float array of 2-vectors over a cycle's angles, shape (..., angles, 2)."""
+    arr = finite(field, value)
+    if arr.ndim < 2 or arr.shape[-1] != 2:
+        raise ValueError(f"{field}: shape {arr.shape} is not valid; expected (..., angles, 2)")
+    return arr
+
+
 def positive(field, value, *, allow_zero=False):
     """Return ``value`` as a finite float array that is > 0 (or >= 0)."""
     arr = finite(field, value)

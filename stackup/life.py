@@ -418,9 +418,7 @@ def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_r
     :math:`2\pi R_b` per revolution) would make the wear larger by
     :math:`\pi/\beta_c`; eq. 6 is kept as the paper writes it.
     """
-    x = check.finite("position", position)
-    if x.ndim < 2 or x.shape[-1] != 2:
-        raise ValueError(f"position: shape {x.shape} is not valid; expected (..., angles, 2)")
+    x = check.angle_vectors("position", position)
     lead, count = x.shape[:-2], int(np.prod(x.shape[:-2], dtype=int))
     revolutions, (radius, h_cr, sigma, modulus, limit), cycle_time = _prepare(
         lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit)

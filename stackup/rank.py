@@ -217,14 +217,14 @@ def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
     names = list(frame.index)
     frame["rank"] = [1 + sum(_beats(rows[o], rows[s]) == 1 for o in names if o != s) for s in names]
     if scenarios:
+        # each scenario's metrics and the study's on the same engines, once for every metric of the rule
+        pairs = {label: ({str(s): _scheme_metrics(other.sel(scheme=s), window, h_lim_cr) for s in other.scheme.values},
+                         _same_engines(ds, other, counted, window, h_lim_cr)) for label, other in scenarios.items()}
         for column, _ in RULE:
             if column not in frame:
                 continue
-            changes = {}
-            for label, other in scenarios.items():
-                alt = {str(s): _scheme_metrics(other.sel(scheme=s), window, h_lim_cr) for s in other.scheme.values}
-                base = _same_engines(ds, other, counted, window, h_lim_cr)
-                changes[label] = pd.Series({s: alt[s].get(column, np.nan) - base[s].get(column, np.nan) for s in names})
+            changes = {label: pd.Series({s: alt[s].get(column, np.nan) - base[s].get(column, np.nan) for s in names})
+                       for label, (alt, base) in pairs.items()}
             table = pd.DataFrame(changes).dropna(axis=1, how="all")  # scenarios without this metric
             if table.empty:
                 continue

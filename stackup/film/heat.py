@@ -273,9 +273,7 @@ def heat_balance(load_history, *, diameter, length, clearance, speed, oil, suppl
     HeatBalance
     """
     check.one_of("method", method, METHODS)
-    loads = check.finite("load_history", load_history)
-    if loads.ndim < 2 or loads.shape[-1] != 2:
-        raise ValueError(f"load_history: shape {loads.shape} is not valid; expected (..., angles, 2)")
+    loads = check.angle_vectors("load_history", load_history)
     lead = loads.shape[:-2]
     oil = oils.get(oil)
     radius = np.broadcast_to(check.positive("diameter", diameter) / 2, lead).ravel()

@@ -302,9 +302,7 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     from .orbit import ECCENTRICITY_LIMIT, _short_table, mobility_table
 
     check.one_of("method", method, METHODS)
-    x = check.finite("position", position)
-    if x.ndim < 2 or x.shape[-1] != 2:
-        raise ValueError(f"position: shape {x.shape} is not valid; expected (..., angles, 2)")
+    x = check.angle_vectors("position", position)
     vs = np.broadcast_to(check.finite("squeeze_velocity", squeeze_velocity), x.shape)
     free = np.broadcast_to(check.finite("free_tilt", free_tilt), x.shape)
     lead = x.shape[:-2]
