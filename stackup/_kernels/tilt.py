@@ -32,6 +32,8 @@ from numba import njit, prange
 
 from .mobility import bearing_table, table_lookup
 
+#: LLVM's fast-math flags of the film moment's kernels: no NaN/inf assumptions (the secant checks finiteness).
+FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
 #: |s| below which the axial moments K_2..K_4 are summed as a series in s^2 (the closed forms lose 1/s^4 there).
 SERIES_BELOW = 0.15
 #: Series coefficients (in q = s^2) of K_2, K_3/s and K_4: nine terms leave 1e-12 at |s| = 0.15.
@@ -47,15 +49,23 @@ CUT_STEPS = 4
 WET_RAMP = 0.1
 #: Tilt equilibrium: film moments computed at most per crank angle by the continuation, halvings of a step.
 MAX_EVALUATIONS = 10
-#: Film moments at most from the free tilt, where the continuation did not settle further than COLD_FROM thinnest
-#: films (1 - limit) from the wall (nearer, the free tilt lies beyond the wall and leads back there).
+MAX_HALVINGS = 5
+#: Film moments at most from the aligned journal, where the continuation spent its budget further than COLD_FROM
+#: thinnest films (1 - limit) from the wall.
 MAX_COLD_EVALUATIONS = 16
 COLD_FROM = 10.0
-#: An angle whose Newton does not settle within this many thinnest films (1 - limit) of the wall is at the limit.
-NEAR_WALL = 2.0
-MAX_HALVINGS = 5
+#: Edge contact (:func:`_on_wall`): first step in the boundary's direction [rad], largest secant step before a
+#: bracket [rad], film moments at most, tolerance on the contact's direction [rad]; a guess outside the lens, or
+#: from a contact that does not hold, is taken this share of the way from the aligned journal to the wall.
+WALL_STEP = 0.02
+WALL_REACH = 0.5
+WALL_EVALUATIONS = 8
+WALL_TOLERANCE = 0.03
+INSIDE = 0.98
 #: Equilibrium states per angle.
 EQUILIBRIUM, AT_LIMIT, NOT_SOLVED = 0, 1, 2
+#: Outcomes of a Newton inside the lens (:func:`_newton`).
+CONVERGED, WALL, STALLED, SPENT = 0, 1, 2, 3
 
 
 @njit(cache=True, inline="always")
@@ -66,7 +76,7 @@ def _horner(coefficients, q):
     return out
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def axial_moments(s):
     """K_k(s) = integral over [-1, 1] of zeta^k / (1 - s zeta)^3, k = 0..4, for |s| < 1.
 
@@ -87,7 +97,7 @@ def axial_moments(s):
         (k0 - 4.0 * a2 + 6.0 * a1 - 6.0) / (q * q)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def line_integrals(h0, g, a, b):
     """P_0 and P_1 of one line: film h0 - g zeta, source a + b zeta (module docstring)."""
     k0, k1, k2, k3, k4 = axial_moments(g / h0)
@@ -98,7 +108,7 @@ def line_integrals(h0, g, a, b):
     return p0, p1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def _line_p0(theta, x0, x1, v0, v1, e0, e1):
     n0 = math.cos(theta)
     n1 = math.sin(theta)
@@ -106,7 +116,7 @@ def _line_p0(theta, x0, x1, v0, v1, e0, e1):
                           0.5 * (e1 * n0 - e0 * n1))[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def _cut(theta, x0, x1, v0, v1, e0, e1, step):
     """The boundary of the pressure-carrying arc near ``theta`` (the untilted one): secant steps on P_0.
 
@@ -135,7 +145,7 @@ def _wrap(a):
     return a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", fastmath=FAST)
 def _stretched(phi, k, root):
     """Sommerfeld's angle psi of the film angle phi (from the thinnest film), eccentricity k."""
     c = math.cos(phi)
@@ -143,7 +153,7 @@ def _stretched(phi, k, root):
     return math.atan2(root * math.sin(phi) / d, (c - k) / d)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=FAST)
 def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
     """Gauss-Legendre over the film angles [lo, hi] in Sommerfeld's angle about (c0, c1).
 
@@ -187,7 +197,7 @@ def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
     return f0, f1, m0, m1
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=FAST)
 def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, stretch_cap):
     """Film force and moment (F0, F1, M0, M1) on the bearing under a tilted journal, short bearing.
 
@@ -256,6 +266,46 @@ def _edge(x0, x1, e0, e1):
     return 1.0 - max(math.hypot(x0 + e0, x1 + e1), math.hypot(x0 - e0, x1 - e1))
 
 
+@njit(cache=True, inline="always")
+def _broyden(jac, s0, s1, y0, y1):
+    """Broyden's update of jac (2, 2) in place for the step s and the residual's change y."""
+    ss = s0 * s0 + s1 * s1
+    if ss > 0.0:
+        y0 -= jac[0, 0] * s0 + jac[0, 1] * s1
+        y1 -= jac[1, 0] * s0 + jac[1, 1] * s1
+        jac[0, 0] += y0 * s0 / ss
+        jac[0, 1] += y0 * s1 / ss
+        jac[1, 0] += y1 * s0 / ss
+        jac[1, 1] += y1 * s1 / ss
+
+
+@njit(cache=True, inline="always")
+def _wall_normal(x0, x1, e0, e1):
+    """Outward normal, in e, of the wall of the thinner edge (|x + sign e| = limit): (n0, n1, sign)."""
+    p0, p1 = x0 + e0, x1 + e1
+    q0, q1 = x0 - e0, x1 - e1
+    rp = math.hypot(p0, p1)
+    rq = math.hypot(q0, q1)
+    if rp >= rq:
+        return p0 / rp, p1 / rp, 1.0
+    return -q0 / rq, -q1 / rq, -1.0
+
+
+@njit(cache=True, inline="always")
+def _onto_wall(x0, x1, e0, e1, sign, limit):
+    """e with the edge x + sign e moved radially onto the limit; scaled into the lens if the other edge is past it."""
+    p0 = x0 + sign * e0
+    p1 = x1 + sign * e1
+    scale = limit / math.hypot(p0, p1)
+    w0 = sign * (scale * p0 - x0)
+    w1 = sign * (scale * p1 - x1)
+    if math.hypot(x0 - sign * w0, x1 - sign * w1) > limit:
+        room = _room(x0, x1, 0.0, 0.0, w0, w1, limit)
+        w0 *= room
+        w1 *= room
+    return w0, w1
+
+
 @njit(cache=True)
 def _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap):
     """e + kappa (rho R(turn) M(e)) - e_free."""
@@ -281,56 +331,121 @@ def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, 
     return 2
 
 
-@njit(cache=True)
-def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, ratio, ct, st, limit, tolerance, nodes,
-                weights, nodes_dry, weights_dry, cap, budget=MAX_EVALUATIONS):
-    """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``.
+@njit(cache=True, inline="always")
+def _lens_point(x0, x1, theta, limit):
+    """The edge offset on the lens's boundary (an edge at the limit) in the direction theta."""
+    d0 = math.cos(theta)
+    d1 = math.sin(theta)
+    rho = _room(x0, x1, 0.0, 0.0, d0, d1, limit)
+    return rho * d0, rho * d1
 
-    Damped Newton from the guess (g0, g1) (moved onto the wall along its direction
-    where ``on_wall`` and beyond it, else inside) with the Jacobian ``jac`` (2, 2), in and
-    out: Broyden's update after each step, differences where ``fresh`` is False
-    (no usable Jacobian yet) or a step fails. A step that would take an edge
-    past the limit stops there; where the root lies beyond it the iterates stay
-    on the wall and the state is AT_LIMIT (e on the wall, the film cannot hold
-    the journal: edge contact). Stops when the Newton step is below
-    ``tolerance`` times the edge film. Returns (e0, e1, state, evaluations).
+
+@njit(cache=True)
+def _wall_residual(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights, nodes_dry,
+                   weights_dry, cap):
+    """At the lens point in direction theta: (e0, e1, across, outward).
+
+    ``across``: the residual's part across the edge contact's direction kappa*n (n the wall's outward normal: a
+    contact at the edge adds kappa*lambda*n, lambda >= 0, to the residual), zero where a contact can close the
+    balance; ``outward``: r.n, <= 0 there where the contact presses (the root lies beyond the wall).
     """
-    if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
-        return 0.0, 0.0, (EQUILIBRIUM if f0 == 0.0 and f1 == 0.0 else AT_LIMIT), 0
-    # the guess inside the lens (towards the aligned journal), on the wall if it was there at the last angle
-    room = _room(x0, x1, 0.0, 0.0, g0, g1, limit)
-    if room < 1.0 or on_wall:
-        share = min(room, 1.0) if on_wall else 0.99 * room
-        g0 *= share
-        g1 *= share
-    e0, e1 = g0, g1
+    e0, e1 = _lens_point(x0, x1, theta, limit)
+    r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
+                       cap)
+    n0, n1, _ = _wall_normal(x0, x1, e0, e1)
+    return e0, e1, k0 * n0 * r1 - k1 * n1 * r0, n0 * r0 + n1 * r1
+
+
+@njit(cache=True)
+def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
+             weights_dry, cap, budget, slope):
+    """Edge contact: the point of the lens's boundary where the residual is -lambda kappa n, lambda >= 0.
+
+    Secant in the boundary's direction theta from ``theta`` (Illinois once the
+    root of ``across`` is bracketed), to ``tolerance`` rad; the first step is
+    Newton's with ``slope[0]`` (d across / d theta at the last contact, in and
+    out) where it is known, else :data:`WALL_STEP`. Returns (e0, e1, found,
+    outward, evaluations): ``found`` where ``across`` vanished within the
+    budget, ``outward`` the residual's normal part there (<= 0: the contact holds).
+    """
+    ta = theta
+    e0, e1, ga, outward = _wall_residual(x0, x1, v0, v1, ta, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
+                                         nodes_dry, weights_dry, cap)
+    if ga == 0.0:
+        return e0, e1, True, outward, 1
+    if slope[0] != 0.0:
+        step = -ga / slope[0]
+        if abs(step) <= tolerance:
+            e0, e1 = _lens_point(x0, x1, ta + step, limit)
+            return e0, e1, True, outward, 1
+        tb = ta + max(-WALL_REACH, min(WALL_REACH, step))
+    else:
+        tb = ta + WALL_STEP
+    e0, e1, gb, outward = _wall_residual(x0, x1, v0, v1, tb, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
+                                         nodes_dry, weights_dry, cap)
+    used = 2
+    bracket = ga * gb < 0.0
+    found = False
+    while used < budget:
+        if gb == ga:
+            break
+        slope[0] = (gb - ga) / (tb - ta)
+        tn = tb - gb / slope[0]
+        if not bracket:
+            tn = max(tb - WALL_REACH, min(tb + WALL_REACH, tn))
+        if abs(tn - tb) <= tolerance:
+            e0, e1 = _lens_point(x0, x1, tn, limit)
+            found = True
+            break
+        e0, e1, gn, outward = _wall_residual(x0, x1, v0, v1, tn, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
+                                             nodes_dry, weights_dry, cap)
+        used += 1
+        if bracket:
+            # Illinois: keep the bracket, halve the weight of the end that stays twice
+            if gn * gb < 0.0:
+                ta, ga = tb, gb
+            else:
+                ga *= 0.5
+            tb, gb = tn, gn
+        else:
+            ta, ga, tb, gb = tb, gb, tn, gn
+            bracket = ga * gb < 0.0
+    if not found or not slope[0] > 0.0 and not slope[0] < 0.0:
+        slope[0] = 0.0
+    return e0, e1, found, outward, used
+
+
+@njit(cache=True)
+def _newton(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights,
+            nodes_dry, weights_dry, cap, budget):
+    """Damped Newton inside the lens from (e0, e1), with Broyden's update of ``jac`` (differences where not ``fresh``
+    or a step fails). Returns (e0, e1, outcome, evaluations), outcome one of CONVERGED, WALL (on the wall, the step
+    points beyond it), STALLED (no step lowers the residual: a minimum that is not a root) or SPENT (the budget)."""
     r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
                        cap)
     evaluations = 1
+    differenced = False
     if not fresh:
         evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
                                             nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
-        fresh = True
-    differenced = fresh and evaluations > 1
+        differenced = True
     while evaluations < budget:
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if det == 0.0 or not math.isfinite(det):
+            if differenced:
+                return e0, e1, STALLED, evaluations
             evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
                                                 nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
             differenced = True
-            det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
-            if det == 0.0 or not math.isfinite(det):
-                return e0, e1, NOT_SOLVED, evaluations
+            continue
         d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
         d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
-        edge = _edge(x0, x1, e0, e1)
         size = math.hypot(d0, d1)
         room = _room(x0, x1, e0, e1, d0, d1, limit)
-        if size <= tolerance * edge and room >= 1.0:
-            return e0 + d0, e1 + d1, EQUILIBRIUM, evaluations
+        if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
+            return e0 + d0, e1 + d1, CONVERGED, evaluations
         if room < 1.0 and room * size <= tolerance * (1.0 - limit):
-            # at the wall and Newton points beyond it: the film cannot hold the journal
-            return e0 + room * d0, e1 + room * d1, AT_LIMIT, evaluations
+            return e0, e1, WALL, evaluations
         t = min(1.0, room)  # an edge may go as far as the wall, not past it
         merit = r0 * r0 + r1 * r1
         accepted = False
@@ -345,16 +460,7 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, rat
                 break
             t *= 0.5
         if accepted:
-            s0 = n0 - e0
-            s1 = n1 - e1
-            ss = s0 * s0 + s1 * s1
-            if ss > 0.0:
-                y0 = q0 - r0 - (jac[0, 0] * s0 + jac[0, 1] * s1)
-                y1 = q1 - r1 - (jac[1, 0] * s0 + jac[1, 1] * s1)
-                jac[0, 0] += y0 * s0 / ss
-                jac[0, 1] += y0 * s1 / ss
-                jac[1, 0] += y1 * s0 / ss
-                jac[1, 1] += y1 * s1 / ss
+            _broyden(jac, n0 - e0, n1 - e1, q0 - r0, q1 - r1)
             e0, e1, r0, r1 = n0, n1, q0, q1
             differenced = False
         elif not differenced:
@@ -362,22 +468,82 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, fresh, rat
                                                 nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
             differenced = True
         else:
+            return e0, e1, STALLED, evaluations
+    return e0, e1, SPENT, evaluations
+
+
+@njit(cache=True)
+def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fresh, ratio, ct, st, limit, tolerance,
+                nodes, weights, nodes_dry, weights_dry, cap, budget=MAX_EVALUATIONS):
+    """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``, or edge contact.
+
+    The tilt lies in the lens of offsets with both edges inside the limit. A
+    root inside is EQUILIBRIUM; where none is, an edge touches: the state is
+    AT_LIMIT at the boundary point where the residual is balanced by a contact
+    at the edge (the residual -lambda kappa n, n the wall's outward normal,
+    lambda >= 0; a variational inequality on the lens, :func:`_on_wall`).
+
+    Damped Newton (:func:`_newton`) from the guess (g0, g1), with the Jacobian
+    ``jac`` in and out (usable where ``fresh``); it stops when the step is
+    below ``tolerance`` times the edge film. A Newton that reaches the wall,
+    stalls (the film's moment is not monotone in the tilt: its residual can
+    have a minimum inside the lens that is not a root) or a guess on the wall
+    (``on_wall``: the last angle's state) passes to the boundary. A contact
+    point there whose residual points out of the lens (a root inside after
+    all) hands back to Newton once, from just inside it; a root so near the
+    wall that this Newton meets it again counts as AT_LIMIT (the edge film is
+    the limit's within a Newton step). Returns (e0, e1, state, evaluations);
+    NOT_SOLVED where neither is found.
+    """
+    if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
+        return 0.0, 0.0, (EQUILIBRIUM if f0 == 0.0 and f1 == 0.0 else AT_LIMIT), 0
+    evaluations = 0
+    from_wall = False
+    if on_wall:
+        e0, e1, found, outward, used = _on_wall(x0, x1, v0, v1, math.atan2(g1, g0), f0, f1, k0, k1, ratio, ct, st,
+                                                limit, WALL_TOLERANCE, nodes, weights, nodes_dry, weights_dry, cap,
+                                                WALL_EVALUATIONS, slope)
+        evaluations += used
+        if found and outward <= 0.0:
+            return e0, e1, AT_LIMIT, evaluations
+        g0, g1 = INSIDE * e0, INSIDE * e1
+        fresh = False  # the Jacobian is the last angle's, at the wall
+        from_wall = found
+    room = _room(x0, x1, 0.0, 0.0, g0, g1, limit)
+    if room < 1.0:  # the guess inside the lens, towards the aligned journal
+        g0 *= INSIDE * room
+        g1 *= INSIDE * room
+    e0, e1, outcome, used = _newton(x0, x1, v0, v1, g0, g1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, limit,
+                                    tolerance, nodes, weights, nodes_dry, weights_dry, cap, budget)
+    evaluations += used
+    for _ in range(2):
+        if outcome == CONVERGED:
+            return e0, e1, EQUILIBRIUM, evaluations
+        if outcome == SPENT and _edge(x0, x1, e0, e1) > COLD_FROM * (1.0 - limit):
+            return e0, e1, NOT_SOLVED, evaluations  # far from the wall and still moving: the caller may start afresh
+        if from_wall and outcome == WALL:
+            # the contact's residual points in, Newton's step out: the root lies at the wall
+            room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
+            return room * e0, room * e1, AT_LIMIT, evaluations
+        b0, b1, found, outward, used = _on_wall(x0, x1, v0, v1, math.atan2(e1, e0), f0, f1, k0, k1, ratio, ct, st,
+                                                limit, WALL_TOLERANCE, nodes, weights, nodes_dry, weights_dry, cap,
+                                                WALL_EVALUATIONS, slope)
+        evaluations += used
+        if found and outward <= 0.0:
+            return b0, b1, AT_LIMIT, evaluations
+        if not found or from_wall:
             break
-    return _unsettled(x0, x1, e0, e1, limit, evaluations)
-
-
-@njit(cache=True, inline="always")
-def _unsettled(x0, x1, e0, e1, limit, evaluations):
-    """A Newton that did not settle: at the limit (moved onto the wall along e) if it ended near it, else NOT_SOLVED."""
-    if _edge(x0, x1, e0, e1) <= (1.0 + NEAR_WALL) * (1.0 - limit):
-        room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
-        return e0 * room, e1 * room, AT_LIMIT, evaluations
+        from_wall = True
+        e0, e1, outcome, used = _newton(x0, x1, v0, v1, INSIDE * b0, INSIDE * b1, f0, f1, k0, k1, jac, False, ratio,
+                                        ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry, cap,
+                                        WALL_EVALUATIONS)
+        evaluations += used
     return e0, e1, NOT_SOLVED, evaluations
 
 
 @njit(cache=True)
 def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table, stretched, finite, nodes, weights,
-              nodes_dry, weights_dry, cap, jac, fresh, tilt, state):
+              nodes_dry, weights_dry, cap, jac, slope, fresh, tilt, state):
     """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes tilt and state.
 
     Returns (evaluations, whether the Jacobian is usable at the next angle).
@@ -400,12 +566,13 @@ def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table
         ct = math.cos(turn)
         st = math.sin(turn)
     e0, e1, s, used = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], g0, g1, on_wall,
-                                  jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry,
+                                  jac, slope, fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry,
                                   cap)
     if s == NOT_SOLVED and _edge(x0, x1, e0, e1) > COLD_FROM * (1.0 - limit):
-        # far from the wall: start again from the free tilt, with a fresh Jacobian and more film moments
-        e0, e1, s, more = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], f0, f1, False,
-                                      jac, False, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
+        # far from the wall: start again from the aligned journal (no film moment; Newton's first step is the
+        # film's linear tilt stiffness against the crankshaft's), with a fresh Jacobian and more film moments
+        e0, e1, s, more = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], 0.0, 0.0, False,
+                                      jac, slope, False, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
                                       weights_dry, cap, MAX_COLD_EVALUATIONS)
         used += more
     tilt[b, k, 0] = e0
@@ -424,34 +591,53 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
     per component. The short-bearing moment is scaled and turned by the finite
     tier's force correction at (|xi|, squeeze direction) where ``finite``.
 
-    Every ``stride``-th angle (a power of two) is solved in turn, each from the
-    last two solutions extrapolated (on the wall where the last was at the
-    limit) with the last Jacobian. Then, halving the spacing down to one
-    angle, each angle midway between two known ones of the same state whose
-    edge offsets differ by less than ``interpolate`` times their thinner edge
-    film takes their mean; the others are solved. Writes tilt (B, n, 2), state
-    (B, n) and evaluations (B, n): film moments computed at each angle.
+    Every ``stride``-th angle (a power of two) is solved in turn, from the last
+    two solutions' film turn-back (free minus tilt) extrapolated (the free tilt
+    carries the beam's fast changes), or along the wall from the last two
+    contacts' directions, with the last Jacobian. Then, halving the spacing down
+    to one angle, each angle midway between two known ones of the same state
+    whose turn-backs differ by less than ``interpolate`` times their thinner edge
+    film takes their mean turn-back (onto the wall where they are at the
+    limit); the others are solved from their neighbour's Jacobian (the one in
+    equilibrium where the states differ). Writes tilt (B, n, 2), state (B, n)
+    and evaluations (B, n): film moments computed at each angle.
     """
     n_b = xi.shape[0]
     n = xi.shape[1]
     for b in prange(n_b):
         table = bearing_table(tables, ld_nodes, ld[b], finite)
         jac = np.eye(2)
+        slope = np.zeros(1)
         fresh = False
+        # each angle's Jacobian and wall slope, from which the angles between are solved
+        jacs = np.empty((n, 2, 2))
+        slopes = np.zeros(n)
+        usable = np.zeros(n, np.bool_)
         last = -1
         before = -1
         for k in range(0, n, stride):
+            # the film's turn-back (free minus tilt) extrapolated: the free tilt carries the beam's fast changes
             if before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
-                g0 = 2.0 * tilt[b, last, 0] - tilt[b, before, 0]
-                g1 = 2.0 * tilt[b, last, 1] - tilt[b, before, 1]
+                g0 = free[b, k, 0] - 2.0 * (free[b, last, 0] - tilt[b, last, 0]) + (free[b, before, 0] - tilt[b, before, 0])
+                g1 = free[b, k, 1] - 2.0 * (free[b, last, 1] - tilt[b, last, 1]) + (free[b, before, 1] - tilt[b, before, 1])
+            elif before >= 0 and state[b, last] == AT_LIMIT and state[b, before] == AT_LIMIT:
+                # along the wall: the contact's direction extrapolated
+                turn = math.atan2(tilt[b, last, 1], tilt[b, last, 0])
+                turn += _wrap(turn - math.atan2(tilt[b, before, 1], tilt[b, before, 0]))
+                g0 = math.cos(turn)
+                g1 = math.sin(turn)
             elif last >= 0:
-                g0, g1 = tilt[b, last, 0], tilt[b, last, 1]
+                g0 = free[b, k, 0] - (free[b, last, 0] - tilt[b, last, 0])
+                g1 = free[b, k, 1] - (free[b, last, 1] - tilt[b, last, 1])
             else:
                 g0, g1 = free[b, k, 0], free[b, k, 1]
             on_wall = last >= 0 and state[b, last] == AT_LIMIT
             evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table,
                                                  stretched, finite, nodes, weights, nodes_dry, weights_dry, cap, jac,
-                                                 fresh, tilt, state)
+                                                 slope, fresh, tilt, state)
+            jacs[k] = jac
+            slopes[k] = slope[0]
+            usable[k] = fresh
             before = last
             last = k
         half = stride // 2
@@ -461,11 +647,13 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
                 kn = k + half if k + half < n else 0  # the cycle closes on its first angle
                 evaluations[b, k] = 0
                 if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
-                    gap = math.hypot(tilt[b, kn, 0] - tilt[b, kp, 0], tilt[b, kn, 1] - tilt[b, kp, 1])
+                    # the film's turn-back is interpolated: its change between the neighbours
+                    gap = math.hypot(free[b, kn, 0] - tilt[b, kn, 0] - free[b, kp, 0] + tilt[b, kp, 0],
+                                     free[b, kn, 1] - tilt[b, kn, 1] - free[b, kp, 1] + tilt[b, kp, 1])
                     film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
                                _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
-                    e0 = 0.5 * (tilt[b, kp, 0] + tilt[b, kn, 0])
-                    e1 = 0.5 * (tilt[b, kp, 1] + tilt[b, kn, 1])
+                    e0 = free[b, k, 0] - 0.5 * (free[b, kp, 0] - tilt[b, kp, 0] + free[b, kn, 0] - tilt[b, kn, 0])
+                    e1 = free[b, k, 1] - 0.5 * (free[b, kp, 1] - tilt[b, kp, 1] + free[b, kn, 1] - tilt[b, kn, 1])
                     if state[b, kp] == AT_LIMIT:
                         # both on the wall: the edge film is the limit's whatever the tilt, whose direction the
                         # mean keeps within about interpolate / 2 rad
@@ -478,10 +666,23 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
                         tilt[b, k, 0] = e0
                         tilt[b, k, 1] = e1
                         state[b, k] = state[b, kp]
+                        jacs[k] = jacs[kp]
+                        slopes[k] = slopes[kp]
+                        usable[k] = usable[kp]
                         continue
+                    near = kp
                 else:
-                    e0, e1 = tilt[b, kp, 0], tilt[b, kp, 1]
-                evaluations[b, k], fresh = _solve_at(b, k, e0, e1, state[b, kp] == AT_LIMIT, xi, v, free, kappa,
-                                                     limit, tolerance, table, stretched, finite, nodes, weights,
-                                                     nodes_dry, weights_dry, cap, jac, fresh, tilt, state)
+                    # from the neighbour in equilibrium where there is one: Newton reaches the wall from inside more
+                    # cheaply than the contact's search finds its way in
+                    near = kn if state[b, kn] == EQUILIBRIUM else kp
+                    e0 = free[b, k, 0] - free[b, near, 0] + tilt[b, near, 0]
+                    e1 = free[b, k, 1] - free[b, near, 1] + tilt[b, near, 1]
+                jac[:] = jacs[near]
+                slope[0] = slopes[kp] if state[b, kp] == AT_LIMIT else slopes[kn]
+                evaluations[b, k], usable[k] = _solve_at(b, k, e0, e1, state[b, near] == AT_LIMIT, xi, v, free, kappa,
+                                                         limit, tolerance, table, stretched, finite, nodes, weights,
+                                                         nodes_dry, weights_dry, cap, jac, slope, usable[near], tilt,
+                                                         state)
+                jacs[k] = jac
+                slopes[k] = slope[0]
             half //= 2

@@ -251,6 +251,53 @@ def test_cycle_continuation_equals_each_angle_solved_alone():
     assert cycle.evaluations.sum() < alone.evaluations.sum()
 
 
+
+def wall_and_back_case(n=180):
+    """A journal near the wall whose free tilt swings an edge onto the wall and back over the cycle."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    xi = 0.85 * np.stack([np.cos(t), np.sin(t)], axis=-1) * (0.9 + 0.1 * np.cos(2 * t))[:, None]
+    v = np.array([rotation_squeeze(x) for x in xi]) + 0.1 * np.stack([np.cos(3 * t), np.sin(3 * t)], axis=-1)
+    free = np.stack([0.25 + 0.15 * np.cos(t), 0.2 * np.sin(2 * t)], axis=-1)  # edge offset without the film
+    return xi, v, free
+
+
+@pytest.mark.parametrize("kappa", [0.05, 0.2])
+def test_an_edge_leaves_the_wall_where_the_film_can_hold_the_journal_again(kappa):
+    # the continuation once kept an edge on the wall it had reached while the root came back inside (4/5 of the
+    # angles it called at the limit on sampled engines were not); each angle solved alone has no history
+    xi, v, free = wall_and_back_case()
+    cycle = cycle_tilt(xi, v, 2 * free, compliance=2 * kappa, **UNIT)
+    alone = cycle_tilt(xi[:, None], v[:, None], 2 * free[:, None], compliance=2 * kappa, **UNIT)
+    at_limit = cycle.state == STATES.index("at_limit")
+    assert 0 < at_limit.sum() < at_limit.size / 2
+    np.testing.assert_array_equal(cycle.state, alone.state[:, 0])
+    e, e_alone = cycle.tilt / 2, alone.tilt[:, 0] / 2
+    edge = 1 - np.maximum(np.linalg.norm(xi + e_alone, axis=-1), np.linalg.norm(xi - e_alone, axis=-1))
+    gap = np.linalg.norm(e - e_alone, axis=-1)
+    assert np.all(gap[~at_limit] <= 0.05 * edge[~at_limit])  # solved or interpolated
+    assert np.all(gap[at_limit] <= 0.01 * np.linalg.norm(e_alone[at_limit], axis=-1))  # where on the wall
+
+
+@pytest.mark.parametrize("kappa", [0.05, 0.2])
+def test_edge_contact_is_where_a_contact_force_closes_the_balance_and_no_root_lies_inside(kappa):
+    xi, v, free = wall_and_back_case()
+    result = cycle_tilt(xi, v, 2 * free, compliance=2 * kappa, **UNIT)
+    for i in np.nonzero(result.state == STATES.index("at_limit"))[0]:
+        e = result.tilt[i] / 2
+        residual = e + kappa * short_film(xi[i], v[i], e, lines=8192)[1] - free[i]
+        plus, minus = np.linalg.norm(xi[i] + e), np.linalg.norm(xi[i] - e)
+        np.testing.assert_allclose(max(plus, minus), ECCENTRICITY_LIMIT, rtol=1e-9)
+        normal = (xi[i] + e) / plus if plus >= minus else -(xi[i] - e) / minus  # out of the lens, in e
+        # the residual is a contact's: along -normal (a pressing edge), nothing along the wall
+        assert residual @ normal <= 0.0
+        assert abs(normal[0] * residual[1] - normal[1] * residual[0]) <= 0.01 * np.linalg.norm(e)
+        # the film cannot hold the journal: a root from the aligned journal, if any, lies beyond the wall
+        with np.errstate(invalid="ignore", divide="ignore"):  # the root's search may put an edge past the bearing
+            root = optimize.root(lambda q: q + kappa * short_film(xi[i], v[i], q, lines=8192)[1] - free[i],
+                                 np.zeros(2), method="hybr")
+        if root.success:
+            assert max(np.linalg.norm(xi[i] + root.x), np.linalg.norm(xi[i] - root.x)) > ECCENTRICITY_LIMIT
+
 # --- the orbit with the tilt in its film ---
 
 def rotating_load_case(n=180):
