@@ -84,6 +84,30 @@ def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
     text = " ".join(verdict(ds, rank(ds), {}))
     assert "No scheme meets" not in text
 
+def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_bearings_do(comparison):
+    from stackup.rank import rank
+    from stackup.report.prose import verdict
+    from stackup.study.schema import flag
+
+    ds = comparison.dataset
+    status = ds.film_status.values
+    computed = (status != flag(ds.film_status, "not_computed")) & ds.film_valid.values
+    touching = computed & (status == flag(ds.film_status, "edge_contact"))
+    text = " ".join(verdict(ds, rank(ds), {}))
+    assert ("**Edge contact:**" in text) == (touching.sum() >= 0.5 * computed.sum())
+    # every bearing touching over a fifth of the cycle: said, with that share
+    edged = ds.copy()
+    edged["film_status"] = edged.film_status.where(~computed, flag(ds.film_status, "edge_contact"))
+    edged["edge_contact_share"] = edged.edge_contact_share.where(~computed, 0.2)
+    text = " ".join(verdict(edged, rank(edged), {}))
+    assert "**Edge contact:** the journal's edge touches its shell in 100 % of each scheme's bearings" in text
+    assert "over 20 % of the cycle" in text and "The choice of scheme hardly changes it." in text
+    # none touching: nothing said
+    clear = ds.copy()
+    clear["film_status"] = clear.film_status.where(~computed, flag(ds.film_status, "periodic"))
+    assert "Edge contact" not in " ".join(verdict(clear, rank(clear), {}))
+
+
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
     ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
     text = write_report(ds, tmp_path).read_text()

@@ -13,6 +13,7 @@ import pandas as pd
 
 from ..stats import proportion_ci
 from ..study.failures import FailureCount
+from ..study.schema import flag
 from .tables import UM, centred, kept_summaries, separates
 
 #: Press-fit tiers in words; their errors against the finite-element reference are measured by
@@ -140,10 +141,42 @@ def verdict(ds, ranking, scenario_rankings):
         lines.append("**What it is fragile to:** " + ("; ".join(fragile) if fragile else
                      "none of the declared scenarios makes it worse on the window or the life") + ".")
     lines.append("**When another scheme would win:** " + _would_win(ds, ranking, scenario_rankings, best[0], window))
+    contact = _edge_contact(ds)
+    if contact:
+        lines.append("**Edge contact:** " + contact)
     notes = run_notes(ds)
     if notes:
         lines.append("**Note:** " + " ".join(notes))
     return ["<!-- verdict -->", *[x for line in lines for x in (line, "")], "<!-- /verdict -->"]
+
+
+def _edge_contact(ds):
+    """Where most bearings' journal edges touch their shells: how much of the cycle, and whether the scheme matters."""
+    if "edge_contact_share" not in ds or "film_status" not in ds:
+        return None
+    status = ds.film_status.values
+    ran = (status != flag(ds.film_status, "not_computed")) & ds.film_valid.values
+    touching = ran & (status == flag(ds.film_status, "edge_contact"))
+    if not ran.any() or touching.sum() < 0.5 * ran.sum():
+        return None
+    share = ds.edge_contact_share.values
+    per_position = [np.nanmedian(share[..., b][touching[..., b]]) for b in range(share.shape[-1])
+                    if touching[..., b].any()]
+    per_scheme = [100 * touching[i].sum() / ran[i].sum() for i in range(len(ds.scheme)) if ran[i].any()]
+    alike = max(per_scheme) - min(per_scheme) <= 5
+
+    def span(values):
+        lo, hi = f"{min(values):.0f}", f"{max(values):.0f}"
+        return lo if lo == hi else f"{lo}-{hi}"
+
+    return (f"the journal's edge touches its shell in {span(per_scheme)} % of each scheme's bearings whose film "
+            f"was computed, over {span([100 * p for p in per_position])} % of the cycle (median per bearing "
+            "position): the crankshaft's slope "
+            "at the supports, bent by the loads and the bores' and journals' misalignment, is more than the film's "
+            "moment can turn back. "
+            + ("The choice of scheme hardly changes it. " if alike else "")
+            + "The edge film there is the eccentricity limit's (a lower bound) and the lives read the mid-plane "
+            "film (oil film section).")
 
 
 def _would_win(ds, ranking, scenario_rankings, chosen, window):
