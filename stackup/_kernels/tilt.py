@@ -32,8 +32,6 @@ from numba import njit, prange
 
 from .mobility import bearing_table, table_lookup
 
-#: LLVM's fast-math flags of the film moment's kernels: no NaN/inf assumptions (the secant checks finiteness).
-FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
 #: |s| below which the axial moments K_2..K_4 are summed as a series in s^2 (the closed forms lose 1/s^4 there).
 SERIES_BELOW = 0.15
 #: Series coefficients (in q = s^2) of K_2, K_3/s and K_4: nine terms leave 1e-12 at |s| = 0.15.
@@ -76,7 +74,7 @@ def _horner(coefficients, q):
     return out
 
 
-@njit(cache=True, inline="always", fastmath=FAST)
+@njit(cache=True, inline="always")
 def axial_moments(s):
     """K_k(s) = integral over [-1, 1] of zeta^k / (1 - s zeta)^3, k = 0..4, for |s| < 1.
 
@@ -97,7 +95,7 @@ def axial_moments(s):
         (k0 - 4.0 * a2 + 6.0 * a1 - 6.0) / (q * q)
 
 
-@njit(cache=True, inline="always", fastmath=FAST)
+@njit(cache=True, inline="always")
 def line_integrals(h0, g, a, b):
     """P_0 and P_1 of one line: film h0 - g zeta, source a + b zeta (module docstring)."""
     k0, k1, k2, k3, k4 = axial_moments(g / h0)
@@ -108,7 +106,7 @@ def line_integrals(h0, g, a, b):
     return p0, p1
 
 
-@njit(cache=True, inline="always", fastmath=FAST)
+@njit(cache=True, inline="always")
 def _line_p0(theta, x0, x1, v0, v1, e0, e1):
     n0 = math.cos(theta)
     n1 = math.sin(theta)
@@ -116,7 +114,7 @@ def _line_p0(theta, x0, x1, v0, v1, e0, e1):
                           0.5 * (e1 * n0 - e0 * n1))[0]
 
 
-@njit(cache=True, inline="always", fastmath=FAST)
+@njit(cache=True, inline="always")
 def _cut(theta, x0, x1, v0, v1, e0, e1, step):
     """The boundary of the pressure-carrying arc near ``theta`` (the untilted one): secant steps on P_0.
 
@@ -145,7 +143,7 @@ def _wrap(a):
     return a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))
 
 
-@njit(cache=True, inline="always", fastmath=FAST)
+@njit(cache=True, inline="always")
 def _stretched(phi, k, root):
     """Sommerfeld's angle psi of the film angle phi (from the thinnest film), eccentricity k."""
     c = math.cos(phi)
@@ -153,7 +151,7 @@ def _stretched(phi, k, root):
     return math.atan2(root * math.sin(phi) / d, (c - k) / d)
 
 
-@njit(cache=True, fastmath=FAST)
+@njit(cache=True)
 def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
     """Gauss-Legendre over the film angles [lo, hi] in Sommerfeld's angle about (c0, c1).
 
@@ -197,7 +195,7 @@ def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
     return f0, f1, m0, m1
 
 
-@njit(cache=True, fastmath=FAST)
+@njit(cache=True)
 def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, stretch_cap):
     """Film force and moment (F0, F1, M0, M1) on the bearing under a tilted journal, short bearing.
 
