@@ -88,9 +88,9 @@ TOLERANCE = 1e-2
 #: (free tilt minus tilt; the free tilt itself is known at every angle) where that turn-back differs between them by
 #: less than INTERPOLATE times their thinner edge film (on the wall: times the tilt; the edge film is the limit's
 #: there); the others are solved. On 40 sampled iso-example engines (200 bearings, 720 angles): 252 film moments per
-#: bearing-cycle against 831 with every angle solved; the edge film within 0.12 um on 99 % of the angles (0.30 um on
+#: bearing-cycle against 814 with every angle solved; the edge film within 0.12 um on 99 % of the angles (0.30 um on
 #: 99.9 %), the share of the cycle at the limit within 1.1 points on 99 % of the bearings, the largest tilt within
-#: 2.3 %. STRIDE 2 with INTERPOLATE 0.1 (530 moments) gives 0.005 um and 0.4 points.
+#: 2.3 %. STRIDE 2 with INTERPOLATE 0.1 (513 moments) gives 0.005 um and 0.4 points.
 INTERPOLATE = 1.0
 STRIDE = 8
 METHODS = ("short", "finite")
