@@ -189,7 +189,7 @@ class Orbit:
         """Cycle maximum of the journal's tilt in the film [rad] (0 without tilt)."""
         if self.tilt is None:
             return np.zeros(self.status.shape)
-        return np.linalg.norm(self.tilt, axis=-1).max(axis=-1)
+        return _vector_length(self.tilt).max(axis=-1)
 
     @property
     def edge_contact_share(self):
@@ -283,6 +283,16 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
 
 def _short_table():
     return np.array([1.0, 2.0]), np.array([0.0, 1.0]), np.zeros((1, 2, 2, 3))
+
+
+def _vector_length(vectors):
+    """Length of the 2-vectors on the last axis: ``np.linalg.norm(vectors, axis=-1)`` to the bit, at a sixth of its cost.
+
+    norm reduces over an axis of two, which numpy does slowly; on the (bearings, angles, 2) arrays of an orbit its
+    calls cost as much as a tenth of the film stage's Python around the kernels.
+    """
+    x, y = vectors[..., 0], vectors[..., 1]
+    return np.sqrt(x * x + y * y)
 
 
 def resolve(method, steady_method="finite"):
@@ -384,7 +394,7 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
         finite = kind == "mobility-finite"
         position, p_max, torque, flow, status, used, squeeze = _mobility(loads, angle, finite=finite, cycles=cycles,
                                                                          start=start, **geometry)
-    ecc = np.linalg.norm(position, axis=-1) / c[..., None]
+    ecc = _vector_length(position) / c[..., None]
     h_min = c[..., None] * (1 - ecc)
     film_tilt, tilt_state = tilt, None
     if tilt_compliance is not None:
@@ -418,7 +428,7 @@ def edge_film(position, tilt, width, c, h_min, status, at_limit=None):
     if tilt is None:
         return h_min, status
     half = 0.5 * width[..., None, None] * tilt
-    reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
+    reach = np.maximum(_vector_length(position + half), _vector_length(position - half))
     floor = (c * (1 - ECCENTRICITY_LIMIT))[..., None]
     touching = c[..., None] - reach < floor * (1 + 1e-9)
     if at_limit is not None:
@@ -456,11 +466,11 @@ def _mobility(loads, angle, *, finite, cycles, start, radius, length, radial_cle
     v = v.reshape(*lead, n, 2)
     position = xi * c[..., None, None]
     squeeze = v * (c * w)[..., None, None]
-    ecc = np.linalg.norm(xi, axis=-1)
+    ecc = _vector_length(xi)
     p_max = 1.5 * (mu * w * (length / c) ** 2)[..., None] * peak.reshape(*lead, n)
     torque = (2 * np.pi * mu * w * radius**3 * length / c)[..., None] / np.sqrt(1 - ecc**2) \
         + 0.5 * (position[..., 1] * loads[..., 0] - position[..., 0] * loads[..., 1])
-    flow = (2 * radius * length * c * w)[..., None] * np.linalg.norm(v, axis=-1)
+    flow = (2 * radius * length * c * w)[..., None] * _vector_length(v)
     return position, p_max, torque, flow, status.reshape(lead), used.reshape(lead), squeeze
 
 

@@ -322,7 +322,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "h_min_edge": films.h_min_edge.min(axis=-1),
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
             "tilt_max": films.tilt_max,
-            "tilt_free_max": np.linalg.norm(tilt, axis=-1).max(axis=1),
+            "tilt_free_max": np.sqrt(tilt[..., 0] * tilt[..., 0] + tilt[..., 1] * tilt[..., 1]).max(axis=1),
             "edge_contact_share": films.edge_contact_share,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
