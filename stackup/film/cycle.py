@@ -33,11 +33,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _validate as check
 from . import oil as oils
 from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, feed_flow, heat_balance
 from .orbit import STATUS as ORBIT_STATUS
-from .orbit import ECCENTRICITY_LIMIT, cheapest_cycle_tier, cycle_tier_errors, orbit
+from .orbit import ECCENTRICITY_LIMIT, cheapest_cycle_tier, cycle_tier_errors, orbit, resolve
+from .orbit import _checked_cycle, _checked_cycles, _checked_tilt, _orbit
 
 #: Crank-angle spacing of the load history the heat balance reads [deg]: its cycle means barely change
 #: below it (reports/bearing_life.md), at a quarter of the cost on a 1 deg grid.
@@ -304,16 +306,19 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         The balance, the orbit at its temperature and the feed flow [m^3/s] (...).
     """
     oil = oils.get(oil)
-    options = options or {}
+    options = dict(options or {})
+    # the inputs checked here once, as orbit() checks them; the orbits below run unchecked
+    kind, steady = resolve(tier)
+    loads, angle = _checked_cycle(loads, crank_angle)
+    cycles = _checked_cycles(options.pop("cycles", None), kind)
     lead = loads.shape[:-2]
     flat = loads.reshape(-1, *loads.shape[-2:])
-    angle = np.asarray(crank_angle)
-    flat_tilt = None if tilt is None else np.broadcast_to(tilt, loads.shape).reshape(flat.shape)
-    flat_compliance = None if tilt_compliance is None else \
-        np.broadcast_to(tilt_compliance, (*lead, 2)).reshape(flat.shape[0], 2)
-    each = {k: np.broadcast_to(np.asarray(v, float), lead).ravel()
-            for k, v in dict(diameter=diameter, length=length, clearance=clearance, speed=speed,
-                             supply=supply_temperature).items()}
+    each = {k: np.broadcast_to(check.positive(k, v), lead).ravel()
+            for k, v in dict(diameter=diameter, length=length, clearance=clearance, speed=speed).items()}
+    each["supply"] = np.broadcast_to(np.asarray(supply_temperature, float), lead).ravel()
+    tilt, tilt_compliance = _checked_tilt(tilt, tilt_compliance, loads.shape)
+    flat_tilt = None if tilt is None else tilt.reshape(flat.shape)
+    flat_compliance = None if tilt_compliance is None else tilt_compliance.reshape(flat.shape[0], 2)
     shear_rate = each["speed"] * each["diameter"] / each["clearance"]
     supply = each["supply"]
     n = flat.shape[0]
@@ -324,10 +329,14 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         """Orbit, feed flow and rise of bearings ``rows`` at temperatures ``t``, every ``step``-th angle."""
         mu = viscosity[rows] = oil.viscosity(t, shear_rate=shear_rate[rows])
         geo = {k: each[k][rows] for k in ("diameter", "length", "clearance", "speed")}
-        film = orbit(flat[rows, ::step], angle[::step], **geo, viscosity=mu, method=tier, start=start,
-                     tilt=None if flat_tilt is None or step > 1 else flat_tilt[rows],
-                     tilt_compliance=None if flat_compliance is None or step > 1 else flat_compliance[rows],
-                     **options)
+        # the viscosity follows a temperature from the heat balance: checked at every orbit (not a number if
+        # the supply temperature is not)
+        film = _orbit(flat[rows, ::step], angle[::step], kind, steady, radius=geo["diameter"] / 2,
+                      length=geo["length"], radial_clearance=geo["clearance"] / 2,
+                      viscosity=check.positive("viscosity", mu), speed=geo["speed"], cycles=cycles, start=start,
+                      tilt=None if flat_tilt is None or step > 1 else flat_tilt[rows],
+                      tilt_compliance=None if flat_compliance is None or step > 1 else flat_compliance[rows],
+                      **options)
         fed = _feed_flow(film, feed, geo["clearance"], mu, geo["diameter"], geo["length"])
         rise = TEMPERATURE_SHARE * film.friction_power_mean / (oil.density(t) * oils.SPECIFIC_HEAT
                                                                * (film.side_flow_mean + fed))

@@ -353,29 +353,61 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     Orbit
     """
     kind, steady = resolve(method, steady_method)
-    loads = check.finite("load_history", load_history)
-    angle = check.finite("crank_angle", crank_angle)
-    if angle.ndim != 1 or loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
-        raise ValueError(f"load_history: shape {loads.shape} is not valid; expected (..., {angle.size}, 2)")
-    if np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
-        raise ValueError("crank_angle: must increase and span less than 720 deg")
+    loads, angle = _checked_cycle(load_history, crank_angle)
     lead = loads.shape[:-2]
     radius = np.broadcast_to(check.positive("diameter", diameter) / 2, lead)
     width = np.broadcast_to(check.positive("length", length), lead)
     c = np.broadcast_to(check.positive("clearance", clearance) / 2, lead)
     mu = np.broadcast_to(check.positive("viscosity", viscosity), lead)
     omega = np.broadcast_to(check.positive("speed", speed), lead)
+    cycles = _checked_cycles(cycles, kind)
+    tilt, tilt_compliance = _checked_tilt(tilt, tilt_compliance, loads.shape)
+    return _orbit(loads, angle, kind, steady, radius=radius, length=width, radial_clearance=c, viscosity=mu,
+                  speed=omega, cycles=cycles, tilt=tilt, tilt_compliance=tilt_compliance, start=start,
+                  **transient_options)
+
+
+def _checked_cycle(load_history, crank_angle):
+    """:func:`orbit`'s checks of the loads and crank angles: (loads (..., angles, 2), angles), float arrays."""
+    loads = check.finite("load_history", load_history)
+    angle = check.finite("crank_angle", crank_angle)
+    if angle.ndim != 1 or loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
+        raise ValueError(f"load_history: shape {loads.shape} is not valid; expected (..., {angle.size}, 2)")
+    if np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
+        raise ValueError("crank_angle: must increase and span less than 720 deg")
+    return loads, angle
+
+
+def _checked_cycles(cycles, kind):
+    """:func:`orbit`'s ``cycles``: its default for the tier ``kind`` (:func:`resolve`), checked."""
     if cycles is None:
         cycles = 8 if kind == "reynolds-transient" else 20
-    cycles = check.integer("cycles", cycles, minimum=1)
+    return check.integer("cycles", cycles, minimum=1)
+
+
+def _checked_tilt(tilt, tilt_compliance, shape):
+    """:func:`orbit`'s checks of the tilt and the compliance, broadcast to the loads' ``shape`` (None stays None)."""
     if tilt is not None:
-        tilt = np.broadcast_to(check.finite("tilt", tilt), loads.shape)
+        tilt = np.broadcast_to(check.finite("tilt", tilt), shape)
     if tilt_compliance is not None:
         if tilt is None:
             raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
         tilt_compliance = np.broadcast_to(check.positive("tilt_compliance", tilt_compliance, allow_zero=True),
-                                          (*lead, 2))
-    geometry = dict(radius=radius, length=width, radial_clearance=c, viscosity=mu, speed=omega)
+                                          (*shape[:-2], 2))
+    return tilt, tilt_compliance
+
+
+def _orbit(loads, angle, kind, steady, *, radius, length, radial_clearance, viscosity, speed, cycles, tilt,
+           tilt_compliance, start, **transient_options):
+    """:func:`orbit` on checked inputs: geometry (...) and tilts broadcast to the loads (:func:`_checked_cycle`,
+    :func:`_checked_tilt`), ``cycles`` an int (``start`` is checked here).
+
+    For callers that run orbits over and over on inputs checked once (:func:`stackup.film.cycle.balanced_orbit`).
+    """
+    lead = loads.shape[:-2]
+    width, c, omega = length, radial_clearance, speed
+    geometry = dict(radius=radius, length=length, radial_clearance=radial_clearance, viscosity=viscosity,
+                    speed=speed)
 
     if kind == "quasi-static":
         position, p_max, torque, flow = _quasi_static(loads, steady, **geometry)
