@@ -438,15 +438,16 @@ def _orbit(loads, angle, kind, steady, *, radius, length, radial_clearance, visc
 def _tilt_in_film(position, squeeze, free_tilt, compliance, *, finite, radius, length, radial_clearance, viscosity,
                   speed):
     """Tilt equilibrium on a mid-plane orbit (:func:`stackup.film.tilt.cycle_tilt`): (tilt, state)."""
-    from .tilt import cycle_tilt
+    from .tilt import _cycle_tilt
 
     ld_nodes = mobility_table()[0]
     ld = length / (2 * radius)
     # the finite correction where its table covers the bearing (as the mobility-finite tier)
     covered = bool(np.all((ld >= ld_nodes[0]) & (ld <= ld_nodes[-1])))
-    result = cycle_tilt(position, squeeze, free_tilt, compliance=compliance, radius=radius, length=length,
-                        radial_clearance=radial_clearance, viscosity=viscosity, speed=speed,
-                        method="finite" if finite and covered else "short")
+    # orbit() checked the inputs, and its orbit is finite (held at the eccentricity limit at worst)
+    result = _cycle_tilt(position, squeeze, free_tilt, compliance, radius=radius, length=length,
+                         radial_clearance=radial_clearance, viscosity=viscosity, speed=speed,
+                         finite=finite and covered)
     return result.tilt, result.state
 
 

@@ -307,28 +307,47 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     -------
     TiltEquilibrium
     """
-    from .orbit import ECCENTRICITY_LIMIT, _short_table, mobility_table
+    from .orbit import mobility_table
 
     check.one_of("method", method, METHODS)
     x = check.angle_vectors("position", position)
     vs = np.broadcast_to(check.finite("squeeze_velocity", squeeze_velocity), x.shape)
     free = np.broadcast_to(check.finite("free_tilt", free_tilt), x.shape)
     lead = x.shape[:-2]
-    n = x.shape[-2]
     compliance = np.broadcast_to(check.positive("compliance", compliance, allow_zero=True), (*lead, 2))
     r, l, c, mu, w = (np.broadcast_to(check.positive(name, value), lead) for name, value in (
         ("radius", radius), ("length", length), ("radial_clearance", radial_clearance), ("viscosity", viscosity),
         ("speed", speed)))
+    if method == "finite":
+        ld_nodes = mobility_table()[0]
+        ld = l / (2 * r)
+        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
+            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
+                             f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
+    return _cycle_tilt(x, vs, free, compliance, radius=r, length=l, radial_clearance=c, viscosity=mu, speed=w,
+                       finite=method == "finite")
+
+
+def _cycle_tilt(position, squeeze_velocity, free_tilt, compliance, *, radius, length, radial_clearance, viscosity,
+                speed, finite):
+    """:func:`cycle_tilt` on checked float arrays: the orbit's (..., angles, 2), the rest broadcast to (...).
+
+    For :func:`stackup.film.orbit.orbit`, whose orbit and inputs are checked already (a mobility tier's orbit is
+    finite: its kernel holds the journal at the eccentricity limit), and the L/D within the table if ``finite``.
+    """
+    from .orbit import ECCENTRICITY_LIMIT, _short_table, mobility_table
+
+    x, vs, free = position, squeeze_velocity, free_tilt
+    r, l, c, mu, w = radius, length, radial_clearance, viscosity, speed
+    lead = x.shape[:-2]
+    n = x.shape[-2]
     xi = np.ascontiguousarray((x / c[..., None, None]).reshape(-1, n, 2))
     v = np.ascontiguousarray((vs / (c * w)[..., None, None]).reshape(-1, n, 2))
     e_free = np.ascontiguousarray((free * (l / (2 * c))[..., None, None]).reshape(-1, n, 2))
     kappa = np.ascontiguousarray((compliance * (mu * w * r * l**5 / (2 * c**3))[..., None]).reshape(-1, 2))
-    if method == "finite":
+    if finite:
         ld_nodes, stretched, tables = mobility_table()
         ld = (l / (2 * r)).reshape(-1)
-        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
-            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
-                             f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
     else:
         ld_nodes, stretched, tables = _short_table()
         ld = np.ones(xi.shape[0])
@@ -339,7 +358,7 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     # STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
     stride = 1 << max(0, int(np.floor(np.log2(STRIDE * n / 720))))
     _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, stride, tables, ld_nodes,
-                       stretched, np.ascontiguousarray(ld, dtype=float), method == "finite", nodes, weights, dry_nodes,
+                       stretched, np.ascontiguousarray(ld, dtype=float), finite, nodes, weights, dry_nodes,
                        dry_weights, STRETCH_CAP, tilt, state, evaluations)
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))
