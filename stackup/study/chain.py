@@ -302,17 +302,15 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the film's
     # moment against the crankshaft's rotational compliance there
     tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
+    compliance, roughness, modulus = _engine_constants(engine)
     films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
                           journal_d=journal_d, method=film_method, tilt=tilt,
-                          tilt_compliance=support_compliance(spans=spec.spans, EI=spec.ei)
-                          if tilt_method == "equilibrium" else None)
+                          tilt_compliance=compliance if tilt_method == "equilibrium" else None)
     wear = engine.wear
-    journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
     chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
                             speed=engine.crank.speed, bearing_radius=np.asarray(journal_d) / 2,
-                            h_lim_cr=wear.critical_film, roughness=composite_roughness(wear.journal_rq, wear.shell_rq),
-                            contact_modulus=contact_modulus(journal.modulus, journal.poisson, lining.modulus,
-                                                            lining.poisson), wear_limit=wear.wear_limit)
+                            h_lim_cr=wear.critical_film, roughness=roughness, contact_modulus=modulus,
+                            wear_limit=wear.wear_limit)
     h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
     life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
                            h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
@@ -377,6 +375,28 @@ def _pin_loads(spec, crank_angle):
     loads.setflags(write=False)
     _PINS[:] = [*_PINS[-3:], (spec, np.array(crank_angle, copy=True), loads)]
     return loads
+
+
+#: The engine constants of the last engines the chain saw: (engine, compliance, roughness, contact modulus).
+_CONSTANTS = []
+
+
+def _engine_constants(engine):
+    """The crankshaft's compliance at its supports, the wear's composite roughness and contact modulus of ``engine``.
+
+    Kept for the next batch like the pins' loads: together they cost 1 % of an engine's mechanical chain.
+    """
+    for known, *constants in _CONSTANTS:
+        if known is engine:
+            return constants
+    spec, wear = engine.crank, engine.wear
+    journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
+    compliance = support_compliance(spans=spec.spans, EI=spec.ei)
+    compliance.setflags(write=False)
+    constants = [compliance, composite_roughness(wear.journal_rq, wear.shell_rq),
+                 contact_modulus(journal.modulus, journal.poisson, lining.modulus, lining.poisson)]
+    _CONSTANTS[:] = [*_CONSTANTS[-3:], (engine, *constants)]
+    return constants
 
 
 def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):
