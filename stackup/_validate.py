@@ -15,6 +15,10 @@ import numpy as np
 
 def finite(field, value):
     """Return ``value`` as a float array; reject text, true/false, NaN and inf."""
+    if type(value) is float or type(value) is int:  # the common scalar, without numpy's round trips (bool excluded)
+        if not math.isfinite(value):
+            raise ValueError(f"{field}: {float(value)!r} is not a finite number")
+        return np.asarray(float(value))
     raw = np.asarray(value)
     if raw.dtype.kind in "USOb":  # "0.3" from a file is text: never converted silently
         bad = [v for v in np.ravel(raw) if isinstance(v, (str, bytes, bool, np.bool_)) or v is None]
@@ -39,9 +43,14 @@ def angle_vectors(field, value):
 def positive(field, value, *, allow_zero=False):
     """Return ``value`` as a finite float array that is > 0 (or >= 0)."""
     arr = finite(field, value)
+    what = ">= 0" if allow_zero else "> 0"
+    if arr.ndim == 0:  # a scalar compared as a float: a tenth of the array path's cost
+        number = float(arr)
+        if number < 0 or number == 0 and not allow_zero:
+            raise ValueError(f"{field}: {number!r} is not valid; must be {what}")
+        return arr
     bad = arr < 0 if allow_zero else arr <= 0
     if np.any(bad):
-        what = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{field}: {float(arr[bad].flat[0])!r} is not valid; must be {what}")
     return arr
 
