@@ -57,7 +57,7 @@ COLD_FROM = 10.0
 #: from a contact that does not hold, is taken this share of the way from the aligned journal to the wall.
 WALL_STEP = 0.02
 WALL_REACH = 0.5
-WALL_EVALUATIONS = 8
+WALL_EVALUATIONS = 12
 WALL_TOLERANCE = 0.03
 INSIDE = 0.98
 #: Equilibrium states per angle.
@@ -289,21 +289,6 @@ def _wall_normal(x0, x1, e0, e1):
     return -q0 / rq, -q1 / rq, -1.0
 
 
-@njit(cache=True, inline="always")
-def _onto_wall(x0, x1, e0, e1, sign, limit):
-    """e with the edge x + sign e moved radially onto the limit; scaled into the lens if the other edge is past it."""
-    p0 = x0 + sign * e0
-    p1 = x1 + sign * e1
-    scale = limit / math.hypot(p0, p1)
-    w0 = sign * (scale * p0 - x0)
-    w1 = sign * (scale * p1 - x1)
-    if math.hypot(x0 - sign * w0, x1 - sign * w1) > limit:
-        room = _room(x0, x1, 0.0, 0.0, w0, w1, limit)
-        w0 *= room
-        w1 *= room
-    return w0, w1
-
-
 @njit(cache=True)
 def _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap):
     """e + kappa (rho R(turn) M(e)) - e_free."""
@@ -359,58 +344,51 @@ def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolera
              weights_dry, cap, budget, slope):
     """Edge contact: the point of the lens's boundary where the residual is -lambda kappa n, lambda >= 0.
 
-    Secant in the boundary's direction theta from ``theta`` (Illinois once the
-    root of ``across`` is bracketed), to ``tolerance`` rad; the first step is
-    Newton's with ``slope[0]`` (d across / d theta at the last contact, in and
-    out) where it is known, else :data:`WALL_STEP`. Returns (e0, e1, found,
-    outward, evaluations): ``found`` where ``across`` vanished within the
-    budget, ``outward`` the residual's normal part there (<= 0: the contact holds).
+    A secant in the boundary's direction theta from ``theta`` (its first step
+    Newton's with ``slope[0]``, d across / d theta at the last contact, in and
+    out, where it is known, else :data:`WALL_STEP`) until ``across`` changes
+    sign, then Illinois inside that bracket until it is at most ``tolerance``
+    rad wide. Returns (e0, e1, found, outward, evaluations) at the evaluated end
+    of the bracket with the smaller ``across`` (``outward`` there: <= 0, the
+    contact holds); ``found`` False where no bracket closed within the budget.
     """
     ta = theta
-    e0, e1, ga, outward = _wall_residual(x0, x1, v0, v1, ta, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
-                                         nodes_dry, weights_dry, cap)
+    a0, a1, ga, oa = _wall_residual(x0, x1, v0, v1, ta, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
+                                    nodes_dry, weights_dry, cap)
     if ga == 0.0:
-        return e0, e1, True, outward, 1
+        return a0, a1, True, oa, 1
+    step = WALL_STEP
     if slope[0] != 0.0:
-        step = -ga / slope[0]
-        if abs(step) <= tolerance:
-            e0, e1 = _lens_point(x0, x1, ta + step, limit)
-            return e0, e1, True, outward, 1
-        tb = ta + max(-WALL_REACH, min(WALL_REACH, step))
-    else:
-        tb = ta + WALL_STEP
-    e0, e1, gb, outward = _wall_residual(x0, x1, v0, v1, tb, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
-                                         nodes_dry, weights_dry, cap)
+        step = max(-WALL_REACH, min(WALL_REACH, -ga / slope[0]))
+    tb = ta + step
+    b0, b1, gb, ob = _wall_residual(x0, x1, v0, v1, tb, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
+                                    nodes_dry, weights_dry, cap)
     used = 2
+    weight = ga  # Illinois halves the weight of an end kept twice; ga stays its value
     bracket = ga * gb < 0.0
-    found = False
-    while used < budget:
-        if gb == ga:
-            break
-        slope[0] = (gb - ga) / (tb - ta)
-        tn = tb - gb / slope[0]
+    while gb != 0.0:
+        if bracket and abs(tb - ta) <= tolerance:
+            slope[0] = (gb - ga) / (tb - ta)
+            if abs(ga) < abs(gb):
+                return a0, a1, True, oa, used
+            return b0, b1, True, ob, used
+        if used >= budget or gb == weight:
+            slope[0] = 0.0
+            return b0, b1, False, ob, used
+        tn = tb - gb * (tb - ta) / (gb - weight)
         if not bracket:
             tn = max(tb - WALL_REACH, min(tb + WALL_REACH, tn))
-        if abs(tn - tb) <= tolerance:
-            e0, e1 = _lens_point(x0, x1, tn, limit)
-            found = True
-            break
-        e0, e1, gn, outward = _wall_residual(x0, x1, v0, v1, tn, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
-                                             nodes_dry, weights_dry, cap)
+        n0, n1, gn, on = _wall_residual(x0, x1, v0, v1, tn, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
+                                        nodes_dry, weights_dry, cap)
         used += 1
-        if bracket:
-            # Illinois: keep the bracket, halve the weight of the end that stays twice
-            if gn * gb < 0.0:
-                ta, ga = tb, gb
-            else:
-                ga *= 0.5
-            tb, gb = tn, gn
+        if not bracket or gn * gb < 0.0:
+            ta, a0, a1, ga, oa, weight = tb, b0, b1, gb, ob, gb
         else:
-            ta, ga, tb, gb = tb, gb, tn, gn
-            bracket = ga * gb < 0.0
-    if not found or not slope[0] > 0.0 and not slope[0] < 0.0:
-        slope[0] = 0.0
-    return e0, e1, found, outward, used
+            weight *= 0.5
+        tb, b0, b1, gb, ob = tn, n0, n1, gn, on
+        bracket = bracket or ga * gb < 0.0
+    slope[0] = (gb - ga) / (tb - ta)
+    return b0, b1, True, ob, used
 
 
 @njit(cache=True)
@@ -595,7 +573,7 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
     contacts' directions, with the last Jacobian. Then, halving the spacing down
     to one angle, each angle midway between two known ones of the same state
     whose turn-backs differ by less than ``interpolate`` times their thinner edge
-    film takes their mean turn-back (onto the wall where they are at the
+    film takes their turn-back interpolated (onto the wall where they are at the
     limit); the others are solved from their neighbour's Jacobian (the one in
     equilibrium where the states differ). Writes tilt (B, n, 2), state (B, n)
     and evaluations (B, n): film moments computed at each angle.
@@ -643,6 +621,8 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
             for k in range(half, n, 2 * half):
                 kp = k - half
                 kn = k + half if k + half < n else 0  # the cycle closes on its first angle
+                # its share of the way from kp to kn (a half but where n is not a multiple of the stride)
+                share = half / (min(k + half, n) - kp)
                 evaluations[b, k] = 0
                 if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
                     # the film's turn-back is interpolated: its change between the neighbours
@@ -650,17 +630,20 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
                                      free[b, kn, 1] - tilt[b, kn, 1] - free[b, kp, 1] + tilt[b, kp, 1])
                     film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
                                _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
-                    e0 = free[b, k, 0] - 0.5 * (free[b, kp, 0] - tilt[b, kp, 0] + free[b, kn, 0] - tilt[b, kn, 0])
-                    e1 = free[b, k, 1] - 0.5 * (free[b, kp, 1] - tilt[b, kp, 1] + free[b, kn, 1] - tilt[b, kn, 1])
+                    e0 = free[b, k, 0] - ((1.0 - share) * (free[b, kp, 0] - tilt[b, kp, 0])
+                                          + share * (free[b, kn, 0] - tilt[b, kn, 0]))
+                    e1 = free[b, k, 1] - ((1.0 - share) * (free[b, kp, 1] - tilt[b, kp, 1])
+                                          + share * (free[b, kn, 1] - tilt[b, kn, 1]))
                     if state[b, kp] == AT_LIMIT:
                         # both on the wall: the edge film is the limit's whatever the tilt, whose direction the
                         # mean keeps within about interpolate / 2 rad
                         film = max(film, math.hypot(e0, e1))
                     if gap <= interpolate * film:
                         room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
-                        if state[b, kp] == AT_LIMIT or room < 1.0:  # on the wall, as its neighbours
-                            e0 *= min(room, 1.0)
-                            e1 *= min(room, 1.0)
+                        if state[b, kp] == AT_LIMIT or room < 1.0:
+                            # onto the wall, as its neighbours (the mean of two points on it lies inside the lens)
+                            e0 *= room
+                            e1 *= room
                         tilt[b, k, 0] = e0
                         tilt[b, k, 1] = e1
                         state[b, k] = state[b, kp]

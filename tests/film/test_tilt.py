@@ -275,7 +275,8 @@ def test_an_edge_leaves_the_wall_where_the_film_can_hold_the_journal_again(kappa
     edge = 1 - np.maximum(np.linalg.norm(xi + e_alone, axis=-1), np.linalg.norm(xi - e_alone, axis=-1))
     gap = np.linalg.norm(e - e_alone, axis=-1)
     assert np.all(gap[~at_limit] <= 0.05 * edge[~at_limit])  # solved or interpolated
-    assert np.all(gap[at_limit] <= 0.01 * np.linalg.norm(e_alone[at_limit], axis=-1))  # where on the wall
+    # on the wall: the contact's direction to the search's tolerance [rad]
+    assert np.all(gap[at_limit] <= kernel.WALL_TOLERANCE * np.linalg.norm(e_alone[at_limit], axis=-1))
 
 
 @pytest.mark.parametrize("kappa", [0.05, 0.2])
@@ -297,6 +298,19 @@ def test_edge_contact_is_where_a_contact_force_closes_the_balance_and_no_root_li
                                  np.zeros(2), method="hybr")
         if root.success:
             assert max(np.linalg.norm(xi[i] + root.x), np.linalg.norm(xi[i] - root.x)) > ECCENTRICITY_LIMIT
+
+
+def test_every_angle_at_the_limit_has_its_edge_on_the_wall_also_where_interpolated():
+    # a contact running all round the lens (across its corners): the mean of two wall points lies inside it
+    t = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+    xi = np.tile([0.5, 0.0], (720, 1))
+    result = cycle_tilt(xi, np.array([rotation_squeeze(x) for x in xi]), 2 * np.stack([np.cos(t), np.sin(t)], -1),
+                        compliance=2 * 0.05, **UNIT)
+    at_limit = result.state == STATES.index("at_limit")
+    assert at_limit.sum() > 600 and (result.evaluations[at_limit] == 0).sum() > 300  # most interpolated
+    e = result.tilt / 2
+    reach = np.maximum(np.linalg.norm(xi + e, axis=-1), np.linalg.norm(xi - e, axis=-1))
+    np.testing.assert_allclose(reach[at_limit], ECCENTRICITY_LIMIT, rtol=1e-9)
 
 # --- the orbit with the tilt in its film ---
 
