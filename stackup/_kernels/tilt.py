@@ -360,6 +360,8 @@ def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolera
     step = WALL_STEP
     if slope[0] != 0.0:
         step = max(-WALL_REACH, min(WALL_REACH, -ga / slope[0]))
+        if abs(step) < 0.5 * tolerance:  # as below: past the root by half the tolerance
+            step = math.copysign(0.5 * tolerance, step)
     tb = ta + step
     b0, b1, gb, ob = _wall_residual(x0, x1, v0, v1, tb, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
                                     nodes_dry, weights_dry, cap)
@@ -378,6 +380,9 @@ def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolera
         tn = tb - gb * (tb - ta) / (gb - weight)
         if not bracket:
             tn = max(tb - WALL_REACH, min(tb + WALL_REACH, tn))
+        if abs(tn - tb) < 0.5 * tolerance:
+            # a root this near: step half the tolerance past it, so that the next point brackets it within that
+            tn = tb + math.copysign(0.5 * tolerance, tn - tb)
         n0, n1, gn, on = _wall_residual(x0, x1, v0, v1, tn, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
                                         nodes_dry, weights_dry, cap)
         used += 1
