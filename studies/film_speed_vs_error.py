@@ -304,7 +304,8 @@ def tilt_summary(steady_tilt, tilt_ref, tilt_cheap, tilt_seconds):
         + " of the cycle (bearing 2 of each engine, x 10), where the cheap tier, which neglects it, has "
         + " and ".join(f"{c:.0f} %" for _, _, c in squeeze)
         + ". That squeeze slows the tilt both onto the wall and off it, where the cheap tier's quasi-static "
-        "tilt leaves the wall as soon as a balance exists inside: at the crankshaft's compliance the cheap tier "
+        "tilt leaves the wall as soon as no contact there balances the journal: at the crankshaft's compliance "
+        "the cheap tier "
         f"is at the wall {min(gaps):+.0f} to {max(gaps):+.0f} points of the cycle from the reference (bearings "
         "1-3 of each engine). "
         "The cheap treatment's cycle-mean edge film is within "

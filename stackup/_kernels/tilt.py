@@ -279,14 +279,14 @@ def _broyden(jac, s0, s1, y0, y1):
 
 @njit(cache=True, inline="always")
 def _wall_normal(x0, x1, e0, e1):
-    """Outward normal, in e, of the wall of the thinner edge (|x + sign e| = limit): (n0, n1, sign)."""
+    """Outward normal, in e, of the wall of the thinner edge (|x + e| or |x - e| = limit): (n0, n1)."""
     p0, p1 = x0 + e0, x1 + e1
     q0, q1 = x0 - e0, x1 - e1
     rp = math.hypot(p0, p1)
     rq = math.hypot(q0, q1)
     if rp >= rq:
-        return p0 / rp, p1 / rp, 1.0
-    return -q0 / rq, -q1 / rq, -1.0
+        return p0 / rp, p1 / rp
+    return -q0 / rq, -q1 / rq
 
 
 @njit(cache=True)
@@ -335,7 +335,7 @@ def _wall_residual(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, 
     e0, e1 = _lens_point(x0, x1, theta, limit)
     r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
                        cap)
-    n0, n1, _ = _wall_normal(x0, x1, e0, e1)
+    n0, n1 = _wall_normal(x0, x1, e0, e1)
     return e0, e1, k0 * n0 * r1 - k1 * n1 * r0, n0 * r0 + n1 * r1
 
 
@@ -459,10 +459,13 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
     """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``, or edge contact.
 
     The tilt lies in the lens of offsets with both edges inside the limit. A
-    root inside is EQUILIBRIUM; where none is, an edge touches: the state is
-    AT_LIMIT at the boundary point where the residual is balanced by a contact
-    at the edge (the residual -lambda kappa n, n the wall's outward normal,
-    lambda >= 0; a variational inequality on the lens, :func:`_on_wall`).
+    root inside is EQUILIBRIUM; an edge that touches is AT_LIMIT, at the
+    boundary point where the residual is balanced by a contact at the edge (the
+    residual -lambda kappa n, n the wall's outward normal, lambda >= 0; a
+    variational inequality on the lens, :func:`_on_wall`). The film's moment is
+    not monotone in the tilt, so a root inside and a contact can both balance
+    the journal: a guess on the wall keeps the contact while one holds there,
+    a guess inside takes the root Newton reaches.
 
     Damped Newton (:func:`_newton`) from the guess (g0, g1), with the Jacobian
     ``jac`` in and out (usable where ``fresh``); it stops when the step is

@@ -408,8 +408,9 @@ def limits_of_validity(ds):
         "neglected) against the crankshaft's rotational compliance at its support, a beam on point supports: "
         "where the film cannot hold the slope the edge film is held at the eccentricity limit (a lower bound, "
         "no elastic deformation of the shell edge); the life reads the mid-plane film. The tilt follows the load "
-        "quasi-statically, so an edge leaves the wall as soon as the film can hold it again: the share of the "
-        "cycle at the wall differs from the transient reference's, both ways (reports/film_speed_vs_error.md).",
+        "quasi-statically (an edge stays on the wall while a contact there balances the journal, and leaves it "
+        "when none does): the share of the cycle at the wall differs from the transient reference's, both ways "
+        "(reports/film_speed_vs_error.md).",
         "- Life follows Levanov et al. (2015), whose constants were fitted to another engine: compare schemes "
         "rather than read the hours as a guarantee.",
         "- Each scheme is judged on its preferred and allowed pairs as written in its file; the shell supply is "

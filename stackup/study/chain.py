@@ -22,6 +22,7 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.cycle import HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
+from ..film.orbit import _vector_length as vector_length
 from ..fit import press_fit, press_fit_extremes
 from .. import materials
 from ..contact import composite_roughness, contact_modulus
@@ -320,7 +321,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
             "h_min_edge": films.h_min_edge.min(axis=-1),
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
             "tilt_max": films.tilt_max,
-            "tilt_free_max": np.sqrt(tilt[..., 0] * tilt[..., 0] + tilt[..., 1] * tilt[..., 1]).max(axis=1),
+            "tilt_free_max": vector_length(tilt).max(axis=1),
             "edge_contact_share": films.edge_contact_share,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
