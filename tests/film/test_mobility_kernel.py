@@ -121,6 +121,29 @@ def test_peak_factor_is_the_largest_mid_plane_pressure():
         assert kernel.peak_factor(eps, alpha, 0.0)[0] == pytest.approx(brute, rel=1e-7)
 
 
+@settings(max_examples=200, deadline=None)
+@given(st.floats(0.0, 0.995), st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi))
+def test_peak_factor_from_any_start_is_the_maximum(eps, alpha, start):
+    # the orbit starts each angle's search from the last angle's peak: any start must end at the maximum
+    def minus_log(phi):
+        return -(np.log(np.cos(phi - alpha)) - 3 * np.log1p(-eps * np.cos(phi)))
+
+    phi = np.linspace(alpha - np.pi / 2, alpha + np.pi / 2, 4001)[1:-1]
+    best = phi[np.argmin(minus_log(phi))]
+    bounds = (max(best - np.pi / 4000, alpha - np.pi / 2 + 1e-12), min(best + np.pi / 4000, alpha + np.pi / 2 - 1e-12))
+    found = optimize.minimize_scalar(minus_log, bounds=bounds, method="bounded", options={"xatol": 1e-10})
+    factor, where = kernel.peak_factor(eps, alpha, start)
+    assert factor == pytest.approx(np.exp(-found.fun), rel=1e-12)
+    assert np.cos(where - alpha) / (1 - eps * np.cos(where)) ** 3 == pytest.approx(factor, rel=1e-12)
+
+
+@given(st.floats(-np.pi, np.pi), st.floats(-kernel.STEP_DONE, kernel.STEP_DONE))
+def test_small_turn_equals_the_cosine_and_sine_of_the_turned_angle(angle, step):
+    c, s = kernel._turned(np.cos(angle), np.sin(angle), step)
+    assert c == pytest.approx(np.cos(angle + step), abs=4e-16)
+    assert s == pytest.approx(np.sin(angle + step), abs=4e-16)
+
+
 @pytest.mark.parametrize("engine_like", ["light", "heavy"])
 def test_orbit_kernel_equals_numpy_twin(engine_like):
     n = 180
