@@ -151,47 +151,62 @@ def _stretched(phi, k, root):
     return math.atan2(root * math.sin(phi) / d, (c - k) / d)
 
 
+@njit(cache=True, inline="always")
+def _line(cp, sp, weight, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet):
+    """Weighted contribution (F0, F1, M0, M1) of the line at Sommerfeld's angle psi (cp, sp its cosine and sine)."""
+    d = 1.0 + k * cp
+    cphi = (k + cp) / d
+    sphi = root * sp / d
+    n0 = c0 * cphi - c1 * sphi
+    n1 = c1 * cphi + c0 * sphi
+    a = v0 * n0 + v1 * n1
+    b = 0.5 * (e1 * n0 - e0 * n1)  # u = -(1/2) k x e
+    if not wet and a + abs(b) <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0  # the source is negative over the whole width: no pressure on this line
+    p0, p1 = line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, a, b)
+    if p0 <= 0.0:
+        if not wet:
+            return 0.0, 0.0, 0.0, 0.0
+        p0 = 0.0
+    elif not wet:
+        p1 *= min(1.0, p0 / (WET_RAMP * (p0 + abs(p1))))
+    w = weight / d
+    return w * p0 * n0, w * p0 * n1, w * p1 * n0, w * p1 * n1
+
+
 @njit(cache=True)
-def _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
-    """Gauss-Legendre over the film angles [lo, hi] in Sommerfeld's angle about (c0, c1).
+def _arc(psi_lo, span, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
+    """Gauss-Legendre over Sommerfeld's angles [psi_lo, psi_lo + span] about (c0, c1).
 
     ``wet``: the arc carries pressure (its lines count, P_0 clipped at 0);
     else only lines with P_0 > 0 count, through the ramp :data:`WET_RAMP`.
+    The nodes are symmetric about the arc's middle: each pair's cosines and
+    sines from one cosine and sine of its offset and the middle's.
     Returns (F0, F1, M0, M1) before the factors 3/2 and 3/4.
     """
-    centre = math.atan2(c1, c0)
-    psi_lo = _stretched(_wrap(lo - centre), k, root)
-    span = _stretched(_wrap(hi - centre), k, root) - psi_lo
-    if span <= 0.0:
-        span += 2.0 * math.pi
     half = 0.5 * span
+    middle = psi_lo + half
+    cm = math.cos(middle)
+    sm = math.sin(middle)
     f0 = f1 = m0 = m1 = 0.0
-    u0 = 0.5 * e1  # u = -(1/2) k x e
-    u1 = -0.5 * e0
-    for j in range(nodes.shape[0]):
-        psi = psi_lo + half * (1.0 + nodes[j])
-        cp = math.cos(psi)
-        d = 1.0 + k * cp
-        cphi = (k + cp) / d
-        sphi = root * math.sin(psi) / d
-        n0 = c0 * cphi - c1 * sphi
-        n1 = c1 * cphi + c0 * sphi
-        a = v0 * n0 + v1 * n1
-        b = u0 * n0 + u1 * n1
-        if not wet and a + abs(b) <= 0.0:
-            continue  # the source is negative over the whole width: no pressure on this line
-        p0, p1 = line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, a, b)
-        if p0 <= 0.0:
-            if not wet:
-                continue
-            p0 = 0.0
-        elif not wet:
-            p1 *= min(1.0, p0 / (WET_RAMP * (p0 + abs(p1))))
-        w = weights[j] * half * root / d
-        f0 += w * p0 * n0
-        f1 += w * p0 * n1
-        m0 += w * p1 * n0
-        m1 += w * p1 * n1
+    n = nodes.shape[0]
+    for j in range(n // 2):
+        offset = half * nodes[n - 1 - j]
+        co = math.cos(offset)
+        so = math.sin(offset)
+        weight = weights[j] * half * root
+        for cp, sp in ((cm * co - sm * so, sm * co + cm * so), (cm * co + sm * so, sm * co - cm * so)):
+            a0, a1, b0, b1 = _line(cp, sp, weight, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet)
+            f0 += a0
+            f1 += a1
+            m0 += b0
+            m1 += b1
+    if n % 2:
+        a0, a1, b0, b1 = _line(cm, sm, weights[n // 2] * half * root, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet)
+        f0 += a0
+        f1 += a1
+        m0 += b0
+        m1 += b1
     return f0, f1, m0, m1
 
 
@@ -232,8 +247,15 @@ def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, 
     hi = _cut(alpha + 0.5 * math.pi, x0, x1, v0, v1, e0, e1, step)
     if hi <= lo:
         hi = lo + 1e-12
-    f0, f1, m0, m1 = _arc(lo, hi, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, True)
-    g0, g1, n0, n1 = _arc(hi, lo + 2.0 * math.pi, x0, x1, v0, v1, e0, e1, nodes_dry, weights_dry, c0, c1, k,
+    # the arc's ends in Sommerfeld's angle about the thinner edge: the pressure-carrying arc, then the rest
+    centre = math.atan2(c1, c0)
+    psi_lo = _stretched(_wrap(lo - centre), k, root)
+    psi_hi = _stretched(_wrap(hi - centre), k, root)
+    span = psi_hi - psi_lo
+    if span <= 0.0:
+        span += 2.0 * math.pi
+    f0, f1, m0, m1 = _arc(psi_lo, span, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, True)
+    g0, g1, n0, n1 = _arc(psi_hi, 2.0 * math.pi - span, x0, x1, v0, v1, e0, e1, nodes_dry, weights_dry, c0, c1, k,
                           root, False)
     return 1.5 * (f0 + g0), 1.5 * (f1 + g1), 0.75 * (m0 + n0), 0.75 * (m1 + n1)
 
