@@ -225,7 +225,8 @@ def _ranking_section(ds, ranking, scenarios):
             f"Rule: {_rule_in_words(ranking.attrs['rule'])}. Tied schemes share a rank.")
     if scenarios:
         rule += (f" Robustness: the worst change of each metric over the declared scenarios ({', '.join(scenarios)}), "
-                 "each run with the same seed (counted shares).")
+                 "each run with the same seed (counted shares); the lives change only under the scenarios that run "
+                 "the mechanical chain, on their first engines against the study's same engines.")
     notes = []
     if (ranking.outside_window_source != "counted").any():
         how = ("estimated with the shells integrated out (`stackup.design.estimate.outside_share`: each "
@@ -453,14 +454,15 @@ def _film_detail(ds):
                     f"{'have' if engines != 1 else 'has'} no engine life and {'are' if engines != 1 else 'is'} left "
                     "out of the share of engines below the life target.")
     elif total and (count("periodic") or edge):
-        text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status`).")
+        text.append(f"Every one of the {total:,} bearing-cycles reached a periodic orbit (`film_status` periodic, "
+                    "or edge_contact: periodic, with an edge at the wall).")
     if edge:
         text.append(f"In {edge:,} of them ({100 * edge / max(total, 1):.0f} %) the tilted journal reaches the "
                     "bearing's edge at some crank angle (`edge_contact`): the tilt balances the film's restoring "
                     "moment (short-bearing, tilt squeeze neglected) against the crankshaft's rotational "
                     "compliance at the support, and where the film cannot hold the beam's slope the edge film is "
-                    "held at the eccentricity limit, so the edge film is a lower bound; the life uses the "
-                    "mid-plane film.")
+                    "held at the eccentricity limit's floor, not a computed film (boundary contact at the edge); "
+                    "α and the lives use the mid-plane film.")
     if text:
         lines += [" ".join(text), ""]
     return lines
