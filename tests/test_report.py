@@ -108,6 +108,28 @@ def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_b
     assert "Edge contact" not in " ".join(verdict(clear, rank(clear), {}))
 
 
+def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(comparison):
+    from stackup.life import levanov_method1
+    from stackup.report.prose import limits_of_validity
+
+    ds = comparison.dataset
+    wear = json.loads(ds.attrs["wear"])
+    error = json.loads(ds.attrs["film_method_errors"])["h_min_mean"]
+    films = ds.h_min_mean.values[np.isfinite(ds.h_min_mean.values)]
+    h = float(np.median(films))
+    life = levanov_method1(np.array([h, h / (1 + error)]), h_lim_cr=wear["critical_film_m"],
+                           wear_limit=wear["wear_limit_m"], wear_rate=wear["wear_rate_m_per_s"]).life
+    text = " ".join(limits_of_validity(ds))
+    assert f"up to {100 * error:.0f} % thicker than the transient reference" in text
+    assert f"makes a life {life[0] / life[1]:.1f} times as long" in text and f"{h * 1e6:.1f} µm" in text
+    cap = wear["wear_limit_m"] / wear["wear_rate_m_per_s"] / 3600
+    assert f"caps a life at Δh_lim/γ = {cap:,.0f} h" in text
+    # a study without the tier's measured errors says nothing of it
+    bare = ds.copy()
+    bare.attrs = {k: v for k, v in ds.attrs.items() if k != "film_method_errors"}
+    assert "Method 1 reads" not in " ".join(limits_of_validity(bare))
+
+
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
     ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
     text = write_report(ds, tmp_path).read_text()
