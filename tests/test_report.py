@@ -130,6 +130,18 @@ def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(
     assert "Method 1 reads" not in " ".join(limits_of_validity(bare))
 
 
+def test_the_film_section_gives_the_heat_balance_of_the_bearings(comparison, tmp_path):
+    from stackup.study.schema import flag
+
+    ds = comparison.dataset
+    text = write_report(ds, tmp_path).read_text()
+    valid = (ds.film_status.values != flag(ds.film_status, "not_computed")) & ds.film_valid.values
+    temperature = np.percentile(ds.film_temperature.values[valid], [5, 50, 95])
+    assert (f"The heat balance puts the films at {temperature[0]:.0f}-{temperature[2]:.0f} °C (5-95 % of the "
+            f"bearings; median {temperature[1]:.0f} °C, oil supplied at") in text
+    assert "W of friction power per bearing" in text and "L/min of oil through it" in text
+
+
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
     ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6, life_target=7200.0)
     text = write_report(ds, tmp_path).read_text()

@@ -465,7 +465,30 @@ def _film_detail(ds):
                     "α and the lives use the mid-plane film.")
     if text:
         lines += [" ".join(text), ""]
-    return lines
+    return lines + _heat_text(ds, ran)
+
+
+def _heat_text(ds, ran):
+    """The heat balance's film temperatures, friction powers and oil flows over the bearings whose film is a number."""
+    if not {"film_temperature", "friction_power", "oil_flow"} <= set(ds.data_vars):
+        return []
+    valid = ran & ds.film_valid.values
+    if not valid.any():
+        return []
+
+    def spread(name, scale=1.0, digits=0):
+        v = ds[name].values[valid] * scale
+        lo, mid, hi = np.nanpercentile(v, [5, 50, 95])
+        return f"{lo:.{digits}f}-{hi:.{digits}f}", f"{mid:.{digits}f}"
+
+    (t, t_mid), (n, n_mid), (q, q_mid) = (spread("film_temperature"), spread("friction_power"),
+                                          spread("oil_flow", 6e4, 2))
+    crank = json.loads(ds.attrs.get("engine_processes", "{}")).get("crank", {})
+    supply = (f", oil supplied at {crank['oil_supply_temperature_degC']:.0f} °C"
+              if "oil_supply_temperature_degC" in crank else "")
+    return [f"The heat balance puts the films at {t} °C (5-95 % of the bearings; median {t_mid} °C{supply}), "
+            f"with {n} W of friction power per bearing (median {n_mid} W) and {q} L/min of oil through it (median "
+            f"{q_mid} L/min, feed and side flow; `film_temperature`, `friction_power`, `oil_flow`).", ""]
 
 
 def _positions_text(ds):
