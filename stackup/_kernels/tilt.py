@@ -503,12 +503,15 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
     """
     if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
         return 0.0, 0.0, (EQUILIBRIUM if f0 == 0.0 and f1 == 0.0 else AT_LIMIT), 0
+    def contact(theta):
+        """The edge contact of this angle along the wall from ``theta`` (:func:`_on_wall`)."""
+        return _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, WALL_TOLERANCE, nodes, weights,
+                        nodes_dry, weights_dry, cap, WALL_EVALUATIONS, slope)
+
     evaluations = 0
     from_wall = False
     if on_wall:
-        e0, e1, found, outward, used = _on_wall(x0, x1, v0, v1, math.atan2(g1, g0), f0, f1, k0, k1, ratio, ct, st,
-                                                limit, WALL_TOLERANCE, nodes, weights, nodes_dry, weights_dry, cap,
-                                                WALL_EVALUATIONS, slope)
+        e0, e1, found, outward, used = contact(math.atan2(g1, g0))
         evaluations += used
         if found and outward <= 0.0:
             return e0, e1, AT_LIMIT, evaluations
@@ -531,9 +534,7 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
             # the contact's residual points in, Newton's step out: the root lies at the wall
             room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
             return room * e0, room * e1, AT_LIMIT, evaluations
-        b0, b1, found, outward, used = _on_wall(x0, x1, v0, v1, math.atan2(e1, e0), f0, f1, k0, k1, ratio, ct, st,
-                                                limit, WALL_TOLERANCE, nodes, weights, nodes_dry, weights_dry, cap,
-                                                WALL_EVALUATIONS, slope)
+        b0, b1, found, outward, used = contact(math.atan2(e1, e0))
         evaluations += used
         if found and outward <= 0.0:
             return b0, b1, AT_LIMIT, evaluations
