@@ -3,12 +3,31 @@
 Each check names the field, the offending value and what is valid, e.g.::
 
     ValueError: shell_wall: upper limit 1.491e-03 m is below lower limit 1.497e-03 m
+
+A public function declares what its parameters must be, beside its
+signature, in the spirit of scikit-learn's parameter constraints::
+
+    @validated(housing_bore=Positive(), method=OneOf(METHODS))
+    def press_fit(*, housing_bore, ..., method="lame"): ...
+
+The checks run once, where a user's call enters the package: inside a
+validated function, and in the study's chain (:func:`trusted`), the
+functions it calls skip them, so a model function's body and its hot paths
+never check and need no unchecked twin. :func:`renamed` keeps an old keyword
+working, with a :class:`DeprecationWarning`, where the naming glossary
+renamed it (docs: README, "Names").
 """
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
+import functools
+import inspect
 import math
+import warnings
 from collections.abc import Iterable
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -114,3 +133,159 @@ def clearance_window(field, window):
         raise ValueError(f"{field}: ({lo!r}, {hi!r}) m is not a clearance window; give 0 < lower < upper < 1 mm "
                          "in metres, e.g. (45e-6, 65e-6)")
     return lo, hi
+
+
+# --- declared constraints -------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Finite:
+    """A finite number or array of numbers (returned as a float array)."""
+
+    def __call__(self, field, value):
+        return finite(field, value)
+
+
+@dataclass(frozen=True)
+class Positive:
+    """A finite number > 0 (>= 0 with ``zero=True``), or an array of them."""
+
+    zero: bool = False
+
+    def __call__(self, field, value):
+        return positive(field, value, allow_zero=self.zero)
+
+
+@dataclass(frozen=True)
+class InRange:
+    """A finite number in [lo, hi] (ends open if asked), or an array of them."""
+
+    lo: float
+    hi: float
+    lo_open: bool = False
+    hi_open: bool = False
+    unit: str = ""
+
+    def __call__(self, field, value):
+        return in_range(field, value, self.lo, self.hi, lo_open=self.lo_open, hi_open=self.hi_open, unit=self.unit)
+
+
+@dataclass(frozen=True)
+class OneOf:
+    """One of the legal option strings."""
+
+    options: tuple
+
+    def __call__(self, field, value):
+        return one_of(field, value, self.options)
+
+
+@dataclass(frozen=True)
+class Integer:
+    """An integer, at least ``minimum`` if given."""
+
+    minimum: int | None = None
+
+    def __call__(self, field, value):
+        return integer(field, value, minimum=self.minimum)
+
+
+@dataclass(frozen=True)
+class AngleVectors:
+    """A finite array of 2-vectors over a cycle's angles, shape (..., angles, 2)."""
+
+    def __call__(self, field, value):
+        return angle_vectors(field, value)
+
+
+@dataclass(frozen=True)
+class Window:
+    """A design window of the operating clearance (lower, upper) in m."""
+
+    def __call__(self, field, value):
+        return clearance_window(field, value)
+
+
+@dataclass(frozen=True)
+class OrNone:
+    """None, or a value that passes ``constraint``."""
+
+    constraint: object
+
+    def __call__(self, field, value):
+        return None if value is None else self.constraint(field, value)
+
+
+_TRUSTED = contextvars.ContextVar("stackup_inputs_checked", default=False)
+
+
+@contextlib.contextmanager
+def trusted():
+    """Within this block validated functions skip their checks: the caller checked its inputs at the boundary.
+
+    The study's chain runs in it (its engine and schemes were checked when read, its parameters when the
+    study was made).
+    """
+    token = _TRUSTED.set(True)
+    try:
+        yield
+    finally:
+        _TRUSTED.reset(token)
+
+
+def validated(relations=(), **constraints):
+    """Declare the checks of a public function's parameters; they run on a call from outside the package.
+
+    ``constraints`` map parameter names to checks (:class:`Positive`, :class:`OneOf`, ...; any callable
+    ``check(field, value) -> value``); a parameter left at its default ``None`` is not checked.
+    ``relations`` are callables given the checked arguments by name that raise ``ValueError`` where
+    parameters disagree with each other. The checked (converted) values are what the function receives.
+    Calls made inside a validated function, or in a :func:`trusted` block, skip the checks.
+    """
+    def decorate(function):
+        signature = inspect.signature(function)
+        unknown = set(constraints) - set(signature.parameters)
+        if unknown:
+            raise TypeError(f"{function.__qualname__}: constraints for unknown parameters {sorted(unknown)}")
+
+        @functools.wraps(function)
+        def checked(*args, **kwargs):
+            if _TRUSTED.get():
+                return function(*args, **kwargs)
+            bound = signature.bind(*args, **kwargs)
+            bound.apply_defaults()
+            values = bound.arguments
+            for name, constraint in constraints.items():
+                if values.get(name) is not None:
+                    values[name] = constraint(name, values[name])
+            for relation in relations:
+                relation(values)
+            token = _TRUSTED.set(True)
+            try:
+                return function(*bound.args, **bound.kwargs)
+            finally:
+                _TRUSTED.reset(token)
+
+        checked.constraints = dict(constraints)
+        return checked
+
+    return decorate
+
+
+def renamed(**old_to_new):
+    """Accept the keywords' old names (``old="new"``) with a DeprecationWarning; both at once is an error."""
+    def decorate(function):
+        @functools.wraps(function)
+        def call(*args, **kwargs):
+            for old, new in old_to_new.items():
+                if old in kwargs:
+                    if new in kwargs:
+                        raise TypeError(f"{function.__name__}: give {new}= (the old name {old}= is deprecated), "
+                                        "not both")
+                    warnings.warn(f"{function.__name__}: {old}= is deprecated; use {new}= (same value)",
+                                  DeprecationWarning, stacklevel=2)
+                    kwargs[new] = kwargs.pop(old)
+            return function(*args, **kwargs)
+
+        return call
+
+    return decorate

@@ -14,7 +14,7 @@ import sys
 import time
 from pathlib import Path
 
-from . import __version__
+from ._version import __version__
 
 #: Engines of ``stackup compare``, of ``stackup compare --quick`` and the fewest it runs: the report's 95 %
 #: intervals, the plan's safety stock and the sensitivity regression need about a hundred engines.

@@ -1,6 +1,6 @@
 """Saving and opening study datasets (netCDF-4 or Zarr by the path's suffix), so a saved file reproduces itself.
 
-A comparison (:class:`stackup.study.compare.Comparison`) is one file: the
+A comparison (:class:`stackup.comparison.Comparison`) is one file: the
 study in the root group, each scenario's summaries in a group
 ``scenario_<k>`` (its label in the attribute ``scenario``), the
 sensitivity dataset in the group ``sensitivity`` and the tail estimates in
@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .comparison import Comparison
 from .study.schema import STORED_RESOLUTION, STORED_RESOLUTION_OF
 from .study.store import open_study, to_stored
 
@@ -82,7 +83,7 @@ def open_dataset(path, *, group=None):
 
 
 def save_comparison(comparison, path, *, compact=True):
-    """Write a :class:`~stackup.study.compare.Comparison` into one file (see the module docstring).
+    """Write a :class:`~stackup.comparison.Comparison` into one file (see the module docstring).
 
     The study is saved ``compact`` by default (:func:`save`).
     """
@@ -95,9 +96,7 @@ def save_comparison(comparison, path, *, compact=True):
 
 
 def open_comparison(path):
-    """The :class:`~stackup.study.compare.Comparison` saved in ``path``, in memory."""
-    from .study.compare import Comparison
-
+    """The :class:`~stackup.comparison.Comparison` saved in ``path``, in memory."""
     groups = _groups(Path(path))
     scenarios = {}
     for name in sorted((g for g in groups if g.startswith("scenario_")), key=lambda g: int(g.split("_")[1])):

@@ -46,6 +46,7 @@ import xarray as xr
 from scipy import signal, stats
 
 from . import _validate as check
+from ._module import callable_module
 from ._random import lot_generator, seed_sequence
 from .assembly import shell_demand_per_engine
 from .engines import load_engine
@@ -555,3 +556,6 @@ def optimise_supply(scheme, processes="iso-example", *, volume, shortage_cost=10
     return {"mean": float(best.x), "objective": value, "centred_objective": objective(0.5 * (lo + hi)),
             "allocation": allocation, "surplus": dict(zip(scheme.shell.labels, surplus)),
             "shortfall": dict(zip(scheme.shell.labels, shortfall)), "demand": demand, "supply": supply}
+
+
+callable_module(__name__, plan)

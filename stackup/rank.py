@@ -26,10 +26,12 @@ import json
 import numpy as np
 import pandas as pd
 
+from ._module import callable_module
 from .assembly import ASSEMBLED, SHELL_STOCKOUT
 from .life import ALPHA_SCUFFING
 from .stats import proportion_ci, quantile_ci
 from .study.schema import flag
+from .tail import share_interval
 
 #: (column, better) in order of precedence: share outside the clearance window,
 #: share of bearings in boundary friction above the scuffing limit, median life.
@@ -69,8 +71,6 @@ def _outside(counted, assembled, tail):
         share, (lo, hi) = float(tail.tail_outside_share), tail.tail_outside_interval.values
         return share * 1e6, (float(lo) * 1e6, float(hi) * 1e6), TAIL_SOURCES["conditional"]
     if counted < MIN_COUNTED and tail is not None and np.all(np.isfinite(tail.tail_share.values)):
-        from .tail import share_interval
-
         shares, errors = tail.tail_share.values, tail.tail_standard_error.values
         share = float(shares.sum())
         lo, hi = share_interval(share, float(np.hypot(*np.where(shares > 0, errors, 0.0))))
@@ -181,7 +181,7 @@ def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
         gives it (counted shares against counted shares).
     tails : xarray.Dataset, optional
         Tail estimates of the shares beyond each window edge
-        (:func:`stackup.study.compare.tails_dataset`, for the dataset's
+        (:func:`stackup.comparison.tails_dataset`, for the dataset's
         window): a scheme with fewer than :data:`MIN_COUNTED` bearings counted
         outside the window is ranked on them (``outside_window_source``).
     window : (float, float), optional
@@ -237,3 +237,6 @@ def rank(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
     frame.attrs["window_m"] = window
     frame.attrs["study"] = json.loads(ds.attrs["study"])
     return frame
+
+
+callable_module(__name__, rank)

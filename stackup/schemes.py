@@ -51,6 +51,7 @@ import numpy as np
 
 from . import _validate as check
 from ._files import Table, locations, read_toml
+from .tolerances import quantize
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
 #: Readings are snapped to this grid before comparison with grade limits [m].
@@ -282,8 +283,6 @@ class Scheme:
 
     def read(self, housing_reading, journal_reading):
         """Readings rounded to the scheme's read-out steps (scheme 6: the nearest micrometre) [m]."""
-        from .tolerances import quantize
-
         return quantize(housing_reading, self.housing.resolution), quantize(journal_reading, self.journal.resolution)
 
     def classify(self, housing_d, journal_d):

@@ -37,8 +37,14 @@ import numpy as np
 import pandas as pd
 
 from . import _validate as check
-from ._random import as_generator
+from ._random import as_generator, seed_sequence
 from .assembly import ASSEMBLED
+from .engines import load_engine
+from .schemes import load as load_scheme
+from .study.chain import mechanical_chain
+from .study.pilot import pilot_parts, shell_plan
+from .study.roots import RootModel
+from .study.scenario import apply as apply_scenario
 
 #: Inputs of a bearing (name -> how to read it from a one-scheme dataset, as (engines, bearings) arrays).
 INPUTS = {
@@ -172,13 +178,6 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
         standard deviation, the engines evaluated and the share of samples
         not assembled (graded at the limits).
     """
-    from ._random import seed_sequence
-    from .engines import load_engine
-    from .scenarios import apply as apply_scenario
-    from .schemes import load as load_scheme
-    from .study.pilot import pilot_parts, shell_plan
-    from .study.roots import RootModel
-
     check.one_of("output", output, SOBOL_OUTPUTS)
     engine = apply_scenario(load_engine(engine), scenario)
     scheme = load_scheme(scheme)
@@ -274,8 +273,6 @@ def _sobol_outputs(model, u, groups, outputs, bearing, crank_angle_step, crank_m
     engines = model.engines(u, groups=groups)
     if outputs == ("clearance_operating",):
         return engines["clearance_operating"][:, bearing, None]
-    from .study.chain import mechanical_chain
-
     values = np.full((u.shape[0], len(outputs)), np.nan)
     ok = np.all(np.isfinite(engines["clearance_operating"]), axis=1)
     mech = mechanical_chain(model.engine, clearance=engines["clearance_operating"][ok],

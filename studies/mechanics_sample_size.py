@@ -75,7 +75,7 @@ def bootstrap_width(values, q, rng):
 def scenario_section(schemes, args):
     """The misalignment scenario of the main job: its mechanical sample and the half-widths it gives."""
     from stackup.scenarios import DECLARED
-    from stackup.study.compare import SCENARIO_MECHANICS_ENGINES
+    from stackup.comparison import SCENARIO_MECHANICS_ENGINES
 
     label, change = next((k, v) for k, v in DECLARED.items() if "misalignment_scale" in v)
     n = args.scenario_engines
@@ -85,7 +85,7 @@ def scenario_section(schemes, args):
     rng = np.random.default_rng(args.seed)
     lines = ["", f"## The scenario '{label}'", "",
              f"The main job runs its misalignment scenario on {SCENARIO_MECHANICS_ENGINES} engines of the "
-             "mechanical chain (`stackup.study.compare.SCENARIO_MECHANICS_ENGINES`); the ranking reads the change "
+             "mechanical chain (`stackup.comparison.SCENARIO_MECHANICS_ENGINES`); the ranking reads the change "
              "of the median life under it. Engine-bootstrap half-widths of that scenario's life median and life "
              f"B10 (pooled bearings), {n} engines run:", "",
              "| quantity | engines | " + " | ".join(names) + " |", "|---|---|" + "---|" * len(names)]

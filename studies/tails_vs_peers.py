@@ -40,7 +40,7 @@ from _common import environment, write_report
 import stackup
 from stackup.design.estimate import outside_share
 from stackup.engines import load_engine
-from stackup.study.compare import TAIL_ENGINES, TAIL_ROOTS, TAIL_SAMPLES
+from stackup.comparison import TAIL_ENGINES, TAIL_ROOTS, TAIL_SAMPLES
 from stackup.tail import MAX_ROOTS_SHARE, MIN_ROOTS, clearance_margin, clearance_tail, tail_share
 
 #: (scheme, side, threshold [m], plain-MC bearings of the root-input model): tails of about 1000, 100 and 20 ppm

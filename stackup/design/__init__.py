@@ -53,9 +53,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .. import _validate as check
 from ..engines import load_engine
+from ..plan import optimise_supply
 from ..scenarios import DECLARED
 from ..schemes import from_dict
 from ..schemes import load as load_scheme
@@ -236,7 +237,6 @@ def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=
     objective = problem.objective(list(outside.values())) + weights.surplus * surplus.sum() \
         + weights.shortfall * shortfall.sum()
 
-    from ..plan import optimise_supply  # plan sits above the study layer; imported on use
 
     log("process mean of a sorted shell supply (stackup.plan.optimise_supply)")
     offer = optimise_supply(designed, engine, volume=SUPPLY_VOLUME, sample_engines=n_engines, seed=seed)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 
 PPM = 1e6
 

@@ -27,7 +27,7 @@ import numpy as np
 from .._random import lot_generator, seed_sequence
 from ..fit import press_fit
 from ..parts import ShellNormals, draw_lot
-from ..scenarios import apply as apply_scenario
+from ..study.scenario import apply as apply_scenario
 
 #: Spawn key of the design sample: apart from a study's lots (0, 1, ...) and its
 #: pilot (2**63), so a study run with the same seed validates on other parts.

@@ -2,7 +2,7 @@
 
 Every number comes from the study dataset (every engine kept, or its
 streaming summaries), the scenario datasets and the sensitivity dataset of a
-:class:`stackup.study.compare.Comparison`; nothing is sampled here.
+:class:`stackup.comparison.Comparison`; nothing is sampled here.
 
 - :mod:`~stackup.report.tables`: numbers per scheme (and bearing), with intervals;
 - :mod:`~stackup.report.figures`: the figures;
@@ -21,7 +21,11 @@ import pandas as pd
 
 from ..assembly import STATUS
 from ..film.cycle import NOT_A_NUMBER
+from ..plan import plan as plan_grades
 from ..rank import MIN_COUNTED, TAIL_SOURCES
+from ..rank import rank as rank_schemes
+from ..schemes import from_dict
+from ..study.inputs import load_inputs
 from ..study.schema import flag
 from . import figures, prose
 from .html import anchor, markdown_to_html
@@ -78,11 +82,11 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
         A study dataset, every engine kept or its streaming summaries (then
         the sections that need every engine say so).
     scenarios : dict of str -> xarray.Dataset, optional
-        The study under declared scenarios (:class:`stackup.study.compare.Comparison`).
+        The study under declared scenarios (:class:`stackup.comparison.Comparison`).
     sensitivity : xarray.Dataset, optional
-        Contributions of the inputs (:func:`stackup.study.compare.sensitivity_dataset`).
+        Contributions of the inputs (:func:`stackup.comparison.sensitivity_dataset`).
     tails : xarray.Dataset, optional
-        Tail estimates beyond the window (:func:`stackup.study.compare.tails_dataset`),
+        Tail estimates beyond the window (:func:`stackup.comparison.tails_dataset`),
         used by the ranking where too few bearings are counted outside.
     dataset_file : str, optional
         Name of the saved dataset, quoted in the report.
@@ -92,8 +96,6 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
     pathlib.Path
         The markdown report.
     """
-    from ..rank import rank as rank_schemes
-
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     scenarios = scenarios or {}
@@ -149,9 +151,6 @@ def _design_section(ds, ranking):
     """The designed scheme beside the ISO scheme it started from: what changed, why, and how it did."""
     if "design" not in ds.attrs:
         return []
-    from ..schemes import from_dict
-    from ..study.inputs import load_inputs
-
     record = json.loads(ds.attrs["design"])
     name, start = ds.attrs["designed_scheme"], record["start"]
     params = json.loads(ds.attrs["study"])
@@ -528,8 +527,6 @@ def _plan_section(ds):
     if kept_summaries(ds):
         return _section("Planning: shells per grade", "Planning needs each engine's shell demand: run the study with "
                         "`keep=\"everything\"` (the summaries keep only the totals in the grade usage below).")
-    from ..plan import plan as plan_grades
-
     frame = plan_grades(ds, volume=10_000, service_level=0.99)
     rows = [{"scheme": scheme, "grade": grade,
              "demand per 1000 engines": f"{r.demand_per_1000:.0f} [{r.demand_per_1000_lo:.0f}, {r.demand_per_1000_hi:.0f}]",

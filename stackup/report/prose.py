@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 
 from ..film.orbit import ECCENTRICITY_LIMIT
+from ..life import levanov_method1
 from ..stats import proportion_ci
 from ..study.failures import FailureCount
 from ..study.schema import flag
@@ -409,8 +410,6 @@ def _life_bias(ds):
     films = films[np.isfinite(films)]
     if not films.size or error <= 0:
         return ""
-    from ..life import levanov_method1
-
     wear = json.loads(ds.attrs["wear"])
     h = float(np.median(films))
     lives = levanov_method1(np.array([h, h / (1 + error)]), h_lim_cr=wear["critical_film_m"],

@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 
 from ..assembly import STATUS
+from ..life import ALPHA_SCUFFING
 from ..stats import mean_half_width, proportion_ci, quantile_ci
 from ..study import summaries
 from ..study.schema import flag
@@ -186,8 +187,6 @@ def film_summary(ds):
     the engines with one of them, whose life (their weakest bearing's) is
     not a number either (``engines_left_out``).
     """
-    from ..life import ALPHA_SCUFFING
-
     life_target_hours = float(ds.life_target) / 3600
     rows = []
     for i, name in enumerate(ds.scheme.values):

@@ -8,10 +8,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .._random import seed_sequence
 from ..film.cycle import cheapest_film_method
-from ..scenarios import apply as apply_scenario
+from .scenario import apply as apply_scenario
 from .inputs import digest, load_inputs
 from .pilot import pilot_parts, shell_plan
 

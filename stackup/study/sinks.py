@@ -14,7 +14,7 @@ import numpy as np
 import xarray as xr
 
 from ..film.cycle import film_method_errors
-from .. import __version__
+from .._version import __version__
 from ..tolerances import process_mean
 from . import schema
 from . import summaries as summarise

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .damage import damaged_state, named_reads
 from .schema import LABEL_DTYPE
 
 #: How string coordinates are stored: variable-length UTF-8, the string type Zarr 3 specifies.
@@ -134,8 +135,6 @@ def _read_array(array, path):
     try:
         return array[...]
     except Exception as error:
-        from .damage import damaged_state
-
         raise damaged_state(path, array.path, error) from error
 
 
@@ -180,8 +179,6 @@ def open_study(path, *, group=None):
     chunk that cannot be read raises :class:`~stackup.study.damage.DamagedStore`
     naming it and how to recover.
     """
-    from .damage import named_reads
-
     ds = named_reads(xr.open_zarr(Path(path), group=group, consolidated=False, zarr_format=3, chunks=None), path, group)
     labels = {}
     for name, var in ds.data_vars.items():

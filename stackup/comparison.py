@@ -9,12 +9,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 import xarray as xr
 
-from .. import _validate as check
-from ..scenarios import DECLARED
-from ..sensitivity import sobol
-from . import ISO_SCHEMES, Study
-from .inputs import load_inputs, scheme_text
-from .schedule import local_cluster
+from . import _validate as check
+from .design import design as design_scheme
+from .design.estimate import outside_share
+from .engines import load_engine
+from .rank import MIN_COUNTED, counted_outside, rank
+from .scenarios import DECLARED
+from .schemes import load as load_scheme
+from .sensitivity import sobol
+from .study import ISO_SCHEMES, Study
+from .study.inputs import load_inputs, scheme_text
+from .study.schedule import local_cluster
+from .tail import clearance_tail
 
 #: Engines of the mechanical chain in a scenario that disturbs it (misalignment); the
 #: clearance-only scenarios run no mechanics.
@@ -96,8 +102,6 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     log = log or (lambda line: None)
     designed = None
     if design is not None:
-        from ..design import design as design_scheme
-
         log("design: a scheme for the engine and its window (stackup.design)")
         designed = design_scheme(engine, window=study_options.get("window"), scenarios=scenarios, seed=seed,
                                  **design)
@@ -116,8 +120,6 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     if designed is not None:
         ds.attrs.update(designed_scheme=designed.scheme.name, design=json.dumps(design_record(designed)))
     engine_used, loaded = load_inputs(study.files, study.schemes)
-    from ..rank import MIN_COUNTED, counted_outside
-
     counted = counted_outside(ds)
     few = [s for s in loaded if counted[s.name] < MIN_COUNTED]
     log(f"tails: shares beyond the design window with the shells integrated out ({len(few)} schemes with fewer than "
@@ -158,8 +160,6 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
     on (output, scheme, input): ``S1``, ``ST`` and their 95 % bootstrap
     bounds ``*_lo``, ``*_hi``; NaN where an output was not analysed.
     """
-    from ..rank import rank
-
     params = json.loads(ds.attrs["study"])
     stored_engine, loaded = load_inputs(json.loads(ds.attrs["input_files"]), params["schemes"])
     engine = stored_engine if engine is None else engine
@@ -218,9 +218,6 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     the share outside the window and its interval (``tail_outside_share``,
     ``tail_outside_interval``: the two edges from the same samples).
     """
-    from ..engines import load_engine
-    from ..schemes import load as load_scheme
-
     check.one_of("method", method, ("conditional", "splitting"))
     engine = load_engine(engine)
     window = engine.clearance_window if window is None else window
@@ -231,16 +228,12 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     outside, outside_interval = np.full(len(loaded), np.nan), np.full((len(loaded), 2), np.nan)
     for i, scheme in enumerate(loaded):
         if method == "conditional":
-            from ..design.estimate import outside_share
-
             r = outside_share(engine, scheme, window=window, seed=seed, samples=TAIL_SAMPLES, n_engines=TAIL_ENGINES)
             shares[i], errors[i] = (r.below, r.above), (r.below_error, r.above_error)
             interval[i] = r.below_interval, r.above_interval
             outside[i], outside_interval[i] = r.outside, r.outside_interval
             cost[i] = r.samples * r.engines * engine.main_bearings
             continue
-        from ..tail import clearance_tail
-
         for j, side in enumerate(sides):
             if not np.isfinite(window[j]) or (side == "lower" and window[j] <= 0):
                 continue
