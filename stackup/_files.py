@@ -119,6 +119,18 @@ class Table:
         value = self.get(name, required=required)
         return Table({} if value is None else value, self.where, self.key(name))
 
+    def optional(self, name):
+        """The sub-table ``name`` as a Table, or None where the file has none (a valid key either way)."""
+        value = self.get(name)
+        return None if value is None else Table(value, self.where, self.key(name))
+
+    def source(self, name):
+        """A required text saying where numbers come from; an empty one is refused."""
+        value = self.text(name, required=True)
+        if not value.strip():
+            raise ValueError(f"{self._at(name)}: empty; say where the numbers come from")
+        return value
+
     def text(self, name, default=None, *, required=False, options=None):
         """A text value, optionally one of ``options``."""
         value = self.get(name, default, required=required)
