@@ -556,7 +556,7 @@ def _targets(top, *, scale, units, journal):
 
 
 def _crank(top, *, scale, units, bearings, extra):
-    """The [crank] table (crank train, loads, beam) with [bearing_law] and [oil] (only the mechanical chain reads them)."""
+    """The [crank] table (crank train, loads, beam), with [bearing_law] and [oil]: the mechanical chain's data."""
     t = top.table("crank")
     key = f"{t.where}, key crank"
     length = dict(scale=scale, units=units)

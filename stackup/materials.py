@@ -88,7 +88,10 @@ def get(material, *, field="material"):
 
 @dataclass(frozen=True)
 class Known:
-    """A declared check (:func:`stackup._validate.validated`): a known material's name, or a Material; gives the Material."""
+    """A declared check (:func:`stackup._validate.validated`): a known material's name, or a Material.
+
+    Gives the Material.
+    """
 
     def __call__(self, field, value):
         return get(value, field=field)

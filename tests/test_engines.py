@@ -110,3 +110,15 @@ def test_spec_arguments_are_those_of_the_fit_functions():
     ext = press_fit_extremes(housing_bore=50.01e-3, shell_wall=1.98e-3, crush_height=0.08e-3,
                              **e.press_fit.extremes_kwargs())
     assert ext.lowest_pressure_temperature == -25.0 and ext.highest_stress_temperature == 130.0
+
+
+@pytest.mark.parametrize("change, message", [
+    ({'housing_material = "nodular-cast-iron"': 'housing_material = "unobtainium"'},
+     r"engine file 'engine.toml', key press_fit.housing_material: 'unobtainium' is not one of 'aluminium'"),
+    ({"firing_order = [1, 3, 4, 2]": "firing_order = [1, 3, 3, 2]"},
+     r"engine file 'engine.toml', key crank.firing_order: \[1, 3, 3, 2\] is not a permutation"),
+    ({'grade = "SAE-5W-30"': 'grade = "SAE-99"'}, r"key oil.grade: 'SAE-99' is not one of"),
+])
+def test_names_in_an_engine_file_are_checked_with_the_file_and_key(tmp_path, change, message):
+    with pytest.raises(ValueError, match=message):
+        load_engine(_engine_file(tmp_path, change))

@@ -45,7 +45,8 @@ def _at(values, i):
 
 @njit(cache=True, parallel=True)
 def press_fit(n, bearings, materials, options):
-    """:class:`Bearings`, :class:`Materials`, :class:`Options` in; (p, stress, swell, bore, shell_bore, clearance, loss) out.
+    """Packed :class:`Bearings`, :class:`Materials`, :class:`Options` in (n bearings); arrays out:
+    (p, stress, swell, bore, shell_bore, clearance, loss).
 
     The steel-equivalent wall, the lined ring's expansion and the wall's
     thermal thickening are formed per bearing as in the numpy twin

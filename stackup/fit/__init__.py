@@ -70,15 +70,15 @@ class PressFit:
 
 
 #: An operating or assembly temperature the press-fit model is meant for [degC].
-TEMPERATURE = InRange(-60.0, 300.0, unit=" degC")
+_TEMPERATURE = InRange(-60.0, 300.0, unit=" degC")
 
 #: The checks of the arguments :func:`press_fit` and :func:`press_fit_extremes` share.
-CHECKS = dict(housing_bore=Positive(), housing_outer=Positive(), shell_wall=Positive(),
-              crush_height=Positive(zero=True), bearing_width=Positive(), check_bore=Positive(),
-              check_stress=InRange(0.0, 2e9, lo_open=True, unit=" Pa"), lining_thickness=Positive(zero=True),
-              assembly_temperature=TEMPERATURE, housing_material=materials.Known(),
-              shell_material=materials.Known(), journal_material=materials.Known(),
-              lining_material=OrNone(materials.Known()), method=OneOf(METHODS))
+_CHECKS = dict(housing_bore=Positive(), housing_outer=Positive(), shell_wall=Positive(),
+               crush_height=Positive(zero=True), bearing_width=Positive(), check_bore=Positive(),
+               check_stress=InRange(0.0, 2e9, lo_open=True, unit=" Pa"), lining_thickness=Positive(zero=True),
+               assembly_temperature=_TEMPERATURE, housing_material=materials.Known(),
+               shell_material=materials.Known(), journal_material=materials.Known(),
+               lining_material=OrNone(materials.Known()), method=OneOf(METHODS))
 
 
 def _check_bore_given(args):
@@ -121,11 +121,11 @@ def _rings_nest(args):
 
 
 #: The checks across arguments, in the order they run.
-RELATIONS = (_check_bore_given, _lining_material_given, _inputs_broadcast, _rings_nest)
+_RELATIONS = (_check_bore_given, _lining_material_given, _inputs_broadcast, _rings_nest)
 
 
 @renamed(length="bearing_width")
-@validated(relations=RELATIONS, temperature=TEMPERATURE, journal_d=Positive(), **CHECKS)
+@validated(relations=_RELATIONS, temperature=_TEMPERATURE, journal_d=Positive(), **_CHECKS)
 def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, bearing_width, check_bore=None,
               housing_material="steel", shell_material="steel", lining_thickness=0.0, lining_material=None,
               temperature=20.0, assembly_temperature=20.0, check_stress=100e6, journal_d=None,
@@ -258,7 +258,7 @@ class PressFitExtremes:
 
 def _temperatures(field, value):
     """Temperatures to check: a non-empty 1-D sequence, each one the model is meant for [degC]."""
-    temps = np.atleast_1d(TEMPERATURE(field, value))
+    temps = np.atleast_1d(_TEMPERATURE(field, value))
     if temps.ndim != 1 or temps.size == 0:
         raise ValueError(f"{field}: {value!r} is not a non-empty sequence of temperatures")
     return temps
@@ -274,7 +274,7 @@ def _no_single_temperature(args):
 
 
 @renamed(length="bearing_width")
-@validated(relations=(_no_single_temperature, *RELATIONS), temperatures=_temperatures, **CHECKS)
+@validated(relations=(_no_single_temperature, *_RELATIONS), temperatures=_temperatures, **_CHECKS)
 def press_fit_extremes(*, temperatures, housing_bore, housing_outer, shell_wall, crush_height, bearing_width,
                        check_bore=None, housing_material="steel", shell_material="steel", lining_thickness=0.0,
                        lining_material=None, assembly_temperature=20.0, check_stress=100e6,

@@ -291,3 +291,48 @@ def test_old_name_length_still_gives_the_bearing_width_with_a_warning():
     np.testing.assert_array_equal(old.highest_shell_stress, new.shell_stress)
     with pytest.raises(TypeError, match=r"give bearing_width= \(the old name length= is deprecated\), not both"):
         press_fit(**BASE, length=22e-3)
+
+
+def test_trusted_callers_get_the_same_numbers_without_the_checks():
+    # the study's chain may run in trusted(): the body then sees the caller's values, not the checked arrays
+    from stackup._validate import trusted
+
+    kw = dict(BASE, housing_bore=np.array([50.004e-3, 50.012e-3]), crush_height=[0.07e-3, 0.09e-3],
+              lining_thickness=0.3e-3, lining_material="aluminium-tin", temperature=95.0)
+    checked = fit(**kw)
+    extremes = press_fit_extremes(temperatures=(-20.0, 20.0, 130.0), **{k: v for k, v in kw.items()
+                                                                          if k not in ("journal_d", "temperature")})
+    with trusted():
+        raw = fit(**kw)
+        raw_extremes = press_fit_extremes(temperatures=(-20.0, 20.0, 130.0),
+                                          **{k: v for k, v in kw.items() if k not in ("journal_d", "temperature")})
+    for name in ("contact_pressure", "shell_stress", "housing_swell", "shell_bore", "clearance", "loss_of_fit"):
+        np.testing.assert_array_equal(getattr(raw, name), getattr(checked, name))
+    for name in ("highest_shell_stress", "highest_stress_temperature", "lowest_contact_pressure",
+                 "lowest_pressure_temperature", "loss_of_fit"):
+        np.testing.assert_array_equal(getattr(raw_extremes, name), getattr(extremes, name))
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        ({"bearing_width": 0.0}, r"bearing_width: 0.0 is not valid; must be > 0"),
+        ({"housing_bore": np.full(3, 50e-3), "crush_height": np.full(2, 0.1e-3)},
+         r"press_fit: the array inputs do not broadcast together: shapes \(3,\), \(\), \(\), \(\), \(2,\)"),
+        ({"journal_material": "unobtainium"}, r"journal_material: 'unobtainium' is not a known material"),
+        ({"lining_thickness": 0.3e-3, "lining_material": "unobtainium"},
+         r"lining_material: 'unobtainium' is not a known material"),
+    ],
+)
+def test_declared_checks_name_the_argument(kw, message):
+    with pytest.raises(ValueError, match=message):
+        fit(**kw)
+
+
+def test_extremes_refuse_a_journal_and_unknown_arguments():
+    with pytest.raises(ValueError, match=r"journal_d: not an argument of press_fit_extremes"):
+        press_fit_extremes(temperatures=[20.0], journal_d=46e-3, **EXTREME)
+    with pytest.raises(TypeError, match=r"unexpected keyword argument\(s\) \['colour'\]"):
+        press_fit_extremes(temperatures=[20.0], colour="red", **EXTREME)
+    with pytest.raises(ValueError, match=r"temperatures: \[\] is not a non-empty sequence of temperatures"):
+        press_fit_extremes(temperatures=[], **EXTREME)
