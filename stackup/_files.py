@@ -19,6 +19,8 @@ import os
 import tomllib
 from pathlib import Path
 
+import numpy as np
+
 from . import _validate as check
 
 #: Length units a file may declare, in m.
@@ -162,6 +164,22 @@ class Table:
             lb, rb = "(" if lo_open else "[", ")" if hi_open else "]"
             raise ValueError(f"{self._at(name)}: {value:g}{unit} is outside the valid range {lb}{lo:g}, {hi:g}{rb}{unit}")
         return value
+
+    def numbers(self, name, default=None, *, required=False, rows=False):
+        """Finite numbers as a float array: a list of them (with ``rows``, also a list of such lists)."""
+        value = self.get(name, default, required=required)
+        if value is None:
+            return None
+
+        def number(v):
+            return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+        def entry(v):
+            return number(v) or rows and isinstance(v, list) and all(map(number, v))
+
+        if not isinstance(value, list) or not all(map(entry, value)) or len({np.shape(v) for v in value}) > 1:
+            raise ValueError(f"{self._at(name)}: {value!r} is not a list of numbers")
+        return check.finite(self._at(name), value)
 
     def flag(self, name, default=None, *, required=False):
         """A true/false value (a number or the text "false" is refused, never read as true)."""

@@ -292,22 +292,6 @@ def load_engine(name_or_path, *, files=None):
     return _engine(Table(parse_toml(files["text"], where=where), where), name=files["name"], extra=files["extra"])
 
 
-def _numbers(t, name, *, required=False, default=None):
-    """A list of numbers (or of lists of numbers) of table ``t`` as read; text, true/false and tables refused."""
-    value = t.get(name, default, required=required)
-    if value is None:
-        return None
-
-    def ok(v, depth):
-        if isinstance(v, list) and depth < 2:
-            return all(ok(x, depth + 1) for x in v)
-        return depth > 0 and isinstance(v, (int, float)) and not isinstance(v, bool)
-
-    if not ok(value, 0):
-        raise ValueError(f"{t.where}, key {t.key(name)}: {value!r} is not a list of numbers")
-    return value
-
-
 def _dimension(top, key, *, scale, units, plausible, what, required=True):
     """A part's dimension: drawing limits, process, gauge, shared share, form error, bolt scatter, source."""
     t = top.table(key, required=required)
@@ -484,8 +468,7 @@ def _oil_feed(top, *, scale, units, bearing_width):
     pressure = t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa")
     source = t.source("source")
     if kind == "groove":
-        arc = _numbers(t, "groove_arc", default=[90.0, 270.0])
-        arc = check.finite(f"{key}.groove_arc", arc)
+        arc = t.numbers("groove_arc", [90.0, 270.0])
         if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
             raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
                              f"start < end <= start + 360")
@@ -535,11 +518,11 @@ def _targets(top, *, scale, units, journal):
                        what="operating clearance", increasing=True)
     if window is not None:
         out["clearance_window"] = tuple(window)
-    ratio = _numbers(t, "relative_clearance")
+    ratio = t.numbers("relative_clearance")
     if ratio is not None:
         # psi = C / D of the journal's nominal size (its lower drawing limit)
         if len(ratio) != 2:
-            raise ValueError(f"{key}.relative_clearance: {ratio!r} is not a [lower, upper] pair")
+            raise ValueError(f"{key}.relative_clearance: {ratio.tolist()!r} is not a [lower, upper] pair")
         lo, hi = check.limits(f"{key}.relative_clearance", *ratio, unit="")
         if lo <= 0 or hi >= 0.01:
             raise ValueError(f"{key}.relative_clearance: [{lo!r}, {hi!r}] is not a clearance ratio C/D in (0, 0.01) "
@@ -565,7 +548,8 @@ def _crank(top, *, scale, units, bearings, extra):
         raise ValueError(f"{key}.cylinders: {cylinders} cylinders need {cylinders + 1} main bearings, "
                          f"the engine has {bearings} (inline engines only)")
     throws, order = _firing(t, cylinders)
-    inertia = check.positive(f"{key}.section_inertia", _numbers(t, "section_inertia", required=True)) * scale**4
+    inertia = t.numbers("section_inertia", required=True, rows=True)
+    inertia = check.positive(f"{key}.section_inertia", inertia) * scale**4
     if inertia.shape not in ((cylinders,), (cylinders, 2)):
         raise ValueError(f"{key}.section_inertia: shape {inertia.shape}; give ({cylinders},) or ({cylinders}, 2)")
     if np.any((inertia < 1e-10) | (inertia > 1e-1)):  # a 10 mm to a 1 m steel journal
@@ -615,7 +599,7 @@ def _kinematics(t, *, scale, units):
 def _firing(t, cylinders):
     """Throw angles [deg] and firing order of table [crank], one per cylinder, that fire one cylinder at a time."""
     key = f"{t.where}, key crank"
-    throws = tuple(float(a) for a in check.finite(f"{key}.throw_angles", _numbers(t, "throw_angles", required=True)))
+    throws = tuple(float(a) for a in t.numbers("throw_angles", required=True))
     order = t.get("firing_order", required=True)
     if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
         raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")

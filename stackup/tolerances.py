@@ -587,26 +587,34 @@ def _mixture_from_spec(items, *, lo, hi, scale, field):
     return Mixture(components, weights)
 
 
+def _whole_number(field, value):
+    """A whole number from a file (true/false and 2.0 refused)."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ValueError(f"{field}: {value!r} is not a whole number")
+    return value
+
+
+def _known_keys(field, spec, known):
+    unknown = set(spec) - known
+    if unknown:
+        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+
+
 def form_from_spec(spec, *, scale, field):
     """Build a :class:`FormError` from a TOML table (lengths in file units times ``scale``), or None."""
     if spec is None:
         return None
     spec = _spec_table(field, spec)
-    known = {"ovality", "taper", "planes", "directions"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    _known_keys(field, spec, {"ovality", "taper", "planes", "directions"})
+    planes = spec.get("planes", [0.5])
+    if not isinstance(planes, list):
+        raise ValueError(f"{field}.planes: {planes!r} is not a list of axial positions")
+    values = dict(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
+                  taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
+                  planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
+                  directions=_whole_number(f"{field}.directions", spec.get("directions", 1)))
     try:
-        planes = spec.get("planes", [0.5])
-        if not isinstance(planes, list):
-            raise ValueError(f"planes: {planes!r} is not a list of axial positions")
-        directions = spec.get("directions", 1)
-        if isinstance(directions, bool) or not isinstance(directions, int):
-            raise ValueError(f"directions: {directions!r} is not a whole number")
-        return FormError(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
-                         taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
-                         planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
-                         directions=directions)
+        return FormError(**values)
     except ValueError as err:
         raise ValueError(f"{field}: {err}") from None
 
@@ -614,18 +622,16 @@ def form_from_spec(spec, *, scale, field):
 def gauge_from_spec(spec, *, scale, field):
     """Build a :class:`Gauge` from a TOML table (lengths in file units times ``scale``)."""
     spec = _spec_table(field, {} if spec is None else spec)
-    known = {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings", "combine"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    _known_keys(field, spec, {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings",
+                              "combine"})
     for key in ("bias", "repeatability", "resolution"):
         if key in spec:
             spec[key] = _small_length(f"{field}.{key}", spec[key], scale)
     for key in ("temperature", "expansion_mismatch"):
         if key in spec:
             spec[key] = _scalar(f"{field}.{key}", spec[key])
-    if "readings" in spec and (isinstance(spec["readings"], bool) or not isinstance(spec["readings"], int)):
-        raise ValueError(f"{field}.readings: {spec['readings']!r} is not a whole number")
+    if "readings" in spec:
+        _whole_number(f"{field}.readings", spec["readings"])
     if "combine" in spec and not isinstance(spec["combine"], str):
         raise ValueError(f"{field}.combine: {spec['combine']!r} is not text")
     try:

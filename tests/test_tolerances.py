@@ -198,3 +198,10 @@ def test_capability_side_is_declared_and_a_file_names_its_key():
     with pytest.raises(ValueError, match=r"housing_bore.sigma: 0 is not valid; must be > 0"):
         process_from_spec({"distribution": "tool-wear", "start": 50.004, "end": 50.01, "sigma": 0},
                           lo=50.000e-3, hi=50.018e-3, scale=1e-3, field="housing_bore")
+
+
+def test_form_spec_names_each_key_once():
+    with pytest.raises(ValueError, match=r"^form.directions: 2.0 is not a whole number$"):
+        form_from_spec({"directions": 2.0}, scale=1e-3, field="form")
+    with pytest.raises(ValueError, match=r"^form.ovality: 1 is not a plausible gauge or form error"):
+        form_from_spec({"ovality": 1.0}, scale=1e-3, field="form")
