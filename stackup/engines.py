@@ -32,7 +32,7 @@ from . import materials
 from .crank import BellakhdharLaw
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
-from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
+from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
 from ._files import Table, locations, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
@@ -606,9 +606,10 @@ def _firing(t, cylinders):
     order = tuple(order)
     if len(throws) != cylinders or len(order) != cylinders:
         raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
-    try:
+    try:  # both checked here, the file's boundary, also where a caller trusts its inputs
+        check_firing_order(throws, order)
         firing_offsets(throws, order)
-    except ValueError as err:  # its message starts with the key, firing_order
+    except ValueError as err:  # the message starts with the key, firing_order
         raise ValueError(f"{key}.{err}") from None
     return throws, order
 

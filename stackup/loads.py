@@ -157,11 +157,15 @@ def pin_load(pin_angle, pressure, kinematics, omega):
     return np.stack([f_piston - unbalance * np.cos(phi), f_piston * tan_beta + unbalance * s], axis=-1)
 
 
+def check_firing_order(throw_angles, firing_order):
+    """Refuse a firing order that does not name each cylinder (one per throw angle) once."""
+    n = np.size(throw_angles)
+    if sorted(int(c) - 1 for c in firing_order) != list(range(n)):
+        raise ValueError(f"firing_order: {list(firing_order)!r} is not a permutation of cylinders 1..{n}")
+
+
 def _cylinders_fire_once(args):
-    """The firing order names each cylinder once (a relation of :func:`firing_offsets` and :func:`pin_loads`)."""
-    n = np.size(args["throw_angles"])
-    if sorted(int(c) - 1 for c in args["firing_order"]) != list(range(n)):
-        raise ValueError(f"firing_order: {list(args['firing_order'])!r} is not a permutation of cylinders 1..{n}")
+    check_firing_order(args["throw_angles"], args["firing_order"])
 
 
 @validated(relations=(_cylinders_fire_once,), throw_angles=Finite())

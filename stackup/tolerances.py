@@ -551,7 +551,11 @@ def process_from_spec(spec, *, lo, hi, scale, field):
     if kind == "normal" and "cpk" in spec:
         cpk = _positive_scalar(f"{field}.cpk", spec.pop("cpk"))
         cp = spec.pop("cp", None)
-        cp = None if cp is None else _scalar(f"{field}.cp", cp)
+        cp = None if cp is None else _positive_scalar(f"{field}.cp", cp)
+        try:  # checked here, the file's boundary, also where a caller trusts its inputs
+            _cp_not_below_cpk({"cp": cp, "cpk": cpk})
+        except ValueError as err:
+            raise ValueError(f"{field}.{err}") from None
         side = check.one_of(f"{field}.side", spec.pop("side", "upper"), SIDES)
         process = Normal.from_capability(lo, hi, cpk=cpk, cp=cp, side=side)
     elif kind == "normal":

@@ -122,3 +122,15 @@ def test_spec_arguments_are_those_of_the_fit_functions():
 def test_names_in_an_engine_file_are_checked_with_the_file_and_key(tmp_path, change, message):
     with pytest.raises(ValueError, match=message):
         load_engine(_engine_file(tmp_path, change))
+
+
+def test_an_engine_file_is_checked_also_where_the_caller_trusts_its_inputs(tmp_path):
+    # a file is its own boundary: a study that trusts its checked arguments still gets a bad file refused
+    from stackup._validate import trusted
+
+    path = _engine_file(tmp_path, {"firing_order = [1, 3, 4, 2]": "firing_order = [1, 3, 3, 2]"})
+    with trusted(), pytest.raises(ValueError, match=r"key crank.firing_order: \[1, 3, 3, 2\] is not a permutation"):
+        load_engine(path)
+    path = _engine_file(tmp_path, {"cpk = 1.33": "cpk = 1.33, cp = 1.0"})
+    with trusted(), pytest.raises(ValueError, match=r"process.cp: 1.0 is below cpk 1.33"):
+        load_engine(path)
