@@ -559,8 +559,9 @@ def _crank(top, *, scale, units, bearings, extra):
     modulus = materials.get(_material(t, "crank_material")).modulus
     spec = CrankSpec(
         kinematics=_kinematics(t, **length),
-        combustion=Combustion(compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=50.0, lo_open=True),
-                              peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa")),
+        combustion=_named(t, Combustion, compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=40.0,
+                                                                    lo_open=True),
+                          peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa")),
         throw_angles=throws, firing_order=order,
         speed=t.number("speed", required=True, lo=10.0, hi=3e4, unit=" rpm") * 2 * np.pi / 60,
         spans=np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
@@ -588,7 +589,8 @@ def _kinematics(t, *, scale, units):
     stroke = t.length("stroke", required=True, **length, what="stroke")
     unbalance = t.number("counterweight_share", 0.0, lo=0.0, hi=2.0)
     rotating = t.number("rotating_mass", required=True, lo=0.0, hi=1e4, unit=" kg")
-    return Kinematics(
+    return _named(
+        t, Kinematics,
         cylinder_bore=t.length("cylinder_bore", required=True, **length, what="cylinder bore"),
         stroke=stroke,
         conrod=t.length("conrod", required=True, **length, what="connecting rod"),
@@ -606,12 +608,18 @@ def _firing(t, cylinders):
     order = tuple(order)
     if len(throws) != cylinders or len(order) != cylinders:
         raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
-    try:  # both checked here, the file's boundary, also where a caller trusts its inputs
-        check_firing_order(throws, order)
-        firing_offsets(throws, order)
-    except ValueError as err:  # the message starts with the key, firing_order
-        raise ValueError(f"{key}.{err}") from None
+    # both checked here, the file's boundary, also where a caller trusts its inputs
+    _named(t, check_firing_order, throws, order)
+    _named(t, firing_offsets, throws, order)
     return throws, order
+
+
+def _named(t, function, *args, **kwargs):
+    """``function(*args, **kwargs)``, a refusal named with the file and table ``t`` (its message starts with the key)."""
+    try:
+        return function(*args, **kwargs)
+    except ValueError as err:
+        raise ValueError(f"{t.where}, key {t.path}.{err}") from None
 
 
 def _pressure_trace(t, extra):
