@@ -191,7 +191,7 @@ def firing_offsets(throw_angles, firing_order):
             fire[cyl] = candidates[np.argmin(gaps)]
         last = fire[cyl]
     spacing = np.sort(np.mod(fire - fire[order[0]], 720.0))
-    if len(set(np.round(spacing, 6))) != n:  # found by placing them: two throws of one angle, fired in turn
+    if len(set(np.round(spacing, 6))) != n:  # only placing the firings shows it, so the body checks
         raise ValueError(f"firing_order: {list(firing_order)!r} fires two cylinders at once with throws {list(throw)}")
     return np.mod(fire - fire[order[0]], 720.0)
 
@@ -221,6 +221,8 @@ def read_pressure_trace(path, *, name=None):
 
 def _trace(field, value):
     """A pressure trace (cycle angles [deg], pressures [Pa]): two arrays of finite numbers."""
+    if len(value) != 2:
+        raise ValueError(f"{field}: {len(value)} arrays; give (cycle angles [deg], pressures [Pa])")
     return tuple(finite(field, v) for v in value)
 
 
