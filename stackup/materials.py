@@ -77,10 +77,21 @@ def load(path):
     return sorted(entries)
 
 
-def get(material):
-    """A :class:`Material` from its name (or the Material itself)."""
+def get(material, *, field="material"):
+    """A :class:`Material` from its name (or the Material itself); ``field`` names the argument in messages."""
     if isinstance(material, Material):
         return material
     if material not in _REGISTRY:
-        raise ValueError(f"material: {material!r} is not a known material ({', '.join(available())})")
+        raise ValueError(f"{field}: {material!r} is not a known material ({', '.join(available())})")
     return _REGISTRY[material]
+
+
+@dataclass(frozen=True)
+class Known:
+    """A declared check (:func:`stackup._validate.validated`): a known material's name, or a Material.
+
+    Gives the Material.
+    """
+
+    def __call__(self, field, value):
+        return get(value, field=field)

@@ -22,11 +22,21 @@ import numpy as np
 from scipy import special, stats
 
 from . import _validate as check
+from ._validate import OneOf, Positive, validated
 
 #: Points of the tabulated CDF used to invert processes without a closed-form
-#: quantile (mixtures, tool wear). Over +-10 sigma this spacing keeps the
-#: interpolated quantile within 1e-5 sigma of the exact one (tested).
+#: quantile (mixtures, tool wear), over +-10 sigma: fine enough for the
+#: quantile to invert the CDF within the tolerance tests/test_tolerances.py asserts.
 _QUANTILE_GRID = 8193
+
+
+#: Sides a process mean may sit off the middle of its tolerance.
+SIDES = ("upper", "lower")
+
+
+def _cp_not_below_cpk(args):
+    if args["cp"] is not None and float(args["cp"]) < float(args["cpk"]):
+        raise ValueError(f"cp: {float(args['cp'])!r} is below cpk {float(args['cpk'])!r}; cp >= cpk always")
 
 
 @dataclass(frozen=True)
@@ -37,6 +47,7 @@ class Normal:
     sigma: float
 
     @classmethod
+    @validated(relations=(_cp_not_below_cpk,), cpk=Positive(), cp=Positive(), side=OneOf(SIDES))
     def from_capability(cls, lo, hi, *, cpk, cp=None, side="upper"):
         r"""Normal process from capability indices over drawing limits [lo, hi].
 
@@ -45,11 +56,8 @@ class Normal:
         ("upper" or "lower"). Without ``cp`` the process is centred
         (:math:`C_p = C_{pk}`).
         """
-        cpk = float(check.positive("cpk", cpk))
-        cp = cpk if cp is None else float(check.positive("cp", cp))
-        if cp < cpk:
-            raise ValueError(f"cp: {cp!r} is below cpk {cpk!r}; cp >= cpk always")
-        check.one_of("side", side, ("upper", "lower"))
+        cpk = float(cpk)
+        cp = cpk if cp is None else float(cp)
         sigma = (hi - lo) / (6.0 * cp)
         offset = 3.0 * sigma * (cp - cpk)
         mid = 0.5 * (lo + hi)
@@ -505,6 +513,14 @@ def _small_length(field, value, scale):
     return v * scale
 
 
+def _positive_scalar(field, value):
+    """One number > 0 from a file (as :func:`_scalar`)."""
+    v = _scalar(field, value)
+    if v <= 0:
+        raise ValueError(f"{field}: {v:g} is not valid; must be > 0")
+    return v
+
+
 def process_from_spec(spec, *, lo, hi, scale, field):
     """Build a process from a TOML table (lengths in file units times ``scale`` -> m).
 
@@ -524,31 +540,29 @@ def process_from_spec(spec, *, lo, hi, scale, field):
     kind = check.one_of(f"{field}.distribution", spec.pop("distribution", "normal"), _DISTRIBUTIONS)
     shift = _scalar(f"{field}.mean_shift", spec.pop("mean_shift", 0.0)) * scale
 
-    def length(key, default=None):
+    def length(key, default=None, *, positive=False):
         if key not in spec:
             if default is None:
                 raise ValueError(f"{field}: missing key '{key}' for distribution '{kind}'")
             return default
-        return _scalar(f"{field}.{key}", spec.pop(key)) * scale
+        return (_positive_scalar if positive else _scalar)(f"{field}.{key}", spec.pop(key)) * scale
 
-    def spread(key):
-        value = length(key)
-        if value <= 0:
-            raise ValueError(f"{field}.{key}: {value / scale!r} is not valid; must be > 0")
-        return value
-
-    if kind == "normal":
-        if "cpk" in spec:
-            cpk = _scalar(f"{field}.cpk", spec.pop("cpk"))
-            cp = spec.pop("cp", None)
-            cp = None if cp is None else _scalar(f"{field}.cp", cp)
-            if cpk <= 0:
-                raise ValueError(f"{field}.cpk: {cpk:g} is not valid; must be > 0")
-            process = Normal.from_capability(lo, hi, cpk=float(cpk), cp=cp, side=spec.pop("side", "upper"))
-        else:
-            process = Normal(length("mean", 0.5 * (lo + hi)), spread("sigma"))
+    middle = 0.5 * (lo + hi)
+    if kind == "normal" and "cpk" in spec:
+        cpk = _positive_scalar(f"{field}.cpk", spec.pop("cpk"))
+        cp = spec.pop("cp", None)
+        cp = None if cp is None else _positive_scalar(f"{field}.cp", cp)
+        try:  # checked here, the file's boundary, also where a caller trusts its inputs
+            _cp_not_below_cpk({"cp": cp, "cpk": cpk})
+        except ValueError as err:
+            raise ValueError(f"{field}.{err}") from None
+        side = check.one_of(f"{field}.side", spec.pop("side", "upper"), SIDES)
+        process = Normal.from_capability(lo, hi, cpk=cpk, cp=cp, side=side)
+    elif kind == "normal":
+        process = Normal(length("mean", middle), length("sigma", positive=True))
     elif kind == "truncated-normal":
-        process = TruncatedNormal(length("mean", 0.5 * (lo + hi)), spread("sigma"), length("lo", lo), length("hi", hi))
+        process = TruncatedNormal(length("mean", middle), length("sigma", positive=True), length("lo", lo),
+                                  length("hi", hi))
         if process.hi <= process.lo:
             raise ValueError(f"{field}: truncation hi {process.hi:.6g} m is not above lo {process.lo:.6g} m")
     elif kind == "uniform":
@@ -556,24 +570,38 @@ def process_from_spec(spec, *, lo, hi, scale, field):
         if process.hi <= process.lo:
             raise ValueError(f"{field}: uniform hi {process.hi:.6g} m is not above lo {process.lo:.6g} m")
     elif kind == "mixture":
-        items = spec.pop("components", None)
-        if items is not None and not (isinstance(items, list) and all(isinstance(c, dict) for c in items)):
-            raise ValueError(f"{field}.components: {items!r} is not a list of tables")
-        if not items:
-            raise ValueError(f"{field}.components: a mixture needs at least one component")
-        weights = tuple(_scalar(f"{field}.components[{i}].weight", c.get("weight", np.nan))
-                        for i, c in enumerate(items))
-        comps = tuple(
-            process_from_spec({k: v for k, v in c.items() if k != "weight"}, lo=lo, hi=hi, scale=scale,
-                              field=f"{field}.components[{i}]")
-            for i, c in enumerate(items)
-        )
-        process = Mixture(comps, weights)
+        process = _mixture_from_spec(spec.pop("components", None), lo=lo, hi=hi, scale=scale, field=field)
     else:
-        process = ToolWear(length("start"), length("end"), spread("sigma"))
+        process = ToolWear(length("start"), length("end"), length("sigma", positive=True))
     if spec:
         raise ValueError(f"{field}: unknown key(s) {sorted(spec)} for distribution '{kind}'")
     return process.shifted(shift) if shift else process
+
+
+def _mixture_from_spec(items, *, lo, hi, scale, field):
+    """A :class:`Mixture` from the ``components`` list of a process table: each a process table with a ``weight``."""
+    if items is not None and not (isinstance(items, list) and all(isinstance(c, dict) for c in items)):
+        raise ValueError(f"{field}.components: {items!r} is not a list of tables")
+    if not items:
+        raise ValueError(f"{field}.components: a mixture needs at least one component")
+    weights = tuple(_scalar(f"{field}.components[{i}].weight", c.get("weight", np.nan)) for i, c in enumerate(items))
+    components = tuple(process_from_spec({k: v for k, v in c.items() if k != "weight"}, lo=lo, hi=hi, scale=scale,
+                                         field=f"{field}.components[{i}]")
+                       for i, c in enumerate(items))
+    return Mixture(components, weights)
+
+
+def _whole_number(field, value):
+    """A whole number from a file (true/false and 2.0 refused)."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ValueError(f"{field}: {value!r} is not a whole number")
+    return value
+
+
+def _known_keys(field, spec, known):
+    unknown = set(spec) - known
+    if unknown:
+        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
 
 
 def form_from_spec(spec, *, scale, field):
@@ -581,21 +609,16 @@ def form_from_spec(spec, *, scale, field):
     if spec is None:
         return None
     spec = _spec_table(field, spec)
-    known = {"ovality", "taper", "planes", "directions"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    _known_keys(field, spec, {"ovality", "taper", "planes", "directions"})
+    planes = spec.get("planes", [0.5])
+    if not isinstance(planes, list):
+        raise ValueError(f"{field}.planes: {planes!r} is not a list of axial positions")
+    values = dict(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
+                  taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
+                  planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
+                  directions=_whole_number(f"{field}.directions", spec.get("directions", 1)))
     try:
-        planes = spec.get("planes", [0.5])
-        if not isinstance(planes, list):
-            raise ValueError(f"planes: {planes!r} is not a list of axial positions")
-        directions = spec.get("directions", 1)
-        if isinstance(directions, bool) or not isinstance(directions, int):
-            raise ValueError(f"directions: {directions!r} is not a whole number")
-        return FormError(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
-                         taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
-                         planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
-                         directions=directions)
+        return FormError(**values)
     except ValueError as err:
         raise ValueError(f"{field}: {err}") from None
 
@@ -603,18 +626,16 @@ def form_from_spec(spec, *, scale, field):
 def gauge_from_spec(spec, *, scale, field):
     """Build a :class:`Gauge` from a TOML table (lengths in file units times ``scale``)."""
     spec = _spec_table(field, {} if spec is None else spec)
-    known = {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings", "combine"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    _known_keys(field, spec, {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings",
+                              "combine"})
     for key in ("bias", "repeatability", "resolution"):
         if key in spec:
             spec[key] = _small_length(f"{field}.{key}", spec[key], scale)
     for key in ("temperature", "expansion_mismatch"):
         if key in spec:
             spec[key] = _scalar(f"{field}.{key}", spec[key])
-    if "readings" in spec and (isinstance(spec["readings"], bool) or not isinstance(spec["readings"], int)):
-        raise ValueError(f"{field}.readings: {spec['readings']!r} is not a whole number")
+    if "readings" in spec:
+        _whole_number(f"{field}.readings", spec["readings"])
     if "combine" in spec and not isinstance(spec["combine"], str):
         raise ValueError(f"{field}.combine: {spec['combine']!r} is not text")
     try:
