@@ -97,7 +97,7 @@ def test_light_alloy_block_is_held_at_the_standards_relative_clearance():
     assert target_clearance_min(engine, 26e-6) == pytest.approx(26e-6, abs=1e-12)
 
 
-@pytest.mark.parametrize("engine", ["rozhdestvensky-4", str(INLINE_SIX)])
+@pytest.mark.parametrize("engine", ["rozhdestvensky-4", "nef-6", str(INLINE_SIX)])
 @pytest.mark.parametrize("name", ISO_SCHEMES)
 def test_adapted_schemes_grade_the_engines_bearings(engine, name):
     """Every adapted scheme grades at least 95 % of the engine's bearings whose parts were not scrapped."""
