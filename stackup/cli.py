@@ -54,10 +54,11 @@ def _compare(args, state):
     import stackup
 
     from .engines import load_engine
+    from .facts import Run, clearance_summary
     from .io import open_comparison, save_comparison
     from .output import prepare_folder
-    from .report import clearance_summary, write_report
-    from .report.prose import run_notes
+    from .report import write_report
+    from .report.verdict import run_notes
     from .scenarios import DECLARED
     from .schemes import load as load_scheme
     from .study import ISO_SCHEMES
@@ -99,7 +100,7 @@ def _compare(args, state):
         stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
                   "        — (no stated range)")
         print(f"  {name:<20} mean {row.mean_um:6.2f} µm  std {row.std_um:5.2f} µm  outside stated {stated}")
-    for note in run_notes(ds):  # stages that failed on some engines, or did not run: said here too
+    for note in run_notes(Run.of(ds)):  # stages that failed on some engines, or did not run: said here too
         print(f"note: {note}")
     print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")
     print(f"verdict: {_verdict_line(folder / 'report.md')}")

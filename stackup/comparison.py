@@ -13,7 +13,8 @@ from . import _validate as check
 from .design import design as design_scheme
 from .design.estimate import outside_share
 from .engines import load_engine
-from .rank import MIN_COUNTED, counted_outside, rank
+from .facts import MIN_COUNTED, counted_outside
+from .rank import rank
 from .scenarios import DECLARED
 from .schemes import load as load_scheme
 from .sensitivity import sobol
@@ -52,7 +53,7 @@ class Comparison:
         Shares of bearings beyond each edge of the design window by
         generalized splitting (:func:`tails_dataset`) for the schemes whose
         study counted too few bearings outside the window
-        (:data:`stackup.rank.MIN_COUNTED`), which the ranking uses.
+        (:data:`stackup.facts.MIN_COUNTED`), which the ranking uses.
     """
 
     dataset: xr.Dataset

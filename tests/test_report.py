@@ -74,43 +74,50 @@ def test_the_command_line_writes_the_report_of_a_saved_comparison_again(comparis
     assert "is not a comparison `stackup compare` saved" in capsys.readouterr().err
 
 
-def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
-    from stackup.rank import rank
-    from stackup.report.prose import verdict
+def _verdict(ds, **ranking):
+    """The verdict of a study dataset alone (no scenarios), as one text."""
+    from stackup.facts import facts
+    from stackup.rank import ranked
+    from stackup.report.verdict import verdict
 
+    known = facts(ds, **ranking)
+    return " ".join(verdict(known, ranked(known.ranking), {}))
+
+
+def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
     ds = comparison.dataset
-    text = " ".join(verdict(ds, rank(ds, window=(1e-6, 2e-6)), {}))
+    text = _verdict(ds, window=(1e-6, 2e-6))
     assert "**No scheme meets the window 1–2 µm:**" in text
-    text = " ".join(verdict(ds, rank(ds), {}))
+    text = _verdict(ds)
     assert "No scheme meets" not in text
 
+
 def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_bearings_do(comparison):
-    from stackup.rank import rank
-    from stackup.report.prose import verdict
     from stackup.study.schema import flag
 
     ds = comparison.dataset
     status = ds.film_status.values
     computed = (status != flag(ds.film_status, "not_computed")) & ds.film_valid.values
     touching = computed & (status == flag(ds.film_status, "edge_contact"))
-    text = " ".join(verdict(ds, rank(ds), {}))
+    text = _verdict(ds)
     assert ("**Edge contact:**" in text) == (touching.sum() >= 0.5 * computed.sum())
     # every bearing touching over a fifth of the cycle: said, with that share
     edged = ds.copy()
     edged["film_status"] = edged.film_status.where(~computed, flag(ds.film_status, "edge_contact"))
     edged["edge_contact_share"] = edged.edge_contact_share.where(~computed, 0.2)
-    text = " ".join(verdict(edged, rank(edged), {}))
+    text = _verdict(edged)
     assert "**Edge contact:** the journal's edge touches its shell in 100 % of each scheme's bearings" in text
     assert "over 20 % of the cycle" in text and "The choice of scheme hardly changes it." in text
     # none touching: nothing said
     clear = ds.copy()
     clear["film_status"] = clear.film_status.where(~computed, flag(ds.film_status, "periodic"))
-    assert "Edge contact" not in " ".join(verdict(clear, rank(clear), {}))
+    assert "Edge contact" not in _verdict(clear)
 
 
 def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(comparison):
+    from stackup.facts import facts
     from stackup.life import levanov_method1
-    from stackup.report.prose import limits_of_validity
+    from stackup.report.methods import limits_of_validity
 
     ds = comparison.dataset
     wear = json.loads(ds.attrs["wear"])
@@ -119,7 +126,7 @@ def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(
     h = float(np.median(films))
     life = levanov_method1(np.array([h, h / (1 + error)]), h_lim_cr=wear["critical_film_m"],
                            wear_limit=wear["wear_limit_m"], wear_rate=wear["wear_rate_m_per_s"]).life
-    text = " ".join(limits_of_validity(ds))
+    text = " ".join(limits_of_validity(facts(ds)))
     assert f"up to {100 * error:.0f} % thicker than the transient reference" in text
     assert f"makes a life {life[0] / life[1]:.1f} times as long" in text and f"{h * 1e6:.1f} µm" in text
     cap = wear["wear_limit_m"] / wear["wear_rate_m_per_s"] / 3600
@@ -127,7 +134,7 @@ def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(
     # a study without the tier's measured errors says nothing of it
     bare = ds.copy()
     bare.attrs = {k: v for k, v in ds.attrs.items() if k != "film_method_errors"}
-    assert "Method 1 reads" not in " ".join(limits_of_validity(bare))
+    assert "Method 1 reads" not in " ".join(limits_of_validity(facts(bare)))
 
 
 def test_the_film_section_gives_the_heat_balance_of_the_bearings(comparison, tmp_path):
@@ -232,10 +239,11 @@ def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
 
 
 def test_a_study_without_the_mechanical_chain_says_so(tmp_path):
-    from stackup.report.prose import run_notes
+    from stackup.facts import Run
+    from stackup.report.verdict import run_notes
     from stackup.study import Study
 
     ds = Study(schemes=("iso13778-4",), n_engines=200, mechanics_engines=0, progress=False, pilot_engines=1000).run()
-    notes = run_notes(ds)
+    notes = run_notes(Run.of(ds))
     assert any("did not run: the study asked for none" in note for note in notes)
     assert "did not run" in write_report(ds, tmp_path).read_text().split("<!-- /verdict -->")[0]
