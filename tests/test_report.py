@@ -247,3 +247,55 @@ def test_a_study_without_the_mechanical_chain_says_so(tmp_path):
     notes = run_notes(Run.of(ds))
     assert any("did not run: the study asked for none" in note for note in notes)
     assert "did not run" in write_report(ds, tmp_path).read_text().split("<!-- /verdict -->")[0]
+
+
+def test_numbers_are_written_one_way():
+    from stackup.report import format as fmt
+
+    assert fmt.significant(26_512) == "26,500" and fmt.significant(float("inf")) == "∞" and fmt.significant(0) == "0"
+    assert fmt.significant_triple((34_584.9, 33_900.2, 35_412.0)) == "34,600 [33,900, 35,400]"
+    assert fmt.ppm(0.0497, (0.034, 0.065)) == "0.050 ppm [0.034, 0.065]" and fmt.ppm(2354.2) == "2,354 ppm"
+    assert fmt.interval(float("nan"), (1, 2)) == "—" and fmt.interval(1.234, (1.0, 1.5), 2) == "1.23 [1.00, 1.50]"
+    assert fmt.um_edge(34.5e-6) == "34.5" and fmt.um_edge(57e-6) == "57" and fmt.um(8.79e-6) == "8.8"
+    assert fmt.hours(37_987.9) == "38,000" and fmt.spaced(10_000) == "10 000" and fmt.count(10_465) == "10,465"
+
+
+def _table_rows(text, heading, first_column):
+    """The rows of the first table under ``heading`` whose first cells are ``first_column``, by that cell."""
+    body = text.split(f"## {heading}\n")[1].split("\n## ")[0]
+    rows = [line.strip("|").split(" | ") for line in body.splitlines() if line.startswith("| ")]
+    head = [cell.strip() for cell in rows[0]]
+    return {row[head.index(first_column)].strip(): dict(zip(head, (c.strip() for c in row))) for row in rows[1:]}
+
+
+def test_the_report_states_the_numbers_of_the_facts(comparison, tmp_path):
+    from stackup.facts import facts
+    from stackup.rank import ranked
+    from stackup.report import SECTIONS
+    from stackup.report import format as fmt
+
+    known = facts(comparison)
+    ranking = ranked(known.ranking)
+    text = write_report(comparison.dataset, tmp_path, scenarios=comparison.scenarios,
+                        sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
+    assert all(f"\n## {title}\n" in text for title in SECTIONS)
+    table = _table_rows(text, "Ranking", "scheme")
+    assert list(table) == list(ranking.index)
+    for scheme, row in ranking.iterrows():
+        cells = table[scheme]
+        assert cells["rank"] == str(row["rank"])
+        assert cells["operating mean ± std [µm]"] == f"{row.clearance_mean_um:.2f} ± {row.clearance_std_um:.2f}"
+        assert cells["outside window [ppm]"].startswith(fmt.interval(row.outside_window_ppm, row.outside_window_ppm_ci,
+                                                                     fmt.ppm_digits(row.outside_window_ppm)))
+        assert cells["bearing life median [h]"] == fmt.significant_triple((row.life_median_h, *row.life_median_h_ci))
+    film = _table_rows(text, "Oil film and bearing life per bearing position", "scheme")
+    for scheme, row in known.film.iterrows():
+        assert film[scheme]["bearing life B10 [h]"] == fmt.significant_triple(row.life_b10_h)
+        assert film[scheme]["h_min P5 [µm]"].startswith(f"{row.h_min_p05_um[0]:.2f} [")
+    clearance = _table_rows(text, "Clearance per scheme", "scheme")
+    for scheme, row in known.clearance.iterrows():
+        assert clearance[scheme]["mean [µm]"] == f"{row.mean_um:.2f}"
+    first = ranking.iloc[0]
+    verdict = text.split("<!-- /verdict -->")[0]
+    assert f"**What it costs:** {int(first.shell_grades)} shell grade" in verdict
+    assert f"{first.surplus_pct:.1f} % of the shells made left over" in verdict

@@ -12,9 +12,10 @@ from __future__ import annotations
 import json
 from dataclasses import MISSING, dataclass, fields, replace
 
+
 def _missing(attribute, what):
-    return ValueError(f"dataset attribute {attribute!r}: {what}; the dataset was not written by a stackup.Study "
-                      "of this version (save it again with the study that made it)")
+    return ValueError(f"dataset attribute {attribute!r}: {what} (not a dataset a stackup.Study of this version "
+                      "wrote)")
 
 
 def plain(ds, name, default=MISSING):

@@ -56,7 +56,7 @@ def clearance_histogram(ds, path):
                 ax.axvline(x, color="tab:red", lw=1.0, ls="--")
         for values, colour, alpha, label in ((nominal, "tab:blue", 0.7, "nominal"),
                                              (operating, "tab:red", 0.55, "operating")):
-            # counted first, drawn as one filled step artist (a bar per bin costs seconds per figure)
+            # counted first, drawn as one filled step artist (a bar per bin is one artist each, slow to draw)
             counts = np.histogram(values, bins=bins)[0] if edges is None else \
                 np.histogram(0.5 * (edges[1:] + edges[:-1]), bins=bins, weights=values)[0]  # re-binned summaries
             ax.stairs(np.where(counts > 0, counts, np.nan), bins, fill=True, baseline=0.5, color=colour,
