@@ -263,7 +263,8 @@ def test_numbers_are_written_one_way():
 def _table_rows(text, heading, first_column):
     """The rows of the first table under ``heading`` whose first cells are ``first_column``, by that cell."""
     body = text.split(f"## {heading}\n")[1].split("\n## ")[0]
-    rows = [line.strip("|").split(" | ") for line in body.splitlines() if line.startswith("| ")]
+    block = next(b for b in body.split("\n\n") if b.startswith("| "))
+    rows = [line.strip("|").split(" | ") for line in block.splitlines() if line.startswith("| ")]
     head = [cell.strip() for cell in rows[0]]
     return {row[head.index(first_column)].strip(): dict(zip(head, (c.strip() for c in row))) for row in rows[1:]}
 

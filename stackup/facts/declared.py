@@ -51,6 +51,17 @@ def _record(cls, attribute, data, where=""):
     return cls(**{f.name: data[f.name] for f in fields(cls) if f.name in data})
 
 
+class _Attribute:
+    """A record of the JSON dataset attribute ``ATTRIBUTE``; an ``OPTIONAL`` one may be absent (then None)."""
+
+    ATTRIBUTE, OPTIONAL = "", False
+
+    @classmethod
+    def of(cls, ds):
+        data = parsed(ds, cls.ATTRIBUTE, required=not cls.OPTIONAL)
+        return None if data is None else _record(cls, cls.ATTRIBUTE, data)
+
+
 @dataclass(frozen=True)
 class StudyParameters:
     """The ``study`` attribute: the parameters that reproduce the study (``items``, in their order)."""
@@ -75,9 +86,10 @@ class StudyParameters:
 
 
 @dataclass(frozen=True)
-class PressFit:
+class PressFit(_Attribute):
     """The ``press_fit`` attribute: the engine's press-fit data the methods quote [m, Pa, degC]."""
 
+    ATTRIBUTE = "press_fit"
     housing_material: str
     housing_outer: float
     shell_material: str
@@ -86,10 +98,6 @@ class PressFit:
     check_stress: float
     assembly_temperature: float
     temperature: float
-
-    @classmethod
-    def of(cls, ds):
-        return _record(cls, "press_fit", parsed(ds, "press_fit"))
 
 
 @dataclass(frozen=True)
@@ -150,9 +158,10 @@ class Processes:
 
 
 @dataclass(frozen=True)
-class Wear:
+class Wear(_Attribute):
     """The ``wear`` attribute: roughness, critical film and Levanov's wear constants [m, m/s] with sources."""
 
+    ATTRIBUTE = "wear"
     critical_film_m: float
     journal_rz_m: float
     shell_rz_m: float
@@ -161,33 +170,26 @@ class Wear:
     roughness_source: str
     wear_source: str
 
-    @classmethod
-    def of(cls, ds):
-        return _record(cls, "wear", parsed(ds, "wear"))
-
 
 @dataclass(frozen=True)
-class FilmErrors:
+class FilmErrors(_Attribute):
     """The ``film_method_errors`` attribute: the film tier's largest errors against the transient reference.
 
     Shares of the reference [-] on the cycle-minimum film and on its cycle mean, and the orbit's time per
     bearing-cycle [s], as measured for the built-in engines (reports/film_speed_vs_error.md).
     """
 
+    ATTRIBUTE, OPTIONAL = "film_method_errors", True
     h_min: float
     h_min_mean: float
     seconds: float
 
-    @classmethod
-    def of(cls, ds):
-        data = parsed(ds, "film_method_errors", required=False)
-        return None if data is None else _record(cls, "film_method_errors", data)
-
 
 @dataclass(frozen=True)
-class DesignRecord:
+class DesignRecord(_Attribute):
     """The ``design`` attribute (:func:`stackup.comparison.design_record`): what the designer found."""
 
+    ATTRIBUTE, OPTIONAL = "design", True
     start: str
     start_text: str
     evaluations: int
@@ -195,11 +197,6 @@ class DesignRecord:
     outside: dict
     start_outside: dict
     notes: list
-
-    @classmethod
-    def of(cls, ds):
-        data = parsed(ds, "design", required=False)
-        return None if data is None else _record(cls, "design", data)
 
 
 @dataclass(frozen=True)

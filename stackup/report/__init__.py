@@ -84,23 +84,27 @@ def _draw(ds, sensitivity, known, out):
 def _header(known):
     about = known.about
     kept = words.SUBTITLE_SUMMARIES_PART if about.summaries else "."
-    titles = [title for title in SECTIONS if title != "Designed scheme" or known.design is not None]
     return [words.TITLE.format(engine=about.engine), "",
             words.SUBTITLE.format(title=about.title, version=about.version, seed=about.seed,
                                   n_engines=fmt.count(known.study.n_engines), bearings=about.bearings, kept=kept),
-            ""], words.CONTENTS.format(links=" · ".join(words.CONTENTS_LINK.format(title=title, anchor=anchor(title))
-                                                        for title in titles))
+            ""]
+
+
+def _contents(known):
+    """The line of links to the sections (the designed scheme's only where there is one)."""
+    titles = [title for title in SECTIONS if title != "Designed scheme" or known.design is not None]
+    return words.CONTENTS.format(links=" · ".join(words.CONTENTS_LINK.format(title=title, anchor=anchor(title))
+                                                  for title in titles))
 
 
 def report_lines(known, *, dataset_file=None):
     """The report's markdown lines from the :class:`~stackup.facts.Facts` ``known`` (figures drawn apart)."""
     ranking = ranked(known.ranking)
     scenario_rankings = {label: ranked(rows) for label, rows in known.scenario_rankings.items()}
-    head, contents = _header(known)
     return [
-        *head,
+        *_header(known),
         *verdict(known, ranking, scenario_rankings),
-        contents,
+        _contents(known),
         "",
         *section("Methods and assumptions", *methods(known)),
         *section("Limits of validity", *limits_of_validity(known)),
