@@ -114,7 +114,7 @@ def _grades(gradeset):
     return [(label, lo - lo0, hi - lo0) for label, lo, hi in zip(gradeset.labels, gradeset.lo, gradeset.hi)]
 
 
-def design(ds):
+def designed(ds):
     """The :class:`Design` of a comparison that designed a scheme, else None (schemes read from the dataset)."""
     record = DesignRecord.of(ds)
     if record is None:
@@ -230,7 +230,7 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
         reading_resolution={str(s): float(ds.reading_resolution.sel(scheme=s).max()) for s in ds.scheme.values},
         plan=None if about.summaries else plan(ds, volume=PLAN_VOLUME, service_level=PLAN_SERVICE_LEVEL),
         **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
-        design=design(ds))
+        design=designed(ds))
 
 
 __all__ = ["About", "Design", "EdgeContact", "Facts", "FilmOutcomes", "HeatBalance", "LifeBias", "Limits",
