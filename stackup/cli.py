@@ -54,10 +54,11 @@ def _compare(args, state):
     import stackup
 
     from .engines import load_engine
+    from .facts import Run, clearance_summary
     from .io import open_comparison, save_comparison
     from .output import prepare_folder
-    from .report import clearance_summary, write_report
-    from .report.prose import run_notes
+    from .report import write_report
+    from .report.verdict import run_notes
     from .scenarios import DECLARED
     from .schemes import load as load_scheme
     from .study import ISO_SCHEMES
@@ -99,7 +100,7 @@ def _compare(args, state):
         stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
                   "        — (no stated range)")
         print(f"  {name:<20} mean {row.mean_um:6.2f} µm  std {row.std_um:5.2f} µm  outside stated {stated}")
-    for note in run_notes(ds):  # stages that failed on some engines, or did not run: said here too
+    for note in run_notes(Run.of(ds)):  # stages that failed on some engines, or did not run: said here too
         print(f"note: {note}")
     print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")
     print(f"verdict: {_verdict_line(folder / 'report.md')}")
@@ -313,14 +314,8 @@ def _share(text):
     return value
 
 
-def parser():
-    """The ``stackup`` argument parser."""
-    top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
-        "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
-        epilog="Run `stackup COMMAND --help` for a command's options.")
-    top.add_argument("--version", action="version", version=f"stackup {__version__}")
-    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
-
+def _compare_parser(sub):
+    """``stackup compare``: the main job."""
     cmp_ = sub.add_parser("compare", formatter_class=_Formatter, help="compare selective-fitting schemes on an engine",
                           description="Compare selective-fitting schemes on an engine: a study of sampled engines, "
                           "the declared robustness scenarios and what drives the spread; writes the dataset "
@@ -356,6 +351,9 @@ def parser():
                       help="replace another run in the output folder (the same run again is always replaced)")
     cmp_.set_defaults(func=_compare)
 
+
+def _report_parser(sub):
+    """``stackup report``: the report of a saved comparison, again."""
     rpt = sub.add_parser("report", formatter_class=_Formatter, help="write the report of a saved comparison again",
                          description="Write the report (report.md, report.html and its figures) from a dataset "
                          "`stackup compare` saved, and from nothing else: after an update of stackup's report, or "
@@ -365,6 +363,9 @@ def parser():
     rpt.add_argument("--out", metavar="FOLDER", help="folder for the report (default: the dataset's folder)")
     rpt.set_defaults(func=_report)
 
+
+def _plan_parser(sub):
+    """``stackup plan``: shells (or graded parts) per grade for a volume."""
     pln = sub.add_parser("plan", formatter_class=_Formatter, help="shells (or graded parts) per grade for a volume",
                          description="How many shells of each grade to make and stock for a production volume (whole "
                          "shells, rounded up where stock must cover demand), or with --part how many housing bores "
@@ -393,6 +394,9 @@ def parser():
     pln.add_argument("--force", action="store_true", help="replace an existing --csv FILE")
     pln.set_defaults(func=_plan)
 
+
+def _listing_parsers(sub):
+    """``stackup engines`` and ``stackup schemes``: the built-in files and the user's."""
     for name, variable, func in (("engines", "STACKUP_ENGINE_PATH", _engines),
                                  ("schemes", "STACKUP_SCHEME_PATH", _schemes)):
         lst = sub.add_parser(name, formatter_class=_Formatter, help=f"list the built-in {name} and the user's",
@@ -401,9 +405,9 @@ def parser():
                              f"Any {name[:-1]} file also works by its path.")
         lst.set_defaults(func=func)
 
-    from .design_cli import add_parser as add_design_parser
-    add_design_parser(sub).formatter_class = _Formatter
 
+def _store_parser(sub):
+    """``stackup store check`` and ``stackup store repair``."""
     store = sub.add_parser("store", formatter_class=_Formatter, help="check or repair a study's Zarr store",
                            description="A study streamed into a Zarr store (Study(store=PATH)) can be checked for "
                            "chunks that cannot be read, and repaired: the study chunks that wrote them are marked "
@@ -423,6 +427,23 @@ def parser():
                              "the same store.")
     rep.add_argument("path", metavar="PATH", help="the store (a folder)")
     rep.set_defaults(func=_store_repair)
+
+
+def parser():
+    """The ``stackup`` argument parser."""
+    from .design_cli import add_parser as add_design_parser
+
+    top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
+        "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
+        epilog="Run `stackup COMMAND --help` for a command's options.")
+    top.add_argument("--version", action="version", version=f"stackup {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
+    _compare_parser(sub)
+    _report_parser(sub)
+    _plan_parser(sub)
+    _listing_parsers(sub)
+    add_design_parser(sub).formatter_class = _Formatter
+    _store_parser(sub)
     return top
 
 

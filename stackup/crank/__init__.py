@@ -22,6 +22,12 @@ from .._kernels import crank as _kernel
 from .beam import condensed, rotational_compliance, slope_matrices
 from .law import REST, BellakhdharLaw
 
+#: Each support tier and its limits in one line, for reports (speed and error: reports/bench_crank.md).
+TIER_NOTES = {
+    "bearing-law": "continuous beam on the nonlinear bearing law of Bellakhdhar et al. (2013)",
+    "linear": "continuous beam on linear springs (the bearing law's low stiffness)",
+    "rigid": "continuous beam on rigid supports",
+}
 #: Status codes of a solve, stored with CF flag attributes (defined with the kernel that sets them).
 STATUS = _kernel.STATUS
 #: Newton stops when the residual is below this share of the load scale.

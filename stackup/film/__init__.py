@@ -39,6 +39,18 @@ from .. import _validate as check
 from . import oil, reynolds, tiers
 
 METHODS = ("short", "finite", "reynolds")
+#: Each film tier a study names, over the engine cycle, and its limits in one line, for reports (errors against
+#: the transient reference and speed: reports/film_speed_vs_error.md).
+TIER_NOTES = {
+    "short": "quasi-static short-bearing film at each crank angle (no squeeze)",
+    "finite": "quasi-static finite-bearing film at each crank angle (no squeeze)",
+    "reynolds": "quasi-static Reynolds film at each crank angle (no squeeze)",
+    "mobility": "journal orbit over the cycle by the short-bearing mobility method (squeeze and rotation, Booker)",
+    "mobility-finite": "journal orbit over the cycle by the mobility method with a finite-length correction "
+                       "tabulated from the Reynolds equation (squeeze and rotation)",
+    "reynolds-transient": "journal orbit over the cycle on the transient Reynolds equation with mass-conserving "
+                          "cavitation (the reference)",
+}
 #: Largest eccentricity on which the steady tiers are checked against the reference tier (the finite
 #: table's last node); films above it (thinner than 0.5 % of the clearance) carry ``valid`` False.
 ECCENTRICITY_VALID = 0.995

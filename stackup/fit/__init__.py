@@ -33,6 +33,13 @@ from .._kernels import press_fit as _kernel
 from . import reference, tiers
 
 METHODS = ("lame", "thin-ring", "fe")
+#: Each tier and its limits in one line, for reports; errors against the finite-element reference are measured
+#: by ``python studies/press_fit_tiers.py`` (reports/press_fit_tiers.md).
+TIER_NOTES = {
+    "lame": "thick-ring (Lamé) tier, exact within linear plane-stress elasticity",
+    "thin-ring": "thin-ring tier (a shop formula: ignores the shell's radial stress)",
+    "fe": "finite-element reference tier",
+}
 
 
 @dataclass(frozen=True)
