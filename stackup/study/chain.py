@@ -23,7 +23,6 @@ from ..film.bearing_law import load_displacement
 from ..film.cycle import HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
 from ..film.orbit import _vector_length as vector_length
-from ..fit import press_fit, press_fit_extremes
 from .. import materials
 from ..contact import composite_roughness, contact_modulus
 from ..life import alpha as boundary_share
@@ -32,6 +31,7 @@ from ..parts import BlockParts, draw_lot
 from ..stats import mean_half_width
 from .._random import lot_generator
 from . import schema
+from .clearance import operating_clearance, press_fit_checks
 
 #: Engines per step of the mechanical chain when it runs to a target error.
 MECHANICS_BATCH = 25
@@ -215,13 +215,12 @@ def _press_fit(engine, parts, assembly, method):
     NaN (False) where a bearing is not assembled (the status says why).
     """
     ok = assembly.status == ASSEMBLED
-    bearing = dict(housing_bore=parts.housing_bore[ok],
-                   shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
-                   crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]), method=method)
-    fit = press_fit(journal_d=parts.journal_d[ok], **bearing, **engine.press_fit.kwargs())
+    shells = dict(upper_wall=assembly.upper_wall[ok], lower_wall=assembly.lower_wall[ok],
+                  upper_crush=assembly.upper_crush[ok], lower_crush=assembly.lower_crush[ok], method=method)
+    fit = operating_clearance(engine, housing_bore=parts.housing_bore[ok], journal_d=parts.journal_d[ok], **shells)
     # the design checks over every declared temperature: the stress bites cold for a light-alloy housing,
     # the pressure hot (cold for cast iron)
-    extremes = press_fit_extremes(**bearing, **engine.press_fit.extremes_kwargs())
+    extremes = press_fit_checks(engine, housing_bore=parts.housing_bore[ok], **shells)
     out = {}
     for result, fields in ((fit, {**FIT_FIELDS, "loss_of_fit": "loss_of_fit"}),
                            (extremes, {**EXTREME_FIELDS, "loss_of_fit_any_temperature": "loss_of_fit"})):
