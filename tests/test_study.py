@@ -379,3 +379,35 @@ def test_chain_root_model_and_designer_give_identical_operating_clearance(name, 
     built = ds.status.values == ASSEMBLED
     values = {k: np.broadcast_to(ds[k].values, built.shape)[built] for k in ("housing_bore", "journal_d", *shells)}
     np.testing.assert_array_equal(designer(values), ds.clearance_operating.values[built])
+
+
+def test_the_chain_runs_its_stages_with_their_checks_skipped(monkeypatch):
+    """The study checks its inputs where they enter; the stages it calls skip theirs (stackup._validate.trusted)."""
+    from stackup import _validate
+    from stackup.study import chain
+
+    seen = {}
+
+    def spy(name, function):
+        def call(*args, **kwargs):
+            seen.setdefault(name, set()).add(_validate._TRUSTED.get())
+            return function(*args, **kwargs)
+        monkeypatch.setattr(chain, name, call)
+
+    for name in ("draw_lot", "assemble", "operating_clearance", "engine_cycles", "bearing_films", "levanov_method1"):
+        spy(name, getattr(chain, name))
+    Study(n_engines=40, schemes=("iso13778-4",), mechanics_engines=2, pilot_engines=2000, seed=1,
+          film_method="mobility", progress=False).run()
+    assert seen == dict.fromkeys(seen, {True}) and len(seen) == 6
+    assert _validate._TRUSTED.get() is False
+
+
+def test_the_old_name_of_the_reynolds_transient_film_tier_is_still_accepted():
+    import warnings
+
+    from stackup.film.cycle import FILM_METHODS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        study = Study(film_method="transient", n_engines=10)
+    assert study.film_method in FILM_METHODS
