@@ -20,9 +20,9 @@ of engines, per grade:
   ``lot_engines``-fold convolution of the sampled per-engine demand. The
   normal approximation :math:`L\mu_g + z_{SL}\,\sigma_g\sqrt{L}` covers
   too few lots (the per-engine demand is skewed, and the skew fades only
-  slowly with the lot), so it is used only past :data:`EXACT_LOT_SUPPORT`. The safety
-  stock is that stock less the lot's expected demand. The tests check the
-  service level by simulating lots.
+  slowly with the lot), so it is used only past :data:`EXACT_LOT_SUPPORT`.
+  The safety stock is that stock less the lot's expected demand. The tests
+  check the service level by simulating lots.
 
 :func:`planner_table` turns a plan into the table a production planner uses:
 whole parts (rounded up where stock must cover demand), units in the column

@@ -109,8 +109,8 @@ TARGET_ACCEPTANCE, INITIAL_SCALE = 0.25, 0.6
 PILOT_SHARE = 0.25
 #: Fewest roots in the tail an estimate should rest on (where ``n_level`` roots would leave fewer, it draws
 #: enough for twice as many), and the most roots it may draw, as a multiple of ``n_level``: below a few ppm on
-#: graded schemes the roots' counts are heavy-tailed and a mean of a few is not normal (module docstring; the
-#: stated against the real errors in reports/tails_vs_peers.md).
+#: graded schemes the roots' counts are heavy-tailed and a mean of a few is not normal (module docstring; stated
+#: and real errors in reports/tails_vs_peers.md).
 MIN_ROOTS, MAX_ROOTS_SHARE = 10, 16
 #: Roots of the trial that sets the estimate's count of roots, as a share of ``n_level``.
 TRIAL_SHARE = 0.1
