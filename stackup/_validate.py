@@ -236,7 +236,8 @@ def validated(relations=(), **constraints):
     """Declare the checks of a public function's parameters; they run on a call from outside the package.
 
     ``constraints`` map parameter names to checks (:class:`Positive`, :class:`OneOf`, ...; any callable
-    ``check(field, value) -> value``); a parameter left at its default ``None`` is not checked.
+    ``check(field, value) -> value``); ``None`` is not checked where it is the parameter's default (an
+    optional input left out), and is checked, so refused, everywhere else.
     ``relations`` are callables given the checked arguments by name that raise ``ValueError`` where
     parameters disagree with each other. The checked (converted) values are what the function receives.
     Calls made inside a validated function, or in a :func:`trusted` block, skip the checks.
@@ -255,7 +256,7 @@ def validated(relations=(), **constraints):
             bound.apply_defaults()
             values = bound.arguments
             for name, constraint in constraints.items():
-                if values.get(name) is not None:
+                if values[name] is not None or signature.parameters[name].default is not None:
                     values[name] = constraint(name, values[name])
             for relation in relations:
                 relation(values)
