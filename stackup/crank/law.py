@@ -37,6 +37,7 @@ import numpy as np
 from scipy import special
 
 from .. import _validate as check
+from .._validate import Positive, renamed, validated
 
 #: Displacement below which a journal is at rest: no force, no stiffness [m].
 REST = 1e-150
@@ -161,7 +162,16 @@ def displacement(load, clearance, dx, stiffness):
     return u
 
 
-def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, clearance_guess):
+def _one_curve(values):
+    load, film = values["load"], values["film_displacement"]
+    if load.shape != film.shape:
+        raise ValueError(f"film_displacement: shape {film.shape} is not that of load {load.shape}")
+
+
+@renamed(clearance_guess="radial_clearance")
+@validated(load=Positive(), film_displacement=Positive(zero=True), radial_clearance=Positive(),
+           relations=(_one_curve,))
+def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, radial_clearance):
     r"""Clearance parameter J and transition dx of the bearing law from a film's load-displacement curve.
 
     As Bellakhdhar et al. (2013, sec. 4.3) built their law: the journal's
@@ -182,20 +192,18 @@ def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, clea
         (eccentricity times the radial clearance).
     k_lv, k_hv, theta0, dtheta : float or array_like (...)
         Deformation stiffnesses [N/m] and the sigmoid's centre and width [rad].
-    clearance_guess : array_like (...)
-        Radial clearance [m]: the starting J and dx scale with it as in the paper
-        (37 and 9.65 um for 30 um).
+    radial_clearance : array_like (...)
+        Radial clearance of the bearings [m]: the starting J and dx scale with it as
+        in the paper (37 and 9.65 um for 30 um).
 
     Returns
     -------
     LawFit
     """
-    load = check.positive("load", load)
-    film = check.positive("film_displacement", film_displacement, allow_zero=True)
-    if load.shape != film.shape:
-        raise ValueError(f"film_displacement: shape {film.shape} is not that of load {load.shape}")
+    load = np.asarray(load, dtype=float)
+    film = np.asarray(film_displacement, dtype=float)
     lead = load.shape[:-1]
-    c = np.broadcast_to(check.positive("clearance_guess", clearance_guess), lead)
+    c = np.broadcast_to(np.asarray(radial_clearance, dtype=float), lead)
     k_lv, k_hv, theta0, dtheta = (np.broadcast_to(np.asarray(a, dtype=float), lead)
                                   for a in (k_lv, k_hv, theta0, dtheta))
     kd = np.stack([stiffness(np.zeros(lead), k_lv, k_hv, theta0, dtheta)[0],

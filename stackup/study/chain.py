@@ -22,7 +22,7 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.cycle import HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
-from ..film.orbit import _vector_length as vector_length
+from ..film.journal import vector_length
 from ..fit import press_fit, press_fit_extremes
 from .. import materials
 from ..contact import composite_roughness, contact_modulus
