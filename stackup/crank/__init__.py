@@ -108,15 +108,15 @@ def _loads_on_the_beam(values):
     loads, offsets, law = values["pin_loads"], values["offsets"], values["law"]
     if loads.ndim < 2 or loads.shape[-2:] != (n_spans, 2):
         raise ValueError(f"pin_loads: shape {loads.shape} is not valid; expected (..., {n_spans}, 2)")
-    if offsets is None:
-        return
-    if offsets.ndim < 2 or offsets.shape[-2:] != (n_spans + 1, 2):
-        raise ValueError(f"offsets: shape {offsets.shape} is not valid; expected (..., {n_spans + 1}, 2)")
-    try:
-        lead = np.broadcast_shapes(loads.shape[:-2], offsets.shape[:-2])
-    except ValueError:
-        raise ValueError(f"offsets: leading shape {offsets.shape[:-2]} does not broadcast with pin_loads "
-                         f"{loads.shape[:-2]}") from None
+    lead = loads.shape[:-2]
+    if offsets is not None:
+        if offsets.ndim < 2 or offsets.shape[-2:] != (n_spans + 1, 2):
+            raise ValueError(f"offsets: shape {offsets.shape} is not valid; expected (..., {n_spans + 1}, 2)")
+        try:
+            lead = np.broadcast_shapes(lead, offsets.shape[:-2])
+        except ValueError:
+            raise ValueError(f"offsets: leading shape {offsets.shape[:-2]} does not broadcast with pin_loads "
+                             f"{loads.shape[:-2]}") from None
     if isinstance(law, BellakhdharLaw):
         per_sequence = _per_sequence(lead, n_spans)
         try:

@@ -43,8 +43,8 @@ from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
 from .journal import ECCENTRICITY_LIMIT, Orbit
 from .journal import STATUS as ORBIT_STATUS
-from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, _tier_names, cheapest_cycle_tier, cycle_tier_errors,
-                    one_cycle, orbit)
+from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, cheapest_cycle_tier, cycle_tier_errors,
+                    one_cycle, orbit, tier_names)
 from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
 from .transient import transient_orbit
 
@@ -156,7 +156,7 @@ def _feed_of_the_heat_balance(values):
         check_feed(values["feed"], values["spec"].bearing_width)
 
 
-@_tier_names
+@tier_names()
 @validated(method=OneOf(FILM_METHODS), reactions=Finite(), crank_angle=Finite(), clearance=Positive(),
            journal_d=Positive(), tilt=Finite(), tilt_compliance=Positive(zero=True),
            relations=(_cycle_of_reactions, _feed_of_the_heat_balance))
@@ -338,7 +338,7 @@ def balanced_orbit(loads, crank_angle, *, tier, journal_d, bearing_width, cleara
                            supply_temperature=supply_temperature)
     heat, film, fed = _close_balance(heated, stride=stride, tolerance=tolerance)
     lead = loads.shape[:-2]
-    shaped = {name: (v.reshape(*lead, *v.shape[1:]) if v is not None and np.ndim(v) else v)
+    shaped = {name: (v.reshape(lead + v.shape[1:]) if v is not None and np.ndim(v) else v)
               for name, v in film.items()}
     return (DynamicHeat(*(np.asarray(v).reshape(lead) for v in heat)), Orbit(**shaped), fed.reshape(lead))
 

@@ -276,7 +276,7 @@ def heat_balance(load_history, *, journal_d, bearing_width, clearance, speed, oi
     method : {"short", "finite"}
         Steady tier evaluated at each crank angle.
     shear_thinning : bool
-        Viscosity at the film's shear rate :math:`\omega R/c` (Cross curve of
+        Viscosity at the film's shear rate :math:`\\omega R/c` (Cross curve of
         multigrade oils) instead of the low-shear viscosity.
     tolerance : float
         On the effective temperature [K].

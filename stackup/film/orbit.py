@@ -137,16 +137,23 @@ def canonical_tier(method, steady_method=None, *, stacklevel=2):
     return method
 
 
-def _tier_names(function):
-    """Accept the deprecated tier names in ``method`` (and ``steady_method``) through :func:`canonical_tier`."""
-    @functools.wraps(function)
-    def call(*args, **kwargs):
-        if "steady_method" in kwargs or kwargs.get("method") == "quasi-static" or kwargs.get("method") in ALIASES:
-            kwargs["method"] = canonical_tier(kwargs.get("method", "mobility"), kwargs.pop("steady_method", None),
-                                              stacklevel=2)
-        return function(*args, **kwargs)
+def tier_names(wrapped_by=0):
+    """Decorator: accept the deprecated tier names in ``method`` (and ``steady_method``) (:func:`canonical_tier`).
 
-    return call
+    ``wrapped_by``: decorators applied over this one (the warning names the caller's line).
+    """
+    def decorate(function):
+        @functools.wraps(function)
+        def call(*args, **kwargs):
+            method = kwargs.get("method")
+            if "steady_method" in kwargs or method == "quasi-static" or method in ALIASES:
+                kwargs["method"] = canonical_tier(kwargs.get("method", "mobility"), kwargs.pop("steady_method", None),
+                                                  stacklevel=2 + wrapped_by)
+            return function(*args, **kwargs)
+
+        return call
+
+    return decorate
 
 
 @lru_cache(maxsize=1)
@@ -221,8 +228,8 @@ def _transient_options(values):
             constraint(name, options[name])
 
 
-@_tier_names
 @renamed(diameter="journal_d", length="bearing_width")
+@tier_names(wrapped_by=1)
 @validated(method=OneOf(METHODS), load_history=Finite(), crank_angle=Finite(), journal_d=Positive(),
            bearing_width=Positive(), clearance=Positive(), viscosity=Positive(), speed=Positive(),
            cycles=Integer(minimum=1), tilt=Finite(), tilt_compliance=Positive(zero=True), start=Finite(),

@@ -8,7 +8,7 @@ from stackup.film import min_film_thickness
 from stackup.film.orbit import STATUS, orbit
 from stackup.film.transient import _Film
 
-GEOMETRY = dict(diameter=0.046, length=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
+GEOMETRY = dict(journal_d=0.046, bearing_width=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
 ANGLE = np.arange(0.0, 720.0, 8.0)
 
 
