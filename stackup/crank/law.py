@@ -217,11 +217,24 @@ def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, radi
         return displacement(loads, j, dx, k_each) - target
 
     params = np.stack([c * 37.0 / 30.0, c * 9.65 / 30.0], axis=-1)
+    params, r, converged = _levenberg_marquardt(residual, params, floor=1e-3 * c[..., None], small=1e-10 * c)
+    law = BellakhdharLaw(clearance=params[..., 0], dx=params[..., 1], k_lv=k_lv, k_hv=k_hv, theta0=theta0,
+                         dtheta=dtheta)
+    return LawFit(law, np.sqrt((r**2).mean(axis=-1)), np.abs(r).max(axis=-1), converged)
+
+
+def _levenberg_marquardt(residual, params, *, floor, small, iterations=100):
+    """Least squares of ``residual(params)`` (..., samples) over params (..., 2), vectorised over the leading axes.
+
+    Forward-difference Jacobian, Marquardt's diagonal damping; params held above ``floor``; a fit has converged
+    once a step that does not worsen it is below ``small``. Returns (params, residual there, converged).
+    """
+    lead = params.shape[:-1]
     damping = np.full(lead, 1e-3)
     r = residual(params)
     cost = (r**2).sum(axis=-1)
     converged = np.zeros(lead, bool)
-    for _ in range(100):
+    for _ in range(iterations):
         jac = np.empty((*r.shape, 2))
         for i in range(2):
             h = 1e-6 * params[..., i : i + 1]
@@ -232,18 +245,15 @@ def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, radi
         jtr = np.einsum("...ki,...k->...i", jac, r)
         diag = np.einsum("...ii->...i", jtj)
         step = -np.linalg.solve(jtj + (damping[..., None] * diag)[..., None] * np.eye(2), jtr[..., None])[..., 0]
-        trial = np.maximum(params + step, 1e-3 * c[..., None])  # J and dx stay positive
+        trial = np.maximum(params + step, floor)  # J and dx stay positive
         r_trial = residual(trial)
         cost_trial = (r_trial**2).sum(axis=-1)
         better = cost_trial < cost
-        small = np.abs(trial - params).max(axis=-1) <= 1e-10 * c
-        converged |= small & (better | (cost_trial == cost))
+        converged |= (np.abs(trial - params).max(axis=-1) <= small) & (better | (cost_trial == cost))
         params = np.where(better[..., None], trial, params)
         r = np.where(better[..., None], r_trial, r)
         cost = np.where(better, cost_trial, cost)
         damping = np.where(better, damping / 3, damping * 4)
         if np.all(converged):
             break
-    law = BellakhdharLaw(clearance=params[..., 0], dx=params[..., 1], k_lv=k_lv, k_hv=k_hv, theta0=theta0,
-                         dtheta=dtheta)
-    return LawFit(law, np.sqrt((r**2).mean(axis=-1)), np.abs(r).max(axis=-1), converged)
+    return params, r, converged

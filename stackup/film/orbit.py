@@ -282,13 +282,10 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
     Orbit
     """
     loads = np.asarray(load_history, dtype=float)
-    angle = np.asarray(crank_angle, dtype=float)
     lead = loads.shape[:-2]
-    geometry = dict(journal_radius=np.broadcast_to(np.asarray(journal_d, dtype=float) / 2, lead),
-                    bearing_width=np.broadcast_to(np.asarray(bearing_width, dtype=float), lead),
-                    radial_clearance=np.broadcast_to(np.asarray(clearance, dtype=float) / 2, lead),
-                    viscosity=np.broadcast_to(np.asarray(viscosity, dtype=float), lead),
-                    speed=np.broadcast_to(np.asarray(speed, dtype=float), lead))
+    geometry = {name: np.broadcast_to(np.asarray(value, dtype=float), lead) for name, value in (
+        ("journal_radius", np.asarray(journal_d, dtype=float) / 2), ("bearing_width", bearing_width),
+        ("radial_clearance", np.asarray(clearance, dtype=float) / 2), ("viscosity", viscosity), ("speed", speed))}
     if tilt is not None:
         tilt = np.broadcast_to(np.asarray(tilt, dtype=float), loads.shape)
     if tilt_compliance is not None:
@@ -297,11 +294,18 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
         start = np.broadcast_to(np.asarray(start, dtype=float), (*lead, 2))
     if cycles is None:
         cycles = 8 if method == "reynolds-transient" else 20
+    return _run(method, loads, np.asarray(crank_angle, dtype=float), geometry, tilt=tilt,
+                tilt_compliance=tilt_compliance, cycles=cycles, start=start, options=transient_options)
+
+
+def _run(method, loads, angle, geometry, *, tilt, tilt_compliance, cycles, start, options):
+    """The tier ``method``'s orbit on inputs broadcast to the loads' leading shape (``geometry`` radial, SI)."""
     if method == "reynolds-transient":
         return transient_orbit(loads, angle, **geometry, tilt=tilt, tilt_compliance=tilt_compliance, cycles=cycles,
-                                start=start, **transient_options)
+                               start=start, **options)
     if method in QUASI_STATIC:
         position, p_max, torque, flow = _quasi_static(loads, method, **geometry)
+        lead = loads.shape[:-2]
         status, used = np.zeros(lead, np.int8), np.zeros(lead, int)
         squeeze = -0.5 * geometry["speed"][..., None, None] * np.stack([-position[..., 1], position[..., 0]], axis=-1)
         finite = method != "short"
