@@ -214,7 +214,7 @@ def _on_the_law(kb, transfer, loads, offsets, law):
         np.ascontiguousarray(loads).reshape(batch, seq, n_spans, 2),
         np.ascontiguousarray(offsets).reshape(batch, seq, n_spans + 1, 2),
         np.ascontiguousarray(params).reshape(batch, 6, n_spans + 1),
-        RTOL, MAX_ITERATIONS, REST,
+        _kernel.Newton(RTOL, MAX_ITERATIONS, REST),
     )
     return CrankReactions(r.reshape(*lead, n_spans + 1, 2), w.reshape(*lead, n_spans + 1, 2),
                           (status == 0).reshape(lead), iterations.reshape(lead), status.reshape(lead))

@@ -58,8 +58,8 @@ def mobility_orbit(loads, crank_angle, *, finite, cycles, start, journal_radius,
     used = np.empty(m)
     warm = start is not None
     xi0 = np.ascontiguousarray((start / c[..., None]).reshape(-1, 2) if warm else np.zeros((m, 2)), dtype=float)
-    _kernel.orbits(w_bar, tau, ECCENTRICITY_LIMIT, PERIODIC, cycles, tables, ld_nodes, stretched, ld, finite,
-                   xi, v, peak, status, used, xi0, warm)
+    _kernel.orbits(w_bar, tau, xi0, warm, ld, _kernel.Integration(ECCENTRICITY_LIMIT, PERIODIC, cycles),
+                   _kernel.Correction(tables, ld_nodes, stretched, finite), (xi, v, peak, status, used))
     xi = xi.reshape(*lead, n, 2)
     v = v.reshape(*lead, n, 2)
     position = xi * c[..., None, None]

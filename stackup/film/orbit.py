@@ -349,9 +349,9 @@ def _quasi_static(loads, steady, *, journal_radius, bearing_width, radial_cleara
         ld_nodes, stretched, tables = mobility_table() if steady == "finite" else short_table()
         flat_eps = np.ascontiguousarray(eps, dtype=float).ravel()
         factor = np.empty(flat_eps.size)
-        _kernel.steady_peak_factors(flat_eps, np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape),
-                                                                   dtype=float).ravel(),
-                                    tables, ld_nodes, stretched, steady == "finite", factor)
+        ld = np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape), dtype=float).ravel()
+        _kernel.steady_peak_factors(flat_eps, ld, _kernel.Correction(tables, ld_nodes, stretched, steady == "finite"),
+                                    factor)
         # v_s = (1/2) k x xi: |v| = eps/2
         field_peak = 1.5 * mu * w * (l / c) ** 2 * 0.5 * eps * factor.reshape(eps.shape)
     direction = np.arctan2(loads[..., 1], loads[..., 0]) + film.attitude_angle

@@ -72,7 +72,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._kernels import tilt as _kernel
-from .._kernels.mobility import bearing_table, table_lookup
+from .._kernels.mobility import Correction, bearing_table, table_lookup
 from .._validate import AngleVectors, Finite, OneOf, Positive, renamed, validated
 from .journal import ECCENTRICITY_LIMIT, STATES, mobility_table, outside_table, short_table, table_covers  # noqa: F401
 
@@ -168,12 +168,13 @@ def short_film(position, squeeze, edge_offset, *, lines=4096):
 
 
 @functools.cache
-def _quadrature():
-    """Gauss-Legendre nodes and weights on the wet arc and on the rest (read-only; computed once)."""
+def quadrature():
+    """The film moment's quadrature (:data:`stackup._kernels.tilt.Quadrature`): Gauss-Legendre nodes and weights on
+    the wet arc and on the rest (read-only; computed once), and :data:`STRETCH_CAP`."""
     out = (*np.polynomial.legendre.leggauss(GAUSS_NODES), *np.polynomial.legendre.leggauss(DRY_NODES))
     for array in out:
         array.setflags(write=False)
-    return out
+    return _kernel.Quadrature(*out, STRETCH_CAP)
 
 
 @dataclass(frozen=True)
@@ -257,11 +258,10 @@ def film_moment(position, squeeze_velocity, tilt, *, journal_radius, bearing_wid
     lead, xi, v, e, r, l, c, mu, w = _dimensionless(position, squeeze_velocity, tilt, journal_radius=journal_radius,
                                                     bearing_width=bearing_width, radial_clearance=radial_clearance,
                                                     viscosity=viscosity, speed=speed)
-    nodes, weights, dry_nodes, dry_weights = _quadrature()
+    rule = quadrature()
     out = np.empty((xi.shape[0], 4))
     for i in range(xi.shape[0]):
-        out[i] = _kernel.film_moment(xi[i, 0], xi[i, 1], v[i, 0], v[i, 1], e[i, 0], e[i, 1], nodes, weights, dry_nodes,
-                                     dry_weights, STRETCH_CAP)
+        out[i] = _kernel.film_moment(xi[i, 0], xi[i, 1], v[i, 0], v[i, 1], e[i, 0], e[i, 1], rule)
     if method == "finite":
         _finite_correction(out, xi, v, l / (2 * r))
     unit = mu * w * r * l**3 / c**2
@@ -273,8 +273,9 @@ def film_moment(position, squeeze_velocity, tilt, *, journal_radius, bearing_wid
 def _finite_correction(out, xi, v, ld):
     """Scale and turn the short film's force and moment ``out`` (m, 4) in place as the ``mobility-finite`` tier does."""
     ld_nodes, stretched, tables = mobility_table()
+    correction = Correction(tables, ld_nodes, stretched, True)
     for i in range(xi.shape[0]):
-        table = bearing_table(tables, ld_nodes, ld[i], True)
+        table = bearing_table(correction, ld[i])
         alpha = np.angle(np.exp(1j * (np.arctan2(v[i, 1], v[i, 0]) - np.arctan2(xi[i, 1], xi[i, 0]))))
         log_ratio, turn = table_lookup(table, stretched, min(np.hypot(*xi[i]), ECCENTRICITY_LIMIT), alpha)[:2]
         rotation = np.exp(log_ratio) * np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
@@ -348,11 +349,11 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, journal_rad
     tilt = np.empty(xi.shape)
     state = np.empty(xi.shape[:2], np.int8)
     evaluations = np.empty(xi.shape[:2], np.int64)
-    nodes, weights, dry_nodes, dry_weights = _quadrature()
     # STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
     stride = 1 << max(0, int(np.floor(np.log2(STRIDE * n / 720))))
-    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, stride, tables, ld_nodes,
-                       stretched, np.ascontiguousarray(ld, dtype=float), finite, nodes, weights, dry_nodes,
-                       dry_weights, STRETCH_CAP, tilt, state, evaluations)
+    _kernel.equilibria(_kernel.Orbits(xi, v, e_free, kappa, np.ascontiguousarray(ld, dtype=float)),
+                       Correction(tables, ld_nodes, stretched, finite),
+                       _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE), INTERPOLATE, stride, tilt, state,
+                       evaluations)
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))

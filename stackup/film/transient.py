@@ -55,7 +55,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._kernels import mobility as _mobility
-from .._kernels.reynolds import elrod_adams
+from .._kernels.reynolds import Grid, Sweeps, elrod_adams
 from .._kernels.tilt import _room
 from .._validate import Finite, Integer, OneOf, Positive, renamed, validated
 from .journal import ECCENTRICITY_LIMIT, STATES, Orbit, edge_film, mobility_table, table_covers
@@ -372,18 +372,19 @@ class _March:
     def solve_field(self, centre, gamma):
         """Pressure and fill (in place) of the step's field with the journal at ``centre``, tilt ``gamma``; its film."""
         film, p, fill = self.film, self.p, self.fill
-        hh, he, h3e, h3n = film.thickness(centre, gamma)
+        thickness = film.thickness(centre, gamma)
         history = self.fixed_history if self.fixed_history is not None else self.history_at(gamma)
-        sweeps = elrod_adams(hh, he, h3e, h3n, history, self.c_time, p, fill, film.fixed, film.dtheta, film.dz,
-                             RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, self.mass_conserving)
+        grid = Grid(film.fixed, film.dtheta, film.dz)
+        sweeps = elrod_adams(thickness, history, self.c_time, p, fill, grid,
+                             Sweeps(RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, self.mass_conserving))
         if sweeps < 0:
             # over-relaxation can cycle between cavitated and full nodes in a thin, starved film;
             # plain Gauss-Seidel from where it stopped is slower but settles
-            sweeps = elrod_adams(hh, he, h3e, h3n, history, self.c_time, p, fill, film.fixed, film.dtheta,
-                                 film.dz, 1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, self.mass_conserving)
+            sweeps = elrod_adams(thickness, history, self.c_time, p, fill, grid,
+                                 Sweeps(1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, self.mass_conserving))
         if sweeps < 0:
             raise RuntimeError("field solve did not converge")
-        return hh
+        return thickness[0]
 
     def residual(self, x, held=False):
         """Unknowns: the centre and, with the tilt, its edge offset; ``held``: an edge on the limit."""

@@ -10,13 +10,13 @@ from stackup._kernels import mobility as mobility_kernel
 from stackup._kernels import tilt as kernel
 from stackup.film import reynolds
 from stackup.film.orbit import ECCENTRICITY_LIMIT, orbit
-from stackup.film.tilt import STATES, STRETCH_CAP, _quadrature, axial_moments, cycle_tilt, film_moment, short_film
+from stackup.film.tilt import STATES, STRETCH_CAP, axial_moments, cycle_tilt, film_moment, quadrature, short_film
 
-QUADRATURE = _quadrature()
+QUADRATURE = quadrature()
 
 
 def kernel_film(xi, v, e):
-    return np.array(kernel.film_moment(xi[0], xi[1], v[0], v[1], e[0], e[1], *QUADRATURE, STRETCH_CAP))
+    return np.array(kernel.film_moment(xi[0], xi[1], v[0], v[1], e[0], e[1], QUADRATURE))
 
 
 def rotation_squeeze(xi):
