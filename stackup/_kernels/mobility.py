@@ -186,7 +186,7 @@ def squeeze_velocity(eps, w_r, w_t, alpha, table, stretched, finite):
     magnitude scales with |v|. Once a step is below 1e-3 rad the next error is
     about 1e-6 rad (quadratic convergence): the step is taken and |F| corrected to
     first order instead of evaluating again, which balances the load to about
-    1e-5 (the midpoint rule's own error is 5e-4). Returns (speed, alpha, ok).
+    1e-5 (below the midpoint rule's own step error). Returns (speed, alpha, ok).
     """
     speed, alpha, _, _, ok = _squeeze(eps, w_r, w_t, alpha, table, stretched, finite)
     return speed, alpha, ok

@@ -21,9 +21,11 @@ the finite tier then holds its correction at the table's edge, the Reynolds
 tier continues with the short-bearing load curve scaled to its own load at
 :data:`ECCENTRICITY_VALID`.
 
-Submodules: :mod:`~stackup.film.orbit` (film over the cycle),
-:mod:`~stackup.film.heat` (heat balance with the oil feed),
-:mod:`~stackup.film.oil` (viscosity).
+Submodules: :mod:`~stackup.film.orbit` (film over the cycle, its tiers in
+:mod:`~stackup.film.mobility`, :mod:`~stackup.film.transient`, the tilt in
+:mod:`~stackup.film.tilt`, what they share in :mod:`~stackup.film.journal`),
+:mod:`~stackup.film.cycle` (the study's film stage), :mod:`~stackup.film.heat`
+(heat balance with the oil feed), :mod:`~stackup.film.oil` (viscosity).
 """
 
 from __future__ import annotations
@@ -76,7 +78,8 @@ class Film:
 
 def _table_coordinate(eps):
     # -ln(1 - eps): the log load ratio is close to linear in it up to the table's end near 1 (linear in eps it
-    # bends there, and interpolating it in eps underestimates the film by 2-3 % above 0.98)
+    # bends there, and interpolating it in eps underestimates the film near the table's end; the finite tier's
+    # error is in reports/film_speed_vs_error.md)
     return -np.log1p(-eps)
 
 

@@ -43,13 +43,13 @@ from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
 from .journal import ECCENTRICITY_LIMIT, Orbit
 from .journal import STATUS as ORBIT_STATUS
-from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, cheapest_cycle_tier, cycle_tier_errors,
-                    one_cycle, orbit, tier_names)
+from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
+                    cycle_tier_errors, one_cycle, orbit, tier_names, within_one_cycle)
 from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
 from .transient import transient_orbit
 
 #: Crank-angle spacing of the load history the heat balance reads [deg]: its cycle means barely change
-#: below it (reports/bearing_life.md), at a quarter of the cost on a 1 deg grid.
+#: below it (reports/bearing_life.md), on a quarter of a 1 deg grid's angles.
 HEAT_STEP = 4.0
 #: Crank-angle spacing of the dynamic heat balance's coarse orbit [deg]: fine enough to catch the load peaks, whose
 #: temperature rise the balance extrapolates (the balance's accuracy on the full orbit: reports/bench_chain.md).
@@ -144,10 +144,7 @@ def _cycle_of_reactions(values):
     if angle.ndim != 1 or reactions.ndim < 3 or reactions.shape[-1] != 2 or reactions.shape[1] != angle.size:
         raise ValueError(f"reactions: shape {reactions.shape} is not valid; expected (engines, {angle.size}, "
                          "bearings, 2)")
-    if np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
-        raise ValueError("crank_angle: must increase and span less than 720 deg")
-    if values["tilt_compliance"] is not None and values["tilt"] is None:
-        raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
+    within_one_cycle(angle)
 
 
 def _feed_of_the_heat_balance(values):
@@ -159,7 +156,7 @@ def _feed_of_the_heat_balance(values):
 @tier_names()
 @validated(method=OneOf(FILM_METHODS), reactions=Finite(), crank_angle=Finite(), clearance=Positive(),
            journal_d=Positive(), tilt=Finite(), tilt_compliance=Positive(zero=True),
-           relations=(_cycle_of_reactions, _feed_of_the_heat_balance))
+           relations=(_cycle_of_reactions, compliance_with_tilt, _feed_of_the_heat_balance))
 def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None,
                   tilt_compliance=None):
     """Film over the cycle for bearings with given reaction histories.
@@ -273,7 +270,7 @@ def _tier_options(values):
 @renamed(diameter="journal_d", length="bearing_width")
 @validated(tier=OneOf(METHODS), loads=Finite(), crank_angle=Finite(), journal_d=Positive(), bearing_width=Positive(),
            clearance=Positive(), speed=Positive(), supply_temperature=InRange(-30.0, 200.0, unit=" degC"),
-           tilt=Finite(), tilt_compliance=Positive(zero=True), relations=(one_cycle("loads"), _tier_options))
+           tilt=Finite(), tilt_compliance=Positive(zero=True), relations=(one_cycle("loads"), compliance_with_tilt, _tier_options))
 def balanced_orbit(loads, crank_angle, *, tier, journal_d, bearing_width, clearance, speed, oil, supply_temperature,
                    feed, stride=8, tilt=None, tilt_compliance=None, options=None, tolerance=HEAT_TOLERANCE):
     r"""The orbit of bearings at the effective temperature where their heat balance closes on that orbit.

@@ -202,6 +202,12 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
     return next((t for t in ranked if all(error(t, m) <= max_error for m in measures)), "reynolds-transient")
 
 
+def within_one_cycle(crank_angle):
+    """A ValueError unless the crank angles (angles,) increase and span less than a cycle."""
+    if np.any(np.diff(crank_angle) <= 0) or crank_angle[-1] - crank_angle[0] >= 720.0:
+        raise ValueError("crank_angle: must increase and span less than 720 deg")
+
+
 def one_cycle(loads_name):
     """Relation of :func:`~stackup._validate.validated`: loads ``loads_name`` (..., angles, 2) over ``crank_angle``
     (angles,) that increase over less than a cycle."""
@@ -209,13 +215,13 @@ def one_cycle(loads_name):
         loads, angle = values[loads_name], values["crank_angle"]
         if angle.ndim != 1 or loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
             raise ValueError(f"{loads_name}: shape {loads.shape} is not valid; expected (..., {angle.size}, 2)")
-        if np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
-            raise ValueError("crank_angle: must increase and span less than 720 deg")
+        within_one_cycle(angle)
 
     return relation
 
 
-def _compliance_with_tilt(values):
+def compliance_with_tilt(values):
+    """Relation: a tilt compliance comes with the free tilt it turns back."""
     if values["tilt_compliance"] is not None and values["tilt"] is None:
         raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
 
@@ -233,7 +239,7 @@ def _transient_options(values):
 @validated(method=OneOf(METHODS), load_history=Finite(), crank_angle=Finite(), journal_d=Positive(),
            bearing_width=Positive(), clearance=Positive(), viscosity=Positive(), speed=Positive(),
            cycles=Integer(minimum=1), tilt=Finite(), tilt_compliance=Positive(zero=True), start=Finite(),
-           relations=(one_cycle("load_history"), _compliance_with_tilt, _transient_options))
+           relations=(one_cycle("load_history"), compliance_with_tilt, _transient_options))
 def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, viscosity, speed, method="mobility",
           tilt=None, tilt_compliance=None, cycles=None, start=None, **transient_options):
     """Film over the engine cycle of dynamically loaded bearings.

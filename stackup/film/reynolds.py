@@ -32,7 +32,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
+from scipy import optimize, sparse
+from scipy.sparse.linalg import spsolve
 
 from .._kernels.reynolds import integrate, psor
 
@@ -155,8 +156,6 @@ def squeeze_field(eps, alpha, length_over_radius, *, n_theta=N_THETA_SQUEEZE, n_
     primal-dual active-set method with a sparse direct solve per step
     (Hintermüller, Ito, Kunisch 2003), exact for the discrete problem.
     """
-    from scipy import sparse
-
     theta = stretched_angles(eps, n_theta)
     half = length_over_radius / 2
     z = np.linspace(0.0, half, n_z)
@@ -302,8 +301,6 @@ def _tilted_system(film, theta, zeta, v, u, *, half_width):
     Unknowns the inner axial nodes of every angle (both ends p = 0), periodic in theta; ``film(angle, zeta)``
     the film thickness, ``half_width`` L/(2R) (z/R = half_width * zeta).
     """
-    from scipy import sparse
-
     dzeta = zeta[1] - zeta[0]
     nt, nz = theta.size, zeta.size - 2  # unknowns: inner axial nodes
     gap_east = np.diff(np.append(theta, theta[0] + 2 * np.pi))
@@ -338,8 +335,6 @@ def _tilted_system(film, theta, zeta, v, u, *, half_width):
 
 def _cavitated_solve(m, b, message):
     """Pressure p >= 0 with m p = b where p > 0 (Swift-Stieber), by a primal-dual active set; (p, iterations)."""
-    from scipy.sparse.linalg import spsolve
-
     active = b <= 0
     p = np.zeros(b.size)
     for iteration in range(1, 200):

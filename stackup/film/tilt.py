@@ -87,8 +87,8 @@ TOLERANCE = 1e-2
 #: of two); halving the spacing, each angle between two of the same state takes the mean of their film's turn-back
 #: (free tilt minus tilt; the free tilt itself is known at every angle) where that turn-back differs between them by
 #: less than INTERPOLATE times their thinner edge film (on the wall: times the tilt; the edge film is the limit's
-#: there); the others are solved. What this saves and costs against every angle solved is measured in
-#: ``reports/film_speed_vs_error.md`` (tilt section).
+#: there); the others are solved. The tilt tier's cost and its error against the reference, this continuation
+#: included, are measured in ``reports/film_speed_vs_error.md`` (tilt section).
 INTERPOLATE = 1.0
 STRIDE = 8
 METHODS = ("short", "finite")

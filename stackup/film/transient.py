@@ -53,6 +53,7 @@ References
 from __future__ import annotations
 
 import numpy as np
+from scipy import optimize
 
 from .._kernels import mobility as _mobility
 from .._kernels.reynolds import Grid, Sweeps, elrod_adams
@@ -580,8 +581,6 @@ def _edge_room(x, step, limit):
 
 def _least_squares_balance(residual, x, tolerance):
     """Fallback where the force has a kink (a starved film filling up): Levenberg-Marquardt (MINPACK)."""
-    from scipy import optimize
-
     solution = optimize.root(lambda y: residual(y)[0], x, method="lm", options={"xtol": 1e-12, "ftol": 1e-14})
     f, h = residual(solution.x)
     if not np.linalg.norm(f) <= tolerance:
