@@ -283,7 +283,7 @@ def film_moment(x0, x1, v0, v1, e0, e1, quadrature):
 
 
 @njit(cache=True, inline="always")
-def _room(x0, x1, e0, e1, d0, d1, limit):
+def wall_room(x0, x1, e0, e1, d0, d1, limit):
     """Largest t >= 0 with both edges inside the limit: |x + (e + t d)| <= limit and |x - (e + t d)| <= limit."""
     best = math.inf
     for sign in (1.0, -1.0):
@@ -348,7 +348,7 @@ def _difference_jacobian(a, e0, e1, r0, r1, solver, jac):
     for j in range(2):
         d0 = delta if j == 0 else 0.0
         d1 = delta if j == 1 else 0.0
-        if _room(a.x0, a.x1, e0, e1, d0, d1, solver.limit) < 1.0:
+        if wall_room(a.x0, a.x1, e0, e1, d0, d1, solver.limit) < 1.0:
             d0, d1 = -d0, -d1
         q0, q1 = _residual(a, e0 + d0, e1 + d1, solver.quadrature)
         h = d0 + d1
@@ -362,7 +362,7 @@ def _lens_point(x0, x1, theta, limit):
     """The edge offset on the lens's boundary (an edge at the limit) in the direction theta."""
     d0 = math.cos(theta)
     d1 = math.sin(theta)
-    rho = _room(x0, x1, 0.0, 0.0, d0, d1, limit)
+    rho = wall_room(x0, x1, 0.0, 0.0, d0, d1, limit)
     return rho * d0, rho * d1
 
 
@@ -459,7 +459,7 @@ def _newton(a, e0, e1, jac, fresh, solver, budget):
         d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
         d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
         size = math.hypot(d0, d1)
-        room = _room(x0, x1, e0, e1, d0, d1, limit)
+        room = wall_room(x0, x1, e0, e1, d0, d1, limit)
         if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
             return e0 + d0, e1 + d1, CONVERGED, evaluations
         if room < 1.0 and room * size <= tolerance * (1.0 - limit):
@@ -532,7 +532,7 @@ def equilibrium(a, g0, g1, on_wall, jac, slope, fresh, solver, budget=MAX_EVALUA
         g0, g1 = INSIDE * e0, INSIDE * e1
         fresh = False  # the Jacobian is the last angle's, at the wall
         from_wall = found
-    room = _room(x0, x1, 0.0, 0.0, g0, g1, limit)
+    room = wall_room(x0, x1, 0.0, 0.0, g0, g1, limit)
     if room < 1.0:  # the guess inside the lens, towards the aligned journal
         g0 *= INSIDE * room
         g1 *= INSIDE * room
@@ -545,7 +545,7 @@ def equilibrium(a, g0, g1, on_wall, jac, slope, fresh, solver, budget=MAX_EVALUA
             return e0, e1, NOT_SOLVED, evaluations  # far from the wall and still moving: the caller may start afresh
         if from_wall and outcome == WALL:
             # the contact's residual points in, Newton's step out: the root lies at the wall
-            room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
+            room = wall_room(x0, x1, 0.0, 0.0, e0, e1, limit)
             return room * e0, room * e1, AT_LIMIT, evaluations
         b0, b1, found, outward, used = contact(math.atan2(e1, e0))
         evaluations += used
@@ -692,7 +692,7 @@ def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, eva
                         # mean keeps within about interpolate / 2 rad
                         film = max(film, math.hypot(e0, e1))
                     if gap <= interpolate * film:
-                        room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
+                        room = wall_room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
                         if state[b, kp] == AT_LIMIT or room < 1.0:
                             # onto the wall, as its neighbours (the mean of two points on it lies inside the lens)
                             e0 *= room

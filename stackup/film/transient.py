@@ -57,7 +57,7 @@ from scipy import optimize
 
 from .._kernels import mobility as _mobility
 from .._kernels.reynolds import Grid, Sweeps, elrod_adams
-from .._kernels.tilt import _room
+from .._kernels.tilt import wall_room
 from .._validate import Finite, Integer, OneOf, Positive, renamed, validated
 from .journal import ECCENTRICITY_LIMIT, STATES, Orbit, edge_film, mobility_table, table_covers
 from .mobility import mobility_orbit
@@ -227,9 +227,8 @@ def _feed_patch(length, unit_pressure, *, feed, feed_pressure, feed_angle):
 def _mobility_table_at(length_over_diameter):
     """(table at the bearing's L/D, its eccentricity nodes, whether it covers the L/D) of the mobility prediction."""
     ld_nodes, stretched, tables = mobility_table()
-    i, t = _mobility._locate(ld_nodes, length_over_diameter)
-    table = (1 - t) * tables[i] + t * tables[i + 1]
-    return table, stretched, bool(ld_nodes[0] <= length_over_diameter <= ld_nodes[-1])
+    table = _mobility.bearing_table(_mobility.Correction(tables, ld_nodes, stretched, True), length_over_diameter)
+    return table, stretched, table_covers(length_over_diameter)
 
 
 def _orbit_of(position, out, status, used, tilt, film_tilt, *, coupled, bearing_width, radial_clearance, speed):
@@ -485,7 +484,7 @@ HELD_STEPS = 12
 
 def _edge_on_wall(centre, direction, limit):
     """Edge offset along ``direction`` that puts the farther edge of a journal centred at ``centre`` on the limit."""
-    return direction * _room(centre[0], centre[1], 0.0, 0.0, direction[0], direction[1], limit)
+    return direction * wall_room(centre[0], centre[1], 0.0, 0.0, direction[0], direction[1], limit)
 
 
 def _with_film(residual, centre, direction, limit):
@@ -496,7 +495,7 @@ def _with_film(residual, centre, direction, limit):
 
 def _edges_inside(xi, e, limit):
     """The edge offset e scaled down until both edges of a journal centred at xi are inside 0.99 ``limit``."""
-    room = _room(xi[0], xi[1], 0.0, 0.0, e[0], e[1], 0.99 * limit)
+    room = wall_room(xi[0], xi[1], 0.0, 0.0, e[0], e[1], 0.99 * limit)
     return e * room if room < 1.0 else e
 
 
@@ -574,8 +573,8 @@ def _edge_room(x, step, limit):
         return 1.0
     bound = limit + EDGE_OVERLAP * (1.0 - limit)
     # the centre and the edge offset move together: the edges x[:2] +/- x[2:] along step[:2] +/- step[2:]
-    room = min(_room(x[0], x[1], x[2], x[3], step[0] + step[2], step[1] + step[3], bound),
-               _room(x[0], x[1], -x[2], -x[3], step[0] - step[2], step[1] - step[3], bound))
+    room = min(wall_room(x[0], x[1], x[2], x[3], step[0] + step[2], step[1] + step[3], bound),
+               wall_room(x[0], x[1], -x[2], -x[3], step[0] - step[2], step[1] - step[3], bound))
     return min(1.0, room)
 
 

@@ -63,7 +63,7 @@ def tilted_journals(draw):
     xi = eps * np.array([np.cos(phase), np.sin(phase)])
     turn = draw(st.floats(-np.pi, np.pi))
     direction = np.array([np.cos(turn), np.sin(turn)])
-    room = kernel._room(xi[0], xi[1], 0.0, 0.0, direction[0], direction[1], 0.98)
+    room = kernel.wall_room(xi[0], xi[1], 0.0, 0.0, direction[0], direction[1], 0.98)
     e = direction * room * draw(st.floats(0.0, 1.0))
     push = draw(st.floats(-np.pi, np.pi))
     v = draw(st.floats(0.0, 2.0)) * np.array([np.cos(push), np.sin(push)]) + rotation_squeeze(xi)
