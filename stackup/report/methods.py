@@ -10,13 +10,10 @@ import pandas as pd
 
 from ..crank import TIER_NOTES as CRANK_TIERS
 from ..film import TIER_NOTES as FILM_TIERS
+from ..film.orbit import ALIASES as TIER_ALIASES
 from ..fit import TIER_NOTES as FIT_TIERS
 from . import format as fmt
 from . import templates as words
-
-#: Film tier names a dataset may carry from before the tiers had one name in every layer.
-FILM_TIER_ALIASES = {"transient": "reynolds-transient"}
-
 
 def _folded(text):
     """Text with its whitespace folded (sources span lines in the engine files)."""
@@ -91,7 +88,7 @@ def methods(facts):
 def _film_method(facts):
     """The film tier, what it solves and its measured error against the transient reference, in one bullet."""
     method = facts.about.film_method
-    tier = FILM_TIERS.get(FILM_TIER_ALIASES.get(method, method), method)
+    tier = FILM_TIERS.get(TIER_ALIASES.get(method, method), method)  # a dataset from before the tiers' one name
     e = facts.film_errors
     errors = ("" if e is None else
               words.FILM_ERRORS_PART.format(h_min=100 * e.h_min, h_min_mean=100 * e.h_min_mean,

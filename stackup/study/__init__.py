@@ -20,7 +20,6 @@ The package is split by job:
 from __future__ import annotations
 
 import json
-import warnings
 from dataclasses import asdict, dataclass
 
 import xarray as xr
@@ -30,7 +29,7 @@ from .._validate import InRange, Integer, OneOf, OrNone, Window
 from .._random import seed_sequence
 from ..crank.cycle import METHODS as CRANK_METHODS
 from ..fit import METHODS as FIT_METHODS
-from ..film.cycle import FILM_METHODS
+from ..film.cycle import FILM_METHODS, canonical_tier
 from ..life import FILM_STATISTICS
 from ..parts import SAMPLERS
 from ..schemes import Scheme
@@ -59,7 +58,6 @@ class _Float:
 
 
 #: Old names of film tiers a study still accepts, with a DeprecationWarning: the glossary renamed them.
-FILM_ALIASES = {"transient": "reynolds-transient"}
 #: The checks of a study's parameters, by field, in the order they run when a study is made.
 PARAMETERS = {
     "n_engines": Integer(minimum=1),
@@ -227,10 +225,7 @@ class Study:
     store: str | None = None
 
     def __post_init__(self):
-        if self.film_method in FILM_ALIASES and self.film_method not in FILM_METHODS:
-            warnings.warn(f"Study: film_method={self.film_method!r} is deprecated; use "
-                          f"{FILM_ALIASES[self.film_method]!r} (the same tier)", DeprecationWarning, stacklevel=3)
-            self.film_method = FILM_ALIASES[self.film_method]
+        self.film_method = canonical_tier(self.film_method, stacklevel=3)  # a deprecated name warns
         for name, constraint in PARAMETERS.items():
             setattr(self, name, constraint(name, getattr(self, name)))
         if (720.0 / self.crank_angle_step) % 1:

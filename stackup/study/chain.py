@@ -22,7 +22,7 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.cycle import HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
-from ..film.orbit import _vector_length as vector_length
+from ..film.journal import vector_length
 from .. import _validate as check
 from .. import materials
 from ..contact import composite_roughness, contact_modulus
@@ -365,7 +365,7 @@ def _life_values(engine, films, *, clearance, journal_d, crank_angle, life_film,
     his wear chart (method 2) on the orbit."""
     wear = engine.wear
     chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
-                            speed=engine.crank.speed, bearing_radius=np.asarray(journal_d) / 2,
+                            speed=engine.crank.speed, journal_radius=np.asarray(journal_d) / 2,
                             h_lim_cr=wear.critical_film, roughness=roughness, contact_modulus=modulus,
                             wear_limit=wear.wear_limit)
     h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
@@ -453,15 +453,15 @@ def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricit
                           clearance=clearance, crank_angle=crank_angle)
     loads = np.moveaxis(first.reactions, 1, 2)
     step = float(crank_angle[1] - crank_angle[0]) if len(crank_angle) > 1 else 720.0
-    heat = heat_balance(loads[..., ::max(1, int(round(HEAT_STEP / step))), :], diameter=journal_d,
-                        length=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
+    heat = heat_balance(loads[..., ::max(1, int(round(HEAT_STEP / step))), :], journal_d=journal_d,
+                        bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
                         supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed, method="finite")
     peak = np.linalg.norm(loads, axis=-1).max(axis=-1)
-    load, displacement = load_displacement(max_load=1.5 * peak, diameter=journal_d, length=spec.bearing_width,
+    load, displacement = load_displacement(max_load=1.5 * peak, journal_d=journal_d, bearing_width=spec.bearing_width,
                                            clearance=clearance, viscosity=heat.viscosity, speed=spec.speed)
     p = spec.law_parameters
     stiff = {k: p.get(k, getattr(BellakhdharLaw, k)) for k in ("k_lv", "k_hv", "theta0", "dtheta")}
-    fit = fit_bellakhdhar(load, displacement, **stiff, clearance_guess=np.asarray(clearance) / 2)
+    fit = fit_bellakhdhar(load, displacement, **stiff, radial_clearance=np.asarray(clearance) / 2)
     law = BellakhdharLaw(clearance=fit.law.clearance[:, None, :], dx=fit.law.dx[:, None, :], **stiff)
     return law, fit.rms_error
 
