@@ -215,6 +215,18 @@ class OrNone:
         return None if value is None else self.constraint(field, value)
 
 
+def fields(instance, constraints, *, prefix=""):
+    """Check a frozen dataclass's fields against a declared table, in its ``__post_init__``; values unchanged.
+
+    ``constraints`` maps a field name to a check, or to ``(label, check)`` where the message names the field
+    otherwise (``prefix`` + the field name by default). The fields keep the values given (a dataclass that is
+    a cache key stays hashable), so this checks what :func:`validated` would convert.
+    """
+    for name, constraint in constraints.items():
+        label, constraint = constraint if isinstance(constraint, tuple) else (f"{prefix}{name}", constraint)
+        constraint(label, getattr(instance, name))
+
+
 _TRUSTED = contextvars.ContextVar("stackup_inputs_checked", default=False)
 
 

@@ -202,6 +202,7 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
                                                             "chain (stackup.sensitivity.sobol, SALib)", "seed": seed})
 
 
+@check.validated(method=check.OneOf(("conditional", "splitting")), window=check.Window())
 def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=TAIL_ROOTS,
                   method="conditional"):
     """Share of bearings below and above the design window per scheme, for the ranking's small shares.
@@ -220,7 +221,6 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     the share outside the window and its interval (``tail_outside_share``,
     ``tail_outside_interval``: the two edges from the same samples).
     """
-    check.one_of("method", method, ("conditional", "splitting"))
     engine = load_engine(engine)
     window = engine.clearance_window if window is None else window
     loaded = [load_scheme(s) for s in schemes]

@@ -63,13 +63,12 @@ class Combustion:
     wiebe_m: float = 2.0
 
     def __post_init__(self):
-        check.in_range("compression_ratio", self.compression_ratio, 1.0, 40.0, lo_open=True)
-        check.positive("peak_pressure", self.peak_pressure)
-        check.positive("intake_pressure", self.intake_pressure)
-        check.positive("exhaust_pressure", self.exhaust_pressure)
-        check.in_range("polytropic_exponent", self.polytropic_exponent, 1.0, 1.7, lo_open=True)
-        check.in_range("combustion start", self.start, -90.0, 90.0)
-        check.positive("combustion duration", self.duration)
+        check.fields(self, {"compression_ratio": check.InRange(1.0, 40.0, lo_open=True),
+                            "peak_pressure": check.Positive(), "intake_pressure": check.Positive(),
+                            "exhaust_pressure": check.Positive(),
+                            "polytropic_exponent": check.InRange(1.0, 1.7, lo_open=True),
+                            "start": ("combustion start", check.InRange(-90.0, 90.0)),
+                            "duration": ("combustion duration", check.Positive())})
 
 
 @dataclass(frozen=True)
@@ -84,11 +83,9 @@ class Kinematics:
     counterweight_unbalance: float
 
     def __post_init__(self):
-        check.positive("cylinder_bore", self.cylinder_bore)
-        check.positive("stroke", self.stroke)
-        check.positive("reciprocating_mass", self.reciprocating_mass, allow_zero=True)
-        check.positive("rotating_mass", self.rotating_mass, allow_zero=True)
-        check.positive("counterweight_unbalance", self.counterweight_unbalance, allow_zero=True)
+        check.fields(self, {"cylinder_bore": check.Positive(), "stroke": check.Positive(),
+                            "reciprocating_mass": check.Positive(zero=True), "rotating_mass": check.Positive(zero=True),
+                            "counterweight_unbalance": check.Positive(zero=True)})
         if self.conrod <= self.stroke / 2:
             raise ValueError(f"conrod: {self.conrod!r} m is not longer than the crank radius {self.stroke / 2!r} m")
 

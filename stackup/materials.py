@@ -38,9 +38,8 @@ class Material:
     source: str = ""
 
     def __post_init__(self):
-        check.positive(f"material {self.name!r} modulus", self.modulus)
-        check.in_range(f"material {self.name!r} poisson", self.poisson, -1.0, 0.5, lo_open=True, hi_open=True)
-        check.finite(f"material {self.name!r} expansion", self.expansion)
+        check.fields(self, {"modulus": check.Positive(), "poisson": check.InRange(-1.0, 0.5, lo_open=True, hi_open=True),
+                            "expansion": check.Finite()}, prefix=f"material {self.name!r} ")
 
 
 def _read(path):

@@ -255,6 +255,20 @@ def process_mean(process):
     return process.mean
 
 
+#: How several readings of one part make its reading (:class:`Gauge`).
+COMBINE = ("mean", "max")
+#: Declared checks of a gauge's fields (:func:`stackup._validate.fields`).
+_GAUGE_CHECKS = {"bias": check.Finite(), "repeatability": check.Positive(zero=True),
+                 "resolution": check.Positive(zero=True), "temperature": check.InRange(-50.0, 200.0, unit=" degC"),
+                 "expansion_mismatch": check.Finite(), "readings": check.Integer(minimum=1),
+                 "combine": check.OneOf(COMBINE)}
+#: Declared checks of a form error's fields.
+_FORM_CHECKS = {"ovality": check.Positive(zero=True), "taper": check.Positive(zero=True),
+                "planes": check.InRange(0.0, 1.0), "directions": check.Integer(minimum=1)}
+#: Declared checks of a dimension's fields (the limits are a pair: :func:`stackup._validate.limits`).
+_DIMENSION_CHECKS = {"shared": check.InRange(0.0, 1.0, hi_open=True), "bolt_scatter": check.Positive(zero=True)}
+
+
 @dataclass(frozen=True)
 class Gauge:
     r"""How a size is read: bias, repeatability, resolution and temperature.
@@ -290,13 +304,7 @@ class Gauge:
     combine: str = "mean"
 
     def __post_init__(self):
-        check.finite("gauge bias", self.bias)
-        check.positive("gauge repeatability", self.repeatability, allow_zero=True)
-        check.positive("gauge resolution", self.resolution, allow_zero=True)
-        check.in_range("gauge temperature", self.temperature, -50.0, 200.0, unit=" degC")
-        check.finite("gauge expansion_mismatch", self.expansion_mismatch)
-        check.integer("gauge readings", self.readings, minimum=1)
-        check.one_of("gauge combine", self.combine, COMBINE)
+        check.fields(self, _GAUGE_CHECKS, prefix="gauge ")
 
     def noise(self, z):
         r"""Repeatability error of the combined reading [m] from one standard normal per part.
@@ -338,10 +346,6 @@ class Gauge:
         return quantize(reading, self.resolution)
 
 
-#: How several readings of one part make its reading.
-COMBINE = ("mean", "max")
-
-
 @dataclass(frozen=True)
 class FormError:
     r"""Ovality and taper of round parts (journals), and where they are read.
@@ -381,12 +385,9 @@ class FormError:
     directions: int = 1
 
     def __post_init__(self):
-        check.positive("form ovality", self.ovality, allow_zero=True)
-        check.positive("form taper", self.taper, allow_zero=True)
-        planes = check.in_range("form planes", self.planes, 0.0, 1.0)
-        if planes.ndim != 1 or planes.size == 0:
+        check.fields(self, _FORM_CHECKS, prefix="form ")
+        if np.ndim(self.planes) != 1 or np.size(self.planes) == 0:
             raise ValueError(f"form planes: {self.planes!r} is not a list of axial positions in [0, 1]")
-        check.integer("form directions", self.directions, minimum=1)
 
     @property
     def readings(self):
@@ -454,8 +455,7 @@ class Dimension:
 
     def __post_init__(self):
         check.limits(self.name, self.lo, self.hi)
-        check.in_range(f"{self.name} shared", self.shared, 0.0, 1.0, hi_open=True)
-        check.positive(f"{self.name} bolt_scatter", self.bolt_scatter, allow_zero=True)
+        check.fields(self, _DIMENSION_CHECKS, prefix=f"{self.name} ")
 
     def read(self, true_size, z_gauge, z_form=None):
         """Readings [m] of parts of true (mean) size ``true_size``: form error, then the gauge.

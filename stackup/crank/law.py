@@ -67,12 +67,9 @@ class BellakhdharLaw:
     dtheta: object = radians(15.0)
 
     def __post_init__(self):
-        check.positive("law clearance", self.clearance, allow_zero=True)
-        check.positive("law dx", self.dx, allow_zero=True)
-        check.positive("law k_lv", self.k_lv)
-        check.positive("law k_hv", self.k_hv)
-        check.finite("law theta0", self.theta0)
-        check.positive("law dtheta", self.dtheta)
+        check.fields(self, {"clearance": check.Positive(zero=True), "dx": check.Positive(zero=True),
+                            "k_lv": check.Positive(), "k_hv": check.Positive(), "theta0": check.Finite(),
+                            "dtheta": check.Positive()}, prefix="law ")
 
     def arrays(self, shape):
         """The six parameters broadcast to ``shape`` (float arrays)."""

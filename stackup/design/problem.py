@@ -41,8 +41,8 @@ class Weights:
     shortfall: float = 1e-4
 
     def __post_init__(self):
-        for field in ("scenario", "surplus", "shortfall"):
-            check.positive(f"weights.{field}", getattr(self, field), allow_zero=True)
+        check.fields(self, dict.fromkeys(("scenario", "surplus", "shortfall"), check.Positive(zero=True)),
+                     prefix="weights.")
 
 
 @dataclass(frozen=True)
