@@ -17,7 +17,7 @@ go to ``stackup/data/film_cycle_errors.toml`` (what
 
     python studies/film_speed_vs_error.py [--workers 2]
 
-Writes reports/film_speed_vs_error.md (about 40 min on 2 cores, mostly the transient tier).
+Writes reports/film_speed_vs_error.md (long: the transient tier dominates; the report gives its times).
 """
 
 from __future__ import annotations
