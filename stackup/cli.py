@@ -180,7 +180,14 @@ def _engines(args, state):
 
 
 def _schemes(args, state):
+    from .output import OutputRefused
     from .schemes import _builtin_dir, files, load
+
+    if args.engine is not None:
+        return _engine_schemes(args)
+    if args.out is not None:
+        raise OutputRefused(f"--out {args.out!r} writes the schemes laid on an engine's drawing: give --engine "
+                            "NAME too")
 
     def describe(path):
         scheme = load(path)
@@ -191,6 +198,34 @@ def _schemes(args, state):
         return text + f"; shell grades {', '.join(scheme.shell.labels)}"
 
     _listing("schemes", "STACKUP_SCHEME_PATH", files(), _builtin_dir(), describe)
+    return 0
+
+
+def _engine_schemes(args):
+    """``stackup schemes --engine NAME [--out DIR]``: ISO 13778's schemes laid on the engine's drawing."""
+    from .engines import load_engine
+    from .output import prepare_file, write_file
+    from .patterns import iso_schemes
+
+    engine = load_engine(args.engine)
+    schemes = iso_schemes(engine)
+    print(f"ISO 13778 schemes 1-6 laid on {engine.name}'s drawing (housing bore "
+          f"{engine.housing_bore.lo * 1e3:.3f}-{engine.housing_bore.hi * 1e3:.3f} mm, journal "
+          f"{engine.journal_d.lo * 1e3:.3f}-{engine.journal_d.hi * 1e3:.3f} mm); `stackup compare --engine "
+          f"{args.engine}` uses these:")
+    for scheme in schemes:
+        lo, hi = scheme.clearance_limits()
+        grades = "/".join(str(len(getattr(scheme, d).labels)) for d in ("housing", "journal", "shell"))
+        print(f"  {scheme.name:<12} {scheme.title}; nominal clearance {lo * 1e6:.1f}-{hi * 1e6:.1f} um; "
+              f"grades housing/journal/shell {grades}")
+    if args.out is None:
+        print("Write them as scheme files to read, keep and edit with --out DIR.")
+        return 0
+    paths = [prepare_file(os.path.join(args.out, f"{scheme.name}-{engine.name}.toml"), force=args.force,
+                          option="--out") for scheme in schemes]  # every file checked before one is written
+    for scheme, path in zip(schemes, paths):
+        write_file(path, scheme.to_toml_text())
+        print(f"wrote {path}")
     return 0
 
 
@@ -404,6 +439,11 @@ def _listing_parsers(sub):
                              f"variable {variable} add (a user's file of the same name replaces a built-in one). "
                              f"Any {name[:-1]} file also works by its path.")
         lst.set_defaults(func=func)
+        if name == "schemes":
+            lst.add_argument("--engine", metavar="ENGINE", help="show ISO 13778's schemes 1-6 laid on this "
+                             "engine's drawing (a built-in name or an engine file), as `stackup compare` uses them")
+            lst.add_argument("--out", metavar="DIR", help="with --engine: write them there as scheme files")
+            lst.add_argument("--force", action="store_true", help="with --out: replace files of the same names")
 
 
 def _store_parser(sub):

@@ -129,3 +129,34 @@ def test_a_scheme_for_another_drawing_is_adapted_from_its_own_limits():
     adapted = adapt(from_dict(table), "rozhdestvensky-4")
     assert adapted.journal.lo[1] == pytest.approx(104.978e-3 + 0.011e-3, abs=1e-10)
     np.testing.assert_array_equal(adapted.cell_pairs, from_dict(table).cell_pairs)
+
+
+def test_a_study_names_iso_schemes_and_gets_them_on_its_engines_drawing():
+    import json
+
+    from stackup import Study
+    from stackup.schemes import scheme_path
+
+    ds = Study(engine="rozhdestvensky-4", schemes=("iso13778-4", "iso13778-6"), n_engines=300, mechanics_engines=0,
+               progress=False).run()
+    texts = json.loads(ds.attrs["input_files"])["schemes"]
+    assert all("laid on engine 'rozhdestvensky-4'" in text for text in texts.values())
+    assert float((ds.status == 0).mean()) > 0.95
+    example = Study(schemes=("iso13778-4",), n_engines=100, mechanics_engines=0, progress=False)
+    assert example.files["schemes"]["iso13778-4"] == scheme_path("iso13778-4").read_text()
+
+
+def test_cli_shows_and_writes_the_schemes_laid_on_an_engine(tmp_path):
+    import subprocess
+    import sys
+
+    command = [sys.executable, "-m", "stackup.cli", "schemes", "--engine", "rozhdestvensky-4"]
+    shown = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+    assert "iso13778-6" in shown and "nominal clearance 70.7-95.4 um" in shown
+    subprocess.run([*command, "--out", str(tmp_path)], capture_output=True, text=True, check=True)
+    written = sorted(tmp_path.glob("*.toml"))
+    assert [p.name for p in written] == [f"iso13778-{k}-rozhdestvensky-4.toml" for k in range(1, 7)]
+    for path in written:
+        assert load(path).clearance_limits() == adapt(path.name.split("-rozh")[0], "rozhdestvensky-4").clearance_limits()
+    again = subprocess.run([*command, "--out", str(tmp_path)], capture_output=True, text=True)
+    assert again.returncode == 2 and "--force" in again.stderr

@@ -57,6 +57,7 @@ from .._version import __version__
 from .. import _validate as check
 from .._validate import InRange, Integer, Positive, Window, validated
 from ..engines import load_engine
+from ..patterns import ISO_SCHEMES, adapt
 from ..plan import optimise_supply
 from ..scenarios import DECLARED
 from ..schemes import from_dict
@@ -68,7 +69,6 @@ from .search import search_shells
 from .session import Search
 from .tables import nm
 
-ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
 #: Nelder-Mead evaluations per shell grade limit after the differential evolution of the shell limits.
 POLISH_PER_LIMIT = 10
 #: Engines the optimal process mean of a sorted shell supply is stated for (stackup.plan.optimise_supply).
@@ -209,10 +209,11 @@ def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=
                             journal_grades=journal_grades, scenarios=scenarios, seed=seed, n_engines=n_engines,
                             sort_share=float(sort_share), readout=float(readout), mixed=bool(mixed_pairs),
                             weights=weights)
-    log("ISO 13778 schemes on the design sample")
-    iso = {k: {s.label: score(k, s, window).outside for s in problem.samples} for k in ISO_SCHEMES}
-    start_scheme = load_scheme(min(iso, key=lambda k: problem.objective(list(iso[k].values())))
-                               if start is None else start)
+    log("ISO 13778 schemes, laid on the engine's drawing, on the design sample")
+    patterns = {k: adapt(k, engine) for k in ISO_SCHEMES}
+    iso = {k: {s.label: score(scheme, s, window).outside for s in problem.samples} for k, scheme in patterns.items()}
+    start_scheme = (patterns[min(iso, key=lambda k: problem.objective(list(iso[k].values())))] if start is None
+                    else load_scheme(start))
     search = Search(problem, seed=seed, x0=_encode_start(start_scheme, problem))
     found, surplus, shortfall, aim = _search(search, start_scheme, generations=generations, seed=seed, log=log)
     designed = _build(name or f"designed-{engine.name}", problem, found)

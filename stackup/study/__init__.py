@@ -32,6 +32,7 @@ from ..fit import METHODS as FIT_METHODS
 from ..film.cycle import FILM_METHODS, canonical_tier
 from ..life import FILM_STATISTICS
 from ..parts import SAMPLERS
+from ..patterns import ISO_SCHEMES
 from ..schemes import Scheme
 from . import chain, inputs, summaries
 from .context import context, fingerprint
@@ -40,7 +41,6 @@ from .schedule import WORKER_MALLOC, check_scheduler, results
 from .sinks import sink
 from .store import ChunkStore, open_study
 
-ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
 #: Engines of the mechanical chain by default: enough for the main job's life B10 and cycle-minimum film P1 per
 #: scheme, and the engine's life B10 (its weakest bearing), to be within +-5 % (95 %, engine bootstrap); the
 #: errors against the number of engines are measured in reports/mechanics_sample_size.md.
