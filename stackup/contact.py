@@ -150,3 +150,116 @@ def greenwood_tripp(film_thickness, *, roughness, contact_modulus, asperities=TY
     scale = (16 * np.sqrt(2) / 15 * np.pi * asperities.roughness_parameter**2
              * np.sqrt(asperities.slope_parameter) * modulus)
     return scale * _f52(np.atleast_1d(h / sigma)).reshape(np.shape(h / sigma))
+
+
+@validated(thickness=Positive(), modulus=Positive(), poisson=InRange(-1.0, 0.5, lo_open=True, hi_open=True))
+def column_stiffness(thickness, modulus, poisson):
+    r"""Stiffness of an elastic layer as columns in series (Winkler foundation) [Pa/m].
+
+    Parameters
+    ----------
+    thickness : array_like (layers,)
+        Thickness of each layer under the film, in the order met [m].
+    modulus : array_like (layers,)
+        Young's modulus of each layer [Pa].
+    poisson : array_like (layers,)
+        Poisson's ratio of each layer [-].
+
+    Returns
+    -------
+    float
+        :math:`k` with the pressure :math:`p = k\,u` per deflection :math:`u` [Pa/m].
+
+    Notes
+    -----
+    Each layer a column in uniaxial strain (laterally held by the material
+    around it) with the constrained modulus :math:`E' = E(1-\nu)/((1+\nu)(1-2\nu))`,
+    the layers in series:
+
+    .. math:: \frac1k = \sum_i \frac{t_i}{E'_i}
+
+    The column model of a thin bearing lining and shell back (Bonneau et al.
+    2014, ch. 3: the "elastic foundation" form of the lining's compliance). It
+    has no spreading: a column deflects under its own pressure only, which
+    over-states the local deflection of a thick layer under a narrow patch and
+    leaves out the housing's bending (the support's linear compliance carries
+    that, :class:`stackup.engines.Supports`).
+
+    References
+    ----------
+    .. [1] Bonneau, D., Fatu, A., Souchet, D., *Hydrodynamic Bearings*, ISTE/Wiley, 2014
+       (elastic foundation model of the lining).
+    .. [2] Johnson, K. L., *Contact Mechanics*, Cambridge University Press, 1985, sec. 5.9
+       (the Winkler foundation and its constrained modulus).
+    """
+    t, e, nu = (np.atleast_1d(np.asarray(a, dtype=float)) for a in (thickness, modulus, poisson))
+    constrained = e * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+    return float(1.0 / np.sum(t / constrained))
+
+
+@dataclass(frozen=True)
+class LayerContact:
+    """Film and asperity pressure on an elastic layer (:func:`layer_contact`).
+
+    Attributes
+    ----------
+    film : numpy.ndarray
+        Separation of the mean planes with the layer deflected [m].
+    pressure : numpy.ndarray
+        Asperity contact pressure [Pa].
+    """
+
+    film: np.ndarray
+    pressure: np.ndarray
+
+
+#: Bisection steps of :func:`layer_contact` (the bracket shrinks 2^-60).
+LAYER_BISECTIONS = 60
+
+
+@validated(rigid_film=Finite(), roughness=Positive(), contact_modulus=Positive(), stiffness=Positive())
+def layer_contact(rigid_film, *, roughness, contact_modulus, stiffness, asperities=TYPICAL_ASPERITIES):
+    r"""Film and asperity pressure where a rigid film is closed by the asperities on an elastic layer.
+
+    Parameters
+    ----------
+    rigid_film : array_like
+        Film the rigid surfaces would leave [m]; negative where they would overlap.
+    roughness : float
+        Composite RMS roughness :math:`\sigma` [m].
+    contact_modulus : float
+        :math:`E^*` of the asperities [Pa] (:func:`contact_modulus`).
+    stiffness : float
+        The layer's stiffness :math:`k` [Pa/m] (:func:`column_stiffness`).
+    asperities : AsperityParameters
+
+    Returns
+    -------
+    LayerContact
+
+    Notes
+    -----
+    The layer deflects by :math:`u = p_c/k` under the asperity pressure of
+    Greenwood and Tripp (:func:`greenwood_tripp`), which opens the film:
+
+    .. math:: h = h_r + \frac{p_c(h)}{k}
+
+    with :math:`p_c` falling with :math:`h`, so one root, found by bisection in
+    :math:`[h_r, h_r + p_c(h_r)/k]`. Where the rigid surfaces overlap by much
+    more than the roughness the layer takes the overlap, :math:`p_c \to k(-h_r)`.
+    The film pressure is left out: at a bearing's edge it is ambient.
+    """
+    h_r = np.asarray(rigid_film, dtype=float)
+
+    def pressure(h):
+        return greenwood_tripp(h, roughness=roughness, contact_modulus=contact_modulus, asperities=asperities)
+
+    lo = h_r.copy()
+    hi = h_r + pressure(h_r) / stiffness
+    for _ in range(LAYER_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        above = mid - h_r - pressure(mid) / stiffness > 0
+        hi = np.where(above, mid, hi)
+        lo = np.where(above, lo, mid)
+    h = 0.5 * (lo + hi)
+    return LayerContact(h, stiffness * (h - h_r))

@@ -18,7 +18,9 @@ the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
 
 from __future__ import annotations
 
+
 import io
+import math
 import os
 import warnings
 from dataclasses import dataclass, replace
@@ -30,6 +32,7 @@ from pathlib import Path
 from . import _validate as check
 from . import materials
 from .crank import BellakhdharLaw
+from .crank.housing import Supports, bulkhead_compliance
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
 from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
@@ -147,6 +150,7 @@ class CrankSpec:
     pressure_trace: tuple | None = None  # measured (cycle angles [deg], pressures [Pa]) replacing the model
     oil: str = "SAE-5W-30"  # stackup.film.oil grade
     oil_supply_temperature: float = 90.0  # [degC]
+    supports: Supports | None = None  # the block's compliance at each main bearing; None: rigid against tilt
 
     def pin_loads(self, crank_angle):
         """Crank-pin loads (angles, cylinders, 2) [N] at crank angles [deg]."""
@@ -576,11 +580,79 @@ def _crank(top, *, scale, units, bearings, extra):
     )
     t.close()
     ratio, params = _bearing_law(top, **length)
+    supports = _supports(top, **length, bearings=bearings, block=top.table("press_fit").get("housing_material"),
+                         ring=top.table("press_fit").get("housing_outer"))
+    if supports is not None:
+        given = [k for k in ("k_lv", "k_hv") if k in top.table("bearing_law")]
+        if given:
+            raise ValueError(f"{top.where}, key bearing_law.{given[0]}: the housing's deformation stiffness is the "
+                             "[supports] table's linear_compliance_um_per_kN (one description of the housing); "
+                             f"remove bearing_law.{given[0]}")
+        params = {**params, **supports.law_stiffness}
     oil = top.table("oil")
     grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
     supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
     oil.close()
-    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply)
+    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply,
+                   supports=supports)
+
+
+def _per_bearing(t, name, *, bearings, required, lo=-math.inf, positive=False):
+    """A [supports] key: one row of two numbers for every bearing, or one row for all -> (bearings, 2)."""
+    value = t.numbers(name, required=required, rows=True)
+    if value is None:
+        return None
+    where = f"{t.where}, key {t.key(name)}"
+    if value.shape == (2,):
+        value = np.broadcast_to(value, (bearings, 2)).copy()
+    if value.shape != (bearings, 2):
+        raise ValueError(f"{where}: shape {value.shape}; give [a, b] for every bearing or one row per bearing "
+                         f"({bearings}, 2)")
+    bad = value <= lo if positive else value < lo
+    if np.any(bad):
+        raise ValueError(f"{where}: {float(value[bad].flat[0]):g} is not valid; a compliance must be "
+                         f"{'> 0' if positive else '>= 0'}")
+    return value
+
+
+def _supports(top, *, scale, units, bearings, block, ring):
+    """The [supports] table: the block's linear and angular compliance at each main bearing, its thermal offsets."""
+    if "supports" not in top:
+        top.get("supports")
+        return None
+    t = top.table("supports")
+    linear = _per_bearing(t, "linear_compliance_um_per_kN", bearings=bearings, required=True, lo=0.0, positive=True)
+    angular = _per_bearing(t, "angular_compliance_urad_per_Nm", bearings=bearings, required=False, lo=0.0)
+    bulkhead = t.optional("bulkhead")
+    where = f"{t.where}, key {t.key('angular_compliance_urad_per_Nm')}"
+    if (angular is None) == (bulkhead is None):
+        raise ValueError(f"{where}: {'missing' if angular is None else 'given beside supports.bulkhead'}; give the "
+                         "angular compliance [urad/(N m)] per bearing (vertical plane, transverse plane) or the "
+                         "bulkhead's web ([supports.bulkhead]: thickness, height, width) it is derived from, one of them")
+    if bulkhead is not None:
+        material = materials.get(block or "grey-cast-iron")
+        plausible = dict(scale=scale, units=units, plausible=PLAUSIBLE["ring"])
+        thickness = bulkhead.lengths("thickness", count=bearings, required=True, **plausible, what="bulkhead thickness")
+        height = bulkhead.length("height", required=True, **plausible, what="bulkhead height")
+        width = bulkhead.length("width", required=True, **plausible, what="bulkhead width")
+        ring_height = bulkhead.length("ring_height", None if ring is None else ring, **plausible,
+                                      what="housing ring height")
+        if ring_height is None:
+            raise ValueError(f"{bulkhead.where}, key {bulkhead.key('ring_height')}: missing (and no "
+                             "press_fit.housing_outer to take it from)")
+        bulkhead.close()
+        angular = bulkhead_compliance(thickness=thickness, height=height, width=width, ring_height=ring_height,
+                                      modulus=material.modulus, poisson=material.poisson)
+    else:
+        angular = angular * 1e-6
+    thermal = _per_bearing(t, "thermal_offset_um", bearings=bearings, required=False)
+    if thermal is not None and np.any(np.abs(thermal) > 500.0):
+        raise ValueError(f"{t.where}, key {t.key('thermal_offset_um')}: {float(np.abs(thermal).max()):g} um is not a "
+                         "plausible offset of a bore by the block's heat (0 to 500 um)")
+    out = Supports(linear * 1e-9, angular, None if thermal is None else thermal * 1e-6, t.source("source"),
+                   t.source("thermal_source") if thermal is not None else "")
+    t.close()
+    return out
 
 
 def _kinematics(t, *, scale, units):

@@ -120,26 +120,25 @@ def line_integrals(h0, g, a, b):
 
 
 @njit(cache=True, inline="always")
-def _line_p0(theta, x0, x1, v0, v1, e0, e1):
+def _line_p0(theta, x0, x1, v0, v1, e0, e1, u0, u1):
     n0 = math.cos(theta)
     n1 = math.sin(theta)
-    return line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, v0 * n0 + v1 * n1,
-                          0.5 * (e1 * n0 - e0 * n1))[0]
+    return line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, v0 * n0 + v1 * n1, u0 * n0 + u1 * n1)[0]
 
 
 @njit(cache=True, inline="always")
-def _cut(theta, x0, x1, v0, v1, e0, e1, step):
+def _cut(theta, x0, x1, v0, v1, e0, e1, u0, u1, step):
     """The boundary of the pressure-carrying arc near ``theta`` (the untilted one): secant steps on P_0.
 
     At most :data:`CUT_STEPS` steps, each kept within :data:`CUT_SHIFT` of ``theta``.
     """
-    p = _line_p0(theta, x0, x1, v0, v1, e0, e1)
+    p = _line_p0(theta, x0, x1, v0, v1, e0, e1, u0, u1)
     if p == 0.0:
         return theta
     t_prev, p_prev = theta, p
     t = theta + step
     for _ in range(CUT_STEPS):
-        p = _line_p0(t, x0, x1, v0, v1, e0, e1)
+        p = _line_p0(t, x0, x1, v0, v1, e0, e1, u0, u1)
         if p == p_prev or not math.isfinite(p):
             break
         t_new = t - p * (t - t_prev) / (p - p_prev)
@@ -168,9 +167,9 @@ def _stretched(phi, k, root):
 def _line(cp, sp, weight, journal, frame, wet):
     """Weighted contribution (F0, F1, M0, M1) of the line at Sommerfeld's angle psi (cp, sp its cosine and sine).
 
-    ``journal`` (x0, x1, v0, v1, e0, e1) and ``frame`` (c0, c1, k, root) as :func:`_arc` takes them.
+    ``journal`` (x0, x1, v0, v1, e0, e1, u0, u1) and ``frame`` (c0, c1, k, root) as :func:`_arc` takes them.
     """
-    x0, x1, v0, v1, e0, e1 = journal
+    x0, x1, v0, v1, e0, e1, u0, u1 = journal
     c0, c1, k, root = frame
     d = 1.0 + k * cp
     cphi = (k + cp) / d
@@ -178,7 +177,7 @@ def _line(cp, sp, weight, journal, frame, wet):
     n0 = c0 * cphi - c1 * sphi
     n1 = c1 * cphi + c0 * sphi
     a = v0 * n0 + v1 * n1
-    b = 0.5 * (e1 * n0 - e0 * n1)  # u = -(1/2) k x e
+    b = u0 * n0 + u1 * n1  # tilt held: u = -(1/2) k x e
     if not wet and a + abs(b) <= 0.0:
         return 0.0, 0.0, 0.0, 0.0  # the source is negative over the whole width: no pressure on this line
     p0, p1 = line_integrals(1.0 - x0 * n0 - x1 * n1, e0 * n0 + e1 * n1, a, b)
@@ -196,7 +195,7 @@ def _line(cp, sp, weight, journal, frame, wet):
 def _arc(psi_lo, span, journal, nodes, weights, frame, wet):
     """Gauss-Legendre over Sommerfeld's angles [psi_lo, psi_lo + span] about the thinner edge.
 
-    ``journal``: centre, squeeze velocity and edge offset (x0, x1, v0, v1, e0, e1);
+    ``journal``: centre, squeeze velocity, edge offset and tilt squeeze (x0, x1, v0, v1, e0, e1, u0, u1);
     ``frame``: the thinner edge's direction (c0, c1), eccentricity k and sqrt(1 - k^2). ``wet``: the arc carries pressure (its lines count, P_0 clipped at 0);
     else only lines with P_0 > 0 count, through the ramp :data:`WET_RAMP`.
     The nodes are symmetric about the arc's middle: each pair's cosines and
@@ -232,7 +231,18 @@ def _arc(psi_lo, span, journal, nodes, weights, frame, wet):
 
 @njit(cache=True)
 def film_moment(x0, x1, v0, v1, e0, e1, quadrature):
+    """Film force and moment (F0, F1, M0, M1) under a tilted journal whose tilt is held (:func:`squeeze_moment`
+    with the tilt squeeze :math:`\\bar{\\mathbf u} = -\\tfrac12\\mathbf k\\times\\mathbf e`)."""
+    return squeeze_moment(x0, x1, v0, v1, e0, e1, 0.5 * e1, -0.5 * e0, quadrature)
+
+
+@njit(cache=True)
+def squeeze_moment(x0, x1, v0, v1, e0, e1, u0, u1, quadrature):
     """Film force and moment (F0, F1, M0, M1) on the bearing under a tilted journal, short bearing.
+
+    ``(u0, u1)``: the tilt's squeeze velocity, dimensionless,
+    :math:`\\bar{\\mathbf u} = \\dot{\\mathbf e}/\\omega - \\tfrac12\\mathbf k\\times\\mathbf e` (a line's source
+    is :math:`a + b\\zeta` with :math:`b = \\bar{\\mathbf u}\\cdot\\mathbf n`).
 
     The lines carry pressure (P_0 > 0) on the half of the bearing the squeeze
     velocity points into when the journal is aligned; the tilt moves the two
@@ -263,8 +273,8 @@ def film_moment(x0, x1, v0, v1, e0, e1, quadrature):
     alpha = math.atan2(v1, v0)
     # a step in theta of 1e-3 of the local spacing of Sommerfeld's angle
     step = 1e-3 * root / (1.0 + k)
-    lo = _cut(alpha - 0.5 * math.pi, x0, x1, v0, v1, e0, e1, step)
-    hi = _cut(alpha + 0.5 * math.pi, x0, x1, v0, v1, e0, e1, step)
+    lo = _cut(alpha - 0.5 * math.pi, x0, x1, v0, v1, e0, e1, u0, u1, step)
+    hi = _cut(alpha + 0.5 * math.pi, x0, x1, v0, v1, e0, e1, u0, u1, step)
     if hi <= lo:
         hi = lo + 1e-12
     # the arc's ends in Sommerfeld's angle about the thinner edge: the pressure-carrying arc, then the rest
@@ -274,7 +284,7 @@ def film_moment(x0, x1, v0, v1, e0, e1, quadrature):
     span = psi_hi - psi_lo
     if span <= 0.0:
         span += 2.0 * math.pi
-    journal = (x0, x1, v0, v1, e0, e1)
+    journal = (x0, x1, v0, v1, e0, e1, u0, u1)
     frame = (c0, c1, k, root)
     f0, f1, m0, m1 = _arc(psi_lo, span, journal, quadrature.nodes, quadrature.weights, frame, True)
     g0, g1, n0, n1 = _arc(psi_hi, 2.0 * math.pi - span, journal, quadrature.nodes_dry, quadrature.weights_dry, frame,

@@ -121,6 +121,8 @@ class BearingFilms:
     edge_contact_share : numpy.ndarray
         Share of the crank angles at which the film over the width is at its
         limit, :math:`c(1 - \varepsilon_{lim})` (an edge, or the journal, at the wall) [-].
+    viscosity : numpy.ndarray
+        Effective viscosity of the film [Pa s] (at ``temperature``).
     """
 
     h_min: np.ndarray
@@ -136,6 +138,7 @@ class BearingFilms:
     heat_status: np.ndarray
     tilt_max: np.ndarray | None = None
     edge_contact_share: np.ndarray | None = None
+    viscosity: np.ndarray | None = None
 
 
 def _cycle_of_reactions(values):
@@ -202,7 +205,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         status = np.where(_steady_valid(film), status, FILM_STATUS.index("collapsed")).astype(np.int8)
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
-                            film.tilt_max, _at_limit_share(film.h_min_edge, clearance))
+                            film.tilt_max, _at_limit_share(film.h_min_edge, clearance), heat.viscosity)
     options = {"feed": feed} if method == "reynolds-transient" else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
@@ -210,7 +213,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                                         tilt_compliance=tilt_compliance, options=options, **geometry)
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
                         balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
-                        film.tilt_max, _at_limit_share(film.h_min_edge, clearance))
+                        film.tilt_max, _at_limit_share(film.h_min_edge, clearance), balance.viscosity)
 
 
 def _at_limit_share(h_min_edge, clearance):

@@ -150,14 +150,15 @@ class Study:
         bearing to the steady film at its viscosity and clearance
         (:func:`stackup.study.chain.fitted_law`; a second crankshaft cycle per
         engine).
-    tilt_method : {"equilibrium", "free"}
-        The journal's tilt in the film (the edge film, ``edge_contact_share``):
-        the crankshaft's slope at the support turned back by the film's
-        restoring moment against the crankshaft's rotational compliance
-        (default; :mod:`stackup.film.tilt`), or that slope held, an upper bound
-        of the tilt that skips the equilibrium's film moments (measured in
-        reports/bench_chain.md: the chain's cost and the difference in edge
-        film and contact share). Only the edge-film variables depend on it.
+    tilt_method : {"coupled", "equilibrium", "free"}
+        The journal's tilt in the film (:func:`stackup.study.chain.mechanical_chain`):
+        the support moments of all bearings balanced with the crankshaft and
+        the block's angular compliance over the cycle, tilt squeeze and the
+        elastic layer included (default; :mod:`stackup.film.coupled`: ``h_min``,
+        α and the lives on the film over the bearing surface); each bearing's
+        tilt against the crankshaft's compliance alone, rigid surfaces
+        (:mod:`stackup.film.tilt`); or the beam's slope held. With the last two
+        only the edge-film variables depend on it.
     life_film : {"cycle-mean", "cycle-minimum"}
         The film Levanov's method 1 reads (:func:`stackup.life.cycle_film`):
         the cycle mean of the minimum film, as the paper's results imply, or
@@ -214,7 +215,7 @@ class Study:
     film_method: str = "auto"
     film_error: float = 0.5
     bearing_law: str = "paper"
-    tilt_method: str = "equilibrium"
+    tilt_method: str = "coupled"
     life_film: str = "cycle-mean"
     progress: bool | None = None
     sampler: str = "mc"

@@ -18,14 +18,17 @@ import numpy as np
 from ..assembly import ASSEMBLED, assemble
 from ..crank import support_compliance, support_slopes
 from ..crank.cycle import engine_cycles, worst_status
+from ..film.cycle import FILM_STATUS
 from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
+from ..film.coupled import STATES as TILT_STATES
+from ..film.coupled import ElasticLayer, support_moments
 from ..film.cycle import HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
 from ..film.journal import vector_length
 from .. import _validate as check
 from .. import materials
-from ..contact import composite_roughness, contact_modulus
+from ..contact import column_stiffness, composite_roughness, contact_modulus
 from ..life import alpha as boundary_share
 from ..life import cycle_film, levanov_method1, levanov_method2
 from ..parts import BlockParts, draw_lot
@@ -36,8 +39,10 @@ from .clearance import operating_clearance, press_fit_checks
 
 #: Engines per step of the mechanical chain when it runs to a target error.
 MECHANICS_BATCH = 25
-#: The journal's tilt in the film: balanced against the film's moment, or the beam's slope held (upper bound).
-TILT_METHODS = ("equilibrium", "free")
+#: The journal's tilt in the film: the support moments of every bearing balanced with the crankshaft and the block
+#: over the cycle (:mod:`stackup.film.coupled`), each bearing's tilt balanced against the film's moment alone
+#: (:mod:`stackup.film.tilt`, a rigid block), or the beam's slope held (upper bound).
+TILT_METHODS = ("coupled", "equilibrium", "free")
 
 
 @dataclass
@@ -256,7 +261,7 @@ def _press_fit(engine, parts, assembly, method):
 
 
 def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper",
-               tilt_method="equilibrium"):
+               tilt_method="coupled"):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
     Engines with a bearing not assembled are skipped (``not_computed``).
@@ -280,7 +285,7 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="equilibrium"):
+                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="coupled"):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
     Parameters
@@ -303,12 +308,18 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         With ``crank_method="bearing-law"``: the engine's law (the paper's
         constants, J scaled with each clearance) or J and dx fitted per engine
         and bearing to the steady film (:func:`fitted_law`).
-    tilt_method : {"equilibrium", "free"}
-        The journal's tilt in the film (:data:`TILT_METHODS`): the beam's
-        slope at the support turned back by the film's moment against the
-        crankshaft's rotational compliance (:mod:`stackup.film.tilt`), or that
-        slope held (the film's moment neglected: an upper bound of the tilt,
-        cheaper by the equilibrium's film moments).
+    tilt_method : {"coupled", "equilibrium", "free"}
+        The journal's tilt in the film (:data:`TILT_METHODS`): ``coupled``, the
+        support moments of all bearings balanced with the crankshaft (its
+        rotational compliance between the supports) and the block (each
+        support's angular compliance, ``engine.crank.supports``) over the cycle,
+        with the tilt's squeeze and the elastic layer under the film
+        (:mod:`stackup.film.coupled`): ``h_min``, α and the lives then read the
+        film over the whole bearing surface, ``h_min_midplane`` the mid-plane's;
+        ``equilibrium``, each bearing's tilt against the film's moment and the
+        crankshaft's compliance at its own support, quasi-static, rigid
+        surfaces (:mod:`stackup.film.tilt`), or ``free``, the beam's slope held;
+        with these two ``h_min``, α and the lives read the mid-plane film.
 
     A bearing whose film is not a number (``film_status`` collapsed,
     not_periodic or failed; ``film_valid`` false) has NaN for every value
@@ -320,62 +331,134 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         if bearing_law == "fitted" and crank_method == "bearing-law":
             law, law_error = fitted_law(engine, clearance=clearance, journal_d=journal_d, bore_offset=bore_offset,
                                         journal_eccentricity=journal_eccentricity, crank_angle=crank_angle)
+        supports = spec.supports
+        if supports is not None and supports.thermal_offset is not None:
+            bore_offset = np.asarray(bore_offset) + supports.thermal_offset  # the block's heat bends the line
         r = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
                           clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
         # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
-        # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the film's
-        # moment against the crankshaft's rotational compliance there
+        # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the support
+        # moments
         tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
-        compliance, roughness, modulus = _engine_constants(engine)
+        constants = _engine_constants(engine)
+        coupled = tilt_method == "coupled"
         films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
-                              journal_d=journal_d, method=film_method, tilt=tilt,
-                              tilt_compliance=compliance if tilt_method == "equilibrium" else None)
+                              journal_d=journal_d, method=film_method, tilt=None if coupled else tilt,
+                              tilt_compliance=constants.compliance if tilt_method == "equilibrium" else None)
+        surface = None
+        if coupled:
+            surface = support_moments(films.position, np.moveaxis(tilt, 1, 2), crank_angle,
+                                      compliance=constants.coupled, journal_radius=np.asarray(journal_d) / 2,
+                                      bearing_width=spec.bearing_width, radial_clearance=np.asarray(clearance) / 2,
+                                      viscosity=films.viscosity, speed=spec.speed, layer=constants.layer,
+                                      method="short" if film_method in ("short", "mobility") else "finite")
+        loads = np.moveaxis(r.reactions, 1, 2)
         out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
                "crank_status": worst_status(r.status),
                "tilt_free_max": vector_length(tilt).max(axis=1),
                "law_fit_error": law_error,
-               "load_history": np.moveaxis(r.reactions, 1, 2),
-               **_film_values(films),
-               **_life_values(engine, films, clearance=clearance, journal_d=journal_d, crank_angle=crank_angle,
-                              life_film=life_film, roughness=roughness, modulus=modulus)}
+               "load_history": loads,
+               **_film_values(films, surface, loads, crank_angle, engine.wear.critical_film),
+               **_life_values(engine, films, surface, spec.bearing_width, clearance=clearance, journal_d=journal_d,
+                              crank_angle=crank_angle, life_film=life_film, roughness=constants.roughness,
+                              modulus=constants.modulus)}
     return _not_a_number(out, films.valid)
 
 
-def _film_values(films):
-    """The film's :data:`schema.PER_MECH` variables of a :func:`stackup.film.cycle.bearing_films` result."""
-    return {"h_min": films.h_min.min(axis=-1),
-            "h_min_edge": films.h_min_edge.min(axis=-1),
-            "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
-            "tilt_max": films.tilt_max,
-            "edge_contact_share": films.edge_contact_share,
+def _surface_film(films, surface):
+    """The film the lives read over the cycle (engines, bearings, angles) [m]: over the surface where the support
+    moments ran, else the mid-plane's."""
+    return films.h_min if surface is None else surface.film
+
+
+def _edge_contact(films, surface, loads, crank_angle, critical):
+    """Share of the cycle with an edge in asperity contact, the largest load and the thinnest film's angle there."""
+    if surface is None:
+        nan = np.full(films.h_min.shape[:-1], np.nan)
+        return films.edge_contact_share, nan, nan
+    touching = (surface.film < critical) & (surface.film < films.h_min - 1e-9)
+    load = np.where(touching, vector_length(loads), -np.inf).max(axis=-1)
+    at = np.where(touching, surface.film, np.inf).argmin(axis=-1)
+    angle = np.asarray(crank_angle, dtype=float)[at]
+    some = touching.any(axis=-1)
+    return touching.mean(axis=-1), np.where(some, load, np.nan), np.where(some, angle, np.nan)
+
+
+def _film_values(films, surface, loads, crank_angle, critical):
+    """The film's :data:`schema.PER_MECH` variables of a :func:`stackup.film.cycle.bearing_films` result and its
+    support moments (``surface``, None with another tilt method)."""
+    h = _surface_film(films, surface)
+    edge = films.h_min_edge if surface is None else surface.film
+    share, load, angle = _edge_contact(films, surface, loads, crank_angle, critical)
+    tilt_status = np.full(films.h_min.shape[:-1], len(TILT_STATES), np.int8)
+    status = films.status
+    if surface is not None:
+        tilt_status = surface.state
+        # a periodic orbit with an edge in asperity contact somewhere in the cycle
+        status = np.where((status == FILM_STATUS.index("periodic")) & (share > 0), FILM_STATUS.index("edge_contact"),
+                          status).astype(np.int8)
+    return {"h_min": h.min(axis=-1),
+            "h_min_midplane": films.h_min.min(axis=-1),
+            "h_min_edge": edge.min(axis=-1),
+            "tilt_loss": films.h_min.min(axis=-1) - edge.min(axis=-1),
+            "tilt_max": films.tilt_max if surface is None else vector_length(surface.tilt).max(axis=-1),
+            "edge_contact_share": share,
+            "edge_contact_load": load,
+            "edge_contact_angle": angle,
+            "tilt_status": tilt_status,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
-            "film_status": films.status,
+            "film_status": status,
             "film_temperature": films.temperature,
             "friction_power": films.friction_power,
             "oil_flow": films.oil_flow,
             "feed_flow": films.feed_flow,
             "heat_status": films.heat_status,
             "film_valid": films.valid,
-            "h_min_history": films.h_min}
+            "h_min_history": h}
 
 
-def _life_values(engine, films, *, clearance, journal_d, crank_angle, life_film, roughness, modulus):
+def _life_values(engine, films, surface, bearing_width, *, clearance, journal_d, crank_angle, life_film, roughness,
+                 modulus):
     """Life and wear of the bearings with these films: Levanov's method 1 on the film statistic ``life_film``,
-    his wear chart (method 2) on the orbit."""
+    his wear chart (method 2) on the orbit; both, and α, on the film over the bearing surface where the support
+    moments ran (``surface``)."""
     wear = engine.wear
-    chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
-                            speed=engine.crank.speed, journal_radius=np.asarray(journal_d) / 2,
-                            h_lim_cr=wear.critical_film, roughness=roughness, contact_modulus=modulus,
-                            wear_limit=wear.wear_limit)
-    h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
-    life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
+    c = np.asarray(clearance) / 2
+    h = np.maximum(_surface_film(films, surface), 0.0)  # Levanov's films: a negative one is no film
+    chart = levanov_method2(_wear_positions(films, surface, bearing_width, c), radial_clearance=c,
+                            crank_angle=crank_angle, speed=engine.crank.speed,
+                            journal_radius=np.asarray(journal_d) / 2, h_lim_cr=wear.critical_film,
+                            roughness=roughness, contact_modulus=modulus, wear_limit=wear.wear_limit)
+    h_min_mean = cycle_film(h, statistic="cycle-mean")
+    life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(h, statistic=life_film),
                            h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
     return {"h_min_mean": h_min_mean,
-            "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
+            "alpha": boundary_share(_surface_film(films, surface), h_lim_cr=wear.critical_film),
             "life": life.life,
             "life_wear_chart": chart.life,
             "wear_rate": chart.wear_rate}
+
+
+def _wear_positions(films, surface, bearing_width, radial_clearance):
+    r"""Journal centres whose film around the bearing the wear chart reads (engines, bearings, angles, 2) [m].
+
+    Without support moments the mid-plane orbit. With them the thinner edge's
+    centre :math:`\mathbf x \pm \tfrac L2\boldsymbol\gamma`, moved along its direction so
+    that its thinnest film is the film over the layer, :math:`c - |\mathbf x_e| = h`:
+    the wear chart of Levanov's method 2 along the edge that carries the
+    asperity contact (the contact zone's width across the bearing left out, as
+    the paper's chart has none).
+    """
+    if surface is None:
+        return films.position
+    half = 0.5 * bearing_width * surface.tilt
+    plus, minus = films.position + half, films.position - half
+    edge = np.where((vector_length(plus) >= vector_length(minus))[..., None], plus, minus)
+    reach = vector_length(edge)
+    target = np.asarray(radial_clearance)[..., None] - surface.film
+    scale = np.where(reach > 0, target / np.where(reach > 0, reach, 1.0), 0.0)
+    return edge * scale[..., None]
 
 
 def _not_a_number(values, valid):
@@ -414,26 +497,56 @@ def _pin_loads(spec, crank_angle):
     return loads
 
 
-#: The engine constants of the last engines the chain saw: (engine, compliance, roughness, contact modulus).
+@dataclass(frozen=True)
+class EngineConstants:
+    """What the chain reads of an engine for every batch: the crankshaft's rotational compliance at its supports
+    (its diagonal (N+1, 2); ``coupled``: between the supports, plus each support's angular compliance on the
+    diagonal, (2, N+1, N+1)), the elastic layer under the film, and the wear's composite roughness and contact
+    modulus."""
+
+    compliance: np.ndarray
+    coupled: np.ndarray
+    layer: ElasticLayer
+    roughness: float
+    modulus: float
+
+
+#: The engine constants of the last engines the chain saw: (engine, EngineConstants).
 _CONSTANTS = []
 
 
 def _engine_constants(engine):
-    """The crankshaft's compliance at its supports, the wear's composite roughness and contact modulus of ``engine``.
-
-    Kept for the next batch like the pins' loads: every batch of a study asks for the same constants.
-    """
-    for known, *constants in _CONSTANTS:
+    """The :class:`EngineConstants` of ``engine``, kept for the next batch (every batch asks for the same)."""
+    for known, constants in _CONSTANTS:
         if known is engine:
             return constants
-    spec, wear = engine.crank, engine.wear
-    journal, lining = materials.get(engine.press_fit.journal_material), materials.get(wear.lining_material)
+    spec, wear, fit = engine.crank, engine.wear, engine.press_fit
+    journal, lining = materials.get(fit.journal_material), materials.get(wear.lining_material)
     compliance = support_compliance(spans=spec.spans, EI=spec.ei)
-    compliance.setflags(write=False)
-    constants = [compliance, composite_roughness(wear.journal_rq, wear.shell_rq),
-                 contact_modulus(journal.modulus, journal.poisson, lining.modulus, lining.poisson)]
-    _CONSTANTS[:] = [*_CONSTANTS[-3:], (engine, *constants)]
+    coupled = support_compliance(spans=spec.spans, EI=spec.ei, coupled=True)
+    if spec.supports is not None:
+        for c in range(2):
+            coupled[c] += np.diag(spec.supports.angular[:, c])
+    for array in (compliance, coupled):
+        array.setflags(write=False)
+    roughness = float(composite_roughness(wear.journal_rq, wear.shell_rq))
+    modulus = float(contact_modulus(journal.modulus, journal.poisson, lining.modulus, lining.poisson))
+    constants = EngineConstants(compliance, coupled, ElasticLayer(layer_stiffness(engine), roughness, modulus),
+                                roughness, modulus)
+    _CONSTANTS[:] = [*_CONSTANTS[-3:], (engine, constants)]
     return constants
+
+
+def layer_stiffness(engine):
+    """Column stiffness of the shell under the film [Pa/m]: its lining and steel back
+    (:func:`stackup.contact.column_stiffness`), the back's thickness the nominal wall less the lining."""
+    fit = engine.press_fit
+    wall = 0.5 * (engine.housing_bore.lo + engine.housing_bore.hi - engine.journal_d.lo - engine.journal_d.hi) / 2
+    lining = materials.get(engine.wear.lining_material)
+    back = materials.get(fit.shell_material)
+    layers = [(fit.lining_thickness, lining)] if fit.lining_thickness > 0 else []
+    layers.append((wall - fit.lining_thickness, back))
+    return column_stiffness([t for t, _ in layers], [m.modulus for _, m in layers], [m.poisson for _, m in layers])
 
 
 def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle):

@@ -17,11 +17,14 @@ import xarray as xr
 
 from ..assembly import NOT_GRADED, STATUS
 from ..crank.cycle import CYCLE_STATUS, NOT_COMPUTED
+from ..film.coupled import STATES as TILT_STATUS
 from ..film.cycle import FILM_STATUS
 from ..film.heat import STATUS as HEAT_STATUS
 
 #: Film status in a dataset: the film stage's codes, then bearings the stage did not run on.
 FILM_STATUS_FLAGS = (*FILM_STATUS, "not_computed")
+#: Status of the support moments: the march's states, then bearings it did not run on (or another tilt method).
+TILT_STATUS_FLAGS = (*TILT_STATUS, "not_computed")
 
 SED = ("scheme", "engine", "bearing")
 SMB = ("scheme", "mech_engine", "bearing")
@@ -71,19 +74,31 @@ class Var:
 #: Per-bearing results of the mechanical chain (crankshaft, film, life).
 MECHANICS = {
     "reaction_max": Var(SMB, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
-    "h_min": Var(SMB, "m", "minimum oil film thickness in the bearing's mid-plane over the engine cycle (the film "
-                           "tier of film_method_used)"),
-    "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness (the film of Levanov's method 1)"),
+    "h_min": Var(SMB, "m", "minimum oil film thickness over the bearing surface and the engine cycle: the journal's "
+                           "tilt and the elastic layer included (Rozhdestvensky et al.'s inf h_min; negative where "
+                           "the asperities are pressed past their mean planes); the mid-plane's where tilt_method "
+                           "is not coupled"),
+    "h_min_midplane": Var(SMB, "m", "minimum oil film thickness in the bearing's mid-plane over the engine cycle "
+                                    "(the film tier of film_method_used, without tilt)"),
+    "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness over the bearing surface (the film of "
+                                "Levanov's method 1, negative films counted as 0)"),
     "h_min_edge": Var(SMB, "m", "minimum oil film thickness over the bearing width and the engine cycle, with the "
-                                "journal's tilt (edge film)"),
-    "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min - h_min_edge"),
-    "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bearing over the cycle (the crankshaft's "
-                                "slope at the support, turned back by the film's moment where tilt_method is "
-                                "equilibrium)"),
-    "tilt_free_max": Var(SMB, "rad", "largest slope of the crankshaft at the support over the cycle, without the "
-                                     "film's moment (the tilt's upper bound)"),
-    "edge_contact_share": Var(SMB, "1", "share of the engine cycle at which the film over the bearing width is at "
-                                        "the limit film (an edge of the tilted journal at the wall)"),
+                                "journal's tilt (edge film; h_min with tilt_method coupled)"),
+    "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min_midplane - h_min_edge"),
+    "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bore over the cycle (the crankshaft's "
+                                "slope at the support turned back by the support moments: tilt_method coupled, "
+                                "or equilibrium)"),
+    "tilt_free_max": Var(SMB, "rad", "largest slope of the crankshaft at the support over the cycle, without "
+                                     "support moments (the tilt's upper bound)"),
+    "edge_contact_share": Var(SMB, "1", "share of the engine cycle at which an edge of the tilted journal is in "
+                                        "asperity contact: the film over the surface below the critical film at an "
+                                        "edge (tilt_method coupled; otherwise at the limit film)"),
+    "edge_contact_load": Var(SMB, "N", "largest bearing load at the crank angles with an edge in contact (NaN: "
+                                       "none)"),
+    "edge_contact_angle": Var(SMB, "degree", "crank angle of the thinnest film over the surface where an edge is "
+                                             "in contact (NaN: none)"),
+    "tilt_status": Var(SMB, "1", "status of the support moments over the cycle (tilt_method coupled)",
+                       TILT_STATUS_FLAGS, "i1", len(TILT_STATUS)),
     "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle (Rozhdestvensky et al.'s p_max)"),
     "p_max_mean": Var(SMB, "Pa", "cycle mean of the peak oil film pressure (Rozhdestvensky et al.'s p*_max)"),
     "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "
@@ -110,7 +125,8 @@ MECHANICS = {
 #: The mechanical chain's values that come from the film: NaN for a bearing whose film is not a number
 #: (``film_valid`` false; ``film_status`` says why: collapsed, not_periodic or failed), so that no statistic
 #: or ranking reads a film held at the eccentricity limit or an orbit that did not close.
-FILM_NUMBERS = ("h_min", "h_min_mean", "h_min_edge", "tilt_loss", "edge_contact_share", "p_max", "p_max_mean", "alpha", "life",
+FILM_NUMBERS = ("h_min", "h_min_midplane", "h_min_mean", "h_min_edge", "tilt_loss", "edge_contact_share",
+                "edge_contact_load", "edge_contact_angle", "p_max", "p_max_mean", "alpha", "life",
                 "life_wear_chart", "wear_rate", "film_temperature", "friction_power", "oil_flow", "feed_flow",
                 "h_min_history")
 _NOT_A_NUMBER = "; NaN where film_valid is false (film_status collapsed, not_periodic or failed)"
@@ -177,7 +193,8 @@ FULL = {
 HISTORY = {
     "load_history": Var((*SMB, "crank_angle", "axis"), "N",
                         "bearing load over the cycle (force of the journal on the bearing)"),
-    "h_min_history": Var((*SMB, "crank_angle"), "m", "minimum oil film thickness over the cycle" + _NOT_A_NUMBER),
+    "h_min_history": Var((*SMB, "crank_angle"), "m", "minimum oil film thickness over the bearing surface over the "
+                                                     "cycle" + _NOT_A_NUMBER),
 }
 
 #: Variables a chunk computes for each of its engines.

@@ -1,0 +1,412 @@
+r"""The crankshaft's support moments over the cycle, all main bearings together (numba).
+
+The readable statement is in :mod:`stackup.film.coupled`; ``tests/film/test_coupled.py``
+holds the numpy twins these kernels must match. Dimensionless as
+:mod:`stackup._kernels.tilt`: journal centre :math:`\boldsymbol\xi` and edge offset
+:math:`\mathbf e = \boldsymbol\gamma L/(2c)` in clearances, squeeze velocity in :math:`c\omega`,
+time :math:`\tau = \omega t` (the crankshaft's angle, rad), force per :math:`\mu\omega R L^3/c^2`, moment per
+:math:`\mu\omega R L^4/c^2`, pressure per :math:`\mu\omega L^2/c^2`.
+
+Asperity contact on the elastic layer (:func:`contact_moment`): the rigid film
+:math:`\bar h_r(\theta, \zeta) = 1 - \boldsymbol\xi\cdot\mathbf n - \zeta\,\mathbf e\cdot\mathbf n`
+becomes, through the layer's table (:func:`stackup.contact.layer_contact`), the film
+:math:`\bar h` and the asperity pressure :math:`\bar p_c`; over the patch where the
+rigid film is below the table's top,
+
+.. math:: \bar{\mathbf F}_c = \tfrac12\oint\mathbf n\int\bar p_c\,d\zeta\,d\theta, \qquad
+          \bar{\mathbf M}_c = \tfrac14\oint\mathbf n\int\bar p_c\,\zeta\,d\zeta\,d\theta
+
+by Gauss-Legendre over the arc about the thinner edge and over the part of each
+line below the top.
+"""
+
+import math
+from collections import namedtuple
+
+import numpy as np
+from numba import njit, prange
+
+from .mobility import Correction, bearing_table, table_lookup
+from .tilt import Quadrature, squeeze_moment, wall_room  # noqa: F401 (Quadrature: the packed rule's layout)
+
+#: The elastic layer's table in units of the composite roughness sigma: rigid film h_r/sigma on a uniform grid
+#: (first value ``lo``, spacing ``step``) -> film h/sigma and asperity pressure [Pa].
+Layer = namedtuple("Layer", ("lo", "step", "film", "pressure"))
+#: Gauss-Legendre nodes and weights on [-1, 1] of the contact patch: around the bearing and along a line.
+ContactRule = namedtuple("ContactRule", ("nodes", "weights", "nodes_axial", "weights_axial"))
+#: The engines' mid-plane orbits: xi, v (E, B, n, 2); free edge offsets (E, B, n, 2); compliance between the
+#: bearings per plane kappa (E, 2, B, B) (edge offset of j per unit film moment of i); per bearing (E, B): sigma/c
+#: and the pressure unit c^2 / (mu omega L^2); L/D (E, B).
+Engines = namedtuple("Engines", ("xi", "v", "free", "kappa", "roughness", "pressure_unit", "ld"))
+#: The time march: the crankshaft's angle per crank-angle sample [rad], the stride, the most cycles, the Newton
+#: tolerance (a share of the thinnest film), the most chord iterations, the eccentricity limit and the periodicity
+#: tolerance (a share of the thinnest film).
+March = namedtuple("March", ("dtau", "stride", "cycles", "tolerance", "chords", "limit", "periodic"))
+#: States of a bearing's march: periodic, not periodic within the cycles, a step whose Newton failed.
+PERIODIC, NOT_PERIODIC, FAILED = 0, 1, 2
+#: Newton's tolerance is a share of the thinnest film but at least of this film [c]; a step also converges where
+#: the residual (an edge offset too) is below RESIDUAL times that tolerance (the film's moment is smooth only to
+#: its quadrature's accuracy: the residual stalls there, in deep asperity contact near 1e-4 c).
+FILM_FLOOR = 0.05
+RESIDUAL = 10.0
+#: Halvings of a Newton step, and steps taken although they do not lower the residual.
+HALVINGS = 8
+UPHILL = 3
+
+
+@njit(cache=True, inline="always")
+def layer_lookup(rigid, layer):
+    """(film, pressure) of the layer's table at the rigid film ``rigid`` [sigma]: linear between its points,
+    the last segment's slope beyond the bottom, no contact above the top."""
+    lo, step, film, pressure = layer
+    n = film.shape[0]
+    t = (rigid - lo) / step
+    if t >= n - 1:
+        return rigid, 0.0
+    if t < 0.0:
+        i = 0
+    else:
+        i = int(t)
+    w = t - i
+    return film[i] + w * (film[i + 1] - film[i]), pressure[i] + w * (pressure[i + 1] - pressure[i])
+
+
+@njit(cache=True)
+def contact_moment(x0, x1, e0, e1, roughness, pressure_unit, layer, rule):
+    """Asperity force and moment (F0, F1, M0, M1) on the bearing, dimensionless (module docstring).
+
+    ``roughness``: sigma / c; ``pressure_unit``: c^2 / (mu omega L^2) [1/Pa]; ``layer``: :data:`Layer`;
+    ``rule``: :data:`ContactRule`.
+    """
+    top = (layer.lo + layer.step * (layer.film.shape[0] - 1)) * roughness  # the table's top [c]
+    rp = math.hypot(x0 + e0, x1 + e1)
+    rm = math.hypot(x0 - e0, x1 - e1)
+    r = max(rp, rm)
+    if 1.0 - r >= top or r == 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    c0, c1 = (x0 + e0, x1 + e1) if rp >= rm else (x0 - e0, x1 - e1)
+    centre = math.atan2(c1, c0)
+    span = math.acos(min(1.0, max(-1.0, (1.0 - top) / r)))
+    f0 = f1 = m0 = m1 = 0.0
+    for i in range(rule.nodes.shape[0]):
+        theta = centre + span * rule.nodes[i]
+        n0 = math.cos(theta)
+        n1 = math.sin(theta)
+        h0 = 1.0 - x0 * n0 - x1 * n1
+        g = e0 * n0 + e1 * n1
+        # the part of the line [-1, 1] whose rigid film h0 - g zeta is below the top
+        if g > 0.0:
+            za, zb = max(-1.0, (h0 - top) / g), 1.0
+        elif g < 0.0:
+            za, zb = -1.0, min(1.0, (h0 - top) / g)
+        elif h0 < top:
+            za, zb = -1.0, 1.0
+        else:
+            continue
+        if zb <= za:
+            continue
+        half = 0.5 * (zb - za)
+        mid = 0.5 * (zb + za)
+        p0 = p1 = 0.0
+        for j in range(rule.nodes_axial.shape[0]):
+            zeta = mid + half * rule.nodes_axial[j]
+            _, p = layer_lookup((h0 - g * zeta) / roughness, layer)
+            w = rule.weights_axial[j] * half * p
+            p0 += w
+            p1 += w * zeta
+        w = span * rule.weights[i] * pressure_unit
+        f0 += w * p0 * n0
+        f1 += w * p0 * n1
+        m0 += w * p1 * n0
+        m1 += w * p1 * n1
+    return 0.5 * f0, 0.5 * f1, 0.25 * m0, 0.25 * m1
+
+
+@njit(cache=True, inline="always")
+def surface_film(x0, x1, e0, e1, roughness, layer):
+    """Thinnest film over the bearing surface [c]: the layer's film at the thinnest rigid film (an edge)."""
+    rigid = 1.0 - max(math.hypot(x0 + e0, x1 + e1), math.hypot(x0 - e0, x1 - e1))
+    film, _ = layer_lookup(rigid / roughness, layer)
+    return film * roughness
+
+
+@njit(cache=True)
+def bearing_moment(x0, x1, v0, v1, e0, e1, u0, u1, correction, roughness, pressure_unit, layer, quadrature, rule,
+                   limit):
+    """Moment (M0, M1) of the film and the asperities on one bearing, dimensionless.
+
+    The film's (:func:`stackup._kernels.tilt.squeeze_moment`, tilt squeeze ``u``) at the edge offset
+    whose thinnest edge film is the rigid one where that is above the limit film :math:`f = 1 - \text{limit}`,
+    and :math:`f/(2 - h_r/f)` below it (continuous with its slope, as the transient tier closes its film:
+    the film's moment keeps growing, slowly, where the asperities on the layer carry the rest), scaled and
+    turned by ``correction`` (ratio, cosine, sine of the turn); plus the asperities'.
+    """
+    floor = 1.0 - limit
+    rigid = 1.0 - max(math.hypot(x0 + e0, x1 + e1), math.hypot(x0 - e0, x1 - e1))
+    held = 1.0
+    if rigid < floor:
+        film = floor / (2.0 - rigid / floor)
+        held = min(1.0, wall_room(x0, x1, 0.0, 0.0, e0, e1, 1.0 - film))
+    _, _, m0, m1 = squeeze_moment(x0, x1, v0, v1, held * e0, held * e1, u0, u1, quadrature)
+    ratio, ct, st = correction
+    _, _, c0, c1 = contact_moment(x0, x1, e0, e1, roughness, pressure_unit, layer, rule)
+    return ratio * (ct * m0 - st * m1) + c0, ratio * (st * m0 + ct * m1) + c1
+
+
+@njit(cache=True)
+def _all_moments(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, limit, out):
+    """Moments (B, 2) into ``out`` of engine ``g`` at angle ``k`` with edge offsets ``e`` (B, 2); the tilt squeeze
+    from ``before`` over ``dtau`` (``quasi``: the tilt held)."""
+    xi, v, roughness, unit = g.xi, g.v, g.roughness, g.pressure_unit
+    for j in range(e.shape[0]):
+        if quasi:
+            u0 = 0.5 * e[j, 1]
+            u1 = -0.5 * e[j, 0]
+        else:
+            u0 = (e[j, 0] - before[j, 0]) / dtau + 0.5 * e[j, 1]
+            u1 = (e[j, 1] - before[j, 1]) / dtau - 0.5 * e[j, 0]
+        out[j, 0], out[j, 1] = bearing_moment(xi[j, k, 0], xi[j, k, 1], v[j, k, 0], v[j, k, 1], e[j, 0], e[j, 1], u0,
+                                              u1, (corrections[j, k, 0], corrections[j, k, 1], corrections[j, k, 2]),
+                                              roughness[j], unit[j], layer, quadrature, rule, limit)
+
+
+@njit(cache=True)
+def _residual(g, k, e, moments, out):
+    """e - free + kappa M, per plane (B, 2) into ``out``."""
+    kappa, free = g.kappa, g.free
+    b_n = e.shape[0]
+    for j in range(b_n):
+        for c in range(2):
+            s = e[j, c] - free[j, k, c]
+            for i in range(b_n):
+                s += kappa[c, j, i] * moments[i, c]
+            out[j, c] = s
+
+
+@njit(cache=True)
+def _jacobian(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, limit, moments, jac):
+    """Newton matrix (2B, 2B) into ``jac``: I + kappa dM/de, dM_i/de_i by forward differences per bearing."""
+    b_n = e.shape[0]
+    trial = e.copy()
+    shifted = np.empty((b_n, 2))
+    local = np.empty((b_n, 2, 2))
+    for d in range(2):
+        for j in range(b_n):
+            film = 1.0 - max(math.hypot(g.xi[j, k, 0] + e[j, 0], g.xi[j, k, 1] + e[j, 1]),
+                             math.hypot(g.xi[j, k, 0] - e[j, 0], g.xi[j, k, 1] - e[j, 1]))
+            trial[j, d] = e[j, d] + 1e-6 + 1e-4 * abs(film)
+        _all_moments(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, limit, shifted)
+        for j in range(b_n):
+            h = trial[j, d] - e[j, d]
+            for c in range(2):
+                local[j, c, d] = (shifted[j, c] - moments[j, c]) / h
+            trial[j, d] = e[j, d]
+    jac[:] = 0.0
+    for j in range(b_n):
+        for c in range(2):
+            jac[2 * j + c, 2 * j + c] = 1.0
+            for i in range(b_n):
+                for d in range(2):
+                    jac[2 * j + c, 2 * i + d] += g.kappa[c, j, i] * local[i, c, d]
+
+
+@njit(cache=True)
+def _thinnest(g, k, e):
+    """Thinnest rigid film over the bearings at angle k [c] (the Newton tolerance's scale)."""
+    out = 1.0
+    for j in range(e.shape[0]):
+        film = 1.0 - max(math.hypot(g.xi[j, k, 0] + e[j, 0], g.xi[j, k, 1] + e[j, 1]),
+                         math.hypot(g.xi[j, k, 0] - e[j, 0], g.xi[j, k, 1] - e[j, 1]))
+        out = min(out, film)
+    return out
+
+
+@njit(cache=True)
+def step(g, k, guess, before, dtau, quasi, corrections, layer, quadrature, rule, march, jac, fresh):
+    """Edge offsets (B, 2) of engine ``g``'s bearings at angle ``k``: Newton on e - free + kappa M(e) = 0.
+
+    Chord iterations on the Newton matrix ``jac`` (kept from the last step where ``fresh``), the matrix
+    differenced again where an iteration lowers the residual by less than a factor of four. Returns (e, converged, evaluations).
+    """
+    b_n = guess.shape[0]
+    e = guess.copy()
+    moments = np.empty((b_n, 2))
+    r = np.empty((b_n, 2))
+    _all_moments(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments)
+    _residual(g, k, e, moments, r)
+    evaluations = 1
+    differenced = False
+    if not fresh:
+        _jacobian(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments, jac)
+        evaluations += 2
+        differenced = True
+    trial = np.empty((b_n, 2))
+    r_new = np.empty((b_n, 2))
+    uphill = 0
+    for _ in range(march.chords):
+        scale = march.tolerance * max(abs(_thinnest(g, k, e)), FILM_FLOOR)
+        delta = np.linalg.solve(jac, -r.reshape(2 * b_n)).reshape(b_n, 2)
+        size = np.abs(delta).max()
+        merit = (r * r).sum()
+        t = 1.0
+        accepted = False
+        for _ in range(HALVINGS):
+            trial[:] = e + t * delta
+            _all_moments(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit,
+                         moments)
+            evaluations += 1
+            _residual(g, k, trial, moments, r_new)
+            if (r_new * r_new).sum() <= (1.0 - 1e-4 * t) * merit or size * t <= scale:
+                accepted = True
+                break
+            t *= 0.5
+        if accepted:
+            e[:] = trial
+            r[:] = r_new
+            if size * t <= scale or np.abs(r_new).max() <= RESIDUAL * scale:
+                return e, True, evaluations
+            if (r_new * r_new).sum() <= 0.0625 * merit:
+                differenced = False
+                continue  # the chord converges fast enough
+        elif differenced:
+            # no step along Newton's direction lowers the residual: the film's moment is not monotone in the tilt,
+            # so the residual can have a minimum that is not a root; the shortest step is taken all the same
+            # (at most UPHILL times), which leaves it
+            if uphill == UPHILL:
+                return e, False, evaluations
+            uphill += 1
+            e[:] = trial
+            r[:] = r_new
+        else:
+            _all_moments(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments)
+            evaluations += 1
+        # Newton's matrix again, at the point reached (its moments in ``moments``)
+        _jacobian(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments, jac)
+        evaluations += 2
+        differenced = True
+    return e, False, evaluations
+
+
+@njit(cache=True)
+def _corrections(g, correction, ld, limit, out):
+    """Finite correction (ratio, cosine, sine of the turn) per bearing and angle into ``out`` (B, n, 3)."""
+    tables, ld_nodes, stretched, finite = correction
+    for j in range(g.xi.shape[0]):
+        table = bearing_table(Correction(tables, ld_nodes, stretched, finite), ld[j])
+        for k in range(g.xi.shape[1]):
+            out[j, k, 0] = 1.0
+            out[j, k, 1] = 1.0
+            out[j, k, 2] = 0.0
+            if finite:
+                x0, x1 = g.xi[j, k, 0], g.xi[j, k, 1]
+                alpha = math.atan2(g.v[j, k, 1], g.v[j, k, 0]) - math.atan2(x1, x0)
+                alpha = math.atan2(math.sin(alpha), math.cos(alpha))
+                log_ratio, turn, _, _, _ = table_lookup(table, stretched, min(math.hypot(x0, x1), limit), alpha)
+                out[j, k, 0] = math.exp(log_ratio)
+                out[j, k, 1] = math.cos(turn)
+                out[j, k, 2] = math.sin(turn)
+
+
+@njit(cache=True)
+def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, state, evaluations):
+    """One engine's support moments over the cycle: backward Euler in the tilt (its squeeze) from the quasi-static
+    balance at the first angle, every ``stride``-th angle, cycle after cycle until the tilt returns within the
+    periodicity tolerance; the angles between take the film's turn-back (free minus tilt) interpolated.
+
+    Writes tilt (B, n, 2), the thinnest film over the surface (B, n) [c], the state per bearing and the film
+    moments computed (the cost).
+    """
+    b_n, n = g.xi.shape[0], g.xi.shape[1]
+    corrections = np.empty((b_n, n, 3))
+    _corrections(g, correction, g.ld, march.limit, corrections)
+    stride = march.stride
+    solved = np.arange(0, n, stride)
+    dtau = march.dtau * stride
+    jac = np.eye(2 * b_n)
+    before = np.zeros((b_n, 2))
+    e, ok, used = step(g, 0, g.free[:, 0, :].copy() * 0.0, before, dtau, True, corrections, layer, quadrature, rule,
+                       march, jac, False)
+    count = used
+    fresh = ok
+    start = e.copy()
+    status = NOT_PERIODIC
+    failed = False
+    for cycle in range(march.cycles):
+        first = e.copy()
+        for s in range(solved.shape[0]):
+            k = solved[s]
+            if cycle == 0 and s == 0:
+                tilt[:, 0, :] = e
+                continue
+            guess = e.copy()
+            if s > 0:
+                kp = solved[s - 1]
+                for j in range(b_n):
+                    for c in range(2):
+                        guess[j, c] = g.free[j, k, c] - (g.free[j, kp, c] - e[j, c])
+            new, ok, used = step(g, k, guess, e, dtau, False, corrections, layer, quadrature, rule, march, jac, fresh)
+            count += used
+            if not ok:
+                # the residual is not monotone (the film's squeeze moment peaks where the edge film runs out): from
+                # the last tilt, which the tilt's squeeze holds the journal near, Newton reaches the root
+                new, ok, used = step(g, k, e, e, dtau, False, corrections, layer, quadrature, rule, march, jac, False)
+                count += used
+            if not ok:
+                failed = True
+            fresh = ok
+            e = new
+            tilt[:, k, :] = e
+        # periodic: the tilt after a cycle against the tilt a cycle before, within a share of the thinnest film
+        guess = e.copy()
+        last = solved[solved.shape[0] - 1]
+        for j in range(b_n):
+            for c in range(2):
+                guess[j, c] = g.free[j, 0, c] - (g.free[j, last, c] - e[j, c])
+        new, ok, used = step(g, 0, guess, e, dtau, False, corrections, layer, quadrature, rule, march, jac, fresh)
+        count += used
+        fresh = ok
+        gap = np.abs(new - first).max()
+        e = new
+        tilt[:, 0, :] = e
+        if gap <= march.periodic * max(abs(_thinnest(g, 0, e)), FILM_FLOOR) and cycle > 0:
+            status = PERIODIC
+            break
+    _ = start
+    # the angles between the solved ones: the turn-back interpolated
+    for s in range(solved.shape[0]):
+        k = solved[s]
+        kn = solved[s + 1] if s + 1 < solved.shape[0] else n
+        for m in range(k + 1, kn):
+            w = (m - k) / (kn - k)
+            kk = kn if kn < n else 0
+            for j in range(b_n):
+                for c in range(2):
+                    back = (1.0 - w) * (g.free[j, k, c] - tilt[j, k, c]) + w * (g.free[j, kk, c] - tilt[j, kk, c])
+                    tilt[j, m, c] = g.free[j, m, c] - back
+    for j in range(b_n):
+        state[j] = FAILED if failed else status
+        evaluations[j] = count
+        for k in range(n):
+            film[j, k] = surface_film(g.xi[j, k, 0], g.xi[j, k, 1], tilt[j, k, 0], tilt[j, k, 1], g.roughness[j],
+                                      layer)
+
+
+@njit(cache=True, parallel=True)
+def march_engines(engines, correction, layer, quadrature, rule, march, tilt, film, state, evaluations):
+    """:func:`march_engine` for every engine (prange over engines): tilt (E, B, n, 2), film (E, B, n), state and
+    evaluations (E, B)."""
+    # numba's parallel loop takes arrays and numbers, not tuples holding arrays: the packed inputs are taken apart
+    # here and put together again in the loop
+    xi, v, free, kappa, roughness, unit, ld = engines
+    tables, ld_nodes, stretched, finite = correction
+    lo, step_, table_film, table_pressure = layer
+    nodes, weights, nodes_dry, weights_dry, cap = quadrature
+    c_nodes, c_weights, a_nodes, a_weights = rule
+    dtau, stride, cycles, tolerance, chords, limit, periodic = march
+    for g in prange(xi.shape[0]):
+        one = Engines(xi[g], v[g], free[g], kappa[g], roughness[g], unit[g], ld[g])
+        march_engine(one, Correction(tables, ld_nodes, stretched, finite), Layer(lo, step_, table_film, table_pressure),
+                     Quadrature(nodes, weights, nodes_dry, weights_dry, cap),
+                     ContactRule(c_nodes, c_weights, a_nodes, a_weights),
+                     March(dtau, stride, cycles, tolerance, chords, limit, periodic), tilt[g], film[g], state[g],
+                     evaluations[g])
