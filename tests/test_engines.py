@@ -136,3 +136,32 @@ def test_an_engine_file_is_checked_also_where_the_caller_trusts_its_inputs(tmp_p
     path = _engine_file(tmp_path, {"cpk = 1.33": "cpk = 1.33, cp = 1.0"})
     with trusted(), pytest.raises(ValueError, match=r"process.cp: 1.0 is below cpk 1.33"):
         load_engine(path)
+
+
+_WEB = """[supports.bulkhead]
+thickness = [26.0, 22.0, 22.0, 22.0, 26.0]   # web along the crankshaft [mm]
+height = 90.0                                 # bore centre to the cylinder barrels [mm]
+width = 160.0                                 # between the crankcase's side walls [mm]
+"""
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"linear_compliance_um_per_kN = [1.020408, 0.581395]": "linear_compliance_um_per_kN = [-1.0, 0.581395]"},
+     r"engine file 'engine.toml', key supports.linear_compliance_um_per_kN: -1 is not valid; a compliance must be > 0"),
+    ({"linear_compliance_um_per_kN = [1.020408, 0.581395]": ""},
+     r"engine file 'engine.toml', key supports.linear_compliance_um_per_kN: missing"),
+    ({_WEB: "angular_compliance_urad_per_Nm = [-2.0, 0.4]\n"},
+     r"engine file 'engine.toml', key supports.angular_compliance_urad_per_Nm: -2 is not valid; a compliance must be "
+     r">= 0"),
+    ({_WEB: ""}, r"engine file 'engine.toml', key supports.angular_compliance_urad_per_Nm: missing"),
+    ({"theta0 = 97.0": "k_lv = 0.98e9\ntheta0 = 97.0"}, r"key bearing_law.k_lv: the housing's deformation stiffness"),
+])
+def test_bad_support_compliance_names_the_file_and_key(tmp_path, change, message):
+    with pytest.raises(ValueError, match=message):
+        load_engine(_engine_file(tmp_path, change))
+
+
+def test_given_angular_compliance_replaces_the_bulkhead(tmp_path):
+    e = load_engine(_engine_file(tmp_path, {_WEB: "angular_compliance_urad_per_Nm = [[3, 0.5], [4, 0.6], [4, 0.6], "
+                                                  "[4, 0.6], [3, 0.5]]\n"}))
+    np.testing.assert_allclose(e.crank.supports.angular[1], [4e-6, 0.6e-6])

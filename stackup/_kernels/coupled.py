@@ -324,18 +324,18 @@ def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, stat
     dtau = march.dtau * stride
     jac = np.eye(2 * b_n)
     before = np.zeros((b_n, 2))
-    e, ok, used = step(g, 0, g.free[:, 0, :].copy() * 0.0, before, dtau, True, corrections, layer, quadrature, rule,
-                       march, jac, False)
+    e, ok, used = step(g, 0, np.zeros((b_n, 2)), before, dtau, True, corrections, layer, quadrature, rule, march, jac,
+                       False)
     count = used
     fresh = ok
-    start = e.copy()
     status = NOT_PERIODIC
     failed = False
     for cycle in range(march.cycles):
         first = e.copy()
         for s in range(solved.shape[0]):
             k = solved[s]
-            if cycle == 0 and s == 0:
+            if s == 0:
+                # the first angle: the quasi-static balance, then each cycle's closing step below
                 tilt[:, 0, :] = e
                 continue
             guess = e.copy()
@@ -371,7 +371,6 @@ def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, stat
         if gap <= march.periodic * max(abs(_thinnest(g, 0, e)), FILM_FLOOR) and cycle > 0:
             status = PERIODIC
             break
-    _ = start
     # the angles between the solved ones: the turn-back interpolated
     for s in range(solved.shape[0]):
         k = solved[s]
