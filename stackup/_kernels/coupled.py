@@ -307,6 +307,49 @@ def _corrections(g, correction, ld, limit, out):
                 out[j, k, 2] = math.sin(turn)
 
 
+#: Sub-steps tried, in turn, where Newton fails over a whole step (the tilt moving fast as an edge closes in).
+SUBSTEPS = (4, 16, 64)
+
+
+@njit(cache=True)
+def _mix(a, kp, k, w):
+    """``a[:, kp]`` and ``a[:, k]`` mixed, (1 - w) and w, as one angle: (B, 1, ...)."""
+    out = np.empty((a.shape[0], 1, a.shape[2]))
+    for j in range(a.shape[0]):
+        for c in range(a.shape[2]):
+            out[j, 0, c] = (1.0 - w) * a[j, kp, c] + w * a[j, k, c]
+    return out
+
+
+@njit(cache=True)
+def substeps(g, kp, k, e, dtau, corrections, layer, quadrature, rule, march, parts):
+    """Edge offsets at angle ``k`` from those ``e`` at ``kp``, in ``parts`` backward-Euler sub-steps over the
+    orbit, free tilt and correction interpolated linearly between the two angles. Returns (e, converged,
+    evaluations)."""
+    b_n = e.shape[0]
+    jac = np.eye(2 * b_n)
+    count = 0
+    for m in range(1, parts + 1):
+        w = m / parts
+        one = Engines(_mix(g.xi, kp, k, w), _mix(g.v, kp, k, w), _mix(g.free, kp, k, w), g.kappa, g.roughness,
+                      g.pressure_unit, g.ld)
+        mixed = _mix(corrections, kp, k, w)
+        before_free = _mix(g.free, kp, k, (m - 1) / parts)
+        guess = e.copy()
+        for j in range(b_n):
+            for c in range(2):
+                guess[j, c] = one.free[j, 0, c] - (before_free[j, 0, c] - e[j, c])
+        new, ok, used = step(one, 0, guess, e, dtau / parts, False, mixed, layer, quadrature, rule, march, jac, False)
+        count += used
+        if not ok:
+            new, ok, used = step(one, 0, e, e, dtau / parts, False, mixed, layer, quadrature, rule, march, jac, False)
+            count += used
+        if not ok:
+            return e, False, count
+        e = new
+    return e, True, count
+
+
 @njit(cache=True)
 def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, state, evaluations):
     """One engine's support moments over the cycle: backward Euler in the tilt (its squeeze) from the quasi-static
@@ -331,6 +374,7 @@ def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, stat
     status = NOT_PERIODIC
     failed = False
     for cycle in range(march.cycles):
+        failed = False  # the state of the last cycle, whose tilt is returned
         first = e.copy()
         for s in range(solved.shape[0]):
             k = solved[s]
@@ -351,6 +395,12 @@ def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, stat
                 # the last tilt, which the tilt's squeeze holds the journal near, Newton reaches the root
                 new, ok, used = step(g, k, e, e, dtau, False, corrections, layer, quadrature, rule, march, jac, False)
                 count += used
+            for parts in SUBSTEPS:
+                if ok:
+                    break
+                new, ok, used = substeps(g, solved[s - 1], k, e, dtau, corrections, layer, quadrature, rule, march,
+                                         parts)
+                count += used
             if not ok:
                 failed = True
             fresh = ok
@@ -364,6 +414,13 @@ def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, stat
                 guess[j, c] = g.free[j, 0, c] - (g.free[j, last, c] - e[j, c])
         new, ok, used = step(g, 0, guess, e, dtau, False, corrections, layer, quadrature, rule, march, jac, fresh)
         count += used
+        for parts in SUBSTEPS:
+            if ok:
+                break
+            new, ok, used = substeps(g, last, 0, e, dtau, corrections, layer, quadrature, rule, march, parts)
+            count += used
+        if not ok:
+            failed = True
         fresh = ok
         gap = np.abs(new - first).max()
         e = new
