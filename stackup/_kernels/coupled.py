@@ -244,6 +244,8 @@ def step(g, k, guess, before, dtau, quasi, corrections, layer, quadrature, rule,
     r_new = np.empty((b_n, 2))
     uphill = 0
     for _ in range(march.chords):
+        if not (np.isfinite(jac).all() and np.isfinite(r).all()):
+            return e, False, evaluations  # a film moment not a number: no Newton step (the caller's fallbacks)
         scale = march.tolerance * max(abs(_thinnest(g, k, e)), FILM_FLOOR)
         delta = np.linalg.solve(jac, -r.reshape(2 * b_n)).reshape(b_n, 2)
         size = np.abs(delta).max()

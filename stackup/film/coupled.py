@@ -156,7 +156,8 @@ class SupportMoments:
     film : numpy.ndarray (engines, bearings, angles)
         Thinnest film over the bearing surface, on the elastic layer [m].
     state : numpy.ndarray of int8 (engines, bearings)
-        Index into :data:`STATES`.
+        Index into :data:`STATES`; ``failed`` with the film NaN and the free tilt for every bearing of an engine
+        whose orbit is not a number at some bearing (its bearings are one system).
     evaluations : numpy.ndarray (engines, bearings)
         Sweeps of every bearing's film moment (the cost).
     """
@@ -267,9 +268,19 @@ def support_moments(position, free_tilt, crank_angle, *, compliance, journal_rad
                               np.ascontiguousarray(c**2 / (mu * w * l**2)), np.ascontiguousarray(l / (2 * r)))
     march = _kernel.March(step, int(stride), int(cycles), float(tolerance), CHORDS, ECCENTRICITY_LIMIT, PERIODIC)
     tilt = np.zeros((n_e, n_b, n, 2))
-    film = np.empty((n_e, n_b, n))
-    state = np.empty((n_e, n_b), np.int8)
-    evaluations = np.empty((n_e, n_b), np.int64)
-    _kernel.march_engines(engines, Correction(tables, ld_nodes, stretched, finite), layer.table(), quadrature(),
-                          _contact_rule(), march, tilt, film, state, evaluations)
+    film = np.full((n_e, n_b, n), np.nan)
+    state = np.full((n_e, n_b), STATES.index("failed"), np.int8)
+    evaluations = np.zeros((n_e, n_b), np.int64)
+    # an engine with a film that is not a number (an orbit that failed, a collapsed film: NaN centres) cannot be
+    # balanced, its bearings being one system: its tilt is the free one, its film NaN, its state failed
+    ok = np.isfinite(xi).all(axis=(1, 2, 3)) & np.isfinite(vbar).all(axis=(1, 2, 3)) & np.isfinite(kbar).all(
+        axis=(1, 2, 3)) & np.isfinite(free).all(axis=(1, 2, 3))
+    tilt[~ok] = free[~ok]
+    if ok.any():
+        run = _kernel.Engines(*(np.ascontiguousarray(a[ok]) for a in engines))
+        parts = [np.empty((int(ok.sum()), *a.shape[1:]), a.dtype) for a in (tilt, film, state, evaluations)]
+        _kernel.march_engines(run, Correction(tables, ld_nodes, stretched, finite), layer.table(), quadrature(),
+                              _contact_rule(), march, *parts)
+        for whole, part in zip((tilt, film, state, evaluations), parts):
+            whole[ok] = part
     return SupportMoments(tilt * (2 * c / l)[..., None, None], film * c[..., None], state, evaluations)

@@ -11,7 +11,7 @@ mechanical chain's progress.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -352,6 +352,12 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                                       bearing_width=spec.bearing_width, radial_clearance=np.asarray(clearance) / 2,
                                       viscosity=films.viscosity, speed=spec.speed, layer=constants.layer,
                                       method="short" if film_method in ("short", "mobility") else "finite")
+            # an engine whose surface film could not be computed (another bearing's orbit not a number): its films
+            # are not numbers either, status failed
+            lost = films.valid & ~np.isfinite(surface.film).all(axis=-1)
+            if lost.any():
+                films = replace(films, valid=films.valid & ~lost,
+                                status=np.where(lost, FILM_STATUS.index("failed"), films.status).astype(np.int8))
         loads = np.moveaxis(r.reactions, 1, 2)
         out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
                "crank_status": worst_status(r.status),

@@ -6,6 +6,7 @@ from scipy import optimize
 
 from stackup._kernels import coupled as kernel
 from stackup._kernels import tilt as tilt_kernel
+from stackup._validate import trusted
 from stackup.contact import layer_contact
 from stackup.film.coupled import ElasticLayer, _contact_rule, support_moments
 from stackup.film.tilt import axial_moments, quadrature, short_film
@@ -191,3 +192,15 @@ def test_bad_input_is_named(change, message):
     args = {**kw, "compliance": np.zeros((2, 2, 2)), **change}
     with pytest.raises(ValueError, match=message):
         support_moments(position, free, angle, **args)
+
+
+def test_an_engine_with_an_orbit_not_a_number_is_failed_and_the_others_run():
+    position, free, angle, kw = _case(eps=0.6, tilt=0.8e-3)
+    position = np.concatenate([position, position])
+    free = np.concatenate([free, free])
+    position[1, 0, 5] = np.nan  # as the study's chain passes a failed orbit, its inputs trusted
+    with trusted():
+        out = support_moments(position, free, angle, compliance=np.full((2, 2, 2), 2e-6) * np.eye(2), **kw)
+    assert list(out.state[1]) == [2, 2] and np.isnan(out.film[1]).all()
+    np.testing.assert_array_equal(out.tilt[1], free[1])
+    assert list(out.state[0]) == [0, 0] and np.isfinite(out.film[0]).all()
