@@ -18,7 +18,6 @@ the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
 
 from __future__ import annotations
 
-
 import io
 import math
 import os
@@ -628,7 +627,8 @@ def _supports(top, *, scale, units, bearings, block, ring):
     if (angular is None) == (bulkhead is None):
         raise ValueError(f"{where}: {'missing' if angular is None else 'given beside supports.bulkhead'}; give the "
                          "angular compliance [urad/(N m)] per bearing (vertical plane, transverse plane) or the "
-                         "bulkhead's web ([supports.bulkhead]: thickness, height, width) it is derived from, one of them")
+                         "bulkhead's web ([supports.bulkhead]: thickness, height, width) it is derived from, one of "
+                         "them")
     if bulkhead is not None:
         material = materials.get(block or "grey-cast-iron")
         plausible = dict(scale=scale, units=units, plausible=PLAUSIBLE["ring"])

@@ -169,7 +169,7 @@ class SupportMoments:
 
 
 def squeeze_velocity(position, crank_angle, speed):
-    r"""Squeeze velocity :math:`\mathbf v_s = \dot{\mathbf x} - \tfrac\omega2\mathbf k\times\mathbf x` of an orbit [m/s].
+    r"""Squeeze velocity of an orbit, :math:`\mathbf v_s = \dot{\mathbf x} - \tfrac\omega2\mathbf k\times\mathbf x` [m/s].
 
     ``position`` (..., angles, 2) [m] over one cycle of equal steps ``crank_angle`` [deg], ``speed`` (...)
     [rad/s]: :math:`\dot{\mathbf x}` by central differences around the closed cycle.

@@ -18,12 +18,11 @@ import numpy as np
 from ..assembly import ASSEMBLED, assemble
 from ..crank import support_compliance, support_slopes
 from ..crank.cycle import engine_cycles, worst_status
-from ..film.cycle import FILM_STATUS
 from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.coupled import STATES as TILT_STATES
 from ..film.coupled import ElasticLayer, support_moments
-from ..film.cycle import HEAT_STEP, bearing_films
+from ..film.cycle import FILM_STATUS, HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
 from ..film.journal import vector_length
 from .. import _validate as check
@@ -345,19 +344,8 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
                               journal_d=journal_d, method=film_method, tilt=None if coupled else tilt,
                               tilt_compliance=constants.compliance if tilt_method == "equilibrium" else None)
-        surface = None
-        if coupled:
-            surface = support_moments(films.position, np.moveaxis(tilt, 1, 2), crank_angle,
-                                      compliance=constants.coupled, journal_radius=np.asarray(journal_d) / 2,
-                                      bearing_width=spec.bearing_width, radial_clearance=np.asarray(clearance) / 2,
-                                      viscosity=films.viscosity, speed=spec.speed, layer=constants.layer,
-                                      method="short" if film_method in ("short", "mobility") else "finite")
-            # an engine whose surface film could not be computed (another bearing's orbit not a number): its films
-            # are not numbers either, status failed
-            lost = films.valid & ~np.isfinite(surface.film).all(axis=-1)
-            if lost.any():
-                films = replace(films, valid=films.valid & ~lost,
-                                status=np.where(lost, FILM_STATUS.index("failed"), films.status).astype(np.int8))
+        films, surface = _surface(films, tilt, constants, spec, crank_angle, clearance=clearance, journal_d=journal_d,
+                                  film_method=film_method) if coupled else (films, None)
         loads = np.moveaxis(r.reactions, 1, 2)
         out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
                "crank_status": worst_status(r.status),
@@ -369,6 +357,21 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                               crank_angle=crank_angle, life_film=life_film, roughness=constants.roughness,
                               modulus=constants.modulus)}
     return _not_a_number(out, films.valid)
+
+
+def _surface(films, tilt, constants, spec, crank_angle, *, clearance, journal_d, film_method):
+    """The support moments over the cycle on the films' orbits (:func:`stackup.film.coupled.support_moments`), and
+    the films with an engine whose surface film could not be computed (another bearing's orbit not a number)
+    marked not valid, status failed."""
+    surface = support_moments(films.position, np.moveaxis(tilt, 1, 2), crank_angle, compliance=constants.coupled,
+                              journal_radius=np.asarray(journal_d) / 2, bearing_width=spec.bearing_width,
+                              radial_clearance=np.asarray(clearance) / 2, viscosity=films.viscosity, speed=spec.speed,
+                              layer=constants.layer, method="short" if film_method in ("short", "mobility") else "finite")
+    lost = films.valid & ~np.isfinite(surface.film).all(axis=-1)
+    if lost.any():
+        films = replace(films, valid=films.valid & ~lost,
+                        status=np.where(lost, FILM_STATUS.index("failed"), films.status).astype(np.int8))
+    return films, surface
 
 
 def _surface_film(films, surface):
