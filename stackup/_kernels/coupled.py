@@ -427,7 +427,7 @@ def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, stat
         gap = np.abs(new - first).max()
         e = new
         tilt[:, 0, :] = e
-        if gap <= march.periodic * max(abs(_thinnest(g, 0, e)), FILM_FLOOR) and cycle > 0:
+        if gap <= march.periodic * max(abs(_thinnest(g, 0, e)), FILM_FLOOR):
             status = PERIODIC
             break
     # the angles between the solved ones: the turn-back interpolated
