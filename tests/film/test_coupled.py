@@ -154,7 +154,7 @@ def test_steady_balance_equals_a_numpy_root_of_the_film_moment():
     position, free, angle, kw = _case(b=1, eps=0.6, tilt=0.8e-3)
     compliance = np.zeros((2, 1, 1))
     compliance[:] = 20e-6
-    out = support_moments(position, free, angle, compliance=compliance, **kw)
+    out = support_moments(position, free, angle, compliance=compliance, tolerance=1e-4, **kw)
     c, length, r, mu, w = 25e-6, 20e-3, 25e-3, 0.01, 300.0
     unit = mu * w * r * length**4 / c**2
     scale = length / (2 * c)
@@ -168,7 +168,7 @@ def test_steady_balance_equals_a_numpy_root_of_the_film_moment():
     root = optimize.fsolve(residual, free[0, 0, 0] * scale, xtol=1e-12)
     assert np.linalg.norm(root) < np.linalg.norm(free[0, 0, 0] * scale)  # the film turns the journal back
     np.testing.assert_allclose(out.tilt[0, 0, 0] * scale, root, atol=2e-3 * np.linalg.norm(root))
-    np.testing.assert_allclose(out.tilt[0, 0], out.tilt[0, 0, :1].repeat(len(angle), 0), atol=1e-9)
+    np.testing.assert_allclose(out.tilt[0, 0], out.tilt[0, 0, :1].repeat(len(angle), 0), atol=1e-3 * np.abs(out.tilt).max())
     assert out.state[0, 0] == 0
 
 
