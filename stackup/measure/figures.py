@@ -18,6 +18,18 @@ def _density(process, x):
     return np.gradient(process.cdf(x), x)
 
 
+def _bins(x):
+    """Histogram bin edges [m]: about 2 sqrt(n) bins, each a whole number of the read-out's steps (no aliasing)."""
+    span = float(x.max() - x.min())
+    width = span / max(10, min(60, 2 * int(np.sqrt(x.size))))
+    steps = np.diff(np.unique(x))
+    step = float(steps.min()) if steps.size else width
+    if step > 1e-3 * span:  # readings on a read-out grid: bins of whole steps, edges between the steps
+        width = max(1, round(width / step)) * step
+        return np.arange(x.min() - 0.5 * step, x.max() + width, width)
+    return np.linspace(x.min(), x.max(), int(span / width) + 1)
+
+
 def process_figure(fit, *, units="mm", label=None):
     """Histogram of the readings with the fitted reading and process densities, and a normal probability plot."""
     scale, unit = _data.UNITS[units], _data.UNIT_NAMES[units]
@@ -30,8 +42,8 @@ def process_figure(fit, *, units="mm", label=None):
     grid = np.linspace(min(x.min(), lo) - 0.1 * span, max(x.max(), hi) + 0.1 * span, 600)
     fig = Figure(figsize=(10, 4), layout="constrained")
     left, right = fig.subplots(1, 2)
-    left.hist(x / scale, bins=max(10, min(60, int(np.sqrt(x.size)) * 2)), density=True, color="0.8",
-              edgecolor="0.5", label=f"{x.size} readings")
+    left.hist(x / scale, bins=_bins(x) / scale, density=True, color="0.8", edgecolor="0.5",
+              label=f"{x.size} readings")
     left.plot(grid / scale, _density(reading, grid) * scale, color="C0", label=f"fitted {fit.model} (readings)")
     if fit.gauge_repeatability:
         left.plot(grid / scale, _density(fit.process, grid) * scale, color="C1", linestyle="--",

@@ -46,6 +46,7 @@ References
 
 from __future__ import annotations
 
+import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -130,6 +131,20 @@ class HousingCalibration:
                              "write the estimate, or add tests")
         return float(options[which])
 
+    def entry(self, which="estimate", units="mm"):
+        """The change of :func:`stackup.measure.write_engine` setting ``[press_fit] housing_outer`` (``units``: the
+        engine file's), with a comment giving the interval, the tests and the value it replaces."""
+        value = self.value(which)
+        scale = _data.UNITS[units]
+        lo, hi = self.housing_outer_ci
+        hi_text = "unbounded" if np.isinf(hi) else f"{hi / scale:.6g}"
+        comment = (f"housing_outer {'' if which == 'estimate' else f'({which} end of the interval) '}calibrated by "
+                   f"stackup.measure.calibrate_housing from {self.n_tests} fitting tests"
+                   f"{f' in {self.source}' if self.source else ''}:\n{self.housing_outer / scale:.6g} "
+                   f"({self.confidence:.0%} profile-likelihood interval {lo / scale:.6g} to {hi_text}, residuals "
+                   f"{self.residual_sigma * 1e6:.2f} um); the file assumed {self.assumed_outer / scale:.6g}")
+        return ("press_fit", "housing_outer", value / scale, comment)
+
     def write_engine(self, out, *, which="estimate", name=None, force=False):
         """Write a copy of the engine file with ``[press_fit] housing_outer`` calibrated; return its path.
 
@@ -142,24 +157,13 @@ class HousingCalibration:
         if self.engine_file is None:
             raise ValueError("engine: calibrated on an Engine object; give calibrate_housing the engine's name or "
                              "file to write a copy of it")
-        value = self.value(which)
         units = _file_units(self.engine_file)
-        lo, hi = self.housing_outer_ci
-        hi_text = "unbounded" if np.isinf(hi) else f"{hi / units:.6g}"
-        comment = (f"housing_outer {'' if which == 'estimate' else f'({which} end of the interval) '}calibrated by "
-                   f"stackup.measure.calibrate_housing from {self.n_tests} fitting tests"
-                   f"{f' in {self.source}' if self.source else ''}:\n{self.housing_outer / units:.6g} "
-                   f"({self.confidence:.0%} profile-likelihood interval {lo / units:.6g} to {hi_text}, residuals "
-                   f"{self.residual_sigma * 1e6:.2f} um); the file assumed {self.assumed_outer / units:.6g}")
-        return write_engine(self.engine_file, out, [("press_fit", "housing_outer", value / units, comment)],
-                            name=name, force=force)
+        return write_engine(self.engine_file, out, [self.entry(which, units)], name=name, force=force)
 
 
 def _file_units(path):
-    import tomllib
-
-    data = tomllib.loads(Path(path).read_text())
-    return _data.UNITS.get(data.get("units", "m"), 1.0)
+    """The length unit an engine file declares ("mm", "um" or "m")."""
+    return tomllib.loads(Path(path).read_text()).get("units", "m")
 
 
 @validated(confidence=InRange(0.5, 1.0, lo_open=True, hi_open=True))

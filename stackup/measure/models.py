@@ -1,8 +1,9 @@
 r"""The candidate process models a measured dimension is fitted with, and what each needs.
 
 Each model fits the *readings* (process plus gauge error) by maximum
-likelihood, refits resampled or simulated data sets for the bootstrap (rows of
-a padded array, ``mask`` marking the values), turns its reading parameters into
+likelihood, on every row of a padded array at once (``mask`` marking the
+values: the data, or its bootstrap resamples or simulated samples), giving
+the parameters and the log-likelihood of each row; it turns its reading parameters into
 the *process* parameters by removing the gauge's repeatability :math:`R`, and
 gives the process as a :mod:`stackup.tolerances` object and as the engine
 file's ``process`` table.
@@ -39,8 +40,8 @@ from scipy import special, stats
 from ..tolerances import MAX_SKEWNESS, Mixture, Normal, SkewNormal, ToolWear
 
 _LOG_SQRT_2PI = 0.5 * np.log(2.0 * np.pi)
-#: Smallest component weight and spread of the two-normal mixture, as shares of the values and of their
-#: standard deviation: without them the likelihood grows without bound on one value, and a "machine" making
+#: Smallest component weight and process spread of the two-normal mixture, as shares of the values and of
+#: their standard deviation: without them the likelihood grows without bound on one value, and a "machine" making
 #: less than 5 % of the parts is not what the model stands for.
 MIXTURE_MIN_WEIGHT, MIXTURE_MIN_SPREAD = 0.05, 0.05
 #: Largest skewness the skew-normal fit starts from (its maximum likelihood lies inside the family's range).
@@ -181,15 +182,11 @@ class NormalModel:
     parameters = ("mean", "sigma")
     lengths = (True, True)
 
-    def refit(self, x, t=None, mask=None, start=None):
+    def refit(self, x, t=None, mask=None, start=None, repeatability=0.0):
         x, m = _masked(x, mask)
         n, mean, dev = _row_moments(x, m)
-        return np.stack([mean, np.sqrt((dev * dev).sum(axis=1) / (n - 1))], axis=-1)
-
-    def loglik(self, x, t, p):
-        n = x.size
-        s_ml = p[1] * np.sqrt((n - 1) / n)
-        return float(np.sum(stats.norm.logpdf(x, p[0], s_ml)))
+        ssr = (dev * dev).sum(axis=1)
+        return np.stack([mean, np.sqrt(ssr / (n - 1))], axis=-1), _normal_loglik(ssr, n)
 
     def conditional_cdf(self, x, t, p):
         return special.ndtr((x - p[..., 0:1]) / p[..., 1:2])
@@ -216,13 +213,9 @@ class SkewNormalModel:
     parameters = ("mean", "sigma", "skewness")
     lengths = (True, True, False)
 
-    def refit(self, x, t=None, mask=None, start=None):
+    def refit(self, x, t=None, mask=None, start=None, repeatability=0.0):
         x, m = _masked(x, mask)
-        return _skew_fit(x, m, starts=(1.0,) if start is not None else (1.0, 0.5, 0.0))[0]
-
-    def loglik(self, x, t, p):
-        alpha, xi, omega = skew_direct(*p)
-        return float(np.sum(stats.skewnorm.logpdf(x, alpha, loc=xi, scale=omega)))
+        return _skew_fit(x, m, starts=(1.0,) if start is not None else (1.0, 0.5, 0.0))
 
     def conditional_cdf(self, x, t, p):
         alpha, xi, omega = skew_direct(p[..., 0:1], p[..., 1:2], p[..., 2:3])
@@ -254,22 +247,19 @@ class MixtureModel:
     parameters = ("weight", "mean1", "sigma1", "mean2", "sigma2")
     lengths = (False, True, True, True, True)
 
-    def refit(self, x, t=None, mask=None, start=None):
+    def refit(self, x, t=None, mask=None, start=None, repeatability=0.0):
         x, m = _masked(x, mask)
         if start is not None:
-            return _em(x, m, np.broadcast_to(start, (x.shape[0], 5)).copy())[0]
+            return _em(x, m, np.broadcast_to(start, (x.shape[0], 5)).copy(), repeatability)
         best, best_ll = None, None
         for guess in _mixture_starts(x, m):
-            p, ll = _em(x, m, guess)
+            p, ll = _em(x, m, guess, repeatability)
             if best is None:
                 best, best_ll = p, ll
             else:
                 better = ll > best_ll
                 best, best_ll = np.where(better[:, None], p, best), np.where(better, ll, best_ll)
-        return best
-
-    def loglik(self, x, t, p):
-        return float(np.sum(_mixture_logpdf(x, p)))
+        return best, best_ll
 
     def conditional_cdf(self, x, t, p):
         w, m1, s1, m2, s2 = (p[..., k:k + 1] for k in range(5))
@@ -302,21 +292,16 @@ class DriftModel:
     parameters = ("start", "end", "sigma")
     lengths = (True, True, True)
 
-    def refit(self, x, t=None, mask=None, start=None):
+    def refit(self, x, t=None, mask=None, start=None, repeatability=0.0):
         x, m = _masked(x, mask)
         t, _ = _masked(t, mask)
         n, x_bar, dx = _row_moments(x, m)
         _, t_bar, dt = _row_moments(t, m)
         slope = (dx * dt).sum(axis=1) / np.maximum((dt * dt).sum(axis=1), 1e-300)
         resid = (dx - slope[:, None] * dt) * m
-        sigma = np.sqrt((resid * resid).sum(axis=1) / (n - 2))
+        ssr = (resid * resid).sum(axis=1)
         first = x_bar - slope * t_bar
-        return np.stack([first, first + slope, sigma], axis=-1)
-
-    def loglik(self, x, t, p):
-        n = x.size
-        s_ml = p[2] * np.sqrt((n - 2) / n)
-        return float(np.sum(stats.norm.logpdf(x, p[0] + (p[1] - p[0]) * t, s_ml)))
+        return np.stack([first, first + slope, np.sqrt(ssr / (n - 2))], axis=-1), _normal_loglik(ssr, n)
 
     def conditional_cdf(self, x, t, p):
         return special.ndtr((x - p[..., 0:1] - (p[..., 1:2] - p[..., 0:1]) * t) / p[..., 2:3])
@@ -355,6 +340,11 @@ class DriftModel:
 
 MODELS = (NormalModel(), SkewNormalModel(), MixtureModel(), DriftModel())
 BY_NAME = {m.name: m for m in MODELS}
+
+
+def _normal_loglik(ssr, n):
+    """Log-likelihood of normal errors at their maximum (variance ssr / n), rows."""
+    return -0.5 * n * (np.log(2.0 * np.pi * ssr / n) + 1.0)
 
 
 def _less(sigma, r):
@@ -433,8 +423,12 @@ def _from_free(q):
     return np.stack([special.expit(q[:, 0]), q[:, 1], np.exp(q[:, 2]), q[:, 3], np.exp(q[:, 4])], axis=-1)
 
 
-def _em(x, m, p, iterations=300, tol=1e-9):
+def _em(x, m, p, repeatability=0.0, iterations=300, tol=1e-9):
     """EM of two-normal mixtures on every row of ``x`` (mask ``m``) from ``p`` (rows, 5); returns (p, loglik).
+
+    A component's spread is kept above the gauge's ``repeatability`` by
+    :data:`MIXTURE_MIN_SPREAD` of the row's standard deviation (in quadrature):
+    a reading's spread cannot be less than the gauge's.
 
     Accelerated by SQUAREM (Varadhan and Roland 2008, scheme S3): two EM
     steps, an extrapolation along them in the unconstrained parameters, one EM
@@ -443,7 +437,7 @@ def _em(x, m, p, iterations=300, tol=1e-9):
     by less than ``tol`` (relative); components ordered by mean.
     """
     n, _, dev = _row_moments(x, m)
-    floor = (MIXTURE_MIN_SPREAD * np.sqrt((dev * dev).sum(axis=1) / n))[:, None]
+    floor = np.hypot(MIXTURE_MIN_SPREAD * np.sqrt((dev * dev).sum(axis=1) / n), repeatability)[:, None]
     p = np.array(p, dtype=float)
     active = np.arange(x.shape[0])
     for _ in range(iterations):

@@ -71,6 +71,10 @@ CPK_QUANTILES = np.array([special.ndtr(-3.0), 0.5, special.ndtr(3.0)])
 GOF_RESAMPLES = 200
 #: Below this p-value of the goodness-of-fit test the chosen model is said not to fit.
 GOF_LEVEL = 0.05
+#: Candidates whose BIC is more than this above the chosen one's are not refitted in the bootstrap: their
+#: odds against the chosen model are above 150:1 ("very strong" evidence, Kass and Raftery 1995), so a
+#: resample would hardly choose them.
+RIVAL_BIC = 10.0
 #: Largest gauge repeatability accepted, in tolerance widths (more is a unit slip).
 MAX_REPEATABILITY = 1.0
 
@@ -159,15 +163,31 @@ class ProcessFit:
         The lines go into the dimension's table of an engine file whose
         ``units`` is ``units``; a comment above them says where they come from.
         """
-        lo, hi = self.cpk_ci
-        lines = [f"# fitted by stackup.measure from {self.n} readings{f' of {self.source}' if self.source else ''}: "
-                 f"{self.model} (least BIC), gauge repeatability {self.gauge_repeatability * 1e6:g} um removed; "
-                 f"Cpk {self.cpk:.2f} ({self.confidence:.0%} interval {lo:.2f}-{hi:.2f}, {self.cpk_method})",
-                 f"process = {inline(self.process_spec(units))}"]
-        if self.shared is not None:
-            lines.append(f"shared = {self.shared:.3f}  # {self.confidence:.0%} interval "
-                         f"{self.shared_ci[0]:.3f}-{self.shared_ci[1]:.3f} (one-way ANOVA of normal scores)")
+        lines = []
+        for _, key, value, comment in self.entries("", units):
+            lines += [f"# {line}" for line in comment.splitlines()]
+            lines.append(f"{key} = {value if isinstance(value, str) else inline(value)}")
         return "\n".join(lines) + "\n"
+
+    def entries(self, table, units="mm"):
+        """The changes of :func:`stackup.measure.write_engine` that put this fit into ``[table]`` of an engine file.
+
+        ``process`` (and ``shared``, given groups), lengths in ``units`` (the
+        engine file's), each with a comment saying where it comes from.
+        """
+        lo, hi = self.cpk_ci
+        where = f" of {self.source}" if self.source else ""
+        gauge = (f"gauge repeatability {self.gauge_repeatability * 1e6:g} um removed" if self.gauge_repeatability
+                 else "no gauge repeatability given (the process as read)")
+        out = [(table, "process", inline(self.process_spec(units)),
+                f"process fitted by stackup.measure from {self.n} readings{where}: {self.model} (least BIC), "
+                f"{gauge};\nCpk {self.cpk:.2f} "
+                f"({self.confidence:.0%} interval {lo:.2f}-{hi:.2f}, {self.cpk_method})")]
+        if self.shared is not None:
+            out.append((table, "shared", round(self.shared, 3),
+                        f"shared fitted by stackup.measure (one-way ANOVA of normal scores): {self.confidence:.0%} "
+                        f"interval {self.shared_ci[0]:.3f}-{self.shared_ci[1]:.3f}"))
+        return out
 
     def table(self):
         """The candidates as a pandas DataFrame (log-likelihood, BIC, chosen, note)."""
@@ -288,7 +308,7 @@ def _fit(values, *, limits, gauge_repeatability, groups, sequence, confidence, r
     t = None if sequence is None else _sequence(sequence, x.size, where)
     codes = None if groups is None else _groups(groups, x.size, where)
     rng = as_generator(seed)
-    candidates, notes = _candidates(x, t, r)
+    candidates, notes = fit_candidates(x, t, r)
     chosen = min((c for c in candidates if not c.note), key=lambda c: c.bic)
     model = BY_NAME[chosen.model]
     p_read = np.array(chosen.params)
@@ -297,17 +317,16 @@ def _fit(values, *, limits, gauge_repeatability, groups, sequence, confidence, r
     gauge_factor = (process.std**2 + r * r) / process.std**2
     share = None if codes is None else shared_share(x, codes, gauge_factor=gauge_factor, confidence=confidence)
     cpk = float(quantile_cpk(model, p_proc, lo, hi))
+    rivals = [c for c in candidates if not c.note and c.bic <= chosen.bic + RIVAL_BIC]
+    cpk_ci, params, dropped = _bootstrap(model, rivals, x, t, codes, r, lo, hi, confidence, resamples, rng)
+    method = (f"BCa bootstrap of {resamples} resamples{' of whole groups' if codes is not None else ''}, the model "
+              "chosen again in each")
+    if dropped:
+        notes.append(f"{dropped} of {resamples} bootstrap resamples dropped: with the gauge's repeatability removed "
+                     "no candidate's process was valid (spread not above it)")
     if model.name == "normal" and codes is None:
-        cpk_ci, params = _normal_intervals(x, r, lo, hi, cpk, confidence)
-        method = "Bissell's normal approximation"
-    else:
-        cpk_ci, params, dropped = _bootstrap(model, x, t, codes, r, p_read, lo, hi, confidence, resamples, rng)
-        method = f"percentile bootstrap of {resamples} resamples{' of whole groups' if codes is not None else ''}"
-        if dropped:
-            notes.append(f"{dropped} of {resamples} bootstrap resamples dropped: with the gauge's repeatability "
-                         f"removed their process is no {model.name} (spread not above it, or skewness beyond "
-                         "the skew-normal's)")
-    gof = _goodness_of_fit(model, x, t, codes, share, p_read, rng)
+        params = _normal_parameters(x, r, confidence)
+    gof = _goodness_of_fit(model, x, t, codes, share, p_read, r, rng)
     if gof.p_value < GOF_LEVEL:
         notes.append(f"the {model.name} model fails the goodness-of-fit test (p = {gof.p_value:.3f}): the process "
                      "is none of the candidates; its engine file entry is an approximation")
@@ -351,7 +370,7 @@ def _groups(groups, n, where):
     return group_codes(g, f"{where} (groups)")
 
 
-def _candidates(x, t, r):
+def fit_candidates(x, t, r):
     """Every candidate's fit; a note where one is left out (too few values, no sequence, gauge)."""
     out, notes = [], []
     for model in MODELS:
@@ -362,8 +381,7 @@ def _candidates(x, t, r):
             out.append(Candidate(model.name, (), np.nan, np.nan, note))
             notes.append(note)
             continue
-        p = model.refit(x, t)[0]
-        ll = model.loglik(x, t, p)
+        p, ll = (v[0] for v in model.refit(x, t, repeatability=r))
         bic = model.n_params * np.log(x.size) - 2.0 * ll
         note = ""
         if np.any(np.isnan(model.process_params(p, r))):
@@ -380,21 +398,17 @@ def quantile_cpk(model, p, lo, hi):
     return np.minimum((hi - mid) / (high - mid), (mid - lo) / (mid - low))
 
 
-def _normal_intervals(x, r, lo, hi, cpk, confidence):
-    """Bissell's interval of Cpk and the t / chi-square intervals of mean and sigma (normal, no groups)."""
+def _normal_parameters(x, r, confidence):
+    """Student's t interval of the mean and the chi-square interval of sigma (gauge removed): normal, no groups."""
     n = x.size
     s_read = float(np.std(x, ddof=1))
-    s_proc = float(np.sqrt(s_read**2 - r * r))
-    z = stats.norm.ppf(0.5 + confidence / 2)
-    var = s_read**2 / (9 * n * s_proc**2) + cpk**2 * s_read**4 / (2 * (n - 1) * s_proc**4)
-    half = z * np.sqrt(var)
     t_half = stats.t.ppf(0.5 + confidence / 2, n - 1) * s_read / np.sqrt(n)
     chi = stats.chi2.ppf([0.5 + confidence / 2, 0.5 - confidence / 2], n - 1)
     var_lo, var_hi = (n - 1) * s_read**2 / chi - r * r
     mean = float(x.mean())
-    params = {"mean": Estimate(mean, mean - t_half, mean + t_half, "m"),
-              "sigma": Estimate(s_proc, float(np.sqrt(max(var_lo, 0.0))), float(np.sqrt(var_hi)), "m")}
-    return (cpk - half, cpk + half), params
+    return {"mean": Estimate(mean, mean - t_half, mean + t_half, "m"),
+            "sigma": Estimate(float(np.sqrt(s_read**2 - r * r)), float(np.sqrt(max(var_lo, 0.0))),
+                              float(np.sqrt(var_hi)), "m")}
 
 
 def _resample(x, t, codes, resamples, rng):
@@ -413,21 +427,81 @@ def _resample(x, t, codes, resamples, rng):
     return idx, mask
 
 
-def _bootstrap(model, x, t, codes, r, p_read, lo, hi, confidence, resamples, rng):
-    """Percentile intervals of Cpk and of the process parameters from resamples refitted with ``model``."""
+def _select(candidates, x, t, mask, r, lo, hi):
+    """Each row refitted with every candidate (started from its fit to the data): the least-BIC one's Cpk.
+
+    Returns the Cpk of each row (NaN where no candidate's process is valid)
+    and each candidate's process parameters per row.
+    """
+    n = mask.sum(axis=1)
+    best = np.full(x.shape[0], np.inf)
+    cpk = np.full(x.shape[0], np.nan)
+    fits = {}
+    for cand in candidates:
+        model = BY_NAME[cand.model]
+        p, ll = model.refit(x, t, mask, start=np.array(cand.params), repeatability=r)
+        proc = model.process_params(p, r)
+        ok = np.all(np.isfinite(proc), axis=1)
+        bic = np.where(ok, model.n_params * np.log(n) - 2.0 * ll, np.inf)
+        value = np.full(x.shape[0], np.nan)
+        value[ok] = quantile_cpk(model, proc[ok], lo, hi)
+        better = bic < best
+        cpk, best = np.where(better, value, cpk), np.where(better, bic, best)
+        fits[cand.model] = proc
+    return cpk, fits
+
+
+def _bootstrap(model, candidates, x, t, codes, r, lo, hi, confidence, resamples, rng):
+    """BCa intervals of Cpk (the model chosen again in every resample) and of the chosen model's parameters."""
     idx, mask = _resample(x, t, codes, resamples, rng)
-    p = model.refit(x[idx], None if t is None else t[idx], mask, start=p_read)
-    proc = model.process_params(p, r)
-    ok = ~np.any(np.isnan(proc), axis=1)
-    cpk = quantile_cpk(model, proc[ok], lo, hi)
-    tail = 50.0 * (1.0 - confidence)
-    ci = tuple(float(v) for v in np.percentile(cpk, [tail, 100.0 - tail]))
-    point = model.process_params(p_read, r)
-    params = {}
-    for k, name in enumerate(model.parameters):
-        a, b = np.percentile(proc[ok, k], [tail, 100.0 - tail])
-        params[name] = Estimate(float(point[k]), float(a), float(b), "m" if model.lengths[k] else "1")
-    return ci, params, int((~ok).sum())
+    cpk, fits = _select(candidates, x[idx], None if t is None else t[idx], mask, r, lo, hi)
+    rows = _jackknife_masks(x.size, codes, rng)
+    full = np.broadcast_to(x, rows.shape)
+    jack_cpk, jack_fits = _select(candidates, full, None if t is None else np.broadcast_to(t, rows.shape), rows, r,
+                                  lo, hi)
+    point = model.process_params(np.array(next(c for c in candidates if c.model == model.name).params), r)
+    boot = np.column_stack([cpk, fits[model.name]])
+    jack = np.column_stack([jack_cpk, jack_fits[model.name]])
+    boot, jack = boot[np.all(np.isfinite(boot), axis=1)], jack[np.all(np.isfinite(jack), axis=1)]
+    ends = _bca(boot, np.concatenate([[quantile_cpk(model, point, lo, hi)], point]), jack, confidence)
+    params = {name: Estimate(float(point[k]), *ends[k + 1], "m" if model.lengths[k] else "1")
+              for k, name in enumerate(model.parameters)}
+    return ends[0], params, resamples - boot.shape[0]
+
+
+#: Most delete-a-block jackknife fits for the BCa acceleration (groups, or blocks of values).
+JACKKNIFE_BLOCKS = 100
+
+
+def _jackknife_masks(n, codes, rng):
+    """Masks leaving out one group each (or one of :data:`JACKKNIFE_BLOCKS` random blocks of values)."""
+    if codes is None:
+        blocks = np.array_split(rng.permutation(n), min(JACKKNIFE_BLOCKS, n))
+    else:
+        blocks = [np.flatnonzero(codes == g) for g in range(codes.max() + 1)]
+    mask = np.ones((len(blocks), n), bool)
+    for k, block in enumerate(blocks):
+        mask[k, block] = False
+    return mask
+
+
+def _bca(boot, point, jack, confidence):
+    """Bias-corrected and accelerated percentile interval (Efron 1987) of each column: rows of (lo, hi).
+
+    ``boot`` (resamples, k) bootstrap values, ``point`` (k,) the estimates,
+    ``jack`` (blocks, k) delete-a-block jackknife values (the acceleration).
+    """
+    below = np.mean(boot < point, axis=0) + 0.5 * np.mean(boot == point, axis=0)
+    z0 = special.ndtri(np.clip(below, 1.0 / (boot.shape[0] + 1), boot.shape[0] / (boot.shape[0] + 1)))
+    d = jack.mean(axis=0) - jack
+    scale = np.sum(d * d, axis=0) ** 1.5
+    accel = np.divide(np.sum(d**3, axis=0), 6.0 * scale, out=np.zeros_like(scale), where=scale > 0)
+    out = []
+    for tail in (0.5 - confidence / 2, 0.5 + confidence / 2):
+        z = z0 + special.ndtri(tail)
+        share = special.ndtr(z0 + z / (1.0 - accel * z))
+        out.append([np.percentile(boot[:, k], 100.0 * share[k]) for k in range(boot.shape[1])])
+    return [(float(a), float(b)) for a, b in zip(*out)]
 
 
 def anderson_darling(u):
@@ -438,7 +512,7 @@ def anderson_darling(u):
     return -n - np.mean((2 * i - 1) * (np.log(u) + np.log1p(-u[..., ::-1])), axis=-1)
 
 
-def _goodness_of_fit(model, x, t, codes, share, p_read, rng):
+def _goodness_of_fit(model, x, t, codes, share, p_read, r, rng):
     """Anderson-Darling test of the chosen model, its p-value by parametric bootstrap (groups kept)."""
     observed = float(anderson_darling(model.conditional_cdf(x, t, p_read)))
     z = rng.standard_normal((GOF_RESAMPLES, x.size))
@@ -450,6 +524,6 @@ def _goodness_of_fit(model, x, t, codes, share, p_read, rng):
     else:
         sim = model.process(p_read).from_normal(z)
     tt = None if t is None else np.broadcast_to(t, sim.shape)
-    p_sim = model.refit(sim, tt, None, start=p_read)
+    p_sim = model.refit(sim, tt, None, start=p_read, repeatability=r)[0]
     stat = anderson_darling(model.conditional_cdf(sim, tt, p_sim))
     return GoodnessOfFit(observed, float((1 + np.sum(stat >= observed)) / (1 + GOF_RESAMPLES)), GOF_RESAMPLES)
