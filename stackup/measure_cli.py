@@ -96,7 +96,7 @@ def run_swell(args, state=None):
     from .measure import calibrate_housing
 
     if args.out and Path(args.out).exists() and not args.force:  # refused before the fit runs
-        raise ValueError(f"out: {args.out!r} exists; pass --force to replace it, or give another file name")
+        raise ValueError(f"--out: {args.out!r} exists; pass --force to replace it, or give another file name")
     with _options():
         result = calibrate_housing(args.file, args.engine, confidence=args.confidence)
     print(result.summary())
@@ -108,24 +108,17 @@ def run_swell(args, state=None):
 
 
 class _options:
-    """Re-raise a ValueError with the library's parameter names spelled as this command's options."""
+    """Re-raise a ValueError with the library's parameter names spelled as this command's options (:data:`OPTIONS`)."""
 
     def __enter__(self):
         return self
 
     def __exit__(self, kind, error, traceback):
-        if kind is not None and issubclass(kind, ValueError) and message(error) != str(error):
-            raise ValueError(message(error)) from None
+        if kind is not None and issubclass(kind, ValueError):
+            name, colon, rest = str(error).partition(":")
+            if colon and name in OPTIONS:
+                raise ValueError(OPTIONS[name] + colon + rest) from None
         return False
-
-
-def message(error):
-    """The error's message with the library's parameter names spelled as the options."""
-    text = str(error)
-    for name, option in OPTIONS.items():
-        if text.startswith(f"{name}:"):
-            return option + text[len(name):]
-    return text
 
 
 def main(argv=None):
@@ -138,8 +131,8 @@ def main(argv=None):
         return done.code
     try:
         return args.func(args)
-    except ValueError as error:
-        print(f"stackup: error: {message(error)}", file=sys.stderr)
+    except ValueError as error:  # bad input, said in words (the options spelled as typed), not a traceback
+        print(f"stackup: error: {error}", file=sys.stderr)
         return EXIT_REFUSED
 
 

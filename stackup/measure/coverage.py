@@ -32,6 +32,8 @@ TRUE_PROCESSES = {
     "mixture": Mixture((Normal(50.0065e-3, 1.4e-6), Normal(50.0115e-3, 1.6e-6)), (0.55, 0.45)),
     "drift": ToolWear(50.0060e-3, 50.0120e-3, 1.5e-6),
 }
+#: Each case's own random stream (a seed of one case shares no random numbers with the same seed of another).
+_CASE_KEY = {case: k for k, case in enumerate(TRUE_PROCESSES)}
 #: The gauge of the synthetic readings: repeatability 0.5 um, read-out 0.1 um [m].
 GAUGE = Gauge(repeatability=0.5e-6, resolution=0.1e-6)
 #: Groups (blocks) and parts per group of a synthetic sample, and the true shared share.
@@ -85,7 +87,7 @@ def coverage(case, seeds, *, grouped=True, resamples=1000, first_seed=0):
     truth = true_cpk(process, *BORE_LIMITS)
     cpk_hits, shared_hits, chosen, widths = 0, 0, {}, []
     for seed in range(first_seed, first_seed + seeds):
-        rng = np.random.default_rng([seed, 35])
+        rng = np.random.default_rng([seed, 35, _CASE_KEY[case]])
         x, groups, order = synthetic_readings(process, rng, shared=SHARED if grouped else 0.0)
         fit = fit_process(x, limits=BORE_LIMITS, gauge_repeatability=GAUGE.repeatability,
                           groups=groups if grouped else None, sequence=order if case == "drift" else None,
@@ -104,7 +106,7 @@ def choice_rate(case, n, seeds, *, first_seed=0):
     process = TRUE_PROCESSES[case]
     right = 0
     for seed in range(first_seed, first_seed + seeds):
-        rng = np.random.default_rng([seed, 36])
+        rng = np.random.default_rng([seed, 36, _CASE_KEY[case]])
         x, _, order = synthetic_readings(process, rng, groups=n, per_group=1, shared=0.0)
         t = order / (n - 1) if case == "drift" else None
         candidates, _ = fit_candidates(x, t, GAUGE.repeatability)
