@@ -9,14 +9,17 @@ application
     :mod:`~stackup.io`, :mod:`~stackup.report`, :mod:`~stackup.cli`
     (with :mod:`~stackup.design_cli` and :mod:`~stackup.output`).
 analysis
-    :mod:`~stackup.rank`, :mod:`~stackup.plan`, :mod:`~stackup.sensitivity`,
-    :mod:`~stackup.tail`, :mod:`~stackup.design`, :mod:`~stackup.scenarios`.
+    :mod:`~stackup.facts` (the numbers of a comparison, which the ranking and
+    the report share), :mod:`~stackup.rank`, :mod:`~stackup.plan`,
+    :mod:`~stackup.sensitivity`, :mod:`~stackup.tail`, :mod:`~stackup.design`,
+    :mod:`~stackup.scenarios`.
 study
     :mod:`~stackup.study`: the chain where the stages meet, the dataset
     schema, sinks, store, schedulers and the one bearing -> operating
     clearance core.
 engine description
-    :mod:`~stackup.engines`: an engine file read into the stages' inputs.
+    :mod:`~stackup.engines`: an engine file read into the stages' inputs;
+    :mod:`~stackup.patterns`: ISO 13778's schemes laid on an engine's drawing.
 stages
     :mod:`~stackup.assembly`, :mod:`~stackup.crank`, :mod:`~stackup.film`,
     :mod:`~stackup.fit`, :mod:`~stackup.life`, :mod:`~stackup.loads`,

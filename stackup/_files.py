@@ -19,6 +19,8 @@ import os
 import tomllib
 from pathlib import Path
 
+import numpy as np
+
 from . import _validate as check
 
 #: Length units a file may declare, in m.
@@ -119,6 +121,18 @@ class Table:
         value = self.get(name, required=required)
         return Table({} if value is None else value, self.where, self.key(name))
 
+    def optional(self, name):
+        """The sub-table ``name`` as a Table, or None where the file has none (a valid key either way)."""
+        value = self.get(name)
+        return None if value is None else Table(value, self.where, self.key(name))
+
+    def source(self, name):
+        """A required text saying where numbers come from; an empty one is refused."""
+        value = self.text(name, required=True)
+        if not value.strip():
+            raise ValueError(f"{self._at(name)}: empty; say where the numbers come from")
+        return value
+
     def text(self, name, default=None, *, required=False, options=None):
         """A text value, optionally one of ``options``."""
         value = self.get(name, default, required=required)
@@ -150,6 +164,22 @@ class Table:
             lb, rb = "(" if lo_open else "[", ")" if hi_open else "]"
             raise ValueError(f"{self._at(name)}: {value:g}{unit} is outside the valid range {lb}{lo:g}, {hi:g}{rb}{unit}")
         return value
+
+    def numbers(self, name, default=None, *, required=False, rows=False):
+        """Finite numbers as a float array: a list of them (with ``rows``, also a list of such lists)."""
+        value = self.get(name, default, required=required)
+        if value is None:
+            return None
+
+        def number(v):
+            return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+        def entry(v):
+            return number(v) or rows and isinstance(v, list) and all(map(number, v))
+
+        if not isinstance(value, list) or not all(map(entry, value)) or len({np.shape(v) for v in value}) > 1:
+            raise ValueError(f"{self._at(name)}: {value!r} is not a list of numbers")
+        return check.finite(self._at(name), value)
 
     def flag(self, name, default=None, *, required=False):
         """A true/false value (a number or the text "false" is refused, never read as true)."""

@@ -215,6 +215,18 @@ class OrNone:
         return None if value is None else self.constraint(field, value)
 
 
+def fields(instance, constraints, *, prefix=""):
+    """Check a frozen dataclass's fields against a declared table, in its ``__post_init__``; values unchanged.
+
+    ``constraints`` maps a field name to a check, or to ``(label, check)`` where the message names the field
+    otherwise (``prefix`` + the field name by default). The fields keep the values given (a dataclass that is
+    a cache key stays hashable), so this checks what :func:`validated` would convert.
+    """
+    for name, constraint in constraints.items():
+        label, constraint = constraint if isinstance(constraint, tuple) else (f"{prefix}{name}", constraint)
+        constraint(label, getattr(instance, name))
+
+
 _TRUSTED = contextvars.ContextVar("stackup_inputs_checked", default=False)
 
 
@@ -236,7 +248,8 @@ def validated(relations=(), **constraints):
     """Declare the checks of a public function's parameters; they run on a call from outside the package.
 
     ``constraints`` map parameter names to checks (:class:`Positive`, :class:`OneOf`, ...; any callable
-    ``check(field, value) -> value``); a parameter left at its default ``None`` is not checked.
+    ``check(field, value) -> value``); ``None`` is not checked where it is the parameter's default (an
+    optional input left out), and is checked, so refused, everywhere else.
     ``relations`` are callables given the checked arguments by name that raise ``ValueError`` where
     parameters disagree with each other. The checked (converted) values are what the function receives.
     Calls made inside a validated function, or in a :func:`trusted` block, skip the checks.
@@ -255,7 +268,7 @@ def validated(relations=(), **constraints):
             bound.apply_defaults()
             values = bound.arguments
             for name, constraint in constraints.items():
-                if values.get(name) is not None:
+                if values[name] is not None or signature.parameters[name].default is not None:
                     values[name] = constraint(name, values[name])
             for relation in relations:
                 relation(values)

@@ -54,10 +54,11 @@ def _compare(args, state):
     import stackup
 
     from .engines import load_engine
+    from .facts import Run, clearance_summary
     from .io import open_comparison, save_comparison
     from .output import prepare_folder
-    from .report import clearance_summary, write_report
-    from .report.prose import run_notes
+    from .report import write_report
+    from .report.verdict import run_notes
     from .scenarios import DECLARED
     from .schemes import load as load_scheme
     from .study import ISO_SCHEMES
@@ -99,7 +100,7 @@ def _compare(args, state):
         stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
                   "        — (no stated range)")
         print(f"  {name:<20} mean {row.mean_um:6.2f} µm  std {row.std_um:5.2f} µm  outside stated {stated}")
-    for note in run_notes(ds):  # stages that failed on some engines, or did not run: said here too
+    for note in run_notes(Run.of(ds)):  # stages that failed on some engines, or did not run: said here too
         print(f"note: {note}")
     print(f"dataset: {folder / 'compare.nc'}\nreport:  {folder / 'report.md'} (and report.html)")
     print(f"verdict: {_verdict_line(folder / 'report.md')}")
@@ -179,7 +180,14 @@ def _engines(args, state):
 
 
 def _schemes(args, state):
+    from .output import OutputRefused
     from .schemes import _builtin_dir, files, load
+
+    if args.engine is not None:
+        return _engine_schemes(args)
+    if args.out is not None:
+        raise OutputRefused(f"--out {args.out!r} writes the schemes laid on an engine's drawing: give --engine "
+                            "NAME too")
 
     def describe(path):
         scheme = load(path)
@@ -190,6 +198,34 @@ def _schemes(args, state):
         return text + f"; shell grades {', '.join(scheme.shell.labels)}"
 
     _listing("schemes", "STACKUP_SCHEME_PATH", files(), _builtin_dir(), describe)
+    return 0
+
+
+def _engine_schemes(args):
+    """``stackup schemes --engine NAME [--out DIR]``: ISO 13778's schemes laid on the engine's drawing."""
+    from .engines import load_engine
+    from .output import prepare_file, write_file
+    from .patterns import iso_schemes
+
+    engine = load_engine(args.engine)
+    schemes = iso_schemes(engine)
+    print(f"ISO 13778 schemes 1-6 laid on {engine.name}'s drawing (housing bore "
+          f"{engine.housing_bore.lo * 1e3:.3f}-{engine.housing_bore.hi * 1e3:.3f} mm, journal "
+          f"{engine.journal_d.lo * 1e3:.3f}-{engine.journal_d.hi * 1e3:.3f} mm); `stackup compare --engine "
+          f"{args.engine}` uses these:")
+    for scheme in schemes:
+        lo, hi = scheme.clearance_limits()
+        grades = "/".join(str(len(getattr(scheme, d).labels)) for d in ("housing", "journal", "shell"))
+        print(f"  {scheme.name:<12} {scheme.title}; nominal clearance {lo * 1e6:.1f}-{hi * 1e6:.1f} um; "
+              f"grades housing/journal/shell {grades}")
+    if args.out is None:
+        print("Write them as scheme files to read, keep and edit with --out DIR.")
+        return 0
+    paths = [prepare_file(os.path.join(args.out, f"{scheme.name}-{engine.name}.toml"), force=args.force,
+                          option="--out") for scheme in schemes]  # every file checked before one is written
+    for scheme, path in zip(schemes, paths):
+        write_file(path, scheme.to_toml_text())
+        print(f"wrote {path}")
     return 0
 
 
@@ -313,14 +349,8 @@ def _share(text):
     return value
 
 
-def parser():
-    """The ``stackup`` argument parser."""
-    top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
-        "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
-        epilog="Run `stackup COMMAND --help` for a command's options.")
-    top.add_argument("--version", action="version", version=f"stackup {__version__}")
-    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
-
+def _compare_parser(sub):
+    """``stackup compare``: the main job."""
     cmp_ = sub.add_parser("compare", formatter_class=_Formatter, help="compare selective-fitting schemes on an engine",
                           description="Compare selective-fitting schemes on an engine: a study of sampled engines, "
                           "the declared robustness scenarios and what drives the spread; writes the dataset "
@@ -356,6 +386,9 @@ def parser():
                       help="replace another run in the output folder (the same run again is always replaced)")
     cmp_.set_defaults(func=_compare)
 
+
+def _report_parser(sub):
+    """``stackup report``: the report of a saved comparison, again."""
     rpt = sub.add_parser("report", formatter_class=_Formatter, help="write the report of a saved comparison again",
                          description="Write the report (report.md, report.html and its figures) from a dataset "
                          "`stackup compare` saved, and from nothing else: after an update of stackup's report, or "
@@ -365,6 +398,9 @@ def parser():
     rpt.add_argument("--out", metavar="FOLDER", help="folder for the report (default: the dataset's folder)")
     rpt.set_defaults(func=_report)
 
+
+def _plan_parser(sub):
+    """``stackup plan``: shells (or graded parts) per grade for a volume."""
     pln = sub.add_parser("plan", formatter_class=_Formatter, help="shells (or graded parts) per grade for a volume",
                          description="How many shells of each grade to make and stock for a production volume (whole "
                          "shells, rounded up where stock must cover demand), or with --part how many housing bores "
@@ -393,6 +429,9 @@ def parser():
     pln.add_argument("--force", action="store_true", help="replace an existing --csv FILE")
     pln.set_defaults(func=_plan)
 
+
+def _listing_parsers(sub):
+    """``stackup engines`` and ``stackup schemes``: the built-in files and the user's."""
     for name, variable, func in (("engines", "STACKUP_ENGINE_PATH", _engines),
                                  ("schemes", "STACKUP_SCHEME_PATH", _schemes)):
         lst = sub.add_parser(name, formatter_class=_Formatter, help=f"list the built-in {name} and the user's",
@@ -400,10 +439,15 @@ def parser():
                              f"variable {variable} add (a user's file of the same name replaces a built-in one). "
                              f"Any {name[:-1]} file also works by its path.")
         lst.set_defaults(func=func)
+        if name == "schemes":
+            lst.add_argument("--engine", metavar="ENGINE", help="show ISO 13778's schemes 1-6 laid on this "
+                             "engine's drawing (a built-in name or an engine file), as `stackup compare` uses them")
+            lst.add_argument("--out", metavar="DIR", help="with --engine: write them there as scheme files")
+            lst.add_argument("--force", action="store_true", help="with --out: replace files of the same names")
 
-    from .design_cli import add_parser as add_design_parser
-    add_design_parser(sub).formatter_class = _Formatter
 
+def _store_parser(sub):
+    """``stackup store check`` and ``stackup store repair``."""
     store = sub.add_parser("store", formatter_class=_Formatter, help="check or repair a study's Zarr store",
                            description="A study streamed into a Zarr store (Study(store=PATH)) can be checked for "
                            "chunks that cannot be read, and repaired: the study chunks that wrote them are marked "
@@ -423,6 +467,25 @@ def parser():
                              "the same store.")
     rep.add_argument("path", metavar="PATH", help="the store (a folder)")
     rep.set_defaults(func=_store_repair)
+
+
+def parser():
+    """The ``stackup`` argument parser."""
+    from .design_cli import add_parser as add_design_parser
+    from .measure_cli import add_parser as add_measure_parser
+
+    top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
+        "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
+        epilog="Run `stackup COMMAND --help` for a command's options.")
+    top.add_argument("--version", action="version", version=f"stackup {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND", help="what to do")
+    _compare_parser(sub)
+    _report_parser(sub)
+    _plan_parser(sub)
+    _listing_parsers(sub)
+    add_design_parser(sub).formatter_class = _Formatter
+    add_measure_parser(sub).formatter_class = _Formatter
+    _store_parser(sub)
     return top
 
 

@@ -13,7 +13,9 @@ from . import _validate as check
 from .design import design as design_scheme
 from .design.estimate import outside_share
 from .engines import load_engine
-from .rank import MIN_COUNTED, counted_outside, rank
+from .facts import MIN_COUNTED, counted_outside
+from .facts.declared import StudyParameters, parsed, plain
+from .rank import rank
 from .scenarios import DECLARED
 from .schemes import load as load_scheme
 from .sensitivity import sobol
@@ -30,8 +32,8 @@ SCENARIO_MECHANICS_ENGINES = 50
 SOBOL_CRANK_ANGLE_STEP = 4.0
 #: Root bearings of each tail estimate (:func:`stackup.tail.clearance_tail`'s ``n_level``).
 TAIL_ROOTS = 2_000
-#: Independent samples and engines per sample of the conditional tail estimate: 0.05-0.8 ppm known to
-#: +-10-45 % on the example engine (reports/design_scheme.md) in about 1.5 s per scheme.
+#: Independent samples and engines per sample of the conditional tail estimate (its error and time on the
+#: example engine: reports/design_scheme.md).
 TAIL_SAMPLES, TAIL_ENGINES = 10, 20_000
 
 
@@ -52,7 +54,7 @@ class Comparison:
         Shares of bearings beyond each edge of the design window by
         generalized splitting (:func:`tails_dataset`) for the schemes whose
         study counted too few bearings outside the window
-        (:data:`stackup.rank.MIN_COUNTED`), which the ranking uses.
+        (:data:`stackup.facts.MIN_COUNTED`), which the ranking uses.
     """
 
     dataset: xr.Dataset
@@ -160,21 +162,21 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
     on (output, scheme, input): ``S1``, ``ST`` and their 95 % bootstrap
     bounds ``*_lo``, ``*_hi``; NaN where an output was not analysed.
     """
-    params = json.loads(ds.attrs["study"])
-    stored_engine, loaded = load_inputs(json.loads(ds.attrs["input_files"]), params["schemes"])
+    params = StudyParameters.of(ds)
+    stored_engine, loaded = load_inputs(parsed(ds, "input_files"), params.schemes)
     engine = stored_engine if engine is None else engine
     by_name = {s.name: s for s in loaded}
     schemes = [str(s) for s in ds.scheme.values]
     frames = {}
     for scheme in schemes:
         frames[("clearance_operating", scheme)] = sobol(engine, by_name[scheme], n=n_clearance, seed=seed, scenario=scenario,
-                                                        pilot_engines=params["pilot_engines"])
+                                                        pilot_engines=params.pilot_engines)
     if int(ds.attrs.get("mechanics_engines_used", 0)) and n_film:
         best = rank(ds, tails=tails).index[0]
         both = sobol(engine, by_name[best], output="h_min", n=n_film, seed=seed, scenario=scenario, return_all=True,
-                     crank_angle_step=max(params["crank_angle_step"], SOBOL_CRANK_ANGLE_STEP),
-                     crank_method=params["crank_method"],
-                     film_method=ds.attrs["film_method_used"], pilot_engines=params["pilot_engines"])
+                     crank_angle_step=max(params.crank_angle_step, SOBOL_CRANK_ANGLE_STEP),
+                     crank_method=params.crank_method, film_method=plain(ds, "film_method_used"),
+                     pilot_engines=params.pilot_engines)
         frames.update({(output, best): frame for output, frame in both.items()})
     outputs = list(dict.fromkeys(output for output, _ in frames))
     inputs = list(dict.fromkeys(i for frame in frames.values() for i in frame.index))
@@ -200,6 +202,7 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
                                                             "chain (stackup.sensitivity.sobol, SALib)", "seed": seed})
 
 
+@check.validated(method=check.OneOf(("conditional", "splitting")), window=check.Window())
 def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=TAIL_ROOTS,
                   method="conditional"):
     """Share of bearings below and above the design window per scheme, for the ranking's small shares.
@@ -218,7 +221,6 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     the share outside the window and its interval (``tail_outside_share``,
     ``tail_outside_interval``: the two edges from the same samples).
     """
-    check.one_of("method", method, ("conditional", "splitting"))
     engine = load_engine(engine)
     window = engine.clearance_window if window is None else window
     loaded = [load_scheme(s) for s in schemes]

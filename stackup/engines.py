@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import io
 import os
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -31,7 +32,7 @@ from . import materials
 from .crank import BellakhdharLaw
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
-from .loads import Combustion, Kinematics, firing_offsets, pin_loads, read_pressure_trace
+from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
 from ._files import Table, locations, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
@@ -73,14 +74,15 @@ class PressFitSpec:
     :meth:`kwargs` gives the keyword arguments of :func:`stackup.fit.press_fit`
     at the operating temperature (the clearance), :meth:`extremes_kwargs`
     those of :func:`stackup.fit.press_fit_extremes` over :attr:`temperatures`
-    (the stress and pressure checks).
+    (the stress and pressure checks), :meth:`record` the same data in the
+    engine file's words (a dataset's ``press_fit`` attribute).
     """
 
     housing_outer: float
     housing_material: str
     shell_material: str
     journal_material: str
-    length: float
+    bearing_width: float  # axial width of the shells [m] (the file's press_fit.length)
     check_bore: float
     check_stress: float
     assembly_temperature: float
@@ -92,12 +94,25 @@ class PressFitSpec:
     limits: PressFitLimits = KOPELIOVICH_LIMITS
     crush_source: str = ""
 
-    _FIT = ("housing_outer", "housing_material", "shell_material", "journal_material", "length", "check_bore",
-            "check_stress", "assembly_temperature", "lining_thickness", "lining_material")
+    _FIT = ("housing_outer", "housing_material", "shell_material", "journal_material", "bearing_width",
+            "check_bore", "check_stress", "assembly_temperature", "lining_thickness", "lining_material")
+    #: Names of the file's keys where they differ from the fit functions' arguments.
+    _FILE_KEYS = {"bearing_width": "length"}
 
     def kwargs(self):
         """Keyword arguments of :func:`stackup.fit.press_fit` at the operating temperature."""
         return {**{name: getattr(self, name) for name in self._FIT}, "temperature": self.temperature}
+
+    def record(self):
+        """:meth:`kwargs` under the engine file's key names (``length`` for the width), as datasets keep them."""
+        return {self._FILE_KEYS.get(name, name): value for name, value in self.kwargs().items()}
+
+    @property
+    def length(self):
+        """Deprecated name of :attr:`bearing_width` [m]."""
+        warnings.warn("PressFitSpec.length is deprecated; use bearing_width (same value)", DeprecationWarning,
+                      stacklevel=2)
+        return self.bearing_width
 
     @property
     def temperatures(self):
@@ -277,29 +292,13 @@ def load_engine(name_or_path, *, files=None):
     return _engine(Table(parse_toml(files["text"], where=where), where), name=files["name"], extra=files["extra"])
 
 
-def _numbers(t, name, *, required=False, default=None):
-    """A list of numbers (or of lists of numbers) of table ``t`` as read; text, true/false and tables refused."""
-    value = t.get(name, default, required=required)
-    if value is None:
-        return None
-
-    def ok(v, depth):
-        if isinstance(v, list) and depth < 2:
-            return all(ok(x, depth + 1) for x in v)
-        return depth > 0 and isinstance(v, (int, float)) and not isinstance(v, bool)
-
-    if not ok(value, 0):
-        raise ValueError(f"{t.where}, key {t.key(name)}: {value!r} is not a list of numbers")
-    return value
-
-
 def _dimension(top, key, *, scale, units, plausible, what, required=True):
     """A part's dimension: drawing limits, process, gauge, shared share, form error, bolt scatter, source."""
     t = top.table(key, required=required)
     lo, hi = t.lengths("limits", count=2, required=True, scale=scale, units=units, plausible=plausible, what=what,
                        increasing=True)
     field = f"{t.where}, key {t.path}"
-    process = process_from_spec(t.get("process", {}), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
+    process = process_from_spec(t.get("process", required=True), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
     gauge_table = t.get("gauge")
     gauge = gauge_from_spec(gauge_table, scale=scale, field=f"{field}.gauge")
     shared = t.number("shared", 0.0, lo=0.0, hi=1.0, hi_open=True)
@@ -368,7 +367,7 @@ def _engine(top, *, name, extra):
         crank=_crank(top, **length, bearings=bearings, extra=extra) if "crank" in top else None,
         **_targets(top, **length, journal=journal),
         wear=_wear(top, **length),
-        oil_feed=_oil_feed(top, **length, bearing_length=spec.length),
+        oil_feed=_oil_feed(top, **length, bearing_width=spec.bearing_width),
     )
     top.close()
     return engine
@@ -381,23 +380,19 @@ def _press_fit(top, bore, *, scale, units):
     def temperature(name, default):
         return t.number(name, default, lo=-60.0, hi=300.0, unit=" degC")
 
-    def material(name, default="steel"):
-        value = t.text(name, default)
-        return None if value is None else materials.get(value).name
-
     lining_thickness = t.length("lining_thickness", 0.0, **length, plausible=PLAUSIBLE["lining"],
                                 what="lining thickness")
-    lining_material = material("lining_material", None)
+    lining_material = _material(t, "lining_material", None)
     if lining_thickness > 0 and lining_material is None:
         raise ValueError(f"{t.where}, key press_fit.lining_material: missing; a lining_thickness > 0 needs the "
                          "lining's material")
     spec = PressFitSpec(
         housing_outer=t.length("housing_outer", required=True, **length, plausible=PLAUSIBLE["ring"],
                                what="housing outer diameter"),
-        housing_material=material("housing_material"),
-        shell_material=material("shell_material"),
-        journal_material=material("journal_material"),
-        length=t.length("length", required=True, **length, plausible=PLAUSIBLE["width"], what="shell width"),
+        housing_material=_material(t, "housing_material"),
+        shell_material=_material(t, "shell_material"),
+        journal_material=_material(t, "journal_material"),
+        bearing_width=t.length("length", required=True, **length, plausible=PLAUSIBLE["width"], what="shell width"),
         check_bore=t.length("check_bore", bore.lo / scale, **length, plausible=PLAUSIBLE["bore"],
                             what="checking-block bore"),
         check_stress=t.number("check_stress", 100e6, lo=0.0, hi=2e9, lo_open=True, unit=" Pa"),
@@ -423,12 +418,16 @@ def _press_fit(top, bore, *, scale, units):
     return spec
 
 
+def _material(t, name, default="steel"):
+    """The name of a known material (:mod:`stackup.materials`) at key ``name`` of table ``t``."""
+    return t.text(name, default, options=tuple(materials.available()))
+
+
 def _wear(top, *, scale, units):
     """The [wear] table: roughness (Rz, Rq) of journal and shell, lining, limiting wear and wear speed."""
-    if "wear" not in top:
-        top.get("wear")  # a valid key, though absent
+    t = top.optional("wear")
+    if t is None:
         return DEFAULT_WEAR
-    t = top.table("wear")
     key = f"{t.where}, key wear"
     rough = dict(scale=scale, units=units, plausible=PLAUSIBLE["roughness"], what="surface roughness")
     rz1, rz2, rq1, rq2 = (t.length(n, required=True, **rough) for n in ("journal_rz", "shell_rz", "journal_rq",
@@ -444,18 +443,12 @@ def _wear(top, *, scale, units):
                              f"{critical / scale!r} (Levanov et al. 2015, eq. 3: h_lim,cr > Rz1 + Rz2)")
         critical = given
 
-    def source(name):
-        value = t.text(name, required=True)
-        if not value.strip():
-            raise ValueError(f"{key}.{name}: empty; say where the numbers come from")
-        return value
-
     spec = WearSpec(journal_rz=rz1, shell_rz=rz2, journal_rq=rq1, shell_rq=rq2, critical_film=critical,
                     wear_limit=t.length("wear_limit", required=True, scale=scale, units=units,
                                         plausible=PLAUSIBLE["wear"], what="limiting wear"),
                     wear_rate=t.number("wear_rate", required=True, lo=0.0, hi=1e-3 / scale, lo_open=True) * scale,
-                    lining_material=materials.get(t.text("lining_material", "aluminium")).name,
-                    roughness_source=source("roughness_source"), wear_source=source("wear_source"))
+                    lining_material=_material(t, "lining_material", "aluminium"),
+                    roughness_source=t.source("roughness_source"), wear_source=t.source("wear_source"))
     t.close()
     return spec
 
@@ -464,35 +457,33 @@ def _wear(top, *, scale, units):
 _DEFAULT_GROOVE_SHARE = 0.15
 
 
-def _oil_feed(top, *, scale, units, bearing_length):
+def _oil_feed(top, *, scale, units, bearing_width):
     """The [oil_feed] table: supply pressure [Pa] and the groove or hole (angles in deg, lengths in file units)."""
-    if "oil_feed" not in top:
-        top.get("oil_feed")
-        return OilFeed("groove", 0.3e6, (0.5 * np.pi, 1.5 * np.pi), _DEFAULT_GROOVE_SHARE * bearing_length,
+    t = top.optional("oil_feed")
+    if t is None:
+        return OilFeed("groove", 0.3e6, (0.5 * np.pi, 1.5 * np.pi), _DEFAULT_GROOVE_SHARE * bearing_width,
                        source="default: 0.3 MPa into a 180 deg groove in the upper shell, 15 % of the bearing wide")
-    t = top.table("oil_feed")
     key = f"{t.where}, key oil_feed"
     kind = t.text("feed", required=True, options=FEEDS)
     pressure = t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa")
-    source = t.text("source", required=True)
-    if not source.strip():
-        raise ValueError(f"{key}.source: empty; say where the numbers come from")
+    source = t.source("source")
     if kind == "groove":
-        arc = _numbers(t, "groove_arc", default=[90.0, 270.0])
-        arc = check.finite(f"{key}.groove_arc", arc)
+        arc = t.numbers("groove_arc", [90.0, 270.0])
         if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
             raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
                              f"start < end <= start + 360")
         width = t.length("groove_width", required=True, scale=scale, units=units, plausible=PLAUSIBLE["groove"],
                          what="groove width")
-        if width >= bearing_length:
-            raise ValueError(f"{key}.groove_width: {width / scale:g} {units} is not below the bearing length")
+        if width >= bearing_width:
+            raise ValueError(f"{key}.groove_width: {width / scale:g} {units} is not below the bearing width "
+                             "(press_fit.length)")
         feed = OilFeed(kind, pressure, tuple(float(a) for a in np.radians(arc)), width, source=source)
     else:
         diameter = t.length("hole_diameter", required=True, scale=scale, units=units, plausible=PLAUSIBLE["groove"],
                             what="feed hole diameter")
-        if diameter >= bearing_length / 2:
-            raise ValueError(f"{key}.hole_diameter: {diameter / scale:g} {units} is not below half the bearing length")
+        if diameter >= bearing_width / 2:
+            raise ValueError(f"{key}.hole_diameter: {diameter / scale:g} {units} is not below half the bearing "
+                             "width (press_fit.length)")
         angle = t.number("hole_angle", 180.0, lo=-360.0, hi=720.0, unit=" deg")
         feed = OilFeed(kind, pressure, hole_angle=float(np.radians(angle)), hole_diameter=diameter, source=source)
     t.close()
@@ -501,10 +492,9 @@ def _oil_feed(top, *, scale, units, bearing_length):
 
 def _limits(press_fit):
     """Press-fit design limits from ``[press_fit.limits]`` (Pa, with their source); Kopeliovich's if absent."""
-    if "limits" not in press_fit:
-        press_fit.get("limits")
+    t = press_fit.optional("limits")
+    if t is None:
         return KOPELIOVICH_LIMITS
-    t = press_fit.table("limits")
     limits = PressFitLimits(
         contact_pressure_min=t.number("contact_pressure_min", required=True, lo=0.0, lo_open=True, unit=" Pa"),
         shell_stress_max=t.number("shell_stress_max", required=True, lo=0.0, lo_open=True, unit=" Pa"),
@@ -528,11 +518,11 @@ def _targets(top, *, scale, units, journal):
                        what="operating clearance", increasing=True)
     if window is not None:
         out["clearance_window"] = tuple(window)
-    ratio = _numbers(t, "relative_clearance")
+    ratio = t.numbers("relative_clearance")
     if ratio is not None:
         # psi = C / D of the journal's nominal size (its lower drawing limit)
         if len(ratio) != 2:
-            raise ValueError(f"{key}.relative_clearance: {ratio!r} is not a [lower, upper] pair")
+            raise ValueError(f"{key}.relative_clearance: {ratio.tolist()!r} is not a [lower, upper] pair")
         lo, hi = check.limits(f"{key}.relative_clearance", *ratio, unit="")
         if lo <= 0 or hi >= 0.01:
             raise ValueError(f"{key}.relative_clearance: [{lo!r}, {hi!r}] is not a clearance ratio C/D in (0, 0.01) "
@@ -549,6 +539,7 @@ def _targets(top, *, scale, units, journal):
 
 
 def _crank(top, *, scale, units, bearings, extra):
+    """The [crank] table (crank train, loads, beam), with [bearing_law] and [oil]: the mechanical chain's data."""
     t = top.table("crank")
     key = f"{t.where}, key crank"
     length = dict(scale=scale, units=units)
@@ -556,57 +547,97 @@ def _crank(top, *, scale, units, bearings, extra):
     if cylinders != bearings - 1:
         raise ValueError(f"{key}.cylinders: {cylinders} cylinders need {cylinders + 1} main bearings, "
                          f"the engine has {bearings} (inline engines only)")
-    stroke = t.length("stroke", required=True, **length, plausible=PLAUSIBLE["crank"], what="stroke")
-    unbalance = t.number("counterweight_share", 0.0, lo=0.0, hi=2.0)
-    rotating = t.number("rotating_mass", required=True, lo=0.0, hi=1e4, unit=" kg")
-    kinematics = Kinematics(
-        cylinder_bore=t.length("cylinder_bore", required=True, **length, plausible=PLAUSIBLE["crank"],
-                               what="cylinder bore"),
-        stroke=stroke,
-        conrod=t.length("conrod", required=True, **length, plausible=PLAUSIBLE["crank"], what="connecting rod"),
-        reciprocating_mass=t.number("reciprocating_mass", required=True, lo=0.0, hi=1e4, unit=" kg"),
-        rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
-    trace_file = t.text("pressure_trace")
-    trace = None
-    if trace_file is not None:
-        if trace_file not in extra:
-            raise ValueError(f"{key}.pressure_trace: {trace_file!r} was not read with the engine file")
-        trace = read_pressure_trace(io.StringIO(extra[trace_file]), name=trace_file)
-    combustion = Combustion(compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=50.0, lo_open=True),
-                            peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa"))
-    throws = tuple(float(a) for a in check.finite(f"{key}.throw_angles", _numbers(t, "throw_angles", required=True)))
-    order = t.get("firing_order", required=True)
-    if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
-        raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")
-    order = tuple(order)
-    if len(throws) != cylinders or len(order) != cylinders:
-        raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
-    spans = np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
-                               what="crankshaft span"))
-    inertia = check.positive(f"{key}.section_inertia", _numbers(t, "section_inertia", required=True)) * scale**4
+    throws, order = _firing(t, cylinders)
+    inertia = t.numbers("section_inertia", required=True, rows=True)
+    inertia = check.positive(f"{key}.section_inertia", inertia) * scale**4
     if inertia.shape not in ((cylinders,), (cylinders, 2)):
         raise ValueError(f"{key}.section_inertia: shape {inertia.shape}; give ({cylinders},) or ({cylinders}, 2)")
     if np.any((inertia < 1e-10) | (inertia > 1e-1)):  # a 10 mm to a 1 m steel journal
         raise ValueError(f"{key}.section_inertia: {float(inertia.min() / scale**4):g} to "
                          f"{float(inertia.max() / scale**4):g} {units}^4 is not a plausible section inertia "
                          f"({1e-10 / scale**4:g} to {1e-1 / scale**4:g} {units}^4); is `units` right?")
-    modulus = materials.get(t.text("crank_material", "steel")).modulus
+    modulus = materials.get(_material(t, "crank_material")).modulus
     spec = CrankSpec(
-        kinematics=kinematics, combustion=combustion, throw_angles=throws, firing_order=order,
+        kinematics=_kinematics(t, **length),
+        combustion=_named(t, Combustion, compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=40.0,
+                                                                    lo_open=True),
+                          peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa")),
+        throw_angles=throws, firing_order=order,
         speed=t.number("speed", required=True, lo=10.0, hi=3e4, unit=" rpm") * 2 * np.pi / 60,
-        spans=spans, ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
+        spans=np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
+                                 what="crankshaft span")),
+        ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
         bearing_width=t.length("bearing_width", required=True, **length, plausible=PLAUSIBLE["width"],
                                what="bearing width"),
         coaxiality=t.length("coaxiality", 0.0, **length, plausible=PLAUSIBLE["misalignment"], what="coaxiality"),
         journal_runout=t.length("journal_runout", 0.0, **length, plausible=PLAUSIBLE["misalignment"],
                                 what="journal run-out"),
-        clearance_ratio=1.0, law_parameters={}, pressure_trace=trace,
+        clearance_ratio=1.0, law_parameters={}, pressure_trace=_pressure_trace(t, extra),
     )
     t.close()
-    firing_offsets(throws, order)
+    ratio, params = _bearing_law(top, **length)
+    oil = top.table("oil")
+    grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
+    supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
+    oil.close()
+    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply)
+
+
+def _kinematics(t, *, scale, units):
+    """The slider-crank of table [crank]: bore, stroke, con-rod and masses; the counterweights' unbalance."""
+    length = dict(scale=scale, units=units, plausible=PLAUSIBLE["crank"])
+    stroke = t.length("stroke", required=True, **length, what="stroke")
+    unbalance = t.number("counterweight_share", 0.0, lo=0.0, hi=2.0)
+    rotating = t.number("rotating_mass", required=True, lo=0.0, hi=1e4, unit=" kg")
+    return _named(
+        t, Kinematics,
+        cylinder_bore=t.length("cylinder_bore", required=True, **length, what="cylinder bore"),
+        stroke=stroke,
+        conrod=t.length("conrod", required=True, **length, what="connecting rod"),
+        reciprocating_mass=t.number("reciprocating_mass", required=True, lo=0.0, hi=1e4, unit=" kg"),
+        rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
+
+
+def _firing(t, cylinders):
+    """Throw angles [deg] and firing order of table [crank], one per cylinder, that fire one cylinder at a time."""
+    key = f"{t.where}, key crank"
+    throws = tuple(float(a) for a in t.numbers("throw_angles", required=True))
+    order = t.get("firing_order", required=True)
+    if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
+        raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")
+    order = tuple(order)
+    if len(throws) != cylinders or len(order) != cylinders:
+        raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
+    # both checked here, the file's boundary, also where a caller trusts its inputs
+    _named(t, check_firing_order, throws, order)
+    _named(t, firing_offsets, throws, order)
+    return throws, order
+
+
+def _named(t, function, *args, **kwargs):
+    """``function(*args, **kwargs)``, a refusal named with the file and table ``t`` (its message starts with the key)."""
+    try:
+        return function(*args, **kwargs)
+    except ValueError as err:
+        raise ValueError(f"{t.where}, key {t.path}.{err}") from None
+
+
+def _pressure_trace(t, extra):
+    """The measured cylinder pressure named by crank.pressure_trace, read from ``extra``; None without one."""
+    trace_file = t.text("pressure_trace")
+    if trace_file is None:
+        return None
+    if trace_file not in extra:
+        raise ValueError(f"{t.where}, key crank.pressure_trace: {trace_file!r} was not read with the engine file")
+    return read_pressure_trace(io.StringIO(extra[trace_file]), name=trace_file)
+
+
+def _bearing_law(top, *, scale, units):
+    """The [bearing_law] table: the law's clearance ratio and its parameters in SI (defaults: Bellakhdhar's)."""
     law = top.table("bearing_law")
     params = {
-        "dx": law.length("dx", 0.00965e-3 / scale, **length, plausible=PLAUSIBLE["law_dx"], what="law transition"),
+        "dx": law.length("dx", 0.00965e-3 / scale, scale=scale, units=units, plausible=PLAUSIBLE["law_dx"],
+                         what="law transition"),
         "k_lv": law.number("k_lv", 0.98e9, lo=1e5, hi=1e13, unit=" N/m"),
         "k_hv": law.number("k_hv", 1.72e9, lo=1e5, hi=1e13, unit=" N/m"),
         "theta0": np.radians(law.number("theta0", 97.0, lo=0.0, hi=180.0, unit=" deg")),
@@ -614,8 +645,4 @@ def _crank(top, *, scale, units, bearings, extra):
     }
     ratio = law.number("clearance_ratio", 37.0 / 30.0, lo=0.0, hi=10.0, lo_open=True)
     law.close()
-    oil = top.table("oil")
-    grade = film_oil.get(oil.text("grade", "SAE-5W-30")).name
-    supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
-    oil.close()
-    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply)
+    return ratio, params

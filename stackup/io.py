@@ -30,8 +30,8 @@ def save(ds, path, *, group=None, compact=False):
     resolution of :data:`stackup.study.schema.STORED_RESOLUTION` by their
     units (:data:`~stackup.study.schema.STORED_RESOLUTION_OF` by name), as CF packed integers (``scale_factor``, ``add_offset``; NaN as
     ``_FillValue``), and other floating-point values of that size as float32,
-    with byte shuffling before compression: about a quarter of the size, and
-    every value within half the resolution of what was computed.
+    with byte shuffling before compression: a much smaller file, and every
+    value within half the resolution of what was computed.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

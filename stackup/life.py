@@ -22,7 +22,24 @@ The critical film comes from the surfaces (eq. 3): :math:`h_{lim,cr} > R_{z1} + 
 
 Method 2 (molecular-mechanical friction and fatigue wear, eqs. 6-7) builds a
 wear chart over the bearing surface where the film is below :math:`h_{lim,cr}`:
-:func:`levanov_method2`.
+:func:`levanov_method2`. At each crank angle :math:`\varphi` the contact zone is
+the arc where :math:`h < h_{lim,cr}`, of half-angle :math:`\beta_c`; inside it the
+asperities carry the Greenwood-Tripp pressure :math:`p(\varphi, \beta)`
+(:mod:`stackup.contact`) and wear with the linear intensity
+:math:`I_h = k\,p^m` (eq. 7). Eq. 6,
+
+.. math:: \delta(\varphi, \beta) = I_h(\varphi, \beta)\,2\beta_c R_b,
+
+is the depth one pass of the contact arc (a sliding distance
+:math:`2\beta_c R_b`) wears; the journal passes once per revolution, so a
+crank-angle step :math:`\Delta\varphi` adds :math:`\delta\,\Delta\varphi/2\pi`
+and the chart is the integral over the cycle, :math:`\oint \delta\,d\varphi/2\pi`:
+it converges as the step shrinks instead of growing with the step count. The
+wear speed is the deepest point's depth per cycle over the cycle time, and the
+resource the time for it to reach :math:`\Delta h_{lim}`. Counting the sliding
+of the journal past a fixed point of the bearing instead (a distance
+:math:`2\pi R_b` per revolution) would make the wear larger by
+:math:`\pi/\beta_c`; eq. 6 is kept as the paper writes it.
 
 :math:`\alpha`, the share of the cycle with :math:`h_{min} < h_{lim,cr}`
 (:func:`alpha`), flags scuffing risk above 20 %.
@@ -40,8 +57,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _validate as check
 from ._kernels import life as _kernel
+from ._validate import AngleVectors, Finite, Integer, OneOf, Positive, finite, renamed, validated
 from .contact import TYPICAL_ASPERITIES, greenwood_tripp
 from .stats import proportion_ci, quantile_ci
 
@@ -115,6 +132,7 @@ class Life:
         return self.life / 3600.0
 
 
+@validated(journal_roughness=Positive(), shell_roughness=Positive())
 def critical_film(journal_roughness, shell_roughness):
     """Critical film thickness [m] of eq. 3, :math:`h_{lim,cr} = R_{z1} + R_{z2}`.
 
@@ -129,11 +147,10 @@ def critical_film(journal_roughness, shell_roughness):
         The lower bound of eq. 3 (the film must be thicker than the sum of the
         roughnesses for the hydrodynamic regime) [m].
     """
-    rz1 = check.positive("journal_roughness", journal_roughness)
-    rz2 = check.positive("shell_roughness", shell_roughness)
-    return rz1 + rz2
+    return np.asarray(journal_roughness, dtype=float) + np.asarray(shell_roughness, dtype=float)
 
 
+@validated(statistic=OneOf(FILM_STATISTICS), h_min_history=Positive(zero=True))
 def cycle_film(h_min_history, *, statistic="cycle-mean", axis=-1):
     """The film of method 1 from the minimum film at each step of one cycle.
 
@@ -153,11 +170,17 @@ def cycle_film(h_min_history, *, statistic="cycle-mean", axis=-1):
     numpy.ndarray
         [m], the steps' axis removed.
     """
-    check.one_of("statistic", statistic, FILM_STATISTICS)
-    h = check.positive("h_min_history", h_min_history, allow_zero=True)
+    h = np.asarray(h_min_history, dtype=float)
     return h.mean(axis=axis) if statistic == "cycle-mean" else h.min(axis=axis)
 
 
+def _negative_exponent(values):
+    if np.any(values["n"] >= 0):
+        raise ValueError(f"n: {float(np.max(values['n']))!r} is not valid; must be < 0 (the paper: -2.0 to -2.5)")
+
+
+@validated(h_min=Positive(zero=True), h_lim_cr=Positive(), wear_limit=Positive(), wear_rate=Positive(), n=Finite(),
+           relations=(_negative_exponent,))
 def levanov_method1(h_min, *, h_lim_cr, wear_limit, wear_rate, n=LEVANOV_2015.n):
     """Resource from the minimum film thickness (Levanov et al. 2015, method 1, eqs. 4-5).
 
@@ -189,23 +212,19 @@ def levanov_method1(h_min, *, h_lim_cr, wear_limit, wear_rate, n=LEVANOV_2015.n)
 
     evaluated in log space, so neither a vanishing film nor a large exponent overflows.
     """
-    h_min = check.positive("h_min", h_min, allow_zero=True)
-    h_lim_cr = check.positive("h_lim_cr", h_lim_cr)
-    wear_limit = check.positive("wear_limit", wear_limit)
-    wear_rate = check.positive("wear_rate", wear_rate)
-    n = check.finite("n", n)
-    if np.any(n >= 0):
-        raise ValueError(f"n: {float(np.max(n))!r} is not valid; must be < 0 (the paper: -2.0 to -2.5)")
+    h_min, h_lim_cr, wear_limit, wear_rate, n = (np.asarray(a, dtype=float)
+                                                 for a in (h_min, h_lim_cr, wear_limit, wear_rate, n))
     with np.errstate(divide="ignore", over="ignore"):
         beta = 1.0 + np.exp(n * (np.log(h_min) - np.log(h_lim_cr)))
     life = np.exp((np.log(wear_limit) - np.log(wear_rate)) / beta)
     return Life(beta, life, np.broadcast_to(h_min, np.shape(life)))
 
 
+@validated(h_min_history=Finite(), h_lim_cr=Positive())
 def alpha(h_min_history, *, h_lim_cr, axis=-1):
     """Share of the cycle [-] with the film below ``h_lim_cr`` [m], over ``axis`` (equal steps)."""
-    h = check.finite("h_min_history", h_min_history)
-    h_lim_cr = check.positive("h_lim_cr", h_lim_cr)
+    h = np.asarray(h_min_history, dtype=float)
+    h_lim_cr = np.asarray(h_lim_cr, dtype=float)
     return np.mean(h < np.expand_dims(h_lim_cr, axis) if np.ndim(h_lim_cr) else h < h_lim_cr, axis=axis)
 
 
@@ -237,6 +256,7 @@ class LifeSummary:
     count: int
 
 
+@validated(target=Positive())
 def life_summary(life, *, target, confidence=0.95):
     """B10, median and the share below ``target`` of a sample of lives, with intervals.
 
@@ -256,7 +276,7 @@ def life_summary(life, *, target, confidence=0.95):
     """
     x = np.asarray(life, dtype=float).ravel()
     x = x[~np.isnan(x)]
-    target = float(check.positive("target", target))
+    target = float(target)
     below = proportion_ci(np.count_nonzero(x < target), x.size, confidence=confidence)
     # an infinite life (no wear) stands in as the largest float, so quantiles between two of them stay infinite
     top = np.finfo(float).max
@@ -308,24 +328,44 @@ class WearChart:
 
 #: Points of the wear chart around the bearing (0.5 deg apart).
 CHART_POINTS = 720
+
+
+def _one_cycle(field, crank_angle):
+    """Constraint of the crank angles of one cycle: 1-D, increasing, spanning less than 720 deg."""
+    a = finite(field, crank_angle)
+    if a.ndim != 1 or a.size < 2 or np.any(np.diff(a) <= 0) or a[-1] - a[0] >= 720.0:
+        raise ValueError(f"{field}: must be 1-D, increase and span less than 720 deg")
+    return a
+
+
 def _step_revolutions(crank_angle):
     """Journal revolutions each crank-angle sample stands for (periodic mid-point rule over 720 deg)."""
-    a = check.finite("crank_angle", crank_angle)
-    if a.ndim != 1 or a.size < 2 or np.any(np.diff(a) <= 0) or a[-1] - a[0] >= 720.0:
-        raise ValueError("crank_angle: must be 1-D, increase and span less than 720 deg")
+    a = np.asarray(crank_angle, dtype=float)
     after = np.diff(np.append(a, a[0] + 720.0))
     return 0.5 * (after + np.roll(after, 1)) / 360.0
 
 
-def _prepare(lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit):
+def _angles_of(name):
+    """Relation: the angles (the axis before the last) of ``name`` are those of ``crank_angle``."""
+    def relation(values):
+        angles, given = values[name].shape[-2], values["crank_angle"].size
+        if angles != given:
+            raise ValueError(f"{name}: {angles} angles, crank_angle has {given}")
+
+    return relation
+
+
+def _prepare(lead, crank_angle, speed, *per_bearing):
+    """(revolutions per crank-angle step, each per-bearing input flattened over ``lead``, cycle time per bearing)."""
     revolutions = _step_revolutions(crank_angle)
-    speed = check.positive("speed", speed)
-    per_bearing = [np.broadcast_to(check.positive(name, value), lead).ravel()
-                   for name, value in (("bearing_radius", bearing_radius), ("h_lim_cr", h_lim_cr),
-                                       ("roughness", roughness), ("contact_modulus", contact_modulus),
-                                       ("wear_limit", wear_limit))]
-    cycle_time = np.broadcast_to(4 * np.pi / speed, lead).ravel()
-    return revolutions, per_bearing, cycle_time
+    flat = [np.broadcast_to(np.asarray(value, dtype=float), lead).ravel() for value in per_bearing]
+    cycle_time = np.broadcast_to(4 * np.pi / np.asarray(speed, dtype=float), lead).ravel()
+    return revolutions, flat, cycle_time
+
+
+#: The checks both forms of method 2 declare (the rest as each takes it).
+_METHOD2 = dict(crank_angle=_one_cycle, speed=Positive(), journal_radius=Positive(), h_lim_cr=Positive(),
+                roughness=Positive(), contact_modulus=Positive(), wear_limit=Positive())
 
 
 def _wear(contacts, n_rows, points, *, revolutions, radius, sigma, modulus, k, m, asperities):
@@ -358,7 +398,10 @@ def _chart(wear, peak, share, lead, revolutions, cycle_time, wear_limit, angles)
                      share.reshape(lead), peak.reshape(lead))
 
 
-def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_radius, h_lim_cr, roughness,
+@renamed(bearing_radius="journal_radius")
+@validated(position=AngleVectors(), **_METHOD2, radial_clearance=Positive(), points=Integer(minimum=8),
+           relations=(_angles_of("position"),))
+def levanov_method2(position, *, radial_clearance, crank_angle, speed, journal_radius, h_lim_cr, roughness,
                     contact_modulus, wear_limit, k=LEVANOV_2015.k, m=LEVANOV_2015.m, asperities=TYPICAL_ASPERITIES,
                     points=CHART_POINTS):
     r"""Wear chart and resource from the journal orbit (Levanov et al. 2015, method 2, eqs. 6-7).
@@ -376,7 +419,7 @@ def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_r
         Crank angles [deg] of one cycle (720 deg), increasing; steps may be unequal.
     speed : float or array_like (...)
         Crankshaft angular speed [rad/s]; the cycle lasts :math:`4\pi/\omega`.
-    bearing_radius : array_like (...)
+    journal_radius : array_like (...)
         :math:`R_b` [m].
     h_lim_cr : array_like (...)
         Critical film [m] (:func:`critical_film`); the chart grows only where the film is thinner.
@@ -395,37 +438,12 @@ def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_r
     Returns
     -------
     WearChart
-
-    Notes
-    -----
-    At each crank angle :math:`\varphi` the contact zone is the arc where
-    :math:`h < h_{lim,cr}`, of half-angle :math:`\beta_c`; inside it the
-    asperities carry the Greenwood-Tripp pressure :math:`p(\varphi, \beta)`
-    (:mod:`stackup.contact`) and wear with the linear intensity
-    :math:`I_h = k\,p^m` (eq. 7). Eq. 6,
-
-    .. math:: \delta(\varphi, \beta) = I_h(\varphi, \beta)\,2\beta_c R_b,
-
-    is the depth one pass of the contact arc (a sliding distance
-    :math:`2\beta_c R_b`) wears; the journal passes once per revolution, so a
-    crank-angle step :math:`\Delta\varphi` adds
-    :math:`\delta\,\Delta\varphi/2\pi` and the chart is the integral over
-    the cycle, :math:`\oint \delta\,d\varphi/2\pi`: it converges as the
-    step shrinks instead of growing with the step count. The wear speed is
-    the deepest point's depth per cycle over the cycle time, and the resource
-    the time for it to reach :math:`\Delta h_{lim}`. Counting the sliding of
-    the journal past a fixed point of the bearing instead (a distance
-    :math:`2\pi R_b` per revolution) would make the wear larger by
-    :math:`\pi/\beta_c`; eq. 6 is kept as the paper writes it.
+        The chart of eq. 6 summed over the cycle (see the module's notes on method 2).
     """
-    x = check.angle_vectors("position", position)
+    x = np.asarray(position, dtype=float)
     lead, count = x.shape[:-2], int(np.prod(x.shape[:-2], dtype=int))
-    revolutions, (radius, h_cr, sigma, modulus, limit), cycle_time = _prepare(
-        lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit)
-    if revolutions.size != x.shape[-2]:
-        raise ValueError(f"position: {x.shape[-2]} angles, crank_angle has {revolutions.size}")
-    c = np.broadcast_to(check.positive("radial_clearance", radial_clearance), lead).ravel()
-    check.integer("points", points, minimum=8)
+    revolutions, (radius, h_cr, sigma, modulus, limit, c), cycle_time = _prepare(
+        lead, crank_angle, speed, journal_radius, h_lim_cr, roughness, contact_modulus, wear_limit, radial_clearance)
     x = np.ascontiguousarray(x.reshape(count, -1, 2))
     angles = 2 * np.pi * np.arange(points) / points
     share, *contacts = _kernel.contact_zones(x, np.ascontiguousarray(c, dtype=float),
@@ -436,7 +454,16 @@ def levanov_method2(position, *, radial_clearance, crank_angle, speed, bearing_r
     return _chart(wear, peak, share, lead, revolutions, cycle_time, limit, angles)
 
 
-def levanov_method2_field(film_thickness, *, crank_angle, speed, bearing_radius, h_lim_cr, roughness,
+def _film_around_the_bearing(values):
+    if values["film_thickness"].ndim < 2:
+        raise ValueError(f"film_thickness: shape {values['film_thickness'].shape} is not valid; expected (..., angles, "
+                         "points)")
+    _angles_of("film_thickness")(values)
+
+
+@renamed(bearing_radius="journal_radius")
+@validated(film_thickness=Finite(), **_METHOD2, relations=(_film_around_the_bearing,))
+def levanov_method2_field(film_thickness, *, crank_angle, speed, journal_radius, h_lim_cr, roughness,
                           contact_modulus, wear_limit, k=LEVANOV_2015.k, m=LEVANOV_2015.m,
                           asperities=TYPICAL_ASPERITIES):
     r"""Method 2 from a film thickness field around the bearing (e.g. a Reynolds tier's film).
@@ -446,21 +473,17 @@ def levanov_method2_field(film_thickness, *, crank_angle, speed, bearing_radius,
     film_thickness : array_like (..., angles, points)
         Film thickness at each crank angle and at ``points`` equally spaced
         angles :math:`2\pi j/\mathrm{points}` around the bearing [m].
-    crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit, k, m, asperities :
+    crank_angle, speed, journal_radius, h_lim_cr, roughness, contact_modulus, wear_limit, k, m, asperities :
         As :func:`levanov_method2`.
 
     Returns
     -------
     WearChart
     """
-    h = check.finite("film_thickness", film_thickness)
-    if h.ndim < 2:
-        raise ValueError(f"film_thickness: shape {h.shape} is not valid; expected (..., angles, points)")
+    h = np.asarray(film_thickness, dtype=float)
     lead, count, points = h.shape[:-2], int(np.prod(h.shape[:-2], dtype=int)), h.shape[-1]
     revolutions, (radius, h_cr, sigma, modulus, limit), cycle_time = _prepare(
-        lead, crank_angle, speed, bearing_radius, h_lim_cr, roughness, contact_modulus, wear_limit)
-    if revolutions.size != h.shape[-2]:
-        raise ValueError(f"film_thickness: {h.shape[-2]} angles, crank_angle has {revolutions.size}")
+        lead, crank_angle, speed, journal_radius, h_lim_cr, roughness, contact_modulus, wear_limit)
     h = h.reshape(count, revolutions.size, points)
     below = h.min(axis=-1) < h_cr[:, None]
     rows, steps = np.nonzero(below)

@@ -42,6 +42,7 @@ import numpy as np
 from scipy import integrate, optimize
 
 from . import _validate as check
+from ._validate import Finite, Positive, finite, validated
 
 ATMOSPHERE = 1.0e5  # crankcase pressure [Pa]
 _STEP = 0.1  # integration step of the closed cycle [deg]
@@ -62,13 +63,12 @@ class Combustion:
     wiebe_m: float = 2.0
 
     def __post_init__(self):
-        check.in_range("compression_ratio", self.compression_ratio, 1.0, 40.0, lo_open=True)
-        check.positive("peak_pressure", self.peak_pressure)
-        check.positive("intake_pressure", self.intake_pressure)
-        check.positive("exhaust_pressure", self.exhaust_pressure)
-        check.in_range("polytropic_exponent", self.polytropic_exponent, 1.0, 1.7, lo_open=True)
-        check.in_range("combustion start", self.start, -90.0, 90.0)
-        check.positive("combustion duration", self.duration)
+        check.fields(self, {"compression_ratio": check.InRange(1.0, 40.0, lo_open=True),
+                            "peak_pressure": check.Positive(), "intake_pressure": check.Positive(),
+                            "exhaust_pressure": check.Positive(),
+                            "polytropic_exponent": check.InRange(1.0, 1.7, lo_open=True),
+                            "start": ("combustion start", check.InRange(-90.0, 90.0)),
+                            "duration": ("combustion duration", check.Positive())})
 
 
 @dataclass(frozen=True)
@@ -83,11 +83,9 @@ class Kinematics:
     counterweight_unbalance: float
 
     def __post_init__(self):
-        check.positive("cylinder_bore", self.cylinder_bore)
-        check.positive("stroke", self.stroke)
-        check.positive("reciprocating_mass", self.reciprocating_mass, allow_zero=True)
-        check.positive("rotating_mass", self.rotating_mass, allow_zero=True)
-        check.positive("counterweight_unbalance", self.counterweight_unbalance, allow_zero=True)
+        check.fields(self, {"cylinder_bore": check.Positive(), "stroke": check.Positive(),
+                            "reciprocating_mass": check.Positive(zero=True), "rotating_mass": check.Positive(zero=True),
+                            "counterweight_unbalance": check.Positive(zero=True)})
         if self.conrod <= self.stroke / 2:
             raise ValueError(f"conrod: {self.conrod!r} m is not longer than the crank radius {self.stroke / 2!r} m")
 
@@ -156,6 +154,18 @@ def pin_load(pin_angle, pressure, kinematics, omega):
     return np.stack([f_piston - unbalance * np.cos(phi), f_piston * tan_beta + unbalance * s], axis=-1)
 
 
+def check_firing_order(throw_angles, firing_order):
+    """Refuse a firing order that does not name each cylinder (one per throw angle) once."""
+    n = np.size(throw_angles)
+    if sorted(int(c) - 1 for c in firing_order) != list(range(n)):
+        raise ValueError(f"firing_order: {list(firing_order)!r} is not a permutation of cylinders 1..{n}")
+
+
+def _cylinders_fire_once(args):
+    check_firing_order(args["throw_angles"], args["firing_order"])
+
+
+@validated(relations=(_cylinders_fire_once,), throw_angles=Finite())
 def firing_offsets(throw_angles, firing_order):
     """Cycle angle [deg] at which each cylinder fires, from its throw angle and the firing order.
 
@@ -165,8 +175,6 @@ def firing_offsets(throw_angles, firing_order):
     throw = np.mod(np.asarray(throw_angles, dtype=float), 360.0)
     order = [int(c) - 1 for c in firing_order]
     n = throw.size
-    if sorted(order) != list(range(n)):
-        raise ValueError(f"firing_order: {list(firing_order)!r} is not a permutation of cylinders 1..{n}")
     fire = np.empty(n)
     last = None
     for cyl in order:
@@ -180,7 +188,7 @@ def firing_offsets(throw_angles, firing_order):
             fire[cyl] = candidates[np.argmin(gaps)]
         last = fire[cyl]
     spacing = np.sort(np.mod(fire - fire[order[0]], 720.0))
-    if len(set(np.round(spacing, 6))) != n:
+    if len(set(np.round(spacing, 6))) != n:  # only placing the firings shows it, so the body checks
         raise ValueError(f"firing_order: {list(firing_order)!r} fires two cylinders at once with throws {list(throw)}")
     return np.mod(fire - fire[order[0]], 720.0)
 
@@ -208,6 +216,15 @@ def read_pressure_trace(path, *, name=None):
     return angle, pressure
 
 
+def _trace(field, value):
+    """A pressure trace (cycle angles [deg], pressures [Pa]): two arrays of finite numbers."""
+    if len(value) != 2:
+        raise ValueError(f"{field}: {len(value)} arrays; give (cycle angles [deg], pressures [Pa])")
+    return tuple(finite(field, v) for v in value)
+
+
+@validated(relations=(_cylinders_fire_once,), crank_angle=Finite(), throw_angles=Finite(), speed=Positive(),
+           pressure_trace=_trace)
 def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order, speed, pressure_trace=None):
     """Crank-pin loads (angles, cylinders, 2) [N] over crank angles [deg] (0 = firing TDC of the first cylinder fired).
 
@@ -215,13 +232,13 @@ def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order
     angles [deg], pressures [Pa]) replaces the built-in pressure model.
     """
     angle = np.asarray(crank_angle, dtype=float)
-    omega = float(check.positive("speed", speed))
+    omega = float(speed)
     fire = firing_offsets(throw_angles, firing_order)
     cycle = np.mod(angle[:, None] - fire[None, :], 720.0)
     if pressure_trace is None:
         pressure = cylinder_pressure(cycle, kinematics, combustion)
     else:
-        trace_angle, trace_p = (check.finite("pressure_trace", v) for v in pressure_trace)
+        trace_angle, trace_p = pressure_trace
         pressure = np.interp(cycle, trace_angle, trace_p, period=720.0)
     pin_angle = angle[:, None] + np.asarray(throw_angles, dtype=float)[None, :]
     return pin_load(pin_angle, pressure, kinematics, omega)

@@ -38,9 +38,8 @@ class Material:
     source: str = ""
 
     def __post_init__(self):
-        check.positive(f"material {self.name!r} modulus", self.modulus)
-        check.in_range(f"material {self.name!r} poisson", self.poisson, -1.0, 0.5, lo_open=True, hi_open=True)
-        check.finite(f"material {self.name!r} expansion", self.expansion)
+        check.fields(self, {"modulus": check.Positive(), "poisson": check.InRange(-1.0, 0.5, lo_open=True, hi_open=True),
+                            "expansion": check.Finite()}, prefix=f"material {self.name!r} ")
 
 
 def _read(path):
@@ -77,10 +76,21 @@ def load(path):
     return sorted(entries)
 
 
-def get(material):
-    """A :class:`Material` from its name (or the Material itself)."""
+def get(material, *, field="material"):
+    """A :class:`Material` from its name (or the Material itself); ``field`` names the argument in messages."""
     if isinstance(material, Material):
         return material
     if material not in _REGISTRY:
-        raise ValueError(f"material: {material!r} is not a known material ({', '.join(available())})")
+        raise ValueError(f"{field}: {material!r} is not a known material ({', '.join(available())})")
     return _REGISTRY[material]
+
+
+@dataclass(frozen=True)
+class Known:
+    """A declared check (:func:`stackup._validate.validated`): a known material's name, or a Material.
+
+    Gives the Material.
+    """
+
+    def __call__(self, field, value):
+        return get(value, field=field)

@@ -62,7 +62,8 @@ def add_parser(subparsers):
     swell.add_argument("file", metavar="FILE.csv", help="CSV file of fitting tests, columns "
                        "housing_bore, shell_upper_wall, shell_lower_wall, shell_upper_crush, shell_lower_crush, "
                        "assembled_bore (m) and temperature (degC)")
-    swell.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file")
+    swell.add_argument("--engine", default="iso-example", help="built-in engine name or engine TOML file (default "
+                       "iso-example)")
     swell.add_argument("--out", metavar="ENGINE.toml", help="write a copy of the engine file with the value")
     swell.add_argument("--name", help="engine name of the copy (default: the --out file's name)")
     swell.add_argument("--force", action="store_true", help="replace an existing --out FILE")

@@ -60,7 +60,7 @@ class Staged:
 
 
 class _no_interrupt:
-    """Ctrl-C waits until the block is done (moving or removing files takes milliseconds)."""
+    """Ctrl-C waits until the block is done (moving or removing files is quick)."""
 
     def __enter__(self):
         try:

@@ -19,11 +19,10 @@ of engines, per grade:
   independent per-engine demands, whose distribution is the
   ``lot_engines``-fold convolution of the sampled per-engine demand. The
   normal approximation :math:`L\mu_g + z_{SL}\,\sigma_g\sqrt{L}` covers
-  too few lots (as few as 98.4 % of lots of 50 engines and 98.7 % of lots of
-  1000 for a grade of scheme 4 instead of 99 %, in a bootstrap of the pilot's
-  engines), so it is used only past :data:`EXACT_LOT_SUPPORT`. The safety
-  stock is that stock less the lot's expected demand. The tests check the
-  service level by simulating lots.
+  too few lots (the per-engine demand is skewed, and the skew fades only
+  slowly with the lot), so it is used only past :data:`EXACT_LOT_SUPPORT`.
+  The safety stock is that stock less the lot's expected demand. The tests
+  check the service level by simulating lots.
 
 :func:`planner_table` turns a plan into the table a production planner uses:
 whole parts (rounded up where stock must cover demand), units in the column
@@ -45,7 +44,7 @@ import pandas as pd
 import xarray as xr
 from scipy import signal, stats
 
-from . import _validate as check
+from ._validate import InRange, Integer, OneOf, OrNone, Positive, renamed, validated
 from ._module import callable_module
 from ._random import lot_generator, seed_sequence
 from .assembly import shell_demand_per_engine
@@ -64,7 +63,29 @@ EXACT_LOT_SUPPORT = 2**20
 MIN_ENGINES = 2
 
 
-def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_engines=None, sample_engines=20_000,
+def _stock_of_shells_only(values):
+    """``service_level`` and ``lot_engines`` plan a shell stock: refused for graded housings and journals."""
+    if values["part"] != "shell":
+        for name in ("service_level", "lot_engines"):
+            if values[name] is not None:
+                what = "housing bores" if values["part"] == "housing" else "journals"
+                raise ValueError(f"{name}: applies to the shell stock only; {what} are graded, not stocked: "
+                                 "leave it out, or plan the shells")
+
+
+def _lot_within_volume(values):
+    """A lot of shells given is at most the volume: the whole volume as one lot."""
+    lot, volume = values["lot_engines"], values["volume"]
+    if lot is not None and lot > volume:
+        raise ValueError(f"lot_engines: a lot of {lot:,} engines is more than the volume of {volume:,} engines; "
+                         f"give a lot of at most {volume:,} engines (the whole volume as one lot)")
+
+
+@renamed(processes="engine")
+@validated(volume=Integer(minimum=1), part=OneOf(("shell", "housing", "journal")),
+           service_level=OrNone(InRange(0.0, 1.0, lo_open=True, hi_open=True)), lot_engines=OrNone(Integer(minimum=1)),
+           sample_engines=Integer(minimum=100), relations=(_stock_of_shells_only, _lot_within_volume))
+def plan(scheme, engine="iso-example", *, volume, service_level=None, lot_engines=None, sample_engines=20_000,
          seed=0, part="shell"):
     """Quantities per grade for a scheme: shells (demand, production share, surplus, stock per lot), or graded parts.
 
@@ -75,8 +96,9 @@ def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_eng
     Parameters
     ----------
     scheme : str, path, Scheme or xarray.Dataset
-    processes : str, path or Engine
-        The engine whose part processes, gauges and shell supply are planned for.
+    engine : str, path or Engine
+        The engine whose part processes, gauges and shell supply are planned
+        for (``processes=``, its old name, is deprecated).
     volume : int
         Engines to build, > 0.
     service_level : float, optional
@@ -121,27 +143,26 @@ def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_eng
         ``per_1000_hi`` (95 % interval) and ``for_volume``, expected parts.
         The attributes hold the plan's parameters.
     """
-    volume = check.integer("volume", volume, minimum=1)
-    check.one_of("part", part, ("shell", "housing", "journal"))
-    if part != "shell":
-        for name, value in (("service_level", service_level), ("lot_engines", lot_engines)):
-            if value is not None:
-                what = "housing bores" if part == "housing" else "journals"
-                raise ValueError(f"{name}: applies to the shell stock only; {what} are graded, not stocked: "
-                                 "leave it out, or plan the shells")
-    service_level = SERVICE_LEVEL if service_level is None else service_level
-    service_level = float(check.in_range("service_level", service_level, 0.0, 1.0, lo_open=True, hi_open=True))
+    service_level = float(SERVICE_LEVEL if service_level is None else service_level)
     if isinstance(scheme, xr.Dataset):
         if part != "shell":
             raise ValueError(f"part: a study dataset plans shells only, not {part}s")
         return _from_dataset(scheme, volume=volume, service_level=service_level, lot_engines=lot_engines)
-    engine = load_engine(processes)
+    engine = load_engine(engine)
     scheme = load_scheme(scheme)
-    n = check.integer("sample_engines", sample_engines, minimum=100)
-    parts = pilot_parts(engine, seed, n)
+    parts = pilot_parts(engine, seed, sample_engines)
     if part != "shell":
-        return _graded_parts(scheme, engine, parts, part, volume, n, seed)
+        return _graded_parts(scheme, engine, parts, part, volume, sample_engines, seed)
     lot, note = _lot(volume, lot_engines, engine.shell_wall.lot_engines)
+    frame = _shell_plan(scheme, engine, parts, volume=volume, lot=lot, service_level=service_level)
+    frame.attrs = {"part": "shell", "scheme": scheme.name, "engine": engine.name, "volume": volume,
+                   "service_level": service_level, "lot_engines": lot, "lot_note": note,
+                   "sample_engines": sample_engines, "seed": seed, **frame.attrs}
+    return frame
+
+
+def _shell_plan(scheme, engine, parts, *, volume, lot, service_level):
+    """The shell rows of :func:`plan` from the sampled ``parts``, with the engine's shell supply in the attributes."""
     shells = shell_plan(engine, scheme, parts)
     per_engine = shells.demand_per_engine
     mean = per_engine.mean(axis=0)
@@ -166,9 +187,7 @@ def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_eng
         "safety_stock": stock - lot * mean,
         "order_up_to": stock,
     }).set_index("grade")
-    frame.attrs.update({"part": "shell", "scheme": scheme.name, "engine": engine.name, "volume": volume,
-                        "service_level": service_level, "lot_engines": lot, "lot_note": note, "sample_engines": n,
-                        "seed": seed, "supply": supply.mode, "shells_made": made,
+    frame.attrs.update({"supply": supply.mode, "shells_made": made,
                         "shells_per_lot": supply.shells_per_lot(lot * engine.main_bearings),
                         "shell_surplus": supply.surplus, "main_bearings": engine.main_bearings,
                         "scrap_share": float(1 - landing.sum())})
@@ -176,13 +195,9 @@ def plan(scheme, processes="iso-example", *, volume, service_level=None, lot_eng
 
 
 def _lot(volume, lot_engines, default):
-    """(engines per lot, note): a lot larger than the volume is refused, or shrunk to it when it is the default."""
+    """(engines per lot, note): the lot given, or the default shrunk to the volume where it is larger."""
     if lot_engines is not None:
-        lot = check.integer("lot_engines", lot_engines, minimum=1)
-        if lot > volume:
-            raise ValueError(f"lot_engines: a lot of {lot:,} engines is more than the volume of {volume:,} engines; "
-                             f"give a lot of at most {volume:,} engines (the whole volume as one lot)")
-        return lot, ""
+        return lot_engines, ""
     if default > volume:
         return volume, (f"the volume of {volume:,} engines is less than the engine's lot of {default:,}: "
                         f"planned as one lot of {volume:,} engines")
@@ -463,9 +478,13 @@ def _apportion(values):
     return floor.astype(int)
 
 
-def simulate_lot_coverage(scheme, processes="iso-example", *, order_up_to, lot_engines, lots=400, seed=1):
-    """Share of simulated lots whose demand for each grade is at most ``order_up_to`` (grades,)."""
-    engine = load_engine(processes)
+@renamed(processes="engine")
+def simulate_lot_coverage(scheme, engine="iso-example", *, order_up_to, lot_engines, lots=400, seed=1):
+    """Share of simulated lots whose demand for each grade is at most ``order_up_to`` (grades,).
+
+    ``engine`` (``processes=``, its old name, is deprecated) is a built-in name, a file or an Engine.
+    """
+    engine = load_engine(engine)
     scheme = load_scheme(scheme)
     root = seed_sequence(seed)
     covered = np.zeros(len(scheme.shell.labels))
@@ -517,14 +536,18 @@ def allocate(scheme, pair_demand, supply, *, shortage_cost=10.0):
     return float(result.fun), allocation, result.x[n_y:n_y + n], result.x[n_y + n:]
 
 
-def optimise_supply(scheme, processes="iso-example", *, volume, shortage_cost=10.0, sample_engines=20_000, seed=0):
+@renamed(processes="engine")
+@validated(volume=Integer(minimum=1), shortage_cost=Positive(), sample_engines=Integer(minimum=100))
+def optimise_supply(scheme, engine="iso-example", *, volume, shortage_cost=10.0, sample_engines=20_000, seed=0):
     """Process mean of one shell process sorted into grades, and use of alternatives, that minimise surplus and shortfall.
 
     The shell process is the engine's sorted process (``shell_wall.process``,
     stated over the scheme's shell range) with its mean moved; shells made are
-    two per bearing plus the engine's surplus. For each mean the allocation is
-    the LP of :func:`allocate` on expected supply; the mean is found by a
-    bounded scalar search over the scheme's shell range.
+    two per bearing plus the engine's surplus (``engine``: a built-in name,
+    a file or an Engine; ``processes=``, its old name, is deprecated). For
+    each mean the allocation is the LP of :func:`allocate` on expected
+    supply; the mean is found by a bounded scalar search over the scheme's
+    shell range.
 
     Returns a dict: ``mean`` [m], ``objective``, ``centred_objective`` (the
     process centred on the shell range), ``allocation``, ``surplus`` and
@@ -532,11 +555,9 @@ def optimise_supply(scheme, processes="iso-example", *, volume, shortage_cost=10
     """
     from scipy.optimize import minimize_scalar
 
-    engine = load_engine(processes)
+    engine = load_engine(engine)
     scheme = load_scheme(scheme)
-    volume = check.integer("volume", volume, minimum=1)
-    check.positive("shortage_cost", shortage_cost)
-    parts = pilot_parts(engine, seed, check.integer("sample_engines", sample_engines, minimum=100))
+    parts = pilot_parts(engine, seed, sample_engines)
     demand = _preferred_pair_demand(scheme, parts) * volume / parts.housing_bore.shape[0]
     supply_spec = engine.shell_wall
     dim = supply_spec.dimension(scheme)

@@ -49,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _validate as check
+from ._validate import Finite, OneOf, validated
 from ._files import Table, locations, read_toml
 from .tolerances import quantize
 
@@ -146,6 +146,7 @@ _WHAT = {"housing": "housing bore diameter", "journal": "journal diameter", "she
 
 
 def _grade_set(top, *, scale, units, dim):
+    """The grades of dimension ``dim`` of a scheme file: one of 'classes', 'grades' or only 'limits'."""
     t = top.table(dim, required=True)
     field = f"{t.where}, key {dim}"
     size = dict(scale=scale, units=units, plausible=PLAUSIBLE[dim], what=_WHAT[dim])
@@ -160,73 +161,80 @@ def _grade_set(top, *, scale, units, dim):
     grades_table = t.table("grades") if "grades" in t else t.get("grades")
     classes_table = t.table("classes") if "classes" in t else t.get("classes")
     t.close()
-
     if classes_table is not None:
-        c = classes_table
-        c.length("start", required=True, **size)
-        c.length("stop", required=True, **size)
-        c.length("step", required=True, scale=scale, units=units, plausible=PLAUSIBLE["step"], what="class width")
-        c.close()
-        start, stop, step = (float(c.data[k]) for k in ("start", "stop", "step"))  # in file units, as written
-        if stop < start:
-            raise ValueError(f"{field}.classes: stop {stop!r} is below start {start!r}")
-        count = int(round((stop - start) / step)) + 1
-        if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
-            raise ValueError(f"{field}.classes: stop {stop!r} is not start plus a whole number of steps")
-        start_nm = int(_snap(start * scale))
-        step_nm = int(_snap(step * scale))
-        edges = start_nm + step_nm * np.arange(count, dtype=np.int64)
-        if limits is None:
-            limits = (start * scale, stop * scale)
-        lo = np.maximum(edges * _SNAP, limits[0])
-        hi = np.minimum((edges + step_nm) * _SNAP, limits[1])
-        labels = tuple(str(k) for k in range(count))
-        return GradeSet(labels, lo, hi, limits, resolution, True, edges, np.arange(count), int(edges[-1] + step_nm), False)
-
+        return _fine_classes(classes_table, field, size, limits, resolution)
     if grades_table is not None:
-        g = grades_table
-        if not g.data:
-            raise ValueError(f"{field}.grades: needs at least one grade as label = [lower, upper]")
-        labels = tuple(g.data)
-        for lab in labels:
-            if not lab or len(lab) > 2:
-                raise ValueError(f"{field}.grades.{lab}: grade labels are one or two characters")
-        bounds = [g.lengths(lab, count=2, required=True, **size, increasing=True) for lab in labels]
-        lo = np.array([b[0] for b in bounds])
-        hi = np.array([b[1] for b in bounds])
-        order = np.argsort(lo, kind="stable")
-        lo_nm, hi_nm = _snap(lo[order]), _snap(hi[order])
-        edges = lo_nm.copy()
-        for a, b in zip(range(len(order) - 1), range(1, len(order))):
-            la, lb = labels[order[a]], labels[order[b]]
-            if lo_nm[b] > hi_nm[a]:
-                raise ValueError(
-                    f"{field}.grades: gap between grade {la} (up to {hi[order[a]] / scale:.6g}) "
-                    f"and grade {lb} (from {lo[order[b]] / scale:.6g})"
-                )
-            if lo_nm[b] < hi_nm[a]:
-                if not overlap:
-                    raise ValueError(
-                        f"{field}.grades: grades {la} and {lb} overlap "
-                        f"({lo[order[b]] / scale:.6g} < {hi[order[a]] / scale:.6g}); "
-                        f"set {dim}.overlap = true if that is intended"
-                    )
-                if hi_nm[b] <= hi_nm[a] or lo_nm[b] <= lo_nm[a]:
-                    raise ValueError(f"{field}.grades: grade {lb} lies inside grade {la}")
-                # A reading in the overlap goes to the grade whose centre is nearest.
-                edges[b] = (lo_nm[b] + hi_nm[a]) // 2
-        span = (float(lo.min()), float(hi.max()))
-        if limits is not None and (limits[0] > span[0] or limits[1] < span[1]):
-            raise ValueError(f"{field}.limits: grades reach outside the limits "
-                             f"[{limits[0] / scale:.6g}, {limits[1] / scale:.6g}] {units}")
-        limits = span if limits is None else limits
-        return GradeSet(labels, lo, hi, limits, resolution, False, edges, order, int(hi_nm.max()), True)
-
+        return _grades(grades_table, field, size, limits, resolution, overlap=overlap, dim=dim)
     if limits is None:
         raise ValueError(f"{field}: give 'limits', 'grades' or 'classes'")
     lo_nm = _snap(limits[0])
     return GradeSet((UNGRADED,), np.array([limits[0]]), np.array([limits[1]]), limits, resolution, False,
                     np.array([lo_nm]), np.array([0]), int(_snap(limits[1])), True)
+
+
+def _fine_classes(c, field, size, limits, resolution):
+    """Fine classes ``[x, x + step)`` from ``start`` to ``stop`` (table ``c``), clipped to ``limits`` if given."""
+    scale = size["scale"]
+    c.length("start", required=True, **size)
+    c.length("stop", required=True, **size)
+    c.length("step", required=True, scale=scale, units=size["units"], plausible=PLAUSIBLE["step"], what="class width")
+    c.close()
+    start, stop, step = (float(c.data[k]) for k in ("start", "stop", "step"))  # in file units, as written
+    if stop < start:
+        raise ValueError(f"{field}.classes: stop {stop!r} is below start {start!r}")
+    count = int(round((stop - start) / step)) + 1
+    if abs(start + (count - 1) * step - stop) > 1e-9 * max(1.0, abs(stop)):
+        raise ValueError(f"{field}.classes: stop {stop!r} is not start plus a whole number of steps")
+    start_nm = int(_snap(start * scale))
+    step_nm = int(_snap(step * scale))
+    edges = start_nm + step_nm * np.arange(count, dtype=np.int64)
+    if limits is None:
+        limits = (start * scale, stop * scale)
+    lo = np.maximum(edges * _SNAP, limits[0])
+    hi = np.minimum((edges + step_nm) * _SNAP, limits[1])
+    labels = tuple(str(k) for k in range(count))
+    return GradeSet(labels, lo, hi, limits, resolution, True, edges, np.arange(count), int(edges[-1] + step_nm), False)
+
+
+def _grades(g, field, size, limits, resolution, *, overlap, dim):
+    """Named grades ``label = [lower, upper]`` (table ``g``): no gaps, overlaps only where declared."""
+    if not g.data:
+        raise ValueError(f"{field}.grades: needs at least one grade as label = [lower, upper]")
+    scale = size["scale"]
+    labels = tuple(g.data)
+    for lab in labels:
+        if not lab or len(lab) > 2:
+            raise ValueError(f"{field}.grades.{lab}: grade labels are one or two characters")
+    bounds = [g.lengths(lab, count=2, required=True, **size, increasing=True) for lab in labels]
+    lo = np.array([b[0] for b in bounds])
+    hi = np.array([b[1] for b in bounds])
+    order = np.argsort(lo, kind="stable")
+    lo_nm, hi_nm = _snap(lo[order]), _snap(hi[order])
+    edges = lo_nm.copy()
+    for a, b in zip(range(len(order) - 1), range(1, len(order))):
+        la, lb = labels[order[a]], labels[order[b]]
+        if lo_nm[b] > hi_nm[a]:
+            raise ValueError(
+                f"{field}.grades: gap between grade {la} (up to {hi[order[a]] / scale:.6g}) "
+                f"and grade {lb} (from {lo[order[b]] / scale:.6g})"
+            )
+        if lo_nm[b] < hi_nm[a]:
+            if not overlap:
+                raise ValueError(
+                    f"{field}.grades: grades {la} and {lb} overlap "
+                    f"({lo[order[b]] / scale:.6g} < {hi[order[a]] / scale:.6g}); "
+                    f"set {dim}.overlap = true if that is intended"
+                )
+            if hi_nm[b] <= hi_nm[a] or lo_nm[b] <= lo_nm[a]:
+                raise ValueError(f"{field}.grades: grade {lb} lies inside grade {la}")
+            # A reading in the overlap goes to the grade whose centre is nearest.
+            edges[b] = (lo_nm[b] + hi_nm[a]) // 2
+    span = (float(lo.min()), float(hi.max()))
+    if limits is not None and (limits[0] > span[0] or limits[1] < span[1]):
+        raise ValueError(f"{field}.limits: grades reach outside the limits "
+                         f"[{limits[0] / scale:.6g}, {limits[1] / scale:.6g}] {size['units']}")
+    limits = span if limits is None else limits
+    return GradeSet(labels, lo, hi, limits, resolution, False, edges, order, int(hi_nm.max()), True)
 
 
 @dataclass(frozen=True, eq=False)
@@ -306,6 +314,7 @@ class Scheme:
         n = len(self.shell.labels)
         return np.where(code >= 0, code // n, -1), np.where(code >= 0, code % n, -1)
 
+    @validated(housing_d=Finite(), journal_d=Finite(), out_of_range=OneOf(_OUT_OF_RANGE))
     def pair(self, housing_d, journal_d, *, out_of_range="raise"):
         """Shell grades for measured housing bores and journals.
 
@@ -323,10 +332,7 @@ class Scheme:
             Preferred upper and lower shell grade of each bearing ("-" for
             ungraded shells). Allowed alternatives: :meth:`options`.
         """
-        check.one_of("out_of_range", out_of_range, _OUT_OF_RANGE)
-        h = check.finite("housing_d", housing_d)
-        j = check.finite("journal_d", journal_d)
-        h, j = np.broadcast_arrays(h, j)
+        h, j = np.broadcast_arrays(np.asarray(housing_d, dtype=float), np.asarray(journal_d, dtype=float))
         hi, ji = self.classify(h, j)
         if out_of_range == "raise":
             for field, idx, val, gs in (("housing_d", hi, h, self.housing), ("journal_d", ji, j, self.journal)):

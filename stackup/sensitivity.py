@@ -36,7 +36,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from . import _validate as check
+from ._validate import InRange, Integer, OneOf, validated
 from ._random import as_generator, seed_sequence
 from .assembly import ASSEMBLED
 from .engines import load_engine
@@ -134,6 +134,15 @@ SOBOL_OUTPUTS = ("clearance_operating", "h_min", "life")
 SOBOL_N = {"clearance_operating": 2048, "h_min": 128, "life": 128}
 
 
+def _power_of_two(values):
+    """The Saltelli base sample ``n``, where given, is a power of two."""
+    n = values["n"]
+    if n is not None and n & (n - 1):
+        raise ValueError(f"n: {n} is not a power of two (Sobol points balance at powers of two)")
+
+
+@validated(output=OneOf(SOBOL_OUTPUTS), n=Integer(minimum=8), bearing=Integer(minimum=1), mean_shift=InRange(0.0, 6.0),
+           relations=(_power_of_two,))
 def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scenario=None, mean_shift=0.0, bearing=1,
           crank_angle_step=4.0, crank_method="bearing-law", film_method="finite", pilot_engines=20_000,
           bootstrap=200, return_all=False):
@@ -178,19 +187,15 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
         standard deviation, the engines evaluated and the share of samples
         not assembled (graded at the limits).
     """
-    check.one_of("output", output, SOBOL_OUTPUTS)
     engine = apply_scenario(load_engine(engine), scenario)
     scheme = load_scheme(scheme)
     if output != "clearance_operating" and engine.crank is None:
         raise ValueError(f"output: {output!r} needs the engine's [crank] section, which {engine.name} has not")
-    n = SOBOL_N[output] if n is None else check.integer("n", n, minimum=8)
-    if n & (n - 1):
-        raise ValueError(f"n: {n} is not a power of two (Sobol points balance at powers of two)")
-    bearing = check.integer("bearing", bearing, minimum=1)
+    n = SOBOL_N[output] if n is None else n
     if bearing > engine.main_bearings:
         raise ValueError(f"bearing: {bearing} is not one of 1..{engine.main_bearings}")
     seed_sequence(seed)
-    mean_shift = float(check.in_range("mean_shift", mean_shift, 0.0, 6.0))
+    mean_shift = float(mean_shift)
     left_out = {"misalignment"} if output == "clearance_operating" else set()
     if mean_shift == 0.0:
         left_out |= {"bore process mean", "journal process mean"}
@@ -280,7 +285,7 @@ def _sobol_outputs(model, u, groups, outputs, bearing, crank_angle_step, crank_m
                             journal_eccentricity=engines["journal_eccentricity"][ok],
                             crank_angle=np.arange(0.0, 720.0, crank_angle_step), crank_method=crank_method,
                             film_method=film_method, tilt_method="free")  # h_min and life are the mid-plane's:
-    # the tilt reaches only the edge film, so its equilibrium (half the chain's cost) would change neither
+    # the tilt reaches only the edge film, so its equilibrium (a large part of the chain's cost) would change neither
     converged = mech["crank_status"] == 0
     for k, name in enumerate(outputs):
         values[np.flatnonzero(ok)[converged], k] = mech[name][converged].min(axis=1)  # the engine's weakest bearing

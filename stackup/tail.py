@@ -31,12 +31,12 @@ study), and three estimators sample it:
     independent values, whatever the chains do between the separate tail
     regions that grading creates. That error is honest only where enough
     roots reach the tail for the mean of their counts to be normal: below a
-    few ppm on graded schemes the counts are heavy-tailed (a few roots in
-    ten thousand enter the regions that hold most of the tail and then
-    carry most of it), so a typical run of 2000 roots, with one to four
-    roots in the tail, understates both the share and its error
-    (``effective_bearings`` says how many roots it rests on; the diagnosis
-    and the numbers are in reports/tails_vs_peers.md). So where a trial on
+    few ppm on graded schemes the counts are heavy-tailed (a few rare roots
+    enter the regions that hold most of the tail and then carry most of
+    it), so a run whose tail rests on a handful of roots understates both
+    the share and its error (``effective_bearings`` says how many roots it
+    rests on; the diagnosis and the numbers are in
+    reports/tails_vs_peers.md). So where a trial on
     the same levels, then thrown away, says fewer than ``min_roots`` of
     ``n_level`` roots would reach the tail, the estimate draws as many as
     twice that needs (at most ``MAX_ROOTS_SHARE`` times ``n_level``); its
@@ -44,17 +44,17 @@ study), and three estimators sample it:
     estimate stays unbiased.
     Subset simulation alone states its error from within-chain correlations
     (Au and Beck, eqs. 28-32), which misses exactly that: its stated error
-    was 0.92, 0.65 and 0.28 of the real spread at 1000, 100 and 20 ppm on
-    the example engine (reports/tails_vs_peers.md at commit ca85382).
+    falls short of the real spread, the more so the deeper the tail
+    (reports/tails_vs_peers.md).
 ``"cross-entropy"``
     Importance sampling from a normal density moved towards the tail by the
     cross-entropy method (Rubinstein and Kroese 2017), in a defensive
     mixture with the nominal density (Hesterberg 1995). One normal density
     covers one tail region: where the scheme pairs different shells in
     different cells (graded schemes), the tail has several regions, the
-    density misses some and the stated error is understated (0.01 of the
-    real spread at 20 ppm); the estimator warns there, and the ranking does
-    not use it.
+    density misses some and the stated error is understated (measured in
+    reports/tails_vs_peers.md); the estimator warns there, and the ranking
+    does not use it.
 ``"mc"``
     Plain Monte Carlo on the same model.
 
@@ -89,6 +89,7 @@ import numpy as np
 from scipy import special, stats
 
 from . import _validate as check
+from ._validate import Finite, InRange, Integer, OneOf, validated
 from ._random import as_generator
 from .engines import load_engine
 from .schemes import load as load_scheme
@@ -98,21 +99,35 @@ from .study.roots import RootModel
 #: Root inputs a bearing's clearance does not depend on, or that are the scenarios' business.
 NOT_TAIL_GROUPS = ("bore process mean", "journal process mean", "misalignment")
 METHODS = ("splitting", "cross-entropy", "mc")
+SIDES = ("upper", "lower")
 #: Acceptance rate the pilot's chains adapt their steps to, and the first step's scale (Papaioannou et al. 2015
 #: adapt to 0.44; near the 0.23 of random-walk Metropolis in many dimensions, Roberts, Gelman and Gilks 1997,
-#: the steps are larger and the roots' counts less heavy-tailed: at 2 ppm on iso13778-6, 56 of 60 intervals held
-#: the plain-MC share against 38 of 60 at 0.44, for the same evaluations).
+#: the steps are larger and the roots' counts less heavy-tailed, so the intervals hold the plain-MC share more
+#: often for the same evaluations: measured in reports/tails_vs_peers.md).
 TARGET_ACCEPTANCE, INITIAL_SCALE = 0.25, 0.6
 #: Bearings per level of the pilot subset simulation that places the levels, as a share of ``n_level``.
 PILOT_SHARE = 0.25
 #: Fewest roots in the tail an estimate should rest on (where ``n_level`` roots would leave fewer, it draws
 #: enough for twice as many), and the most roots it may draw, as a multiple of ``n_level``: below a few ppm on
-#: graded schemes the roots' counts are heavy-tailed and a mean of a few is not normal (the median run's stated
-#: error was 0.17 of the real spread at 0.4 ppm with 2000 roots and two to four roots in the tail; module
-#: docstring).
+#: graded schemes the roots' counts are heavy-tailed and a mean of a few is not normal (module docstring; stated
+#: and real errors in reports/tails_vs_peers.md).
 MIN_ROOTS, MAX_ROOTS_SHARE = 10, 16
 #: Roots of the trial that sets the estimate's count of roots, as a share of ``n_level``.
 TRIAL_SHARE = 0.1
+
+
+def _max_roots(values):
+    """``max_roots``, where given, is at least ``n_level``: the estimate never draws fewer roots than that."""
+    if values["max_roots"] is not None and values["max_roots"] < values["n_level"]:
+        raise ValueError(f"max_roots: {values['max_roots']} is not valid; must be >= {values['n_level']}")
+
+
+#: The checks of the estimators' options (:func:`tail_share`, and :func:`clearance_tail`, which passes them on).
+ESTIMATOR_OPTIONS = dict(method=OneOf(METHODS), n_bearings=Integer(minimum=2), n_level=Integer(minimum=100),
+                         elite=InRange(0.0, 0.5, lo_open=True), defensive=InRange(0.0, 1.0, lo_open=True),
+                         max_levels=Integer(minimum=1), min_roots=Integer(minimum=0), max_roots=Integer())
+#: The checks of the margin's options (:func:`clearance_margin`, and :func:`clearance_tail`).
+MARGIN_OPTIONS = dict(side=OneOf(SIDES), threshold=Finite())
 
 
 @dataclass(frozen=True)
@@ -135,6 +150,7 @@ class TailEstimate:
     levels: int
 
 
+@validated(**ESTIMATOR_OPTIONS, **MARGIN_OPTIONS, relations=(_max_roots,))
 def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="splitting", n_bearings=20_000,
                    n_level=2_000, elite=0.1, defensive=0.1, seed=0, pilot_engines=20_000, max_levels=14,
                    min_roots=MIN_ROOTS, max_roots=None):
@@ -186,18 +202,18 @@ def clearance_tail(engine, scheme, *, side="upper", threshold=None, method="spli
     """
     engine = load_engine(engine)
     scheme = load_scheme(scheme)
-    check.one_of("method", method, METHODS)
     score, dim = clearance_margin(engine, scheme, side=side, threshold=threshold, seed=seed,
                                   pilot_engines=pilot_engines)
     if method == "cross-entropy" and _several_pairs(scheme):
         warnings.warn(f"cross-entropy: {scheme.name} pairs different shells in different cells, so its tail has "
                       "several separate regions that one normal density does not cover; the stated error is "
-                      "understated there (use method='splitting')", UserWarning, stacklevel=2)
+                      "understated there (use method='splitting')", UserWarning, stacklevel=3)
     return tail_share(score, dim, method=method, n_bearings=n_bearings, n_level=n_level, elite=elite,
                       defensive=defensive, seed=seed, max_levels=max_levels, min_roots=min_roots,
                       max_roots=max_roots)
 
 
+@validated(**ESTIMATOR_OPTIONS, dim=Integer(minimum=1), relations=(_max_roots,))
 def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_000, elite=0.1, defensive=0.1,
                seed=0, max_levels=14, min_roots=MIN_ROOTS, max_roots=None):
     """Probability that ``margin(z) > 0`` for ``z`` standard normal in ``dim`` dimensions.
@@ -210,25 +226,15 @@ def tail_share(margin, dim, *, method="splitting", n_bearings=20_000, n_level=2_
     -------
     TailEstimate
     """
-    check.one_of("method", method, METHODS)
-    dim = check.integer("dim", dim, minimum=1)
-    n = check.integer("n_bearings", n_bearings, minimum=2)
-    n_level = check.integer("n_level", n_level, minimum=100)
-    elite = float(check.in_range("elite", elite, 0.0, 0.5, lo_open=True))
-    defensive = float(check.in_range("defensive", defensive, 0.0, 1.0, lo_open=True))
-    max_levels = check.integer("max_levels", max_levels, minimum=1)
-    min_roots = check.integer("min_roots", min_roots, minimum=0)
-    if max_roots is not None:
-        max_roots = check.integer("max_roots", max_roots, minimum=n_level)
     rng = as_generator(np.random.SeedSequence(seed).spawn(1)[0])
     threads = numba.get_num_threads()
     # the chains evaluate a few hundred bearings per call, where starting the kernels' threads costs more
-    # than it saves (half the time on two cores)
+    # than it saves
     numba.set_num_threads(1)
     count = _Counted(margin)
     try:
-        estimate = _estimator(count, dim, rng, method=method, n=n, n_level=n_level, elite=elite,
-                              defensive=defensive, max_levels=max_levels, min_roots=min_roots,
+        estimate = _estimator(count, dim, rng, method=method, n=n_bearings, n_level=n_level, elite=float(elite),
+                              defensive=float(defensive), max_levels=max_levels, min_roots=min_roots,
                               max_roots=max_roots)
     finally:
         numba.set_num_threads(threads)
@@ -262,7 +268,8 @@ def _estimator(margin, dim, rng, *, method, n, n_level, elite, defensive, max_le
             # roots are then drawn afresh, so their number does not depend on them (unbiased)
             n_trial = max(100, int(round(TRIAL_SHARE * n_level)))
             trial = _splitting(margin, dim, rng, n_roots=n_trial, **plan)
-            # none in the trial's tail: taken as half a root (a 200-root trial misses a 450 ppm tail in 2 % of runs)
+            # none in the trial's tail: taken as half a root (a trial of a few hundred roots can miss a tail of a
+            # few hundred ppm)
             rate = max(trial.effective_bearings, 0.5) / n_trial
             if rate * n_level < min_roots:  # aim at twice as many: the trial's rate rests on a few roots
                 n_roots = int(np.clip(np.ceil(2 * min_roots / rate), n_level, max_roots or MAX_ROOTS_SHARE * n_level))
@@ -298,6 +305,7 @@ def share_interval(share, standard_error, confidence=0.95):
     return (lower, upper)
 
 
+@validated(**MARGIN_OPTIONS)
 def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pilot_engines=20_000):
     """A bearing's distance into the tail as a function of its root inputs in standard normal space.
 
@@ -310,10 +318,9 @@ def clearance_margin(engine, scheme, *, side="upper", threshold=None, seed=0, pi
     """
     engine = load_engine(engine)
     scheme = load_scheme(scheme)
-    check.one_of("side", side, ("upper", "lower"))
-    if threshold is None:
-        threshold = engine.clearance_window[1 if side == "upper" else 0]
-    threshold = float(check.finite("threshold", threshold))
+    if threshold is None:  # the engine's window edge, checked as a threshold given would be
+        threshold = check.finite("threshold", engine.clearance_window[1 if side == "upper" else 0])
+    threshold = float(threshold)
     sign = 1.0 if side == "upper" else -1.0
     model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, seed, pilot_engines)).aim,
                       bearings=1)

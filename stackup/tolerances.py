@@ -22,11 +22,21 @@ import numpy as np
 from scipy import special, stats
 
 from . import _validate as check
+from ._validate import OneOf, Positive, validated
 
 #: Points of the tabulated CDF used to invert processes without a closed-form
-#: quantile (mixtures, tool wear). Over +-10 sigma this spacing keeps the
-#: interpolated quantile within 1e-5 sigma of the exact one (tested).
+#: quantile (mixtures, tool wear), over +-10 sigma: fine enough for the
+#: quantile to invert the CDF within the tolerance tests/test_tolerances.py asserts.
 _QUANTILE_GRID = 8193
+
+
+#: Sides a process mean may sit off the middle of its tolerance.
+SIDES = ("upper", "lower")
+
+
+def _cp_not_below_cpk(args):
+    if args["cp"] is not None and float(args["cp"]) < float(args["cpk"]):
+        raise ValueError(f"cp: {float(args['cp'])!r} is below cpk {float(args['cpk'])!r}; cp >= cpk always")
 
 
 @dataclass(frozen=True)
@@ -37,6 +47,7 @@ class Normal:
     sigma: float
 
     @classmethod
+    @validated(relations=(_cp_not_below_cpk,), cpk=Positive(), cp=Positive(), side=OneOf(SIDES))
     def from_capability(cls, lo, hi, *, cpk, cp=None, side="upper"):
         r"""Normal process from capability indices over drawing limits [lo, hi].
 
@@ -45,11 +56,8 @@ class Normal:
         ("upper" or "lower"). Without ``cp`` the process is centred
         (:math:`C_p = C_{pk}`).
         """
-        cpk = float(check.positive("cpk", cpk))
-        cp = cpk if cp is None else float(check.positive("cp", cp))
-        if cp < cpk:
-            raise ValueError(f"cp: {cp!r} is below cpk {cpk!r}; cp >= cpk always")
-        check.one_of("side", side, ("upper", "lower"))
+        cpk = float(cpk)
+        cp = cpk if cp is None else float(cp)
         sigma = (hi - lo) / (6.0 * cp)
         offset = 3.0 * sigma * (cp - cpk)
         mid = 0.5 * (lo + hi)
@@ -241,6 +249,9 @@ class ToolWear(_TabulatedQuantile):
 #: Largest skewness a skew-normal distribution can have, :math:`\sqrt{2}(4-\pi)/(\pi-2)^{3/2}` (its
 #: half-normal limit).
 MAX_SKEWNESS = float(np.sqrt(2.0) * (4.0 - np.pi) / (np.pi - 2.0) ** 1.5)
+#: Declared checks of a skew-normal's fields (:func:`stackup._validate.fields`).
+_SKEW_NORMAL_CHECKS = {"mean": check.Finite(), "sigma": check.Positive(),
+                       "skewness": check.InRange(-MAX_SKEWNESS, MAX_SKEWNESS, lo_open=True, hi_open=True)}
 
 
 @dataclass(frozen=True)
@@ -270,9 +281,7 @@ class SkewNormal(_TabulatedQuantile):
     skewness: float
 
     def __post_init__(self):
-        check.positive("skew-normal sigma", self.sigma)
-        check.in_range("skew-normal skewness", self.skewness, -MAX_SKEWNESS, MAX_SKEWNESS, lo_open=True,
-                       hi_open=True)
+        check.fields(self, _SKEW_NORMAL_CHECKS, prefix="skew-normal ")
 
     @cached_property
     def direct(self):
@@ -307,6 +316,20 @@ def process_mean(process):
     if isinstance(process, TruncatedNormal):
         return float(process._dist.mean())
     return process.mean
+
+
+#: How several readings of one part make its reading (:class:`Gauge`).
+COMBINE = ("mean", "max")
+#: Declared checks of a gauge's fields (:func:`stackup._validate.fields`).
+_GAUGE_CHECKS = {"bias": check.Finite(), "repeatability": check.Positive(zero=True),
+                 "resolution": check.Positive(zero=True), "temperature": check.InRange(-50.0, 200.0, unit=" degC"),
+                 "expansion_mismatch": check.Finite(), "readings": check.Integer(minimum=1),
+                 "combine": check.OneOf(COMBINE)}
+#: Declared checks of a form error's fields.
+_FORM_CHECKS = {"ovality": check.Positive(zero=True), "taper": check.Positive(zero=True),
+                "planes": check.InRange(0.0, 1.0), "directions": check.Integer(minimum=1)}
+#: Declared checks of a dimension's fields (the limits are a pair: :func:`stackup._validate.limits`).
+_DIMENSION_CHECKS = {"shared": check.InRange(0.0, 1.0, hi_open=True), "bolt_scatter": check.Positive(zero=True)}
 
 
 @dataclass(frozen=True)
@@ -344,13 +367,7 @@ class Gauge:
     combine: str = "mean"
 
     def __post_init__(self):
-        check.finite("gauge bias", self.bias)
-        check.positive("gauge repeatability", self.repeatability, allow_zero=True)
-        check.positive("gauge resolution", self.resolution, allow_zero=True)
-        check.in_range("gauge temperature", self.temperature, -50.0, 200.0, unit=" degC")
-        check.finite("gauge expansion_mismatch", self.expansion_mismatch)
-        check.integer("gauge readings", self.readings, minimum=1)
-        check.one_of("gauge combine", self.combine, COMBINE)
+        check.fields(self, _GAUGE_CHECKS, prefix="gauge ")
 
     def noise(self, z):
         r"""Repeatability error of the combined reading [m] from one standard normal per part.
@@ -392,10 +409,6 @@ class Gauge:
         return quantize(reading, self.resolution)
 
 
-#: How several readings of one part make its reading.
-COMBINE = ("mean", "max")
-
-
 @dataclass(frozen=True)
 class FormError:
     r"""Ovality and taper of round parts (journals), and where they are read.
@@ -435,12 +448,9 @@ class FormError:
     directions: int = 1
 
     def __post_init__(self):
-        check.positive("form ovality", self.ovality, allow_zero=True)
-        check.positive("form taper", self.taper, allow_zero=True)
-        planes = check.in_range("form planes", self.planes, 0.0, 1.0)
-        if planes.ndim != 1 or planes.size == 0:
+        check.fields(self, _FORM_CHECKS, prefix="form ")
+        if np.ndim(self.planes) != 1 or np.size(self.planes) == 0:
             raise ValueError(f"form planes: {self.planes!r} is not a list of axial positions in [0, 1]")
-        check.integer("form directions", self.directions, minimum=1)
 
     @property
     def readings(self):
@@ -508,8 +518,7 @@ class Dimension:
 
     def __post_init__(self):
         check.limits(self.name, self.lo, self.hi)
-        check.in_range(f"{self.name} shared", self.shared, 0.0, 1.0, hi_open=True)
-        check.positive(f"{self.name} bolt_scatter", self.bolt_scatter, allow_zero=True)
+        check.fields(self, _DIMENSION_CHECKS, prefix=f"{self.name} ")
 
     def read(self, true_size, z_gauge, z_form=None):
         """Readings [m] of parts of true (mean) size ``true_size``: form error, then the gauge.
@@ -567,6 +576,14 @@ def _small_length(field, value, scale):
     return v * scale
 
 
+def _positive_scalar(field, value):
+    """One number > 0 from a file (as :func:`_scalar`)."""
+    v = _scalar(field, value)
+    if v <= 0:
+        raise ValueError(f"{field}: {v:g} is not valid; must be > 0")
+    return v
+
+
 def process_from_spec(spec, *, lo, hi, scale, field):
     """Build a process from a TOML table (lengths in file units times ``scale`` -> m).
 
@@ -587,31 +604,29 @@ def process_from_spec(spec, *, lo, hi, scale, field):
     kind = check.one_of(f"{field}.distribution", spec.pop("distribution", "normal"), _DISTRIBUTIONS)
     shift = _scalar(f"{field}.mean_shift", spec.pop("mean_shift", 0.0)) * scale
 
-    def length(key, default=None):
+    def length(key, default=None, *, positive=False):
         if key not in spec:
             if default is None:
                 raise ValueError(f"{field}: missing key '{key}' for distribution '{kind}'")
             return default
-        return _scalar(f"{field}.{key}", spec.pop(key)) * scale
+        return (_positive_scalar if positive else _scalar)(f"{field}.{key}", spec.pop(key)) * scale
 
-    def spread(key):
-        value = length(key)
-        if value <= 0:
-            raise ValueError(f"{field}.{key}: {value / scale!r} is not valid; must be > 0")
-        return value
-
-    if kind == "normal":
-        if "cpk" in spec:
-            cpk = _scalar(f"{field}.cpk", spec.pop("cpk"))
-            cp = spec.pop("cp", None)
-            cp = None if cp is None else _scalar(f"{field}.cp", cp)
-            if cpk <= 0:
-                raise ValueError(f"{field}.cpk: {cpk:g} is not valid; must be > 0")
-            process = Normal.from_capability(lo, hi, cpk=float(cpk), cp=cp, side=spec.pop("side", "upper"))
-        else:
-            process = Normal(length("mean", 0.5 * (lo + hi)), spread("sigma"))
+    middle = 0.5 * (lo + hi)
+    if kind == "normal" and "cpk" in spec:
+        cpk = _positive_scalar(f"{field}.cpk", spec.pop("cpk"))
+        cp = spec.pop("cp", None)
+        cp = None if cp is None else _positive_scalar(f"{field}.cp", cp)
+        try:  # checked here, the file's boundary, also where a caller trusts its inputs
+            _cp_not_below_cpk({"cp": cp, "cpk": cpk})
+        except ValueError as err:
+            raise ValueError(f"{field}.{err}") from None
+        side = check.one_of(f"{field}.side", spec.pop("side", "upper"), SIDES)
+        process = Normal.from_capability(lo, hi, cpk=cpk, cp=cp, side=side)
+    elif kind == "normal":
+        process = Normal(length("mean", middle), length("sigma", positive=True))
     elif kind == "truncated-normal":
-        process = TruncatedNormal(length("mean", 0.5 * (lo + hi)), spread("sigma"), length("lo", lo), length("hi", hi))
+        process = TruncatedNormal(length("mean", middle), length("sigma", positive=True), length("lo", lo),
+                                  length("hi", hi))
         if process.hi <= process.lo:
             raise ValueError(f"{field}: truncation hi {process.hi:.6g} m is not above lo {process.lo:.6g} m")
     elif kind == "uniform":
@@ -619,31 +634,45 @@ def process_from_spec(spec, *, lo, hi, scale, field):
         if process.hi <= process.lo:
             raise ValueError(f"{field}: uniform hi {process.hi:.6g} m is not above lo {process.lo:.6g} m")
     elif kind == "mixture":
-        items = spec.pop("components", None)
-        if items is not None and not (isinstance(items, list) and all(isinstance(c, dict) for c in items)):
-            raise ValueError(f"{field}.components: {items!r} is not a list of tables")
-        if not items:
-            raise ValueError(f"{field}.components: a mixture needs at least one component")
-        weights = tuple(_scalar(f"{field}.components[{i}].weight", c.get("weight", np.nan))
-                        for i, c in enumerate(items))
-        comps = tuple(
-            process_from_spec({k: v for k, v in c.items() if k != "weight"}, lo=lo, hi=hi, scale=scale,
-                              field=f"{field}.components[{i}]")
-            for i, c in enumerate(items)
-        )
-        process = Mixture(comps, weights)
+        process = _mixture_from_spec(spec.pop("components", None), lo=lo, hi=hi, scale=scale, field=field)
     elif kind == "skew-normal":
-        mean, sigma = length("mean", 0.5 * (lo + hi)), spread("sigma")
+        mean, sigma = length("mean", 0.5 * (lo + hi)), length("sigma", positive=True)
         skewness = _scalar(f"{field}.skewness", spec.pop("skewness", 0.0))
         if not abs(skewness) < MAX_SKEWNESS:
             raise ValueError(f"{field}.skewness: {skewness:g} is not valid; a skew-normal's skewness lies in "
                              f"(-{MAX_SKEWNESS:.4f}, {MAX_SKEWNESS:.4f})")
         process = SkewNormal(mean, sigma, skewness)
     else:
-        process = ToolWear(length("start"), length("end"), spread("sigma"))
+        process = ToolWear(length("start"), length("end"), length("sigma", positive=True))
     if spec:
         raise ValueError(f"{field}: unknown key(s) {sorted(spec)} for distribution '{kind}'")
     return process.shifted(shift) if shift else process
+
+
+def _mixture_from_spec(items, *, lo, hi, scale, field):
+    """A :class:`Mixture` from the ``components`` list of a process table: each a process table with a ``weight``."""
+    if items is not None and not (isinstance(items, list) and all(isinstance(c, dict) for c in items)):
+        raise ValueError(f"{field}.components: {items!r} is not a list of tables")
+    if not items:
+        raise ValueError(f"{field}.components: a mixture needs at least one component")
+    weights = tuple(_scalar(f"{field}.components[{i}].weight", c.get("weight", np.nan)) for i, c in enumerate(items))
+    components = tuple(process_from_spec({k: v for k, v in c.items() if k != "weight"}, lo=lo, hi=hi, scale=scale,
+                                         field=f"{field}.components[{i}]")
+                       for i, c in enumerate(items))
+    return Mixture(components, weights)
+
+
+def _whole_number(field, value):
+    """A whole number from a file (true/false and 2.0 refused)."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ValueError(f"{field}: {value!r} is not a whole number")
+    return value
+
+
+def _known_keys(field, spec, known):
+    unknown = set(spec) - known
+    if unknown:
+        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
 
 
 def form_from_spec(spec, *, scale, field):
@@ -651,21 +680,16 @@ def form_from_spec(spec, *, scale, field):
     if spec is None:
         return None
     spec = _spec_table(field, spec)
-    known = {"ovality", "taper", "planes", "directions"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    _known_keys(field, spec, {"ovality", "taper", "planes", "directions"})
+    planes = spec.get("planes", [0.5])
+    if not isinstance(planes, list):
+        raise ValueError(f"{field}.planes: {planes!r} is not a list of axial positions")
+    values = dict(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
+                  taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
+                  planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
+                  directions=_whole_number(f"{field}.directions", spec.get("directions", 1)))
     try:
-        planes = spec.get("planes", [0.5])
-        if not isinstance(planes, list):
-            raise ValueError(f"planes: {planes!r} is not a list of axial positions")
-        directions = spec.get("directions", 1)
-        if isinstance(directions, bool) or not isinstance(directions, int):
-            raise ValueError(f"directions: {directions!r} is not a whole number")
-        return FormError(ovality=_small_length(f"{field}.ovality", spec.get("ovality", 0.0), scale),
-                         taper=_small_length(f"{field}.taper", spec.get("taper", 0.0), scale),
-                         planes=tuple(_scalar(f"{field}.planes", x) for x in planes),
-                         directions=directions)
+        return FormError(**values)
     except ValueError as err:
         raise ValueError(f"{field}: {err}") from None
 
@@ -673,18 +697,16 @@ def form_from_spec(spec, *, scale, field):
 def gauge_from_spec(spec, *, scale, field):
     """Build a :class:`Gauge` from a TOML table (lengths in file units times ``scale``)."""
     spec = _spec_table(field, {} if spec is None else spec)
-    known = {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings", "combine"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ValueError(f"{field}: unknown key(s) {sorted(unknown)}; valid: {sorted(known)}")
+    _known_keys(field, spec, {"bias", "repeatability", "resolution", "temperature", "expansion_mismatch", "readings",
+                              "combine"})
     for key in ("bias", "repeatability", "resolution"):
         if key in spec:
             spec[key] = _small_length(f"{field}.{key}", spec[key], scale)
     for key in ("temperature", "expansion_mismatch"):
         if key in spec:
             spec[key] = _scalar(f"{field}.{key}", spec[key])
-    if "readings" in spec and (isinstance(spec["readings"], bool) or not isinstance(spec["readings"], int)):
-        raise ValueError(f"{field}.readings: {spec['readings']!r} is not a whole number")
+    if "readings" in spec:
+        _whole_number(f"{field}.readings", spec["readings"])
     if "combine" in spec and not isinstance(spec["combine"], str):
         raise ValueError(f"{field}.combine: {spec['combine']!r} is not text")
     try:

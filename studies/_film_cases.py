@@ -30,7 +30,7 @@ class Case:
 
     def geometry(self, bearings=slice(None)):
         """Keyword arguments of stackup.film.orbit.orbit for the chosen bearings."""
-        return dict(diameter=self.diameter, length=self.length, clearance=self.clearance,
+        return dict(journal_d=self.diameter, bearing_width=self.length, clearance=self.clearance,
                     viscosity=self.viscosity[bearings], speed=self.speed)
 
 
@@ -60,8 +60,8 @@ def engine_case(name, *, clearance=None, bore_offset=None, journal_eccentricity=
     loads = np.moveaxis(r.reactions, 0, 1)
     diameter = 0.5 * (engine.journal_d.lo + engine.journal_d.hi)
     # the study chain's quasi-static heat balance (feed and side flow) on a 4 deg subsample
-    heat = heat_balance(loads[:, ::max(1, int(round(HEAT_STEP / step)))], diameter=diameter,
-                        length=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
+    heat = heat_balance(loads[:, ::max(1, int(round(HEAT_STEP / step)))], journal_d=diameter,
+                        bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
                         supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed, method="finite")
     return Case(name, angle, loads, np.moveaxis(slopes, 0, 1), diameter, spec.bearing_width, clearance,
                 heat.viscosity, heat.temperature, spec.speed, engine.oil_feed)

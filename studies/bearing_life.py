@@ -45,12 +45,12 @@ def bearing_stage(engine, loads, crank_angle, *, clearance, journal_d, film_meth
     ``clearance`` and ``journal_d`` (...) [m]. Returns a dict of named arrays (...).
     """
     spec, wear = engine.crank, engine.wear
-    heat = heat_balance(loads[..., ::HEAT_STRIDE, :], diameter=journal_d, length=spec.bearing_width,
+    heat = heat_balance(loads[..., ::HEAT_STRIDE, :], journal_d=journal_d, bearing_width=spec.bearing_width,
                         clearance=clearance, speed=spec.speed, oil=spec.oil,
                         supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed,
                         method=film_method if film_method in ("short", "finite") else "finite")
-    film = min_film_thickness(np.linalg.norm(loads, axis=-1), diameter=journal_d[..., None],
-                              length=spec.bearing_width, clearance=clearance[..., None],
+    film = min_film_thickness(np.linalg.norm(loads, axis=-1), journal_d=journal_d[..., None],
+                              bearing_width=spec.bearing_width, clearance=clearance[..., None],
                               viscosity=heat.viscosity[..., None], speed=spec.speed, method=film_method)
     position = journal_position(loads, eccentricity=film.eccentricity, attitude_angle=film.attitude_angle,
                                 clearance=clearance[..., None])
@@ -58,7 +58,7 @@ def bearing_stage(engine, loads, crank_angle, *, clearance, journal_d, film_meth
     journal = materials.get(engine.press_fit.journal_material)
     lining = materials.get(wear.lining_material)
     chart = levanov_method2(position, radial_clearance=clearance / 2, crank_angle=crank_angle, speed=spec.speed,
-                            bearing_radius=journal_d / 2, h_lim_cr=wear.critical_film,
+                            journal_radius=journal_d / 2, h_lim_cr=wear.critical_film,
                             roughness=composite_roughness(wear.journal_rq, wear.shell_rq),
                             contact_modulus=contact_modulus(journal.modulus, journal.poisson, lining.modulus,
                                                             lining.poisson),
@@ -158,18 +158,18 @@ def timings(engine, results_loads):
     spec = engine.crank
     t = {}
     t0 = time.perf_counter()
-    heat_balance(loads, diameter=journal, length=spec.bearing_width, clearance=clearance, speed=spec.speed,
+    heat_balance(loads, journal_d=journal, bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed,
                  oil=spec.oil, supply_temperature=90.0, feed=engine.oil_feed, method="finite")
     t["heat balance (finite), 720 angles"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    heat_balance(loads[..., ::HEAT_STRIDE, :], diameter=journal, length=spec.bearing_width, clearance=clearance,
+    heat_balance(loads[..., ::HEAT_STRIDE, :], journal_d=journal, bearing_width=spec.bearing_width, clearance=clearance,
                  speed=spec.speed, oil=spec.oil, supply_temperature=90.0, feed=engine.oil_feed, method="short")
     t["heat balance (short), every 4th angle"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     bearing_stage(engine, loads, angle, clearance=clearance, journal_d=journal)
     t["whole bearing stage (heat balance finite, every 4th angle)"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    min_film_thickness(np.linalg.norm(loads, axis=-1), diameter=journal[..., None], length=spec.bearing_width,
+    min_film_thickness(np.linalg.norm(loads, axis=-1), journal_d=journal[..., None], bearing_width=spec.bearing_width,
                        clearance=clearance[..., None], viscosity=0.008, speed=spec.speed, method="finite")
     t["quasi-static film (finite), 720 angles"] = time.perf_counter() - t0
     return t

@@ -49,7 +49,7 @@ def heat_accuracy(engine, clearance, journal_d, bore, journal, angle):
     """
     spec = engine.crank
     r = engine_cycles(spec, bore_offset=bore, journal_eccentricity=journal, clearance=clearance, crank_angle=angle)
-    kw = dict(tier="mobility-finite", diameter=journal_d, length=spec.bearing_width, clearance=clearance,
+    kw = dict(tier="mobility-finite", journal_d=journal_d, bearing_width=spec.bearing_width, clearance=clearance,
               speed=spec.speed, oil=spec.oil, supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed,
               stride=int(round(DYNAMIC_HEAT_STEP / (angle[1] - angle[0]))))
     loads = np.moveaxis(r.reactions, 1, 2)

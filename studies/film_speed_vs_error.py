@@ -17,7 +17,7 @@ go to ``stackup/data/film_cycle_errors.toml`` (what
 
     python studies/film_speed_vs_error.py [--workers 2]
 
-Writes reports/film_speed_vs_error.md (about 40 min on 2 cores, mostly the transient tier).
+Writes reports/film_speed_vs_error.md (long: the transient tier dominates; the report gives its times).
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ from stackup.film.tilt import film_moment
 
 DEFAULT_ERROR = 0.05
 ENGINES = ("iso-example", "rozhdestvensky-4")
-CHEAP_TIERS = ("quasi-static-short", "quasi-static-finite", "mobility", "mobility-finite")
+CHEAP_TIERS = ("short", "finite", "mobility", "mobility-finite")
 QUANTITIES = {  # name: (Orbit attribute, what it is)
     "h_min": ("h_min_cycle", "cycle minimum of the minimum film"),
     "h_min_mean": ("h_min_mean", "cycle mean of the minimum film"),
@@ -101,7 +101,7 @@ def steady_tilt_case(job):
     field = reynolds.tilted_field(xi, v, e, length_over_radius)
     # unit journal (R = 1, c = 1, mu = omega = 1): forces per mu omega R L^3/c^2 are F/L^3, moments M/L^4
     length = length_over_radius
-    geometry = dict(radius=1.0, length=length, radial_clearance=1.0, viscosity=1.0, speed=1.0)
+    geometry = dict(journal_radius=1.0, bearing_width=length, radial_clearance=1.0, viscosity=1.0, speed=1.0)
     out = {"reynolds": (field.force, field.moment)}
     for method in ("short", "finite"):
         film = film_moment(xi, v, e * 2 / length, **geometry, method=method)
@@ -150,8 +150,8 @@ def errors_by_case():
             h_ref = 1e-3 * (1 - eps)
             errs = {}
             for method in ("short", "finite"):
-                f = min_film_thickness(load, diameter=2.0, length=2.0 * ld, clearance=2e-3, viscosity=1.0, speed=1.0,
-                                       method=method)
+                f = min_film_thickness(load, journal_d=2.0, bearing_width=2.0 * ld, clearance=2e-3, viscosity=1.0,
+                                       speed=1.0, method=method)
                 errs[method] = float(f.h_min) / h_ref - 1
             rows.append((ld, eps, errs["short"], errs["finite"]))
     return rows
@@ -161,12 +161,12 @@ def steady_timing(case):
     """Time of one bearing-cycle of each steady tier run quasi-statically (Reynolds on 12 angles, scaled)."""
     loads = case.loads[1]
     geometry = case.geometry(1)
-    timing = {m: best_time(lambda: orbit(loads, case.crank_angle, **geometry, method=f"quasi-static-{m}"), 5)
+    timing = {m: best_time(lambda: orbit(loads, case.crank_angle, **geometry, method=m), 5)
               for m in ("short", "finite")}
     magnitude = np.linalg.norm(loads, axis=-1)
     points = np.unique(np.concatenate([np.argsort(magnitude)[-6:], np.linspace(0, loads.shape[0] - 1, 6).astype(int)]))
     t0 = time.perf_counter()
-    min_film_thickness(magnitude[points], diameter=case.diameter, length=case.length, clearance=case.clearance,
+    min_film_thickness(magnitude[points], journal_d=case.diameter, bearing_width=case.length, clearance=case.clearance,
                        viscosity=case.viscosity[1], speed=case.speed, method="reynolds")
     timing["reynolds"] = (time.perf_counter() - t0) / points.size * loads.shape[0]
     return timing
@@ -215,7 +215,7 @@ def write_errors(out, seconds, references):
              "# engines against reynolds-transient with mass-conserving (Elrod-Adams) cavitation, and in",
              "# [tiers.X.swift-stieber] against the same tier with the Reynolds condition. Regenerate with that study.",
              ""]
-    for tier in (*CHEAP_TIERS, "quasi-static-reynolds", "reynolds-transient"):
+    for tier in (*CHEAP_TIERS, "reynolds", "reynolds-transient"):
         for label, reference in references.items():
             lines.append(f'[tiers."{tier}"{label}]')
             if not label:
@@ -249,8 +249,7 @@ def verdict(out, seconds, reference):
     """The report's opening: which cycle tier to use, what its error is made of, what is fragile."""
     ss = out["reynolds-transient, Swift-Stieber"]
     mf = out["mobility-finite"]
-    qs = [worst(out[t]["h_min"], reference["h_min"]) for t in ("quasi-static-short", "quasi-static-finite",
-                                                             "quasi-static-reynolds")]
+    qs = [worst(out[t]["h_min"], reference["h_min"]) for t in ("short", "finite", "reynolds")]
     within = cheapest_cycle_text() + (". " if cheapest_cycle_tier(DEFAULT_ERROR) != "reynolds-transient" else
                                       ": the study's default film_error (0.5) admits `mobility-finite` and states "
                                       "its error. ")
@@ -349,7 +348,7 @@ def main(argv=None):
     # the transient runs first, in worker processes, while this process times the cheap tiers
     jobs = [(name, b, {}) for name in ENGINES for b in range(n_bearings[name])]
     jobs += [(name, b, {"cavitation": "reynolds"}) for name in ENGINES for b in range(n_bearings[name])]
-    jobs += [(name, b, {"method": "quasi-static-reynolds"}) for name in ENGINES for b in range(n_bearings[name])]
+    jobs += [(name, b, {"method": "reynolds"}) for name in ENGINES for b in range(n_bearings[name])]
     checks = {"1440 steps": ("iso-example", 1, {"step": 0.5}), "grid 270 x 31": ("iso-example", 1,
                                                                                    {"n_theta": 270, "n_z": 31}),
               "feed hole at 0.3 MPa instead of the groove": ("iso-example", 1, {"feed": None,
@@ -394,8 +393,8 @@ def main(argv=None):
 
     reference = stack(ref_runs)
     out["reynolds-transient, Swift-Stieber"] = stack(ss_runs)
-    out["quasi-static-reynolds"] = stack(qs_runs)
-    seconds["quasi-static-reynolds"] = float(np.mean([r[1] for r in qs_runs]))
+    out["reynolds"] = stack(qs_runs)
+    seconds["reynolds"] = float(np.mean([r[1] for r in qs_runs]))
     seconds["reynolds-transient"] = float(np.mean([r[1] for r in ref_runs]))
     seconds["reynolds-transient, Swift-Stieber"] = float(np.mean([r[1] for r in ss_runs]))
     out["reynolds-transient"] = reference
@@ -453,7 +452,7 @@ def main(argv=None):
         "cycle-mean h_min: mean / worst | sup p_max: worst | p*_max: worst | N*: worst |",
         "|---|---|---|---|---|---|---|---|",
     ]
-    for tier in (*CHEAP_TIERS, "quasi-static-reynolds", "reynolds-transient, Swift-Stieber"):
+    for tier in (*CHEAP_TIERS, "reynolds", "reynolds-transient, Swift-Stieber"):
         e = {q: relative(out[tier][q], reference[q]) for q in QUANTITIES}
         t = seconds[tier]
         lines.append(f"| {tier} | {t:.3g} | {t / seconds['mobility']:.3g} | "

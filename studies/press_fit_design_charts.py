@@ -61,7 +61,7 @@ def chart(wall, curves, title, path):
 
 def fit(wall, material, ratio, temperature):
     return press_fit(housing_bore=BORE, housing_outer=ratio * BORE, shell_wall=wall, crush_height=CRUSH,
-                     length=LENGTH, housing_material=material, shell_material="steel-back",
+                     bearing_width=LENGTH, housing_material=material, shell_material="steel-back",
                      temperature=temperature, check_bore=BORE, journal_d=BORE - 2 * wall - NOMINAL_CLEARANCE)
 
 

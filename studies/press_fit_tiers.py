@@ -42,9 +42,9 @@ def evaluate(method, case):
     lining = {} if case["lining"] is None else dict(lining_material=case["lining"][0],
                                                     lining_thickness=case["lining"][1])
     return press_fit(housing_bore=BORE, housing_outer=case["ratio"] * BORE, shell_wall=case["shell_wall"],
-                     crush_height=case["crush_height"], length=22e-3, housing_material=case["housing_material"],
-                     shell_material="steel-back", temperature=case["temperature"], check_bore=CHECK_BORE,
-                     journal_d=JOURNAL, method=method, **lining)
+                     crush_height=case["crush_height"], bearing_width=22e-3,
+                     housing_material=case["housing_material"], shell_material="steel-back",
+                     temperature=case["temperature"], check_bore=CHECK_BORE, journal_d=JOURNAL, method=method, **lining)
 
 
 def errors(cases):
@@ -86,7 +86,7 @@ def speeds(n, repeat):
     wall = rng.normal(1.98e-3, 1e-6, n)
     crush = rng.uniform(0.1e-3, 0.137e-3, n)
     journal = rng.normal(JOURNAL, 2e-6, n)
-    kw = dict(housing_bore=bore, housing_outer=90e-3, shell_wall=wall, crush_height=crush, length=22e-3,
+    kw = dict(housing_bore=bore, housing_outer=90e-3, shell_wall=wall, crush_height=crush, bearing_width=22e-3,
               housing_material="nodular-cast-iron", shell_material="steel-back", temperature=100.0,
               check_bore=CHECK_BORE, journal_d=journal, lining_thickness=0.3e-3, lining_material="aluminium-tin")
     h, s, j, lin = (materials.get(m) for m in ("nodular-cast-iron", "steel-back", "steel", "aluminium-tin"))

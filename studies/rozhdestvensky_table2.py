@@ -34,7 +34,7 @@ PAPER = {
     3: (2.68, 243, 9.10, 225, 40, 651),
     4: (3.64, 609, 11.00, 148, 26, 588),
 }
-TIERS = ("quasi-static-finite", "mobility", "mobility-finite", "reynolds-transient")
+TIERS = ("finite", "mobility", "mobility-finite", "reynolds-transient")
 
 
 def verdict(rows, ratio):

@@ -24,14 +24,14 @@ def test_every_bearing_balances_and_healthy_bearings_live_thousands_of_hours(nam
     # the unloaded case too: every bearing, loaded or not, gets a balance
     loads = np.concatenate([loads, np.zeros_like(loads[:1])])
     clearance, journal = np.concatenate([clearance, clearance[:1]]), np.concatenate([journal, journal[:1]])
-    heat = heat_balance(loads, diameter=journal, length=spec.bearing_width, clearance=clearance, speed=spec.speed,
+    heat = heat_balance(loads, journal_d=journal, bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed,
                         oil=spec.oil, supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed,
                         method="finite")
     assert np.all(heat.status == 0)
     assert np.all((heat.temperature > spec.oil_supply_temperature) & (heat.temperature < 160.0))
     assert np.all(heat.feed_flow > 0) and np.all(heat.friction_power > 0)
-    film = min_film_thickness(np.linalg.norm(loads[:3], axis=-1), diameter=journal[:3, :, None],
-                              length=spec.bearing_width, clearance=clearance[:3, :, None],
+    film = min_film_thickness(np.linalg.norm(loads[:3], axis=-1), journal_d=journal[:3, :, None],
+                              bearing_width=spec.bearing_width, clearance=clearance[:3, :, None],
                               viscosity=heat.viscosity[:3, :, None], speed=spec.speed, method="finite")
     position = journal_position(loads[:3], eccentricity=film.eccentricity, attitude_angle=film.attitude_angle,
                                 clearance=clearance[:3, :, None])

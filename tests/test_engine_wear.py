@@ -59,7 +59,7 @@ def test_defaults_without_the_tables_say_so(engine_file):
     e = load_engine(engine_file())
     assert e.wear == DEFAULT_WEAR and e.wear.roughness_source.startswith("default")
     assert e.oil_feed.kind == "groove" and e.oil_feed.source.startswith("default")
-    assert e.oil_feed.groove_width == pytest.approx(0.15 * e.press_fit.length)
+    assert e.oil_feed.groove_width == pytest.approx(0.15 * e.press_fit.bearing_width)
 
 
 @pytest.mark.parametrize("extra, message", [
@@ -75,3 +75,12 @@ def test_defaults_without_the_tables_say_so(engine_file):
 def test_bad_tables(with_tables, extra, message):
     with pytest.raises(ValueError, match=message):
         load_engine(with_tables(extra))
+
+
+def test_press_fit_length_is_read_as_the_bearing_width(engine_file):
+    # the file's key stays press_fit.length; the spec and the fit functions call it bearing_width
+    spec = load_engine(engine_file()).press_fit
+    assert spec.kwargs()["bearing_width"] == spec.bearing_width and "length" not in spec.kwargs()
+    assert spec.record()["length"] == spec.bearing_width and "bearing_width" not in spec.record()
+    with pytest.warns(DeprecationWarning, match=r"PressFitSpec.length is deprecated; use bearing_width"):
+        assert spec.length == spec.bearing_width

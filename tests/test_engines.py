@@ -110,3 +110,29 @@ def test_spec_arguments_are_those_of_the_fit_functions():
     ext = press_fit_extremes(housing_bore=50.01e-3, shell_wall=1.98e-3, crush_height=0.08e-3,
                              **e.press_fit.extremes_kwargs())
     assert ext.lowest_pressure_temperature == -25.0 and ext.highest_stress_temperature == 130.0
+
+
+@pytest.mark.parametrize("change, message", [
+    ({'housing_material = "nodular-cast-iron"': 'housing_material = "unobtainium"'},
+     r"engine file 'engine.toml', key press_fit.housing_material: 'unobtainium' is not one of 'aluminium'"),
+    ({"firing_order = [1, 3, 4, 2]": "firing_order = [1, 3, 3, 2]"},
+     r"engine file 'engine.toml', key crank.firing_order: \[1, 3, 3, 2\] is not a permutation"),
+    ({'grade = "SAE-5W-30"': 'grade = "SAE-99"'}, r"key oil.grade: 'SAE-99' is not one of"),
+    ({"conrod = 136.0": "conrod = 36.0"},
+     r"engine file 'engine.toml', key crank.conrod: 0.036\d* m is not longer than the crank radius"),
+])
+def test_names_in_an_engine_file_are_checked_with_the_file_and_key(tmp_path, change, message):
+    with pytest.raises(ValueError, match=message):
+        load_engine(_engine_file(tmp_path, change))
+
+
+def test_an_engine_file_is_checked_also_where_the_caller_trusts_its_inputs(tmp_path):
+    # a file is its own boundary: a study that trusts its checked arguments still gets a bad file refused
+    from stackup._validate import trusted
+
+    path = _engine_file(tmp_path, {"firing_order = [1, 3, 4, 2]": "firing_order = [1, 3, 3, 2]"})
+    with trusted(), pytest.raises(ValueError, match=r"key crank.firing_order: \[1, 3, 3, 2\] is not a permutation"):
+        load_engine(path)
+    path = _engine_file(tmp_path, {"cpk = 1.33": "cpk = 1.33, cp = 1.0"})
+    with trusted(), pytest.raises(ValueError, match=r"process.cp: 1.0 is below cpk 1.33"):
+        load_engine(path)

@@ -104,3 +104,26 @@ def test_a_scheme_needs_no_stated_clearance_and_refuses_wrong_types(tmp_path):
     (tmp_path / "s.toml").write_text(text6.replace("step = 0.001", 'step = "0.001"', 1))
     with pytest.raises(ValueError, match=r"key housing.classes.step: '0.001' is text, not a number"):
         schemes.load(tmp_path / "s.toml")
+
+
+def test_a_table_reads_lists_of_finite_numbers():
+    import numpy as np
+
+    t = Table({"arc": [90, 270.0], "rows": [[1.0, 2.0], [3.0, 4.0]], "ragged": [[1.0], [2.0, 3.0]],
+               "text": [1.0, "2"], "nan": [1.0, float("nan")]}, "engine file 'e.toml'", "crank")
+    np.testing.assert_array_equal(t.numbers("arc"), [90.0, 270.0])
+    assert t.numbers("rows", rows=True).shape == (2, 2)
+    assert t.numbers("absent", [1.0]).tolist() == [1.0]
+    for name, rows in (("rows", False), ("ragged", True), ("text", False)):
+        with pytest.raises(ValueError, match=rf"engine file 'e.toml', key crank.{name}: .* is not a list of numbers"):
+            t.numbers(name, rows=rows)
+    with pytest.raises(ValueError, match=r"engine file 'e.toml', key crank.nan: nan is not a finite number"):
+        t.numbers("nan")
+
+
+def test_a_table_reads_optional_tables_and_sources():
+    t = Table({"wear": {"source": " "}}, "engine file 'e.toml'")
+    assert t.optional("oil_feed") is None
+    with pytest.raises(ValueError, match=r"engine file 'e.toml', key wear.source: empty; say where the numbers"):
+        t.optional("wear").source("source")
+    t.close()  # both keys are valid, the absent one too

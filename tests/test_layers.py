@@ -100,7 +100,6 @@ def cycles(graph):
     return found
 
 
-@pytest.mark.xfail(strict=True, reason="stackup.film.orbit, tilt and transient still import each other")
 def test_no_import_cycle_in_the_package_imports_inside_functions_included():
     assert cycles(import_graph()) == []
 

@@ -113,7 +113,7 @@ def test_life_summary_quantiles_and_share_below_target():
 # ---- method 2 -----------------------------------------------------------------------------------------------------
 
 C = 25e-6
-SURFACES = dict(h_lim_cr=1.9e-6, roughness=0.3e-6, contact_modulus=6e10, wear_limit=30e-6, bearing_radius=0.023)
+SURFACES = dict(h_lim_cr=1.9e-6, roughness=0.3e-6, contact_modulus=6e10, wear_limit=30e-6, journal_radius=0.023)
 
 
 def f52(lam):
@@ -207,3 +207,20 @@ def test_method2_bad_input(kw, message):
     args.update(kw)
     with pytest.raises(ValueError, match=message):
         levanov_method2(x, **args)
+
+
+def test_method2_bearing_radius_is_the_deprecated_name_of_journal_radius():
+    x, angle = orbit(72)
+    args = dict(radial_clearance=C, crank_angle=angle, speed=419.0,
+                **{k: v for k, v in SURFACES.items() if k != "journal_radius"})
+    new = levanov_method2(x, **args, journal_radius=0.023)
+    with pytest.warns(DeprecationWarning, match="bearing_radius= is deprecated; use journal_radius="):
+        old = levanov_method2(x, **args, bearing_radius=0.023)
+    np.testing.assert_array_equal(new.wear_per_cycle, old.wear_per_cycle)
+    np.testing.assert_array_equal(new.life, old.life)
+    field = np.full((1, angle.size, 8), 1e-6)
+    del args["radial_clearance"]
+    new = levanov_method2_field(field, **args, journal_radius=0.023)
+    with pytest.warns(DeprecationWarning, match="bearing_radius= is deprecated; use journal_radius="):
+        old = levanov_method2_field(field, **args, bearing_radius=0.023)
+    np.testing.assert_array_equal(new.wear_per_cycle, old.wear_per_cycle)

@@ -3,10 +3,11 @@
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from stackup.cli import main
-from stackup.plan import plan, simulate_lot_coverage
+from stackup.plan import optimise_supply, plan, simulate_lot_coverage
 
 
 @pytest.fixture(scope="module")
@@ -190,3 +191,19 @@ def test_planner_table_is_whole_parts_that_add_up(plan4):
     assert (grades["stock per lot of 1000 engines [shells]"] >= plan4.lot_demand_mean).all()
     assert table.loc["all grades", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
     assert table.attrs["title"][0].startswith("How many shells of each grade to make and stock for 10,000 engines")
+
+
+def test_old_processes_keyword_still_works_with_a_deprecation_warning():
+    new = plan("iso13778-5", engine="iso-example", volume=1000, sample_engines=500)
+    with pytest.warns(DeprecationWarning, match="processes= is deprecated; use engine="):
+        old = plan("iso13778-5", processes="iso-example", volume=1000, sample_engines=500)
+    pd.testing.assert_frame_equal(old, new)
+    with pytest.warns(DeprecationWarning, match="processes= is deprecated"):
+        supply = optimise_supply("iso13778-5", processes="iso-example", volume=50, sample_engines=500)
+    assert supply["mean"] == optimise_supply("iso13778-5", engine="iso-example", volume=50, sample_engines=500)["mean"]
+    with pytest.warns(DeprecationWarning, match="processes= is deprecated"):
+        covered = simulate_lot_coverage("iso13778-5", processes="iso-example", order_up_to=[99] * 3, lot_engines=5,
+                                        lots=3)
+    assert np.all(covered == 1.0)
+    with pytest.raises(TypeError, match="not both"):
+        plan("iso13778-5", engine="iso-example", processes="iso-example", volume=10)

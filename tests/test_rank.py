@@ -108,7 +108,7 @@ def test_summaries_rank_like_the_full_dataset():
 
 @pytest.mark.parametrize("method", ["conditional", "splitting"])
 def test_too_few_counted_bearings_rank_on_the_tail_estimate(study, method):
-    from stackup.rank import MIN_COUNTED, TAIL_SOURCES
+    from stackup.facts import MIN_COUNTED, TAIL_SOURCES
     from stackup.comparison import tails_dataset
 
     tails = tails_dataset("iso-example", list(study.scheme.values), n_level=1000, method=method)

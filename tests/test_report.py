@@ -74,43 +74,50 @@ def test_the_command_line_writes_the_report_of_a_saved_comparison_again(comparis
     assert "is not a comparison `stackup compare` saved" in capsys.readouterr().err
 
 
-def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
-    from stackup.rank import rank
-    from stackup.report.prose import verdict
+def _verdict(ds, **ranking):
+    """The verdict of a study dataset alone (no scenarios), as one text."""
+    from stackup.facts import facts
+    from stackup.rank import ranked
+    from stackup.report.verdict import verdict
 
+    known = facts(ds, **ranking)
+    return " ".join(verdict(known, ranked(known.ranking), {}))
+
+
+def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
     ds = comparison.dataset
-    text = " ".join(verdict(ds, rank(ds, window=(1e-6, 2e-6)), {}))
+    text = _verdict(ds, window=(1e-6, 2e-6))
     assert "**No scheme meets the window 1–2 µm:**" in text
-    text = " ".join(verdict(ds, rank(ds), {}))
+    text = _verdict(ds)
     assert "No scheme meets" not in text
 
+
 def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_bearings_do(comparison):
-    from stackup.rank import rank
-    from stackup.report.prose import verdict
     from stackup.study.schema import flag
 
     ds = comparison.dataset
     status = ds.film_status.values
     computed = (status != flag(ds.film_status, "not_computed")) & ds.film_valid.values
     touching = computed & (status == flag(ds.film_status, "edge_contact"))
-    text = " ".join(verdict(ds, rank(ds), {}))
+    text = _verdict(ds)
     assert ("**Edge contact:**" in text) == (touching.sum() >= 0.5 * computed.sum())
     # every bearing touching over a fifth of the cycle: said, with that share
     edged = ds.copy()
     edged["film_status"] = edged.film_status.where(~computed, flag(ds.film_status, "edge_contact"))
     edged["edge_contact_share"] = edged.edge_contact_share.where(~computed, 0.2)
-    text = " ".join(verdict(edged, rank(edged), {}))
+    text = _verdict(edged)
     assert "**Edge contact:** the journal's edge touches its shell in 100 % of each scheme's bearings" in text
     assert "over 20 % of the cycle" in text and "The choice of scheme hardly changes it." in text
     # none touching: nothing said
     clear = ds.copy()
     clear["film_status"] = clear.film_status.where(~computed, flag(ds.film_status, "periodic"))
-    assert "Edge contact" not in " ".join(verdict(clear, rank(clear), {}))
+    assert "Edge contact" not in _verdict(clear)
 
 
 def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(comparison):
+    from stackup.facts import facts
     from stackup.life import levanov_method1
-    from stackup.report.prose import limits_of_validity
+    from stackup.report.methods import limits_of_validity
 
     ds = comparison.dataset
     wear = json.loads(ds.attrs["wear"])
@@ -119,7 +126,7 @@ def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(
     h = float(np.median(films))
     life = levanov_method1(np.array([h, h / (1 + error)]), h_lim_cr=wear["critical_film_m"],
                            wear_limit=wear["wear_limit_m"], wear_rate=wear["wear_rate_m_per_s"]).life
-    text = " ".join(limits_of_validity(ds))
+    text = " ".join(limits_of_validity(facts(ds)))
     assert f"up to {100 * error:.0f} % thicker than the transient reference" in text
     assert f"makes a life {life[0] / life[1]:.1f} times as long" in text and f"{h * 1e6:.1f} µm" in text
     cap = wear["wear_limit_m"] / wear["wear_rate_m_per_s"] / 3600
@@ -127,7 +134,7 @@ def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(
     # a study without the tier's measured errors says nothing of it
     bare = ds.copy()
     bare.attrs = {k: v for k, v in ds.attrs.items() if k != "film_method_errors"}
-    assert "Method 1 reads" not in " ".join(limits_of_validity(bare))
+    assert "Method 1 reads" not in " ".join(limits_of_validity(facts(bare)))
 
 
 def test_the_film_section_gives_the_heat_balance_of_the_bearings(comparison, tmp_path):
@@ -232,10 +239,64 @@ def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
 
 
 def test_a_study_without_the_mechanical_chain_says_so(tmp_path):
-    from stackup.report.prose import run_notes
+    from stackup.facts import Run
+    from stackup.report.verdict import run_notes
     from stackup.study import Study
 
     ds = Study(schemes=("iso13778-4",), n_engines=200, mechanics_engines=0, progress=False, pilot_engines=1000).run()
-    notes = run_notes(ds)
+    notes = run_notes(Run.of(ds))
     assert any("did not run: the study asked for none" in note for note in notes)
     assert "did not run" in write_report(ds, tmp_path).read_text().split("<!-- /verdict -->")[0]
+
+
+def test_numbers_are_written_one_way():
+    from stackup.report import format as fmt
+
+    assert fmt.significant(26_512) == "26,500" and fmt.significant(float("inf")) == "∞" and fmt.significant(0) == "0"
+    assert fmt.significant_triple((34_584.9, 33_900.2, 35_412.0)) == "34,600 [33,900, 35,400]"
+    assert fmt.ppm(0.0497, (0.034, 0.065)) == "0.050 ppm [0.034, 0.065]" and fmt.ppm(2354.2) == "2,354 ppm"
+    assert fmt.interval(float("nan"), (1, 2)) == "—" and fmt.interval(1.234, (1.0, 1.5), 2) == "1.23 [1.00, 1.50]"
+    assert fmt.um_edge(34.5e-6) == "34.5" and fmt.um_edge(57e-6) == "57" and fmt.um(8.79e-6) == "8.8"
+    assert fmt.hours(37_987.9) == "38,000" and fmt.spaced(10_000) == "10 000" and fmt.count(10_465) == "10,465"
+
+
+def _table_rows(text, heading, first_column):
+    """The rows of the first table under ``heading`` whose first cells are ``first_column``, by that cell."""
+    body = text.split(f"## {heading}\n")[1].split("\n## ")[0]
+    block = next(b for b in body.split("\n\n") if b.startswith("| "))
+    rows = [line.strip("|").split(" | ") for line in block.splitlines() if line.startswith("| ")]
+    head = [cell.strip() for cell in rows[0]]
+    return {row[head.index(first_column)].strip(): dict(zip(head, (c.strip() for c in row))) for row in rows[1:]}
+
+
+def test_the_report_states_the_numbers_of_the_facts(comparison, tmp_path):
+    from stackup.facts import facts
+    from stackup.rank import ranked
+    from stackup.report import SECTIONS
+    from stackup.report import format as fmt
+
+    known = facts(comparison)
+    ranking = ranked(known.ranking)
+    text = write_report(comparison.dataset, tmp_path, scenarios=comparison.scenarios,
+                        sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
+    assert all(f"\n## {title}\n" in text for title in SECTIONS)
+    table = _table_rows(text, "Ranking", "scheme")
+    assert list(table) == list(ranking.index)
+    for scheme, row in ranking.iterrows():
+        cells = table[scheme]
+        assert cells["rank"] == str(row["rank"])
+        assert cells["operating mean ± std [µm]"] == f"{row.clearance_mean_um:.2f} ± {row.clearance_std_um:.2f}"
+        assert cells["outside window [ppm]"].startswith(fmt.interval(row.outside_window_ppm, row.outside_window_ppm_ci,
+                                                                     fmt.ppm_digits(row.outside_window_ppm)))
+        assert cells["bearing life median [h]"] == fmt.significant_triple((row.life_median_h, *row.life_median_h_ci))
+    film = _table_rows(text, "Oil film and bearing life per bearing position", "scheme")
+    for scheme, row in known.film.iterrows():
+        assert film[scheme]["bearing life B10 [h]"] == fmt.significant_triple(row.life_b10_h)
+        assert film[scheme]["h_min P5 [µm]"].startswith(f"{row.h_min_p05_um[0]:.2f} [")
+    clearance = _table_rows(text, "Clearance per scheme", "scheme")
+    for scheme, row in known.clearance.iterrows():
+        assert clearance[scheme]["mean [µm]"] == f"{row.mean_um:.2f}"
+    first = ranking.iloc[0]
+    verdict = text.split("<!-- /verdict -->")[0]
+    assert f"**What it costs:** {int(first.shell_grades)} shell grade" in verdict
+    assert f"{first.surplus_pct:.1f} % of the shells made left over" in verdict

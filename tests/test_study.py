@@ -339,3 +339,75 @@ def test_a_dataset_reruns_identically_with_no_input_file_present(tmp_path):
     assert edited != stored
     other = Study.from_dataset(ds, files=edited).run()
     assert not other.housing_bore.equals(ds.housing_bore)
+
+
+@pytest.mark.parametrize("name, scheme", [("iso-example", "iso13778-4"), ("iso-example-aluminium", "iso13778-2")])
+def test_chain_root_model_and_designer_give_identical_operating_clearance(name, scheme):
+    """One operating-clearance core: the study's chain, the root model of tails and Sobol and the designer's
+    call at a wall sum give the same numbers, bit for bit, on the same parts and shells."""
+    from types import SimpleNamespace
+
+    from stackup.design.sample import clearance_at
+    from stackup.study import chain
+    from stackup.study.pilot import pilot_parts, shell_plan
+    from stackup.study.roots import RootModel
+
+    engine, scheme = load_engine(name), schemes.load(scheme)
+    shells = ("shell_upper_wall", "shell_lower_wall", "shell_upper_crush", "shell_lower_crush")
+
+    def designer(values):
+        crush = np.stack([values["shell_upper_crush"], values["shell_lower_crush"]], axis=-1)
+        return clearance_at(engine, housing_bore=values["housing_bore"], journal_d=values["journal_d"], crush=crush,
+                            wall_sum=values["shell_upper_wall"] + values["shell_lower_wall"])
+
+    # the root model's engines through the chain's press fit and the designer's call
+    model = RootModel(engine, scheme, shell_plan(engine, scheme, pilot_parts(engine, 0, 2000)).aim)
+    roots = model.engines(np.random.default_rng(3).random((64, len(model.columns()[0]))))
+    graded = np.isfinite(roots["clearance_operating"])
+    assert graded.mean() > 0.9
+    values = {k: roots[k][graded] for k in ("housing_bore", "journal_d", *shells)}
+    parts = SimpleNamespace(housing_bore=values["housing_bore"], journal_d=values["journal_d"])
+    assembly = SimpleNamespace(status=np.full(graded.sum(), ASSEMBLED),
+                               **{k.removeprefix("shell_"): values[k] for k in shells})
+    from_chain = chain._press_fit(engine, parts, assembly, "lame")["clearance_operating"]
+    np.testing.assert_array_equal(from_chain, roots["clearance_operating"][graded])
+    np.testing.assert_array_equal(designer(values), roots["clearance_operating"][graded])
+
+    # a study's assembled bearings through the designer's call
+    ds = Study(engine=name, schemes=(scheme.name,), n_engines=60, seed=2, pilot_engines=2000, mechanics_engines=0,
+               progress=False).run().isel(scheme=0)
+    built = ds.status.values == ASSEMBLED
+    values = {k: np.broadcast_to(ds[k].values, built.shape)[built] for k in ("housing_bore", "journal_d", *shells)}
+    np.testing.assert_array_equal(designer(values), ds.clearance_operating.values[built])
+
+
+def test_the_chain_runs_its_stages_with_their_checks_skipped(monkeypatch):
+    """The study checks its inputs where they enter; the stages it calls skip theirs (stackup._validate.trusted)."""
+    from stackup import _validate
+    from stackup.study import chain
+
+    seen = {}
+
+    def spy(name, function):
+        def call(*args, **kwargs):
+            seen.setdefault(name, set()).add(_validate._TRUSTED.get())
+            return function(*args, **kwargs)
+        monkeypatch.setattr(chain, name, call)
+
+    for name in ("draw_lot", "assemble", "operating_clearance", "engine_cycles", "bearing_films", "levanov_method1"):
+        spy(name, getattr(chain, name))
+    Study(n_engines=40, schemes=("iso13778-4",), mechanics_engines=2, pilot_engines=2000, seed=1,
+          film_method="mobility", progress=False).run()
+    assert seen == dict.fromkeys(seen, {True}) and len(seen) == 6
+    assert _validate._TRUSTED.get() is False
+
+
+def test_the_old_name_of_the_reynolds_transient_film_tier_is_still_accepted():
+    import warnings
+
+    from stackup.film.cycle import FILM_METHODS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        study = Study(film_method="transient", n_engines=10)
+    assert study.film_method in FILM_METHODS

@@ -187,3 +187,21 @@ def test_form_and_gauge_specs_are_checked():
         form_from_spec({"planes": [1.5]}, scale=1e-3, field="key journal_d.form")
     with pytest.raises(ValueError, match=r"unknown key\(s\) \['lobes'\]"):
         form_from_spec({"lobes": 3}, scale=1e-3, field="form")
+
+
+def test_capability_side_is_declared_and_a_file_names_its_key():
+    with pytest.raises(ValueError, match=r"side: 'middle' is not one of 'upper', 'lower'"):
+        Normal.from_capability(0.0, 1.0, cpk=1.0, cp=1.33, side="middle")
+    with pytest.raises(ValueError, match=r"housing_bore.side: 'middle' is not one of 'upper', 'lower'"):
+        process_from_spec({"cpk": 1.0, "cp": 1.33, "side": "middle"}, lo=50.000e-3, hi=50.018e-3, scale=1e-3,
+                          field="housing_bore")
+    with pytest.raises(ValueError, match=r"housing_bore.sigma: 0 is not valid; must be > 0"):
+        process_from_spec({"distribution": "tool-wear", "start": 50.004, "end": 50.01, "sigma": 0},
+                          lo=50.000e-3, hi=50.018e-3, scale=1e-3, field="housing_bore")
+
+
+def test_form_spec_names_each_key_once():
+    with pytest.raises(ValueError, match=r"^form.directions: 2.0 is not a whole number$"):
+        form_from_spec({"directions": 2.0}, scale=1e-3, field="form")
+    with pytest.raises(ValueError, match=r"^form.ovality: 1 is not a plausible gauge or form error"):
+        form_from_spec({"ovality": 1.0}, scale=1e-3, field="form")

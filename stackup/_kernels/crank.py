@@ -5,6 +5,7 @@ with :func:`stackup.crank.beam.condensed`; the tests compare both.
 """
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit, prange
@@ -14,6 +15,8 @@ STATUS = ("converged", "max_iterations", "not_finite")
 CONVERGED, MAX_ITERATIONS, NOT_FINITE = range(len(STATUS))
 #: Floating-point licences that keep NaN/inf checks meaningful (no 'nnan', 'ninf').
 FAST = {"contract", "arcp", "reassoc", "nsz"}
+#: The Newton solve: residual tolerance (share of the load scale), most iterations, the law's rest displacement [m].
+Newton = namedtuple("Newton", ("rtol", "max_iterations", "rest"))
 
 
 @njit(cache=True, inline="always")
@@ -133,9 +136,15 @@ def _norm(r):
 
 
 @njit(cache=True, fastmath=FAST)
-def _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, rest, reactions, deflections, status,
-              iterations):
-    """Solve sequence ``b`` along its load cases, warm-starting each from the previous ones."""
+def _sequence(b, beam, loads, offsets, law, newton, out):
+    """Solve sequence ``b`` along its load cases, warm-starting each from the previous ones.
+
+    ``beam`` = (kb, transfer) as :func:`solve` takes them, ``newton``: :data:`Newton`; writes into
+    ``out`` = (reactions, deflections, status, iterations).
+    """
+    kb, transfer = beam
+    rtol, max_iterations, rest = newton
+    reactions, deflections, status, iterations = out
     n_a, m = loads.shape[1], loads.shape[2]
     n = kb.shape[1]
     size = 2 * n
@@ -272,24 +281,27 @@ def _outputs(loads, n):
 
 
 @njit(cache=True, parallel=True)
-def solve(kb, transfer, loads, offsets, law, rtol, max_iterations, rest):
+def solve(kb, transfer, loads, offsets, law, newton):
     """Bearing forces and support deflections over sequences of load cases, sequences in parallel.
 
     kb (2, n, n), transfer (2, n, m); loads (B, A, m, 2); offsets (B, A, n, 2);
-    law (B, 6, n), constant along each sequence. Each of the B sequences is
-    solved along A in order, each step warm-started from the previous ones.
+    law (B, 6, n), constant along each sequence; ``newton``: :data:`Newton`. Each of
+    the B sequences is solved along A in order, each step warm-started from the previous ones.
     Returns reactions (B, A, n, 2), deflections (B, A, n, 2), status (B, A), iterations (B, A).
     """
-    out = _outputs(loads, kb.shape[1])
+    reactions, deflections, status, iterations = _outputs(loads, kb.shape[1])
+    # numba's parallel loop takes arrays and numbers, not tuples of them: packed again in the loop
+    rtol, max_iterations, rest = newton
     for b in prange(loads.shape[0]):
-        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, rest, *out)
-    return out
+        _sequence(b, (kb, transfer), loads, offsets, law, Newton(rtol, max_iterations, rest),
+                  (reactions, deflections, status, iterations))
+    return reactions, deflections, status, iterations
 
 
 @njit(cache=True)
-def solve_serial(kb, transfer, loads, offsets, law, rtol, max_iterations, rest):
+def solve_serial(kb, transfer, loads, offsets, law, newton):
     """:func:`solve` on the calling thread (no thread-pool dispatch: for one or few sequences)."""
     out = _outputs(loads, kb.shape[1])
     for b in range(loads.shape[0]):
-        _sequence(b, kb, transfer, loads, offsets, law, rtol, max_iterations, rest, *out)
+        _sequence(b, (kb, transfer), loads, offsets, law, newton, out)
     return out

@@ -17,6 +17,7 @@ with the Reynolds tier.
 """
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit, prange
@@ -34,6 +35,14 @@ COARSE_SHARE = 0.02
 MAX_COARSE = 3
 #: An orbit out of cycles whose thinnest film shrank this many cycles in a row is collapsing.
 THINNING_LAPS = 3
+
+#: The finite-length correction (:func:`stackup.film.journal.mobility_table`): tables (n_ld, n_eps, n_alpha, 3) over
+#: the L/D nodes ld_nodes and the eccentricity nodes stretched (-ln(1 - eps)), and whether it applies (finite; else
+#: the short bearing's force, tables unread but for their shape).
+Correction = namedtuple("Correction", ("tables", "ld_nodes", "stretched", "finite"))
+#: How an orbit is integrated: the eccentricity limit, the closing tolerance (share of the thinnest film), the most
+#: cycles.
+Integration = namedtuple("Integration", ("limit", "tolerance", "max_cycles"))
 
 
 @njit(cache=True, inline="always")
@@ -102,11 +111,12 @@ def _locate(nodes, x):
 
 
 @njit(cache=True)
-def bearing_table(tables, ld_nodes, ld, finite):
+def bearing_table(correction, ld):
     """The finite correction's table at a bearing's L/D (linear between the tabulated L/D), or the short one."""
-    if not finite:
+    tables = correction.tables
+    if not correction.finite:
         return tables[0]
-    i, t = _locate(ld_nodes, ld)
+    i, t = _locate(correction.ld_nodes, ld)
     return (1.0 - t) * tables[i] + t * tables[i + 1]
 
 
@@ -176,7 +186,7 @@ def squeeze_velocity(eps, w_r, w_t, alpha, table, stretched, finite):
     magnitude scales with |v|. Once a step is below 1e-3 rad the next error is
     about 1e-6 rad (quadratic convergence): the step is taken and |F| corrected to
     first order instead of evaluating again, which balances the load to about
-    1e-5 (the midpoint rule's own error is 5e-4). Returns (speed, alpha, ok).
+    1e-5 (below the midpoint rule's own step error). Returns (speed, alpha, ok).
     """
     speed, alpha, _, _, ok = _squeeze(eps, w_r, w_t, alpha, table, stretched, finite)
     return speed, alpha, ok
@@ -341,9 +351,9 @@ def _load_at(w, tau, k, kn, t):
 
 
 @njit(cache=True)
-def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v, alpha_out, start0=0.0, start1=0.0,
-           warm=False):
-    """One bearing's periodic orbit from the bearing centre (or from ``start`` when ``warm``), by the explicit midpoint rule.
+def _orbit(w, tau, integration, bearing, start, warm, xi, v, alpha_out):
+    """One bearing's periodic orbit from the bearing centre (or from ``start`` (2,) when ``warm``), by the explicit
+    midpoint rule; ``integration``: :data:`Integration`, ``bearing``: its (table, stretched, finite) correction.
 
     Laps of the cycle at two angles per step until the journal comes back to
     within COARSE_SHARE of the thinnest film of where it was one lap before,
@@ -356,10 +366,12 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v
     or nearby orbit) skips the coarse laps. Writes xi, v (n, 2) and alpha_out (n,).
     Returns (status, cycles integrated).
     """
+    limit, tolerance, max_cycles = integration
+    table, stretched, finite = bearing
     n = w.shape[0]
     lap_of = np.full(n, -1)  # lap in which each angle was last recorded
-    x0 = start0 if warm else 0.0
-    x1 = start1 if warm else 0.0
+    x0 = start[0] if warm else 0.0
+    x1 = start[1] if warm else 0.0
     alpha = -HALF_PI  # steady rotation: squeeze against the turning direction
     alpha_last = alpha
     turn_mid = 0.0
@@ -431,22 +443,26 @@ def _orbit(w, tau, limit, tolerance, max_cycles, table, stretched, finite, xi, v
 
 
 @njit(cache=True, parallel=True)
-def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld, finite, xi, v, peak, status, cycles,
-           start, warm):
+def orbits(w, tau, start, warm, ld, integration, correction, out):
     """Orbits of many bearings (prange over bearings); ``start`` (B, 2) the first angle's centres where ``warm``.
 
-    w (B, n, 2) dimensionless loads at times tau[:n] (tau (n+1,), tau[n] the cycle's end); ld (B,) L/D of each bearing (finite tier);
-    tables (n_ld, n_eps, n_alpha, 3). Writes xi, v (B, n, 2), peak (B, n): the
-    dimensionless peak pressure factor max cos(phi - alpha)/h^3 (times the finite
-    tier's peak ratio), status and cycles (B,).
+    w (B, n, 2) dimensionless loads at times tau[:n] (tau (n+1,), tau[n] the cycle's end); ld (B,) L/D of each
+    bearing (the finite tier's table, ``correction``: :data:`Correction`); ``integration``: :data:`Integration`.
+    Writes into ``out`` = (xi, v (B, n, 2), peak (B, n), status, cycles (B,)): centres, squeeze velocities, the
+    dimensionless peak pressure factor max cos(phi - alpha)/h^3 (times the finite tier's peak ratio), status and
+    cycles integrated.
     """
+    # numba's parallel loop takes arrays and numbers, not tuples holding arrays: the packed inputs are taken apart
+    # here and put together again in the loop
+    xi, v, peak, status, cycles = out
+    tables, ld_nodes, stretched, finite = correction
+    limit = integration.limit
     n_b = w.shape[0]
     n = w.shape[1]
     for b in prange(n_b):
-        table = bearing_table(tables, ld_nodes, ld[b], finite)
+        table = bearing_table(Correction(tables, ld_nodes, stretched, finite), ld[b])
         alpha = np.empty(n)
-        s, c = _orbit(w[b], tau, limit, tolerance, max_cycles, table, stretched, finite, xi[b], v[b], alpha,
-                      start[b, 0], start[b, 1], warm)
+        s, c = _orbit(w[b], tau, integration, (table, stretched, finite), start[b], warm, xi[b], v[b], alpha)
         status[b] = s
         cycles[b] = c
         phi = 0.0
@@ -459,16 +475,16 @@ def orbits(w, tau, limit, tolerance, max_cycles, tables, ld_nodes, stretched, ld
 
 
 @njit(cache=True)
-def steady_peak_factors(eps, ld, tables, ld_nodes, stretched, finite, out):
+def steady_peak_factors(eps, ld, correction, out):
     """Peak-pressure factor of steady films (squeeze direction -pi/2), many at once; writes ``out``.
 
     eps, ld (m,) eccentricity and L/D of each film; the short-bearing factor
-    :func:`peak_factor` times the finite tier's peak ratio where ``finite``
-    (the loops of the quasi-static tiers, compiled).
+    :func:`peak_factor` times the finite tier's peak ratio where the correction
+    (:data:`Correction`) applies (the loops of the quasi-static tiers, compiled).
     """
     alpha = -0.5 * math.pi
     for m in range(eps.shape[0]):
         g = peak_factor(eps[m], alpha, 0.0)[0]
-        if finite:
-            g *= math.exp(table_lookup(bearing_table(tables, ld_nodes, ld[m], True), stretched, eps[m], alpha)[4])
+        if correction.finite:
+            g *= math.exp(table_lookup(bearing_table(correction, ld[m]), correction.stretched, eps[m], alpha)[4])
         out[m] = g

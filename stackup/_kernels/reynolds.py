@@ -7,9 +7,16 @@ this kernel with a direct sparse solve where no cavitation occurs.
 """
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
+
+#: The transient tier's grid: nodes that keep their pressure and fill (ends, feed), the steps in theta and z.
+Grid = namedtuple("Grid", ("fixed", "dtheta", "dz"))
+#: The field solve's sweeps: over-relaxation factor, tolerance on the change, most sweeps, and whether the
+#: cavitation conserves mass (Elrod-Adams) or projects p >= 0 (Reynolds).
+Sweeps = namedtuple("Sweeps", ("omega", "tolerance", "max_sweeps", "mass_conserving"))
 
 
 @njit(cache=True)
@@ -69,8 +76,7 @@ def integrate(pressure, theta, dtheta, dz):
 
 
 @njit(cache=True)
-def elrod_adams(h, h_east, h3_east, h3_north, history, c_time, p, fill, fixed, dtheta, dz, omega, tolerance, max_sweeps,
-                mass_conserving):
+def elrod_adams(film, history, c_time, p, fill, grid, sweeps):
     """One time step of the transient Reynolds equation with Elrod-Adams (JFO) cavitation, in place.
 
     Dimensionless, uniform grid periodic in theta (axis 0), z along axis 1:
@@ -82,15 +88,19 @@ def elrod_adams(h, h_east, h3_east, h3_north, history, c_time, p, fill, fixed, d
     Euler or BDF2, history from earlier steps); the Couette flux through the
     face i + 1/2 is g_i h_(i+1/2): the fill upwind (the journal turns towards
     +theta), the film at the face, so a full film is second-order central.
-    h (n_t, n_z) at the nodes, h_east and h3_east at (i + 1/2, j), h3_north at
-    (i, j + 1/2). Nodes with ``fixed`` keep p and g
-    (ends, feed). Gauss-Seidel with over-relaxation ``omega`` on p; a node whose
-    p would turn negative cavitates and solves for g instead; a cavitated node
-    whose g would exceed 1 fills (Ausas, Jai, Buscaglia 2009). With
-    ``mass_conserving`` False, g stays 1 and p >= 0 is a projection (Reynolds
-    condition, no content balance in the cavitated zone).
+    ``film`` = (h, h_east, h3_east, h3_north): h (n_t, n_z) at the nodes, h_east
+    and h3_east at (i + 1/2, j), h3_north at (i, j + 1/2). Nodes with the grid's
+    (:data:`Grid`) ``fixed`` keep p and g (ends, feed). Gauss-Seidel with
+    over-relaxation ``omega`` (:data:`Sweeps`) on p; a node whose p would turn
+    negative cavitates and solves for g instead; a cavitated node whose g would
+    exceed 1 fills (Ausas, Jai, Buscaglia 2009). With ``mass_conserving``
+    False, g stays 1 and p >= 0 is a projection (Reynolds condition, no content
+    balance in the cavitated zone).
     Returns the number of sweeps; -1 if not converged.
     """
+    h, h_east, h3_east, h3_north = film
+    fixed, dtheta, dz = grid
+    omega, tolerance, max_sweeps, mass_conserving = sweeps
     n_t, n_z = p.shape
     it2 = 1.0 / (dtheta * dtheta)
     iz2 = 1.0 / (dz * dz)

@@ -26,11 +26,24 @@ exactly the mobility tiers' film).
 """
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit, prange
 
-from .mobility import bearing_table, table_lookup
+from .mobility import Correction, bearing_table, table_lookup
+
+#: The film moment's quadrature: Gauss-Legendre nodes and weights on [-1, 1] for the pressure-carrying arc and for
+#: the rest of the bearing, and the largest eccentricity Sommerfeld's angle clusters the nodes for.
+Quadrature = namedtuple("Quadrature", ("nodes", "weights", "nodes_dry", "weights_dry", "cap"))
+#: What every angle's tilt equilibrium shares: the quadrature, the eccentricity limit, the Newton tolerance.
+Solver = namedtuple("Solver", ("quadrature", "limit", "tolerance"))
+#: One crank angle's balance: journal centre (x0, x1), squeeze velocity (v0, v1), free edge offset (f0, f1),
+#: compliance (k0, k1), and the finite correction's ratio and turn (cosine, sine) at that centre and squeeze.
+Angle = namedtuple("Angle", ("x0", "x1", "v0", "v1", "f0", "f1", "k0", "k1", "ratio", "ct", "st"))
+#: The cycle's mid-plane orbits of B bearings: centre and squeeze xi, v (B, n, 2), free edge offset (B, n, 2),
+#: compliance (B, 2) and L/D (B,) (the finite correction's, where it applies).
+Orbits = namedtuple("Orbits", ("xi", "v", "free", "kappa", "ld"))
 
 #: |s| below which the axial moments K_2..K_4 are summed as a series in s^2 (the closed forms lose 1/s^4 there).
 SERIES_BELOW = 0.15
@@ -152,8 +165,13 @@ def _stretched(phi, k, root):
 
 
 @njit(cache=True, inline="always")
-def _line(cp, sp, weight, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet):
-    """Weighted contribution (F0, F1, M0, M1) of the line at Sommerfeld's angle psi (cp, sp its cosine and sine)."""
+def _line(cp, sp, weight, journal, frame, wet):
+    """Weighted contribution (F0, F1, M0, M1) of the line at Sommerfeld's angle psi (cp, sp its cosine and sine).
+
+    ``journal`` (x0, x1, v0, v1, e0, e1) and ``frame`` (c0, c1, k, root) as :func:`_arc` takes them.
+    """
+    x0, x1, v0, v1, e0, e1 = journal
+    c0, c1, k, root = frame
     d = 1.0 + k * cp
     cphi = (k + cp) / d
     sphi = root * sp / d
@@ -175,15 +193,17 @@ def _line(cp, sp, weight, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet):
 
 
 @njit(cache=True)
-def _arc(psi_lo, span, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, wet):
-    """Gauss-Legendre over Sommerfeld's angles [psi_lo, psi_lo + span] about (c0, c1).
+def _arc(psi_lo, span, journal, nodes, weights, frame, wet):
+    """Gauss-Legendre over Sommerfeld's angles [psi_lo, psi_lo + span] about the thinner edge.
 
-    ``wet``: the arc carries pressure (its lines count, P_0 clipped at 0);
+    ``journal``: centre, squeeze velocity and edge offset (x0, x1, v0, v1, e0, e1);
+    ``frame``: the thinner edge's direction (c0, c1), eccentricity k and sqrt(1 - k^2). ``wet``: the arc carries pressure (its lines count, P_0 clipped at 0);
     else only lines with P_0 > 0 count, through the ramp :data:`WET_RAMP`.
     The nodes are symmetric about the arc's middle: each pair's cosines and
     sines from one cosine and sine of its offset and the middle's.
     Returns (F0, F1, M0, M1) before the factors 3/2 and 3/4.
     """
+    root = frame[3]
     half = 0.5 * span
     middle = psi_lo + half
     cm = math.cos(middle)
@@ -196,13 +216,13 @@ def _arc(psi_lo, span, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, 
         so = math.sin(offset)
         weight = weights[j] * half * root
         for cp, sp in ((cm * co - sm * so, sm * co + cm * so), (cm * co + sm * so, sm * co - cm * so)):
-            a0, a1, b0, b1 = _line(cp, sp, weight, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet)
+            a0, a1, b0, b1 = _line(cp, sp, weight, journal, frame, wet)
             f0 += a0
             f1 += a1
             m0 += b0
             m1 += b1
     if n % 2:
-        a0, a1, b0, b1 = _line(cm, sm, weights[n // 2] * half * root, x0, x1, v0, v1, e0, e1, c0, c1, k, root, wet)
+        a0, a1, b0, b1 = _line(cm, sm, weights[n // 2] * half * root, journal, frame, wet)
         f0 += a0
         f1 += a1
         m0 += b0
@@ -211,19 +231,19 @@ def _arc(psi_lo, span, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, 
 
 
 @njit(cache=True)
-def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, stretch_cap):
+def film_moment(x0, x1, v0, v1, e0, e1, quadrature):
     """Film force and moment (F0, F1, M0, M1) on the bearing under a tilted journal, short bearing.
 
     The lines carry pressure (P_0 > 0) on the half of the bearing the squeeze
     velocity points into when the journal is aligned; the tilt moves the two
     boundaries, each found by a Newton step on P_0 from the untilted one. That
-    arc is integrated by Gauss-Legendre (``nodes``, ``weights`` on [-1, 1]) in
+    arc is integrated by Gauss-Legendre (``quadrature``: :data:`Quadrature`) in
     Sommerfeld's angle about the thinnest film over the width (eccentricity k
-    of that edge, capped at ``stretch_cap``), which makes the thin film's
+    of that edge, capped at the quadrature's ``cap``), which makes the thin film's
     peak smooth; every line of it counts (P_0 clipped at 0), so the moment
-    is continuous as the boundaries move. The rest of the bearing by
-    ``nodes_dry``, ``weights_dry``: pressure where the tilt makes any there
-    (lines with P_0 > 0, through the ramp :data:`WET_RAMP`).
+    is continuous as the boundaries move. The rest of the bearing by the
+    ``dry`` nodes: pressure where the tilt makes any there (lines with P_0 > 0,
+    through the ramp :data:`WET_RAMP`).
     """
     rp = math.hypot(x0 + e0, x1 + e1)
     rm = math.hypot(x0 - e0, x1 - e1)
@@ -238,7 +258,7 @@ def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, 
         c1 /= r
     else:
         c0, c1 = 1.0, 0.0
-    k = min(r, stretch_cap)
+    k = min(r, quadrature.cap)
     root = math.sqrt((1.0 - k) * (1.0 + k))
     alpha = math.atan2(v1, v0)
     # a step in theta of 1e-3 of the local spacing of Sommerfeld's angle
@@ -254,14 +274,16 @@ def film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, 
     span = psi_hi - psi_lo
     if span <= 0.0:
         span += 2.0 * math.pi
-    f0, f1, m0, m1 = _arc(psi_lo, span, x0, x1, v0, v1, e0, e1, nodes, weights, c0, c1, k, root, True)
-    g0, g1, n0, n1 = _arc(psi_hi, 2.0 * math.pi - span, x0, x1, v0, v1, e0, e1, nodes_dry, weights_dry, c0, c1, k,
-                          root, False)
+    journal = (x0, x1, v0, v1, e0, e1)
+    frame = (c0, c1, k, root)
+    f0, f1, m0, m1 = _arc(psi_lo, span, journal, quadrature.nodes, quadrature.weights, frame, True)
+    g0, g1, n0, n1 = _arc(psi_hi, 2.0 * math.pi - span, journal, quadrature.nodes_dry, quadrature.weights_dry, frame,
+                          False)
     return 1.5 * (f0 + g0), 1.5 * (f1 + g1), 0.75 * (m0 + n0), 0.75 * (m1 + n1)
 
 
 @njit(cache=True, inline="always")
-def _room(x0, x1, e0, e1, d0, d1, limit):
+def wall_room(x0, x1, e0, e1, d0, d1, limit):
     """Largest t >= 0 with both edges inside the limit: |x + (e + t d)| <= limit and |x - (e + t d)| <= limit."""
     best = math.inf
     for sign in (1.0, -1.0):
@@ -312,24 +334,23 @@ def _wall_normal(x0, x1, e0, e1):
 
 
 @njit(cache=True)
-def _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry, cap):
-    """e + kappa (rho R(turn) M(e)) - e_free."""
-    _, _, m0, m1 = film_moment(x0, x1, v0, v1, e0, e1, nodes, weights, nodes_dry, weights_dry, cap)
-    return e0 + k0 * ratio * (ct * m0 - st * m1) - f0, e1 + k1 * ratio * (st * m0 + ct * m1) - f1
+def _residual(a, e0, e1, quadrature):
+    """e + kappa (rho R(turn) M(e)) - e_free at the angle ``a`` (:data:`Angle`)."""
+    _, _, m0, m1 = film_moment(a.x0, a.x1, a.v0, a.v1, e0, e1, quadrature)
+    return e0 + a.k0 * a.ratio * (a.ct * m0 - a.st * m1) - a.f0, e1 + a.k1 * a.ratio * (a.st * m0 + a.ct * m1) - a.f1
 
 
 @njit(cache=True)
-def _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry,
-                         weights_dry, cap, limit, jac):
-    """Forward differences into jac (2, 2), each step pointed away from the nearer wall. Returns evaluations."""
-    delta = 1e-6 + 1e-4 * _edge(x0, x1, e0, e1)
+def _difference_jacobian(a, e0, e1, r0, r1, solver, jac):
+    """Forward differences into jac (2, 2) at the edge offset e, residual r there, each step pointed away from the
+    nearer wall. Returns evaluations."""
+    delta = 1e-6 + 1e-4 * _edge(a.x0, a.x1, e0, e1)
     for j in range(2):
         d0 = delta if j == 0 else 0.0
         d1 = delta if j == 1 else 0.0
-        if _room(x0, x1, e0, e1, d0, d1, limit) < 1.0:
+        if wall_room(a.x0, a.x1, e0, e1, d0, d1, solver.limit) < 1.0:
             d0, d1 = -d0, -d1
-        q0, q1 = _residual(x0, x1, v0, v1, e0 + d0, e1 + d1, f0, f1, k0, k1, ratio, ct, st, nodes, weights,
-                           nodes_dry, weights_dry, cap)
+        q0, q1 = _residual(a, e0 + d0, e1 + d1, solver.quadrature)
         h = d0 + d1
         jac[0, j] = (q0 - r0) / h
         jac[1, j] = (q1 - r1) / h
@@ -341,42 +362,40 @@ def _lens_point(x0, x1, theta, limit):
     """The edge offset on the lens's boundary (an edge at the limit) in the direction theta."""
     d0 = math.cos(theta)
     d1 = math.sin(theta)
-    rho = _room(x0, x1, 0.0, 0.0, d0, d1, limit)
+    rho = wall_room(x0, x1, 0.0, 0.0, d0, d1, limit)
     return rho * d0, rho * d1
 
 
 @njit(cache=True)
-def _wall_residual(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights, nodes_dry,
-                   weights_dry, cap):
+def _wall_residual(a, theta, solver):
     """At the lens point in direction theta: (e0, e1, across, outward).
 
     ``across``: the residual's part across the edge contact's direction kappa*n (n the wall's outward normal: a
     contact at the edge adds kappa*lambda*n, lambda >= 0, to the residual), zero where a contact can close the
     balance; ``outward``: r.n, <= 0 there where the contact presses (the root lies beyond the wall).
     """
-    e0, e1 = _lens_point(x0, x1, theta, limit)
-    r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
-                       cap)
-    n0, n1 = _wall_normal(x0, x1, e0, e1)
-    return e0, e1, k0 * n0 * r1 - k1 * n1 * r0, n0 * r0 + n1 * r1
+    e0, e1 = _lens_point(a.x0, a.x1, theta, solver.limit)
+    r0, r1 = _residual(a, e0, e1, solver.quadrature)
+    n0, n1 = _wall_normal(a.x0, a.x1, e0, e1)
+    return e0, e1, a.k0 * n0 * r1 - a.k1 * n1 * r0, n0 * r0 + n1 * r1
 
 
 @njit(cache=True)
-def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
-             weights_dry, cap, budget, slope):
-    """Edge contact: the point of the lens's boundary where the residual is -lambda kappa n, lambda >= 0.
+def _on_wall(a, theta, solver, budget, slope):
+    """Edge contact at the angle ``a``: the point of the lens's boundary where the residual is -lambda kappa n,
+    lambda >= 0.
 
     A secant in the boundary's direction theta from ``theta`` (its first step
     Newton's with ``slope[0]``, d across / d theta at the last contact, in and
     out, where it is known, else :data:`WALL_STEP`) until ``across`` changes
-    sign, then Illinois inside that bracket until it is at most ``tolerance``
+    sign, then Illinois inside that bracket until it is at most :data:`WALL_TOLERANCE`
     rad wide. Returns (e0, e1, found, outward, evaluations) at the evaluated end
     of the bracket with the smaller ``across`` (``outward`` there: <= 0, the
     contact holds); ``found`` False where no bracket closed within the budget.
     """
+    tolerance = WALL_TOLERANCE
     ta = theta
-    a0, a1, ga, oa = _wall_residual(x0, x1, v0, v1, ta, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
-                                    nodes_dry, weights_dry, cap)
+    a0, a1, ga, oa = _wall_residual(a, ta, solver)
     if ga == 0.0:
         return a0, a1, True, oa, 1
     step = WALL_STEP
@@ -385,8 +404,7 @@ def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolera
         if abs(step) < 0.5 * tolerance:  # as below: past the root by half the tolerance
             step = math.copysign(0.5 * tolerance, step)
     tb = ta + step
-    b0, b1, gb, ob = _wall_residual(x0, x1, v0, v1, tb, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
-                                    nodes_dry, weights_dry, cap)
+    b0, b1, gb, ob = _wall_residual(a, tb, solver)
     used = 2
     weight = ga  # Illinois halves the weight of an end kept twice; ga stays its value
     bracket = ga * gb < 0.0
@@ -405,8 +423,7 @@ def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolera
         if abs(tn - tb) < 0.5 * tolerance:
             # a root this near: step half the tolerance past it, so that the next point brackets it within that
             tn = tb + math.copysign(0.5 * tolerance, tn - tb)
-        n0, n1, gn, on = _wall_residual(x0, x1, v0, v1, tn, f0, f1, k0, k1, ratio, ct, st, limit, nodes, weights,
-                                        nodes_dry, weights_dry, cap)
+        n0, n1, gn, on = _wall_residual(a, tn, solver)
         used += 1
         if not bracket or gn * gb < 0.0:
             ta, a0, a1, ga, oa, weight = tb, b0, b1, gb, ob, gb
@@ -419,32 +436,30 @@ def _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, tolera
 
 
 @njit(cache=True)
-def _newton(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, limit, tolerance, nodes, weights,
-            nodes_dry, weights_dry, cap, budget):
-    """Damped Newton inside the lens from (e0, e1), with Broyden's update of ``jac`` (differences where not ``fresh``
-    or a step fails). Returns (e0, e1, outcome, evaluations), outcome one of CONVERGED, WALL (on the wall, the step
-    points beyond it), STALLED (no step lowers the residual: a minimum that is not a root) or SPENT (the budget)."""
-    r0, r1 = _residual(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry, weights_dry,
-                       cap)
+def _newton(a, e0, e1, jac, fresh, solver, budget):
+    """Damped Newton at the angle ``a`` inside the lens from (e0, e1), with Broyden's update of ``jac`` (differences
+    where not ``fresh`` or a step fails). Returns (e0, e1, outcome, evaluations), outcome one of CONVERGED, WALL (on
+    the wall, the step points beyond it), STALLED (no step lowers the residual: a minimum that is not a root) or
+    SPENT (the budget)."""
+    x0, x1, limit, tolerance = a.x0, a.x1, solver.limit, solver.tolerance
+    r0, r1 = _residual(a, e0, e1, solver.quadrature)
     evaluations = 1
     differenced = False
     if not fresh:
-        evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
-                                            nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
+        evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
         differenced = True
     while evaluations < budget:
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if det == 0.0 or not math.isfinite(det):
             if differenced:
                 return e0, e1, STALLED, evaluations
-            evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
-                                                nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
+            evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
             differenced = True
             continue
         d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
         d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
         size = math.hypot(d0, d1)
-        room = _room(x0, x1, e0, e1, d0, d1, limit)
+        room = wall_room(x0, x1, e0, e1, d0, d1, limit)
         if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
             return e0 + d0, e1 + d1, CONVERGED, evaluations
         if room < 1.0 and room * size <= tolerance * (1.0 - limit):
@@ -455,8 +470,7 @@ def _newton(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, l
         for _ in range(MAX_HALVINGS):
             n0 = e0 + t * d0
             n1 = e1 + t * d1
-            q0, q1 = _residual(x0, x1, v0, v1, n0, n1, f0, f1, k0, k1, ratio, ct, st, nodes, weights, nodes_dry,
-                               weights_dry, cap)
+            q0, q1 = _residual(a, n0, n1, solver.quadrature)
             evaluations += 1
             if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
                 accepted = True
@@ -467,8 +481,7 @@ def _newton(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, l
             e0, e1, r0, r1 = n0, n1, q0, q1
             differenced = False
         elif not differenced:
-            evaluations += _difference_jacobian(x0, x1, v0, v1, e0, e1, r0, r1, f0, f1, k0, k1, ratio, ct, st,
-                                                nodes, weights, nodes_dry, weights_dry, cap, limit, jac)
+            evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
             differenced = True
         else:
             return e0, e1, STALLED, evaluations
@@ -476,9 +489,9 @@ def _newton(x0, x1, v0, v1, e0, e1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, l
 
 
 @njit(cache=True)
-def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fresh, ratio, ct, st, limit, tolerance,
-                nodes, weights, nodes_dry, weights_dry, cap, budget=MAX_EVALUATIONS):
-    """Tilt e with e + kappa M(x, v, e) = e_free (``f0``, ``f1``), both edges inside ``limit``, or edge contact.
+def equilibrium(a, g0, g1, on_wall, jac, slope, fresh, solver, budget=MAX_EVALUATIONS):
+    """Tilt e with e + kappa M(x, v, e) = e_free at the angle ``a`` (:data:`Angle`), both edges inside the limit, or
+    edge contact.
 
     The tilt lies in the lens of offsets with both edges inside the limit. A
     root inside is EQUILIBRIUM; an edge that touches is AT_LIMIT, at the
@@ -491,7 +504,7 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
 
     Damped Newton (:func:`_newton`) from the guess (g0, g1), with the Jacobian
     ``jac`` in and out (usable where ``fresh``); it stops when the step is
-    below ``tolerance`` times the edge film. A Newton that reaches the wall,
+    below the solver's ``tolerance`` times the edge film. A Newton that reaches the wall,
     stalls (the film's moment is not monotone in the tilt: its residual can
     have a minimum inside the lens that is not a root) or a guess on the wall
     (``on_wall``: the last angle's state) passes to the boundary. A contact
@@ -501,12 +514,13 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
     the limit's within a Newton step). Returns (e0, e1, state, evaluations);
     NOT_SOLVED where neither is found.
     """
+    x0, x1, limit = a.x0, a.x1, solver.limit
     if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
-        return 0.0, 0.0, (EQUILIBRIUM if f0 == 0.0 and f1 == 0.0 else AT_LIMIT), 0
+        return 0.0, 0.0, (EQUILIBRIUM if a.f0 == 0.0 and a.f1 == 0.0 else AT_LIMIT), 0
+
     def contact(theta):
         """The edge contact of this angle along the wall from ``theta`` (:func:`_on_wall`)."""
-        return _on_wall(x0, x1, v0, v1, theta, f0, f1, k0, k1, ratio, ct, st, limit, WALL_TOLERANCE, nodes, weights,
-                        nodes_dry, weights_dry, cap, WALL_EVALUATIONS, slope)
+        return _on_wall(a, theta, solver, WALL_EVALUATIONS, slope)
 
     evaluations = 0
     from_wall = False
@@ -518,12 +532,11 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
         g0, g1 = INSIDE * e0, INSIDE * e1
         fresh = False  # the Jacobian is the last angle's, at the wall
         from_wall = found
-    room = _room(x0, x1, 0.0, 0.0, g0, g1, limit)
+    room = wall_room(x0, x1, 0.0, 0.0, g0, g1, limit)
     if room < 1.0:  # the guess inside the lens, towards the aligned journal
         g0 *= INSIDE * room
         g1 *= INSIDE * room
-    e0, e1, outcome, used = _newton(x0, x1, v0, v1, g0, g1, f0, f1, k0, k1, jac, fresh, ratio, ct, st, limit,
-                                    tolerance, nodes, weights, nodes_dry, weights_dry, cap, budget)
+    e0, e1, outcome, used = _newton(a, g0, g1, jac, fresh, solver, budget)
     evaluations += used
     for _ in range(2):
         if outcome == CONVERGED:
@@ -532,7 +545,7 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
             return e0, e1, NOT_SOLVED, evaluations  # far from the wall and still moving: the caller may start afresh
         if from_wall and outcome == WALL:
             # the contact's residual points in, Newton's step out: the root lies at the wall
-            room = _room(x0, x1, 0.0, 0.0, e0, e1, limit)
+            room = wall_room(x0, x1, 0.0, 0.0, e0, e1, limit)
             return room * e0, room * e1, AT_LIMIT, evaluations
         b0, b1, found, outward, used = contact(math.atan2(e1, e0))
         evaluations += used
@@ -541,20 +554,24 @@ def equilibrium(x0, x1, v0, v1, f0, f1, k0, k1, g0, g1, on_wall, jac, slope, fre
         if not found or from_wall:
             break
         from_wall = True
-        e0, e1, outcome, used = _newton(x0, x1, v0, v1, INSIDE * b0, INSIDE * b1, f0, f1, k0, k1, jac, False, ratio,
-                                        ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry, cap,
-                                        WALL_EVALUATIONS)
+        e0, e1, outcome, used = _newton(a, INSIDE * b0, INSIDE * b1, jac, False, solver, WALL_EVALUATIONS)
         evaluations += used
     return e0, e1, NOT_SOLVED, evaluations
 
 
 @njit(cache=True)
-def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table, stretched, finite, nodes, weights,
-              nodes_dry, weights_dry, cap, jac, slope, fresh, tilt, state):
-    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes tilt and state.
+def _solve_at(b, k, g0, g1, on_wall, fresh, orbits, bearing, solver, memory, out):
+    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes the tilt and state into ``out``.
 
+    ``orbits``: :data:`Orbits`; ``bearing``: the bearing's finite correction (table, eccentricity nodes, whether
+    it applies); ``memory``: the Jacobian (2, 2) and the wall's slope (1,), in and out (usable where ``fresh``).
     Returns (evaluations, whether the Jacobian is usable at the next angle).
     """
+    xi, v, free, kappa = orbits.xi, orbits.v, orbits.free, orbits.kappa
+    table, stretched, finite = bearing
+    jac, slope = memory
+    tilt, state = out
+    limit = solver.limit
     f0 = free[b, k, 0]
     f1 = free[b, k, 1]
     if f0 == 0.0 and f1 == 0.0:
@@ -572,15 +589,12 @@ def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table
         ratio = math.exp(log_ratio)
         ct = math.cos(turn)
         st = math.sin(turn)
-    e0, e1, s, used = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], g0, g1, on_wall,
-                                  jac, slope, fresh, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry, weights_dry,
-                                  cap)
+    a = Angle(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], ratio, ct, st)
+    e0, e1, s, used = equilibrium(a, g0, g1, on_wall, jac, slope, fresh, solver)
     if s == NOT_SOLVED and _edge(x0, x1, e0, e1) > COLD_FROM * (1.0 - limit):
         # far from the wall: start again from the aligned journal (no film moment; Newton's first step is the
         # film's linear tilt stiffness against the crankshaft's), with a fresh Jacobian and more film moments
-        e0, e1, s, more = equilibrium(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], 0.0, 0.0, False,
-                                      jac, slope, False, ratio, ct, st, limit, tolerance, nodes, weights, nodes_dry,
-                                      weights_dry, cap, MAX_COLD_EVALUATIONS)
+        e0, e1, s, more = equilibrium(a, 0.0, 0.0, False, jac, slope, False, solver, MAX_COLD_EVALUATIONS)
         used += more
     tilt[b, k, 0] = e0
     tilt[b, k, 1] = e1
@@ -589,14 +603,15 @@ def _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table
 
 
 @njit(cache=True, parallel=True)
-def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables, ld_nodes, stretched, ld, finite,
-               nodes, weights, nodes_dry, weights_dry, cap, tilt, state, evaluations):
+def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, evaluations):
     """Tilt equilibrium at every angle of many bearings (prange over bearings).
 
-    xi, v (B, n, 2) the journal centre and squeeze velocity of each angle; free
-    (B, n, 2) the free edge offset; kappa (B, 2) the dimensionless compliance
-    per component. The short-bearing moment is scaled and turned by the finite
-    tier's force correction at (|xi|, squeeze direction) where ``finite``.
+    ``orbits`` (:data:`Orbits`): xi, v (B, n, 2) the journal centre and squeeze
+    velocity of each angle; free (B, n, 2) the free edge offset; kappa (B, 2)
+    the dimensionless compliance per component; ld (B,) each bearing's L/D. The
+    short-bearing moment is scaled and turned by the finite tier's force
+    correction (``correction``, :data:`stackup._kernels.mobility.Correction`) at
+    (|xi|, squeeze direction) where it applies; ``solver``: :data:`Solver`.
 
     Every ``stride``-th angle (a power of two) is solved in turn, from the last
     two solutions' film turn-back (free minus tilt) extrapolated (the free tilt
@@ -609,12 +624,21 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
     equilibrium where the states differ). Writes tilt (B, n, 2), state (B, n)
     and evaluations (B, n): film moments computed at each angle.
     """
+    # numba's parallel loop takes arrays and numbers, not tuples holding arrays: the packed inputs are taken apart
+    # here and put together again in the loop
+    xi, v, free, kappa, ld = orbits
+    tables, ld_nodes, stretched, finite = correction
+    (nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance = solver
     n_b = xi.shape[0]
     n = xi.shape[1]
     for b in prange(n_b):
-        table = bearing_table(tables, ld_nodes, ld[b], finite)
+        cycle = Orbits(xi, v, free, kappa, ld)
+        rule = Solver(Quadrature(nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance)
+        bearing = (bearing_table(Correction(tables, ld_nodes, stretched, finite), ld[b]), stretched, finite)
         jac = np.eye(2)
         slope = np.zeros(1)
+        memory = (jac, slope)
+        out = (tilt, state)
         fresh = False
         # each angle's Jacobian and wall slope, from which the angles between are solved
         jacs = np.empty((n, 2, 2))
@@ -639,9 +663,7 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
             else:
                 g0, g1 = free[b, k, 0], free[b, k, 1]
             on_wall = last >= 0 and state[b, last] == AT_LIMIT
-            evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, xi, v, free, kappa, limit, tolerance, table,
-                                                 stretched, finite, nodes, weights, nodes_dry, weights_dry, cap, jac,
-                                                 slope, fresh, tilt, state)
+            evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, fresh, cycle, bearing, rule, memory, out)
             jacs[k] = jac
             slopes[k] = slope[0]
             usable[k] = fresh
@@ -670,7 +692,7 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
                         # mean keeps within about interpolate / 2 rad
                         film = max(film, math.hypot(e0, e1))
                     if gap <= interpolate * film:
-                        room = _room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
+                        room = wall_room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
                         if state[b, kp] == AT_LIMIT or room < 1.0:
                             # onto the wall, as its neighbours (the mean of two points on it lies inside the lens)
                             e0 *= room
@@ -691,10 +713,8 @@ def equilibria(xi, v, free, kappa, limit, tolerance, interpolate, stride, tables
                     e1 = free[b, k, 1] - free[b, near, 1] + tilt[b, near, 1]
                 jac[:] = jacs[near]
                 slope[0] = slopes[kp] if state[b, kp] == AT_LIMIT else slopes[kn]
-                evaluations[b, k], usable[k] = _solve_at(b, k, e0, e1, state[b, near] == AT_LIMIT, xi, v, free, kappa,
-                                                         limit, tolerance, table, stretched, finite, nodes, weights,
-                                                         nodes_dry, weights_dry, cap, jac, slope, usable[near], tilt,
-                                                         state)
+                evaluations[b, k], usable[k] = _solve_at(b, k, e0, e1, state[b, near] == AT_LIMIT, usable[near], cycle,
+                                                         bearing, rule, memory, out)
                 jacs[k] = jac
                 slopes[k] = slope[0]
             half //= 2

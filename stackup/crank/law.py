@@ -37,6 +37,7 @@ import numpy as np
 from scipy import special
 
 from .. import _validate as check
+from .._validate import Positive, renamed, validated
 
 #: Displacement below which a journal is at rest: no force, no stiffness [m].
 REST = 1e-150
@@ -66,12 +67,9 @@ class BellakhdharLaw:
     dtheta: object = radians(15.0)
 
     def __post_init__(self):
-        check.positive("law clearance", self.clearance, allow_zero=True)
-        check.positive("law dx", self.dx, allow_zero=True)
-        check.positive("law k_lv", self.k_lv)
-        check.positive("law k_hv", self.k_hv)
-        check.finite("law theta0", self.theta0)
-        check.positive("law dtheta", self.dtheta)
+        check.fields(self, {"clearance": check.Positive(zero=True), "dx": check.Positive(zero=True),
+                            "k_lv": check.Positive(), "k_hv": check.Positive(), "theta0": check.Finite(),
+                            "dtheta": check.Positive()}, prefix="law ")
 
     def arrays(self, shape):
         """The six parameters broadcast to ``shape`` (float arrays)."""
@@ -161,7 +159,16 @@ def displacement(load, clearance, dx, stiffness):
     return u
 
 
-def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, clearance_guess):
+def _one_curve(values):
+    load, film = values["load"], values["film_displacement"]
+    if load.shape != film.shape:
+        raise ValueError(f"film_displacement: shape {film.shape} is not that of load {load.shape}")
+
+
+@renamed(clearance_guess="radial_clearance")
+@validated(load=Positive(), film_displacement=Positive(zero=True), radial_clearance=Positive(),
+           relations=(_one_curve,))
+def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, radial_clearance):
     r"""Clearance parameter J and transition dx of the bearing law from a film's load-displacement curve.
 
     As Bellakhdhar et al. (2013, sec. 4.3) built their law: the journal's
@@ -182,20 +189,18 @@ def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, clea
         (eccentricity times the radial clearance).
     k_lv, k_hv, theta0, dtheta : float or array_like (...)
         Deformation stiffnesses [N/m] and the sigmoid's centre and width [rad].
-    clearance_guess : array_like (...)
-        Radial clearance [m]: the starting J and dx scale with it as in the paper
-        (37 and 9.65 um for 30 um).
+    radial_clearance : array_like (...)
+        Radial clearance of the bearings [m]: the starting J and dx scale with it as
+        in the paper (37 and 9.65 um for 30 um).
 
     Returns
     -------
     LawFit
     """
-    load = check.positive("load", load)
-    film = check.positive("film_displacement", film_displacement, allow_zero=True)
-    if load.shape != film.shape:
-        raise ValueError(f"film_displacement: shape {film.shape} is not that of load {load.shape}")
+    load = np.asarray(load, dtype=float)
+    film = np.asarray(film_displacement, dtype=float)
     lead = load.shape[:-1]
-    c = np.broadcast_to(check.positive("clearance_guess", clearance_guess), lead)
+    c = np.broadcast_to(np.asarray(radial_clearance, dtype=float), lead)
     k_lv, k_hv, theta0, dtheta = (np.broadcast_to(np.asarray(a, dtype=float), lead)
                                   for a in (k_lv, k_hv, theta0, dtheta))
     kd = np.stack([stiffness(np.zeros(lead), k_lv, k_hv, theta0, dtheta)[0],
@@ -209,11 +214,24 @@ def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, clea
         return displacement(loads, j, dx, k_each) - target
 
     params = np.stack([c * 37.0 / 30.0, c * 9.65 / 30.0], axis=-1)
+    params, r, converged = _levenberg_marquardt(residual, params, floor=1e-3 * c[..., None], small=1e-10 * c)
+    law = BellakhdharLaw(clearance=params[..., 0], dx=params[..., 1], k_lv=k_lv, k_hv=k_hv, theta0=theta0,
+                         dtheta=dtheta)
+    return LawFit(law, np.sqrt((r**2).mean(axis=-1)), np.abs(r).max(axis=-1), converged)
+
+
+def _levenberg_marquardt(residual, params, *, floor, small, iterations=100):
+    """Least squares of ``residual(params)`` (..., samples) over params (..., 2), vectorised over the leading axes.
+
+    Forward-difference Jacobian, Marquardt's diagonal damping; params held above ``floor``; a fit has converged
+    once a step that does not worsen it is below ``small``. Returns (params, residual there, converged).
+    """
+    lead = params.shape[:-1]
     damping = np.full(lead, 1e-3)
     r = residual(params)
     cost = (r**2).sum(axis=-1)
     converged = np.zeros(lead, bool)
-    for _ in range(100):
+    for _ in range(iterations):
         jac = np.empty((*r.shape, 2))
         for i in range(2):
             h = 1e-6 * params[..., i : i + 1]
@@ -224,18 +242,15 @@ def fit_bellakhdhar(load, film_displacement, *, k_lv, k_hv, theta0, dtheta, clea
         jtr = np.einsum("...ki,...k->...i", jac, r)
         diag = np.einsum("...ii->...i", jtj)
         step = -np.linalg.solve(jtj + (damping[..., None] * diag)[..., None] * np.eye(2), jtr[..., None])[..., 0]
-        trial = np.maximum(params + step, 1e-3 * c[..., None])  # J and dx stay positive
+        trial = np.maximum(params + step, floor)  # J and dx stay positive
         r_trial = residual(trial)
         cost_trial = (r_trial**2).sum(axis=-1)
         better = cost_trial < cost
-        small = np.abs(trial - params).max(axis=-1) <= 1e-10 * c
-        converged |= small & (better | (cost_trial == cost))
+        converged |= (np.abs(trial - params).max(axis=-1) <= small) & (better | (cost_trial == cost))
         params = np.where(better[..., None], trial, params)
         r = np.where(better[..., None], r_trial, r)
         cost = np.where(better, cost_trial, cost)
         damping = np.where(better, damping / 3, damping * 4)
         if np.all(converged):
             break
-    law = BellakhdharLaw(clearance=params[..., 0], dx=params[..., 1], k_lv=k_lv, k_hv=k_hv, theta0=theta0,
-                         dtheta=dtheta)
-    return LawFit(law, np.sqrt((r**2).mean(axis=-1)), np.abs(r).max(axis=-1), converged)
+    return params, r, converged

@@ -55,7 +55,9 @@ import numpy as np
 
 from .._version import __version__
 from .. import _validate as check
+from .._validate import InRange, Integer, Positive, Window, validated
 from ..engines import load_engine
+from ..patterns import ISO_SCHEMES, adapt
 from ..plan import optimise_supply
 from ..scenarios import DECLARED
 from ..schemes import from_dict
@@ -67,7 +69,6 @@ from .search import search_shells
 from .session import Search
 from .tables import nm
 
-ISO_SCHEMES = tuple(f"iso13778-{k}" for k in range(1, 7))
 #: Nelder-Mead evaluations per shell grade limit after the differential evolution of the shell limits.
 POLISH_PER_LIMIT = 10
 #: Engines the optimal process mean of a sorted shell supply is stated for (stackup.plan.optimise_supply).
@@ -137,6 +138,17 @@ def scheme(engine="iso-example", **options):
     return design(engine, **options).scheme
 
 
+def _at_most_labels(values):
+    """Each dimension has at most as many grades as there are grade labels."""
+    for field in ("shell_grades", "housing_grades", "journal_grades"):
+        if values[field] > len(LABELS):
+            raise ValueError(f"{field}: {values[field]} is not valid; at most {len(LABELS)} grades")
+
+
+@validated(window=Window(), shell_grades=Integer(minimum=1), housing_grades=Integer(minimum=1),
+           journal_grades=Integer(minimum=1), n_engines=Integer(minimum=100),
+           sort_share=InRange(0.0, 1.0, lo_open=True, hi_open=True), readout=Positive(),
+           generations=Integer(minimum=0), relations=(_at_most_labels,))
 def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=3, journal_grades=3,
            scenarios=DECLARED, seed=0, n_engines=4000, start=None, mixed_pairs=True, weights=Weights(),
            sort_share=0.5, readout=1e-7, generations=8, name=None, log=None):
@@ -190,34 +202,39 @@ def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=
     t0 = time.perf_counter()
     log = log or (lambda line: None)
     engine = load_engine(engine)
-    window = check.clearance_window("window", engine.clearance_window if window is None else window)
-    counts = {}
-    for field, k in (("shell_grades", shell_grades), ("housing_grades", housing_grades),
-                     ("journal_grades", journal_grades)):
-        counts[field] = check.integer(field, k, minimum=1)
-        if counts[field] > len(LABELS):
-            raise ValueError(f"{field}: {k} is not valid; at most {len(LABELS)} grades")
-    n_engines = check.integer("n_engines", n_engines, minimum=100)
-    sort_share = float(check.in_range("sort_share", sort_share, 0.0, 1.0, lo_open=True, hi_open=True))
-    readout = float(check.positive("readout", readout))
-    generations = check.integer("generations", generations, minimum=0)
-    for field in ("scenario", "surplus", "shortfall"):
-        check.positive(f"weights.{field}", getattr(weights, field), allow_zero=True)
+    window = check.clearance_window("window", engine.clearance_window) if window is None else window
     scenarios = dict(scenarios or {})
-
     log(f"design sample: {n_engines:,} engines, nominal and {len(scenarios)} declared scenarios")
-    problem = build_problem(engine, window=window, **counts, scenarios=scenarios, seed=seed, n_engines=n_engines,
-                            sort_share=sort_share, readout=readout, mixed=bool(mixed_pairs), weights=weights)
-    samples = problem.samples
-
-    log("ISO 13778 schemes on the design sample")
-    iso = {k: {s.label: score(k, s, window).outside for s in samples} for k in ISO_SCHEMES}
-    start_scheme = load_scheme(min(iso, key=lambda k: problem.objective(list(iso[k].values())))
-                               if start is None else start)
-    start_scores = [score(start_scheme, s, window) for s in samples]
-    start_outside = {s.label: sc.outside for s, sc in zip(samples, start_scores)}
-
+    problem = build_problem(engine, window=window, shell_grades=shell_grades, housing_grades=housing_grades,
+                            journal_grades=journal_grades, scenarios=scenarios, seed=seed, n_engines=n_engines,
+                            sort_share=float(sort_share), readout=float(readout), mixed=bool(mixed_pairs),
+                            weights=weights)
+    log("ISO 13778 schemes, laid on the engine's drawing, on the design sample")
+    patterns = {k: adapt(k, engine) for k in ISO_SCHEMES}
+    iso = {k: {s.label: score(scheme, s, window).outside for s in problem.samples} for k, scheme in patterns.items()}
+    start_scheme = (patterns[min(iso, key=lambda k: problem.objective(list(iso[k].values())))] if start is None
+                    else load_scheme(start))
     search = Search(problem, seed=seed, x0=_encode_start(start_scheme, problem))
+    found, surplus, shortfall, aim = _search(search, start_scheme, generations=generations, seed=seed, log=log)
+    designed = _build(name or f"designed-{engine.name}", problem, found)
+    log("process mean of a sorted shell supply (stackup.plan.optimise_supply)")
+    offer = optimise_supply(designed, engine, volume=SUPPLY_VOLUME, sample_engines=n_engines, seed=seed)
+    result = _design(problem, designed, start_scheme, iso=iso, surplus=surplus, shortfall=shortfall, aim=aim,
+                     offer=offer, t0=t0, evaluations=search.evaluations)
+    lines = notes(result, problem=problem, start_scheme=start_scheme, chosen=start is None, seed=seed,
+                  n_engines=n_engines)
+    return replace(result, scheme=replace(designed, notes=tuple(lines)))
+
+
+def _search(search, start_scheme, *, generations, seed, log):
+    """Shell limits by differential evolution and Nelder-Mead, then the final limits and pairing of them.
+
+    The starts: equal shell grades from the narrowest sortable width to a
+    wide one, and the start scheme's grades where their count matches.
+    Returns the :meth:`Search.finish` of the best limits: (Found, surplus,
+    shortfall, aim share).
+    """
+    problem = search.problem
     k_s = problem.shell_grades
     wide = max(2 * problem.min_width, problem.span / max(problem.levels - 1, 1) * (1 if problem.mixed else 2))
     starts = [(np.arange(k_s + 1) - 0.5 * k_s) * w for w in np.linspace(problem.min_width, wide, 4)]
@@ -229,27 +246,26 @@ def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=
                              upper=np.array([0.5 * wide] + [2 * wide] * k_s), generations=generations,
                              polish=POLISH_PER_LIMIT * (k_s + 1), seed=seed)
     log("final limits and pairing (HiGHS)")
-    found, surplus, shortfall, aim = search.finish(problem.on_grid(problem.centre + relative), log)
+    return search.finish(problem.on_grid(problem.centre + relative), log)
 
-    designed = _build(name or f"designed-{engine.name}", problem, found)
+
+def _design(problem, designed, start_scheme, *, iso, surplus, shortfall, aim, offer, t0, evaluations):
+    """The :class:`Design` of the scheme ``designed``: its scores and the start scheme's on the design sample
+    (``t0``: :func:`time.perf_counter` when the design began)."""
+    samples, window, weights = problem.samples, problem.window, problem.weights
+    start_scores = [score(start_scheme, s, window) for s in samples]
+    start_outside = {s.label: sc.outside for s, sc in zip(samples, start_scores)}
     scores = [score(designed, s, window) for s in samples]
     outside = {s.label: sc.outside for s, sc in zip(samples, scores)}
     objective = problem.objective(list(outside.values())) + weights.surplus * surplus.sum() \
         + weights.shortfall * shortfall.sum()
-
-
-    log("process mean of a sorted shell supply (stackup.plan.optimise_supply)")
-    offer = optimise_supply(designed, engine, volume=SUPPLY_VOLUME, sample_engines=n_engines, seed=seed)
-    result = Design(
+    return Design(
         scheme=designed, objective=objective, outside=outside, start=start_scheme.name,
         start_objective=problem.objective(list(start_outside.values())), start_outside=start_outside, iso=iso,
         mean_clearance=scores[0].mean_clearance, start_mean_clearance=start_scores[0].mean_clearance,
         surplus=surplus, shortfall=shortfall, aim_share=aim, supply_mean=offer["mean"],
         supply_mean_objective=offer["objective"], supply_centred_objective=offer["centred_objective"],
-        seconds=time.perf_counter() - t0, evaluations=search.evaluations)
-    lines = notes(result, problem=problem, start_scheme=start_scheme, chosen=start is None, seed=seed,
-                  n_engines=n_engines)
-    return replace(result, scheme=replace(designed, notes=tuple(lines)))
+        seconds=time.perf_counter() - t0, evaluations=evaluations)
 
 
 def _encode_start(start, problem):

@@ -26,6 +26,7 @@ import numpy as np
 from scipy import stats
 
 from .. import _validate as check
+from .._validate import Integer, Window, validated
 from ..engines import load_engine
 from ..schemes import load as load_scheme
 from .objective import score
@@ -61,6 +62,7 @@ class OutsideShare:
     engines: int
 
 
+@validated(window=Window(), n_engines=Integer(minimum=100), samples=Integer(minimum=2), seed=Integer(minimum=0))
 def outside_share(engine, scheme, *, window=None, n_engines=20_000, samples=10, seed=0, scenario=None):
     """:class:`OutsideShare` of ``scheme`` on ``engine`` with the shells integrated out (module docstring).
 
@@ -82,10 +84,7 @@ def outside_share(engine, scheme, *, window=None, n_engines=20_000, samples=10, 
     """
     engine = load_engine(engine)
     scheme = load_scheme(scheme)
-    window = check.clearance_window("window", engine.clearance_window if window is None else window)
-    n_engines = check.integer("n_engines", n_engines, minimum=100)
-    samples = check.integer("samples", samples, minimum=2)
-    seed = check.integer("seed", seed, minimum=0)
+    window = check.clearance_window("window", engine.clearance_window) if window is None else window
     shares = np.empty((samples, 3))
     for k in range(samples):
         stream = np.random.SeedSequence(seed, spawn_key=(k,))

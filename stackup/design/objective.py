@@ -23,6 +23,7 @@ import numpy as np
 
 from .. import schemes as schemes_mod
 from .._kernels import design as _kernel
+from ..study.clearance import preferred_pairs
 
 #: Step of the wall and wall-sum histograms [m].
 WALL_BIN = 2e-8
@@ -126,7 +127,7 @@ class SchemeScore:
 
 def demand_share(scheme, sample):
     """Shells of each grade per bearing that ``scheme``'s preferred pairs ask for on ``sample`` (grades,)."""
-    up, lo = scheme.pair_indices(*scheme.grade_indices(sample.housing_reading, sample.journal_reading))
+    up, lo = preferred_pairs(scheme, sample.housing_reading, sample.journal_reading)
     n = len(scheme.shell.labels)
     ok = up >= 0
     return (np.bincount(up[ok], minlength=n) + np.bincount(lo[ok], minlength=n)) / sample.bearings
@@ -139,7 +140,7 @@ def score(scheme, sample, window):
     demand = demand_share(scheme, sample)
     aim = supply.aim_share(scheme, demand) if supply.mode == "to-order" else None
     sums = wall_sums(scheme, supply, sample.shell_normals, aim)
-    up, lo = scheme.pair_indices(*scheme.grade_indices(sample.housing_reading, sample.journal_reading))
+    up, lo = preferred_pairs(scheme, sample.housing_reading, sample.journal_reading)
     n = len(scheme.shell.labels)
     code = np.where(up >= 0, up * n + lo, -1)
     thin, thick = sample.ideal_wall_sum(window[1]), sample.ideal_wall_sum(window[0])

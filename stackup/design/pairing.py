@@ -20,6 +20,7 @@ shells of one process sorted into grades land in fixed shares.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from scipy import optimize, sparse
@@ -75,19 +76,52 @@ def choose_pairs(outside, count, pairs, n_grades, *, scenario_weight, surplus_we
         Tie-break cost added to the nominal share.
     """
     n_samples, n_pairs, nh, nj = outside.shape
-    cells = nh * nj
-    nx = n_pairs * cells
     to_order = spill is not None
-    # variables: x (pair-major), t, [q], surplus, shortfall
-    nq = n_grades if to_order else 0
-    i_t, i_q, i_u = nx, nx + 1, nx + 1 + nq
-    i_o = i_u + n_grades
-    nv = i_o + n_grades
+    columns = _Columns.of(n_pairs, nh * nj, n_grades, to_order)
+    nx, i_t, i_q, i_u, i_o, nv = columns
     cost = np.zeros(nv)
-    cost[:nx] = (outside[0] + (0.0 if tie is None else tie)).reshape(n_pairs, cells).ravel()
+    cost[:nx] = (outside[0] + (0.0 if tie is None else tie)).reshape(n_pairs, nh * nj).ravel()
     cost[i_t] = scenario_weight if n_samples > 1 else 0.0
     cost[i_u:i_o] = surplus_weight
     cost[i_o:] = shortfall_weight
+    a, lb, ub = _constraints(columns, outside, count, pairs, n_grades, shells_per_bearing, spill, landing)
+    integrality = np.zeros(nv)
+    integrality[:nx] = 1
+    upper = np.full(nv, np.inf)
+    upper[:nx] = 1.0
+    result = optimize.milp(cost, constraints=optimize.LinearConstraint(a, lb, ub),
+                           integrality=integrality, bounds=optimize.Bounds(np.zeros(nv), upper))
+    if not result.success:
+        raise RuntimeError(f"pairing: the HiGHS MILP did not solve ({result.message})")
+    x = result.x[:nx].reshape(n_pairs, nh * nj)
+    pair = np.argmax(x, axis=0).reshape(nh, nj)
+    per_sample = np.take_along_axis(outside, pair[None, None], axis=1)[:, 0].sum(axis=(-2, -1))
+    return PairingResult(pair, per_sample, result.x[i_u:i_o], result.x[i_o:],
+                         result.x[i_q:i_u] if to_order else None, float(result.fun))
+
+
+class _Columns(NamedTuple):
+    """Where the programme's variables sit: x (pair-major, ``nx``), t, [q], surplus, shortfall; ``nv`` in all."""
+
+    nx: int
+    t: int
+    q: int
+    surplus: int
+    shortfall: int
+    nv: int
+
+    @classmethod
+    def of(cls, n_pairs, cells, n_grades, to_order):
+        nx = n_pairs * cells
+        i_u = nx + 1 + (n_grades if to_order else 0)
+        return cls(nx, nx, nx + 1, i_u, i_u + n_grades, i_u + 2 * n_grades)
+
+
+def _constraints(columns, outside, count, pairs, n_grades, shells_per_bearing, spill, landing):
+    """The programme's constraint matrix (CSR) and its lower and upper bounds (module docstring)."""
+    n_samples, n_pairs, nh, nj = outside.shape
+    cells = nh * nj
+    nx, i_t, i_q, i_u, i_o, nv = columns
     rows, lb, ub = [], [], []
 
     def row(entries, lo, hi):
@@ -111,28 +145,16 @@ def choose_pairs(outside, count, pairs, n_grades, *, scenario_weight, surplus_we
         entries = {k: -uses[pair_of[k], g] * share[cell_of[k]] for k in range(nx) if uses[pair_of[k], g]}
         entries[i_u + g] = -1.0
         entries[i_o + g] = 1.0
-        if to_order:
+        if spill is not None:
             for h in range(n_grades):
                 entries[i_q + h] = shells_per_bearing * spill[g, h]
             row(entries, 0.0, 0.0)
         else:
             row(entries, -shells_per_bearing * landing[g], -shells_per_bearing * landing[g])
-    if to_order:
+    if spill is not None:
         row({i_q + h: 1.0 for h in range(n_grades)}, 1.0, 1.0)
     a = sparse.lil_array((len(rows), nv))
     for r, entries in enumerate(rows):
         for k, v in entries.items():
             a[r, k] = v
-    integrality = np.zeros(nv)
-    integrality[:nx] = 1
-    upper = np.full(nv, np.inf)
-    upper[:nx] = 1.0
-    result = optimize.milp(cost, constraints=optimize.LinearConstraint(a.tocsr(), lb, ub),
-                           integrality=integrality, bounds=optimize.Bounds(np.zeros(nv), upper))
-    if not result.success:
-        raise RuntimeError(f"pairing: the HiGHS MILP did not solve ({result.message})")
-    x = result.x[:nx].reshape(n_pairs, cells)
-    pair = np.argmax(x, axis=0).reshape(nh, nj)
-    per_sample = np.take_along_axis(outside, pair[None, None], axis=1)[:, 0].sum(axis=(-2, -1))
-    return PairingResult(pair, per_sample, result.x[i_u:i_o], result.x[i_o:],
-                         result.x[i_q:i_q + nq] if to_order else None, float(result.fun))
+    return a.tocsr(), lb, ub

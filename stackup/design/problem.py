@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from .. import _validate as check
 from ..schemes import from_dict
 from .sample import clearance_changes, draw_sample
 from .search import Limits
@@ -38,6 +39,10 @@ class Weights:
     scenario: float = 0.1
     surplus: float = 1e-5
     shortfall: float = 1e-4
+
+    def __post_init__(self):
+        check.fields(self, dict.fromkeys(("scenario", "surplus", "shortfall"), check.Positive(zero=True)),
+                     prefix="weights.")
 
 
 @dataclass(frozen=True)

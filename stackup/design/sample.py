@@ -10,7 +10,8 @@ The operating clearance of a bearing is linear in the wall sum of its two
 shells to within nanometres over the design window (press fit and swell
 change by a fraction of a per cent of the wall change; measured in
 ``tests/test_design.py``), so each bearing is described by two numbers from
-:func:`stackup.fit.press_fit`:
+the operating clearance a study computes
+(:func:`stackup.study.clearance.operating_clearance`):
 
 .. math:: C_{op} = A - \\beta\\,(s_{upper} + s_{lower})
 
@@ -25,8 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._random import lot_generator, seed_sequence
-from ..fit import press_fit
 from ..parts import ShellNormals, draw_lot
+from ..study.clearance import operating_clearance
 from ..study.scenario import apply as apply_scenario
 
 #: Spawn key of the design sample: apart from a study's lots (0, 1, ...) and its
@@ -96,11 +97,10 @@ def draw_sample(engine, *, n_engines, seed, window, scenario=None, label="nomina
     crush = crush[~crush_dim.outside(crush)]
     if crush.size < 2 * bore.size:
         raise ValueError(f"engine {engine.name}: too few shells within the crush limits for the design sample")
-    crush = crush[:2 * bore.size].reshape(-1, 2).mean(axis=1)
-    kwargs = engine.press_fit.kwargs()
+    crush = crush[:2 * bore.size].reshape(-1, 2)
 
     def clearance(wall):
-        return press_fit(housing_bore=bore, shell_wall=wall, crush_height=crush, journal_d=journal, **kwargs).clearance
+        return clearance_at(engine, housing_bore=bore, journal_d=journal, crush=crush, wall_sum=2 * wall)
 
     middle = 0.5 * (window[0] + window[1])
     wall = 0.5 * (bore - journal - middle)  # nominal clearance in the middle of the window
@@ -110,3 +110,16 @@ def draw_sample(engine, *, n_engines, seed, window, scenario=None, label="nomina
     offset = 0.5 * (low + high) + factor * 2 * wall
     return DesignSample(label, engine, parts.housing_reading[built], parts.journal_reading[built], offset, factor,
                         normals)
+
+
+def clearance_at(engine, *, housing_bore, journal_d, crush, wall_sum):
+    """Operating clearance [m] of bearings whose two shells have the wall sum ``wall_sum`` [m].
+
+    ``crush`` (bearings, 2) holds the crush heights of each bearing's two
+    shells [m]; each shell's wall is half the sum
+    (:func:`stackup.study.clearance.operating_clearance`, the core a study's
+    chain calls with the walls of the shells it took).
+    """
+    half = 0.5 * wall_sum
+    return operating_clearance(engine, housing_bore=housing_bore, journal_d=journal_d, upper_wall=half,
+                               lower_wall=half, upper_crush=crush[:, 0], lower_crush=crush[:, 1]).clearance

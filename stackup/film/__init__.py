@@ -21,9 +21,11 @@ the finite tier then holds its correction at the table's edge, the Reynolds
 tier continues with the short-bearing load curve scaled to its own load at
 :data:`ECCENTRICITY_VALID`.
 
-Submodules: :mod:`~stackup.film.orbit` (film over the cycle),
-:mod:`~stackup.film.heat` (heat balance with the oil feed),
-:mod:`~stackup.film.oil` (viscosity).
+Submodules: :mod:`~stackup.film.orbit` (film over the cycle, its tiers in
+:mod:`~stackup.film.mobility`, :mod:`~stackup.film.transient`, the tilt in
+:mod:`~stackup.film.tilt`, what they share in :mod:`~stackup.film.journal`),
+:mod:`~stackup.film.cycle` (the study's film stage), :mod:`~stackup.film.heat`
+(heat balance with the oil feed), :mod:`~stackup.film.oil` (viscosity).
 """
 
 from __future__ import annotations
@@ -35,10 +37,22 @@ from importlib import resources
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
-from .. import _validate as check
+from .._validate import Finite, OneOf, Positive, renamed, validated
 from . import oil, reynolds, tiers
 
 METHODS = ("short", "finite", "reynolds")
+#: Each film tier a study names, over the engine cycle, and its limits in one line, for reports (errors against
+#: the transient reference and speed: reports/film_speed_vs_error.md).
+TIER_NOTES = {
+    "short": "quasi-static short-bearing film at each crank angle (no squeeze)",
+    "finite": "quasi-static finite-bearing film at each crank angle (no squeeze)",
+    "reynolds": "quasi-static Reynolds film at each crank angle (no squeeze)",
+    "mobility": "journal orbit over the cycle by the short-bearing mobility method (squeeze and rotation, Booker)",
+    "mobility-finite": "journal orbit over the cycle by the mobility method with a finite-length correction "
+                       "tabulated from the Reynolds equation (squeeze and rotation)",
+    "reynolds-transient": "journal orbit over the cycle on the transient Reynolds equation with mass-conserving "
+                          "cavitation (the reference)",
+}
 #: Largest eccentricity on which the steady tiers are checked against the reference tier (the finite
 #: table's last node); films above it (thinner than 0.5 % of the clearance) carry ``valid`` False.
 ECCENTRICITY_VALID = 0.995
@@ -76,7 +90,8 @@ class Film:
 
 def _table_coordinate(eps):
     # -ln(1 - eps): the log load ratio is close to linear in it up to the table's end near 1 (linear in eps it
-    # bends there, and interpolating it in eps underestimates the film by 2-3 % above 0.98)
+    # bends there, and interpolating it in eps underestimates the film near the table's end; the finite tier's
+    # error is in reports/film_speed_vs_error.md)
     return -np.log1p(-eps)
 
 
@@ -89,8 +104,9 @@ def _finite_table():
     return ratio, attitude, (data["length_over_diameter"][[0, -1]], data["eccentricity"][[0, -1]])
 
 
-def _finite(load, *, radius, length, radial_clearance, viscosity, speed):
+def _finite(load, *, journal_radius, bearing_width, radial_clearance, viscosity, speed):
     """Eccentricity, attitude and validity of the finite tier; outside its table the correction is held at the edge."""
+    radius, length = journal_radius, bearing_width
     ratio, attitude, (ld_range, eps_range) = _finite_table()
     ld = length / (2 * radius)
     inside = (ld >= ld_range[0]) & (ld <= ld_range[1])
@@ -112,17 +128,20 @@ def _finite(load, *, radius, length, radial_clearance, viscosity, speed):
     return eps, phi, inside & (eps <= eps_range[1])
 
 
-def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, method="short"):
+@renamed(diameter="journal_d", length="bearing_width")
+@validated(method=OneOf(METHODS), load=Positive(zero=True), journal_d=Positive(), bearing_width=Positive(),
+           clearance=Positive(), viscosity=Positive(), speed=Positive())
+def min_film_thickness(load, *, journal_d, bearing_width, clearance, viscosity, speed, method="short"):
     """Eccentricity, minimum film, attitude, friction torque and side flow under a steady load.
 
     Parameters
     ----------
     load : array_like
         Bearing load [N], >= 0.
-    diameter : array_like
+    journal_d : array_like
         Journal diameter [m].
-    length : array_like
-        Bearing length (width) [m].
+    bearing_width : array_like
+        Bearing width [m].
     clearance : array_like
         Diametral clearance [m]; the radial clearance is half of it.
     viscosity : array_like
@@ -137,15 +156,10 @@ def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, m
         Zero load gives eccentricity 0 and h_min = c; every finite load a film
         in (0, c], flagged by ``valid`` where the tier leaves its checked range.
     """
-    check.one_of("method", method, METHODS)
-    load = check.positive("load", load, allow_zero=True)
-    radius = check.positive("diameter", diameter) / 2
-    length = check.positive("length", length)
-    c = check.positive("clearance", clearance) / 2
-    mu = check.positive("viscosity", viscosity)
-    omega = check.positive("speed", speed)
-    load, radius, length, c, mu, omega = np.broadcast_arrays(load, radius, length, c, mu, omega)
-    kw = dict(radius=radius, length=length, radial_clearance=c, viscosity=mu, speed=omega)
+    load, d, length, clearance, mu, omega = (np.asarray(a, dtype=float) for a in (load, journal_d, bearing_width,
+                                                                                  clearance, viscosity, speed))
+    load, radius, length, c, mu, omega = np.broadcast_arrays(load, d / 2, length, clearance / 2, mu, omega)
+    kw = dict(journal_radius=radius, bearing_width=length, radial_clearance=c, viscosity=mu, speed=omega)
     if method == "reynolds":
         return _reynolds(load, **kw)
     if method == "short":
@@ -157,11 +171,11 @@ def min_film_thickness(load, *, diameter, length, clearance, viscosity, speed, m
     return Film(eps, h_min, phi, torque, flow, inside & (eps <= ECCENTRICITY_VALID))
 
 
-def _reynolds(load, *, radius, length, radial_clearance, viscosity, speed):
+def _reynolds(load, *, journal_radius, bearing_width, radial_clearance, viscosity, speed):
     out = {k: np.empty(load.shape) for k in ("eps", "phi", "torque", "flow")}
     valid = np.ones(load.shape, bool)
     for idx in np.ndindex(load.shape):
-        r, l, c, mu, w = (float(a[idx]) for a in (radius, length, radial_clearance, viscosity, speed))
+        r, l, c, mu, w = (float(a[idx]) for a in (journal_radius, bearing_width, radial_clearance, viscosity, speed))
         unit = mu * w * r**4 / c**2  # load of a unit dimensionless force [N]
         if load[idx] == 0:
             field = reynolds.solve_field(0.0, l / r)
@@ -193,11 +207,12 @@ def _beyond_reynolds(load, radius, length, c, mu, speed):
     short_edge = (length / radius) ** 3 / 4 * tiers.short_load_function(ECCENTRICITY_VALID)
     scale = mu * speed * radius * length**3 / (4 * c**2) * edge.force / short_edge
     eps = float(tiers.invert_monotone(tiers.short_load_function, np.array(load / scale)))
-    kw = dict(radius=radius, length=length, radial_clearance=c, viscosity=mu, speed=speed)
+    kw = dict(journal_radius=radius, bearing_width=length, radial_clearance=c, viscosity=mu, speed=speed)
     _, torque, flow = tiers.film_quantities(eps, edge.attitude, load, **kw)
     return eps, edge.attitude, float(torque), float(flow)
 
 
+@validated(load=Finite())
 def journal_position(load, *, eccentricity, attitude_angle, clearance):
     """Journal centre relative to the bearing centre [m] under a steady load.
 
@@ -217,7 +232,7 @@ def journal_position(load, *, eccentricity, attitude_angle, clearance):
         The journal centre lies along the load turned by the attitude angle in
         the sense of rotation (positive angles), as the mobility tier finds it.
     """
-    f = check.finite("load", load)
+    f = np.asarray(load, dtype=float)
     direction = np.arctan2(f[..., 1], f[..., 0]) + np.asarray(attitude_angle)
     e = np.asarray(eccentricity) * np.asarray(clearance) / 2
     return np.stack([e * np.cos(direction), e * np.sin(direction)], axis=-1)
@@ -248,16 +263,17 @@ def tier_errors():
     for method in ("short", "finite"):
         worst = 0.0
         for ld, load, h_ref in cases:
-            f = min_film_thickness(load, diameter=2.0, length=2.0 * ld, clearance=2e-3, viscosity=1.0, speed=1.0,
-                                   method=method)
+            f = min_film_thickness(load, journal_d=2.0, bearing_width=2.0 * ld, clearance=2e-3, viscosity=1.0,
+                                   speed=1.0, method=method)
             worst = max(worst, abs(float(f.h_min) / h_ref - 1))
         errors[method] = worst
     return errors
 
 
+@validated(max_error=Positive(zero=True))
 def cheapest_tier(max_error):
     """The cheapest steady tier whose h_min error against ``reynolds`` is at most ``max_error`` [-]."""
-    max_error = float(check.positive("max_error", max_error, allow_zero=True))
+    max_error = float(max_error)
     errors = tier_errors()
     return next(m for m in BY_COST if errors[m] <= max_error)
 

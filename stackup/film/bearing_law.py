@@ -9,22 +9,26 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _validate as check
+from .._validate import Integer, OneOf, Positive, renamed, validated
+from . import METHODS, min_film_thickness
 
 #: Share of the loads spaced geometrically from max_load / 1000 (the journal floating in its clearance);
 #: the rest linearly up to max_load (the stiff end that carries the firing loads).
 GEOMETRIC_SHARE = 0.5
 
 
-def load_displacement(*, max_load, diameter, length, clearance, viscosity, speed, samples=40, method="finite"):
+@renamed(diameter="journal_d", length="bearing_width")
+@validated(max_load=Positive(), samples=Integer(minimum=4), journal_d=Positive(), bearing_width=Positive(),
+           clearance=Positive(), viscosity=Positive(), speed=Positive(), method=OneOf(METHODS))
+def load_displacement(*, max_load, journal_d, bearing_width, clearance, viscosity, speed, samples=40, method="finite"):
     """Loads and the journal-centre displacement the steady film takes under each.
 
     Parameters
     ----------
     max_load : array_like (...)
         Largest load of the curve [N] (e.g. 1.5 times the bearing's cycle peak).
-    diameter, length, clearance : array_like (...)
-        Journal diameter, bearing length, diametral clearance [m].
+    journal_d, bearing_width, clearance : array_like (...)
+        Journal diameter, bearing width, diametral clearance [m].
     viscosity : array_like (...)
         Effective viscosity [Pa s].
     speed : array_like (...)
@@ -39,13 +43,11 @@ def load_displacement(*, max_load, diameter, length, clearance, viscosity, speed
     load, displacement : numpy.ndarray (..., samples)
         [N] and [m]: eccentricity times the radial clearance.
     """
-    from . import min_film_thickness
-
-    max_load = check.positive("max_load", max_load)
-    samples = check.integer("samples", samples, minimum=4)
+    max_load = np.asarray(max_load, dtype=float)
     n_geo = int(GEOMETRIC_SHARE * samples)
     share = np.concatenate([np.geomspace(1e-3, 0.3, n_geo, endpoint=False), np.linspace(0.3, 1.0, samples - n_geo)])
-    inputs = dict(diameter=diameter, length=length, clearance=clearance, viscosity=viscosity, speed=speed)
+    inputs = dict(journal_d=journal_d, bearing_width=bearing_width, clearance=clearance, viscosity=viscosity,
+                  speed=speed)
     shape = np.broadcast_shapes(np.shape(max_load), *(np.shape(v) for v in inputs.values()))
     column = {k: np.broadcast_to(np.asarray(v, dtype=float), shape)[..., None] for k, v in inputs.items()}
     load = np.broadcast_to(max_load, shape)[..., None] * share

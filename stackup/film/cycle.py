@@ -6,13 +6,15 @@ effective temperature and viscosity; the film tier then gives the minimum
 film, the journal centre and the peak pressure at every crank angle. Life is
 not this stage's business: the study's chain computes it from the film.
 
-Film methods a study names (:data:`FILM_METHODS`):
+Film methods a study names (:data:`FILM_METHODS`) are the cycle tiers of
+:func:`stackup.film.orbit.orbit`, by the same names:
 
 - ``"short"``, ``"finite"``, ``"reynolds"``: quasi-static, each crank angle a
   steady load on that steady tier (no squeeze film);
-- ``"mobility"``, ``"mobility-finite"``, ``"transient"``: the dynamic tiers of
-  :func:`stackup.film.orbit.orbit` (``"transient"`` is its
-  ``"reynolds-transient"`` reference, fed by the engine's groove or hole).
+- ``"mobility"``, ``"mobility-finite"``, ``"reynolds-transient"``: the dynamic
+  tiers (the reference ``"reynolds-transient"`` fed by the engine's groove or
+  hole; the study's former name ``"transient"`` is a deprecated alias,
+  :func:`stackup.film.orbit.canonical_tier`).
 
 With a dynamic tier the heat balance closes on the orbit's own friction power,
 side flow and feed flow (:func:`balanced_orbit`): the temperature rise of a coarse
@@ -32,26 +34,29 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.special import lambertw
 
-from .. import _validate as check
+from .._validate import Finite, InRange, Integer, OneOf, Positive, renamed, validated
+from . import ECCENTRICITY_VALID
 from . import oil as oils
 from .heat import STATUS as HEAT_STATUS
-from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, feed_flow, heat_balance
-from .orbit import STATUS as ORBIT_STATUS
-from .orbit import ECCENTRICITY_LIMIT, cheapest_cycle_tier, cycle_tier_errors, orbit, resolve
-from .orbit import _checked_cycle, _checked_cycles, _checked_tilt, _orbit
+from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
+from .journal import ECCENTRICITY_LIMIT, Orbit
+from .journal import STATUS as ORBIT_STATUS
+from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
+                    cycle_tier_errors, one_cycle, orbit, tier_names, within_one_cycle)
+from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
+from .transient import transient_orbit
 
 #: Crank-angle spacing of the load history the heat balance reads [deg]: its cycle means barely change
-#: below it (reports/bearing_life.md), at a quarter of the cost on a 1 deg grid.
+#: below it (reports/bearing_life.md), on a quarter of a 1 deg grid's angles.
 HEAT_STEP = 4.0
-#: Crank-angle spacing of the dynamic heat balance's coarse orbit [deg]: its temperature rise is within 5 % of
-#: the 1-deg orbit's on iso-example's bearings (at 12 and 16 deg up to 68 % and 138 %: load peaks missed), its
-#: guess of the balanced temperature within 0.4 K.
+#: Crank-angle spacing of the dynamic heat balance's coarse orbit [deg]: fine enough to catch the load peaks, whose
+#: temperature rise the balance extrapolates (the balance's accuracy on the full orbit: reports/bench_chain.md).
 DYNAMIC_HEAT_STEP = 8.0
-#: Quasi-static film methods (the steady tiers' names) and the dynamic ones (study name -> orbit tier).
-QUASI_STATIC = ("short", "finite", "reynolds")
-DYNAMIC = {"mobility": "mobility", "mobility-finite": "mobility-finite", "transient": "reynolds-transient"}
-FILM_METHODS = (*QUASI_STATIC, *DYNAMIC)
+#: Film methods a study names: the cycle tiers of :func:`stackup.film.orbit.orbit` (quasi-static ones
+#: :data:`QUASI_STATIC`, dynamic ones :data:`DYNAMIC`).
+FILM_METHODS = METHODS
 #: Orbit status per bearing in a study: the orbit's, then the quasi-static tiers' (no orbit to close).
 FILM_STATUS = (*ORBIT_STATUS, "quasi_static")
 #: Statuses whose film is not a number: the orbit did not become periodic, the film collapsed (the journal held
@@ -59,7 +64,7 @@ FILM_STATUS = (*ORBIT_STATUS, "quasi_static")
 #: stage still returns the film where it was held; a study stores NaN for these bearings' films and lives.
 NOT_A_NUMBER = ("not_periodic", "collapsed", "failed")
 #: The dynamic heat balance keeps an orbit whose residual T - T_supply - rise is below this [K]: the temperature
-#: is then within it of the balance on that orbit (the residual grows 1.1-1.8 times as fast as T).
+#: is then within it of the balance on that orbit (the residual grows faster than T; measured: reports/bench_chain.md).
 HEAT_TOLERANCE = 0.5
 #: Most orbits per bearing (the coarse one, then full ones).
 HEAT_ITERATIONS = 6
@@ -68,10 +73,9 @@ HEAT_ITERATIONS = 6
 def film_method_errors(method):
     """The measured errors of a study's film ``method`` against the transient reference (mass-conserving).
 
-    ``{"seconds", "h_min", "h_min_mean", ...}`` from :func:`stackup.film.orbit.cycle_tier_errors`; the
-    quasi-static methods are the tiers ``quasi-static-<method>``.
+    ``{"seconds", "h_min", "h_min_mean", ...}`` from :func:`stackup.film.orbit.cycle_tier_errors`.
     """
-    tier = DYNAMIC.get(method, f"quasi-static-{method}")
+    tier = ALIASES.get(method, method)  # a deprecated name was warned about where it entered
     return {k: v for k, v in cycle_tier_errors()[tier].items() if not isinstance(v, dict)}
 
 
@@ -80,11 +84,10 @@ def cheapest_film_method(max_error):
 
     From the measured table of :func:`stackup.film.orbit.cycle_tier_errors`
     (cycle minimum and cycle mean of the minimum film against the transient
-    Reynolds tier with mass-conserving cavitation); ``"transient"`` when no
+    Reynolds tier with mass-conserving cavitation); ``"reynolds-transient"`` when no
     cheaper dynamic tier qualifies.
     """
-    tier = cheapest_cycle_tier(max_error, tiers=tuple(DYNAMIC.values()))
-    return next(name for name, t in DYNAMIC.items() if t == tier)
+    return cheapest_cycle_tier(max_error, tiers=DYNAMIC)
 
 
 @dataclass(frozen=True)
@@ -135,6 +138,25 @@ class BearingFilms:
     edge_contact_share: np.ndarray | None = None
 
 
+def _cycle_of_reactions(values):
+    """Reactions (engines, angles, bearings, 2) over crank angles that increase over less than a cycle."""
+    reactions, angle = values["reactions"], values["crank_angle"]
+    if angle.ndim != 1 or reactions.ndim < 3 or reactions.shape[-1] != 2 or reactions.shape[1] != angle.size:
+        raise ValueError(f"reactions: shape {reactions.shape} is not valid; expected (engines, {angle.size}, "
+                         "bearings, 2)")
+    within_one_cycle(angle)
+
+
+def _feed_of_the_heat_balance(values):
+    """The oil feed fits the bearing (the quasi-static tiers' heat balance reads it as :func:`heat_balance` does)."""
+    if values["method"] in QUASI_STATIC:
+        check_feed(values["feed"], values["spec"].bearing_width)
+
+
+@tier_names()
+@validated(method=OneOf(FILM_METHODS), reactions=Finite(), crank_angle=Finite(), clearance=Positive(),
+           journal_d=Positive(), tilt=Finite(), tilt_compliance=Positive(zero=True),
+           relations=(_cycle_of_reactions, compliance_with_tilt, _feed_of_the_heat_balance))
 def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, method="finite", tilt=None,
                   tilt_compliance=None):
     """Film over the cycle for bearings with given reaction histories.
@@ -152,7 +174,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
     clearance, journal_d : array_like (engines, bearings)
         Diametral operating clearance and journal diameter [m].
     method : str
-        One of :data:`FILM_METHODS`.
+        One of :data:`FILM_METHODS` (deprecated names: :data:`stackup.film.orbit.ALIASES`).
     tilt : array_like (engines, angles, bearings, 2), optional
         Slope of the journal against the bearing axis [rad] (:func:`stackup.crank.support_slopes`).
     tilt_compliance : array_like (bearings, 2), optional
@@ -160,22 +182,20 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         (:func:`stackup.crank.support_compliance`): ``tilt`` is then the free slope
         and the tilt in the film balances the film's moment (:mod:`stackup.film.tilt`).
     """
-    if method not in FILM_METHODS:
-        raise ValueError(f"method: {method!r} is not one of {', '.join(FILM_METHODS)}")
     loads = np.moveaxis(np.asarray(reactions, dtype=float), 1, 2)  # (engines, bearings, angles, 2)
     if tilt is not None:
         tilt = np.moveaxis(np.asarray(tilt, dtype=float), 1, 2)
     clearance, journal_d = np.asarray(clearance, dtype=float), np.asarray(journal_d, dtype=float)
     crank_angle = np.asarray(crank_angle, dtype=float)
     step = float(crank_angle[1] - crank_angle[0]) if len(crank_angle) > 1 else 720.0
-    stride = max(1, int(round(HEAT_STEP / step)))
-    geometry = dict(diameter=journal_d, length=spec.bearing_width, clearance=clearance, speed=spec.speed)
+    geometry = dict(journal_d=journal_d, bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed)
     if method in QUASI_STATIC:
+        stride = max(1, int(round(HEAT_STEP / step)))
         heat = heat_balance(loads[..., ::stride, :], **geometry, oil=spec.oil,
                             supply_temperature=spec.oil_supply_temperature, feed=feed,
                             method="short" if method == "short" else "finite")
-        film = orbit(loads, crank_angle, **geometry, viscosity=heat.viscosity, method="quasi-static",
-                     steady_method=method, tilt=tilt, tilt_compliance=tilt_compliance)
+        film = orbit(loads, crank_angle, **geometry, viscosity=heat.viscosity, method=method, tilt=tilt,
+                     tilt_compliance=tilt_compliance)
         status = np.where(film.status == ORBIT_STATUS.index("edge_contact"), film.status,
                           FILM_STATUS.index("quasi_static"))
         # a load the steady film carries only beyond the eccentricity limit: the film has collapsed
@@ -183,9 +203,8 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
                             film.tilt_max, _at_limit_share(film.h_min_edge, clearance))
-    tier = DYNAMIC[method]
-    options = {"feed": feed} if tier == "reynolds-transient" else {}
-    balance, film, fed = balanced_orbit(loads, crank_angle, tier=tier, oil=spec.oil,
+    options = {"feed": feed} if method == "reynolds-transient" else {}
+    balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
                                         stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))), tilt=tilt,
                                         tilt_compliance=tilt_compliance, options=options, **geometry)
@@ -206,14 +225,7 @@ def _is_number(status):
 
 def _steady_valid(film):
     """The steady tier's checked range: eccentricity within :data:`stackup.film.ECCENTRICITY_VALID` at every angle."""
-    from . import ECCENTRICITY_VALID
-
     return np.all(film.eccentricity <= ECCENTRICITY_VALID * (1 + 1e-12), axis=-1)
-
-
-def _feed_flow(film, feed, clearance, viscosity, journal_d, length):
-    return feed_flow(film.position, feed=feed, radial_clearance=clearance / 2, viscosity=viscosity,
-                     radius=journal_d / 2, length=length)
 
 
 @dataclass(frozen=True)
@@ -228,8 +240,8 @@ class DynamicHeat:
 
 
 #: First step's guess of how fast the temperature rise falls with the temperature, per the oil's viscosity:
-#: d ln(rise)/dT = this times d ln(mu)/dT. Measured 1.17-1.41 on iso-example's bearings (friction power grows
-#: with the viscosity, the feed flow falls with it); the full orbit's rise replaces it by the measured decay.
+#: d ln(rise)/dT = this times d ln(mu)/dT, as measured on iso-example's bearings (friction power grows with the
+#: viscosity, the feed flow falls with it); the full orbit's rise replaces it by the measured decay.
 RISE_DECAY_GUESS = 1.3
 
 
@@ -238,8 +250,6 @@ def _balanced_rise(anchor_t, anchor_rise, decay, supply):
 
     ``decay`` :math:`k \ge 0` [1/K]; :math:`k \to 0` gives the fixed-point step :math:`T_s + R_a`.
     """
-    from scipy.special import lambertw
-
     a = anchor_rise * np.exp(-decay * (supply - anchor_t))
     small = decay * np.abs(a) < 1e-9
     k = np.where(small, 1.0, decay)
@@ -247,8 +257,22 @@ def _balanced_rise(anchor_t, anchor_rise, decay, supply):
     return supply + x
 
 
-def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, speed, oil, supply_temperature, feed,
-                   stride=8, tilt=None, tilt_compliance=None, options=None, tolerance=HEAT_TOLERANCE):
+def _tier_options(values):
+    """The tier's options: ``cycles`` and those of the transient tier, checked as they declare them."""
+    options = values["options"] or {}
+    if options.get("cycles") is not None:
+        Integer(minimum=1)("cycles", options["cycles"])
+    for name, constraint in transient_orbit.constraints.items():
+        if options.get(name) is not None:
+            constraint(name, options[name])
+
+
+@renamed(diameter="journal_d", length="bearing_width")
+@validated(tier=OneOf(METHODS), loads=Finite(), crank_angle=Finite(), journal_d=Positive(), bearing_width=Positive(),
+           clearance=Positive(), speed=Positive(), supply_temperature=InRange(-30.0, 200.0, unit=" degC"),
+           tilt=Finite(), tilt_compliance=Positive(zero=True), relations=(one_cycle("loads"), compliance_with_tilt, _tier_options))
+def balanced_orbit(loads, crank_angle, *, tier, journal_d, bearing_width, clearance, speed, oil, supply_temperature,
+                   feed, stride=8, tilt=None, tilt_compliance=None, options=None, tolerance=HEAT_TOLERANCE):
     r"""The orbit of bearings at the effective temperature where their heat balance closes on that orbit.
 
     The balance of :mod:`stackup.film.heat`,
@@ -272,10 +296,9 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     kept where its own residual :math:`|g|` is below ``tolerance``;
     elsewhere it runs again at the root through the last two rises. So the
     temperature is within ``tolerance`` / :math:`g'` (:math:`g' > 1`)
-    of the balance on the returned orbit itself: 0.07 K median, 0.36 K at most
-    over 1000 bearings of iso-example, 1 % of which ran a second full orbit
-    (``reports/bench_chain.md``). An orbit whose film is not a number
-    (:data:`NOT_A_NUMBER`) is not run again.
+    of the balance on the returned orbit itself (measured against the balance
+    closed tightly in ``reports/bench_chain.md``). An orbit whose film is not a
+    number (:data:`NOT_A_NUMBER`) is not run again.
 
     Parameters
     ----------
@@ -284,8 +307,8 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     crank_angle : numpy.ndarray (angles,)
         [deg]
     tier : str
-        Dynamic tier of :func:`stackup.film.orbit.orbit`.
-    diameter, length, clearance, speed :
+        Cycle tier of :func:`stackup.film.orbit.orbit` (a dynamic one).
+    journal_d, bearing_width, clearance, speed :
         As :func:`stackup.film.orbit.orbit` [m], [rad/s].
     oil, supply_temperature, feed :
         As :func:`stackup.film.heat.heat_balance`.
@@ -296,7 +319,7 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     tilt_compliance : array_like (..., 2), optional
         As :func:`stackup.film.orbit.orbit` (the coarse orbit runs without tilt).
     options : dict, optional
-        Options of the tier (e.g. ``feed`` of the transient tier).
+        Options of the tier (``cycles``, and e.g. ``feed`` of the transient tier).
     tolerance : float
         On the residual [K] (:data:`HEAT_TOLERANCE`).
 
@@ -305,50 +328,64 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     (DynamicHeat, stackup.film.orbit.Orbit, numpy.ndarray)
         The balance, the orbit at its temperature and the feed flow [m^3/s] (...).
     """
-    oil = oils.get(oil)
-    options = dict(options or {})
-    # the inputs checked here once, as orbit() checks them; the orbits below run unchecked
-    kind, steady = resolve(tier)
-    loads, angle = _checked_cycle(loads, crank_angle)
-    cycles = _checked_cycles(options.pop("cycles", None), kind)
+    loads = np.asarray(loads, dtype=float)
+    heated = _HeatedOrbits(loads, np.asarray(crank_angle, dtype=float), tier=tier, oil=oils.get(oil), feed=feed,
+                           tilt=tilt, tilt_compliance=tilt_compliance, options=options, journal_d=journal_d,
+                           bearing_width=bearing_width, clearance=clearance, speed=speed,
+                           supply_temperature=supply_temperature)
+    heat, film, fed = _close_balance(heated, stride=stride, tolerance=tolerance)
     lead = loads.shape[:-2]
-    flat = loads.reshape(-1, *loads.shape[-2:])
-    each = {k: np.broadcast_to(check.positive(k, v), lead).ravel()
-            for k, v in dict(diameter=diameter, length=length, clearance=clearance, speed=speed).items()}
-    each["supply"] = np.broadcast_to(np.asarray(supply_temperature, float), lead).ravel()
-    tilt, tilt_compliance = _checked_tilt(tilt, tilt_compliance, loads.shape)
-    flat_tilt = None if tilt is None else tilt.reshape(flat.shape)
-    flat_compliance = None if tilt_compliance is None else tilt_compliance.reshape(flat.shape[0], 2)
-    shear_rate = each["speed"] * each["diameter"] / each["clearance"]
-    supply = each["supply"]
-    n = flat.shape[0]
+    shaped = {name: (v.reshape(lead + v.shape[1:]) if v is not None and np.ndim(v) else v)
+              for name, v in film.items()}
+    return (DynamicHeat(*(np.asarray(v).reshape(lead) for v in heat)), Orbit(**shaped), fed.reshape(lead))
 
-    viscosity = np.empty(n)
 
-    def run(t, rows, start, step=1):
+class _HeatedOrbits:
+    """Orbits of bearings (flattened) at given temperatures, each with its feed flow and temperature rise."""
+
+    def __init__(self, loads, crank_angle, *, tier, oil, feed, tilt, tilt_compliance, options, supply_temperature,
+                 **geometry):
+        lead = loads.shape[:-2]
+        self.flat = loads.reshape(-1, *loads.shape[-2:])
+        self.angle, self.tier, self.oil, self.feed = crank_angle, tier, oil, feed
+        self.options = dict(options or {})
+        self.each = {k: np.broadcast_to(np.asarray(v, dtype=float), lead).ravel() for k, v in geometry.items()}
+        self.supply = np.broadcast_to(np.asarray(supply_temperature, float), lead).ravel()
+        self.tilt = None if tilt is None else np.broadcast_to(np.asarray(tilt, dtype=float), loads.shape).reshape(
+            self.flat.shape)
+        self.compliance = None if tilt_compliance is None else np.broadcast_to(
+            np.asarray(tilt_compliance, dtype=float), (*lead, 2)).reshape(self.flat.shape[0], 2)
+        self.shear_rate = self.each["speed"] * self.each["journal_d"] / self.each["clearance"]
+        self.viscosity = np.empty(self.flat.shape[0])
+
+    def run(self, t, rows, start, step=1):
         """Orbit, feed flow and rise of bearings ``rows`` at temperatures ``t``, every ``step``-th angle."""
-        mu = viscosity[rows] = oil.viscosity(t, shear_rate=shear_rate[rows])
-        geo = {k: each[k][rows] for k in ("diameter", "length", "clearance", "speed")}
-        # the viscosity follows a temperature from the heat balance: checked at every orbit (not a number if
-        # the supply temperature is not)
-        film = _orbit(flat[rows, ::step], angle[::step], kind, steady, radius=geo["diameter"] / 2,
-                      length=geo["length"], radial_clearance=geo["clearance"] / 2,
-                      viscosity=check.positive("viscosity", mu), speed=geo["speed"], cycles=cycles, start=start,
-                      tilt=None if flat_tilt is None or step > 1 else flat_tilt[rows],
-                      tilt_compliance=None if flat_compliance is None or step > 1 else flat_compliance[rows],
-                      **options)
-        fed = _feed_flow(film, feed, geo["clearance"], mu, geo["diameter"], geo["length"])
+        oil = self.oil
+        mu = self.viscosity[rows] = oil.viscosity(t, shear_rate=self.shear_rate[rows])
+        geo = {k: self.each[k][rows] for k in ("journal_d", "bearing_width", "clearance", "speed")}
+        film = orbit(self.flat[rows, ::step], self.angle[::step], **geo, viscosity=mu, method=self.tier, start=start,
+                     tilt=None if self.tilt is None or step > 1 else self.tilt[rows],
+                     tilt_compliance=None if self.compliance is None or step > 1 else self.compliance[rows],
+                     **self.options)
+        fed = feed_flow(film.position, feed=self.feed, radial_clearance=geo["clearance"] / 2, viscosity=mu,
+                        journal_radius=geo["journal_d"] / 2, bearing_width=geo["bearing_width"])
         rise = TEMPERATURE_SHARE * film.friction_power_mean / (oil.density(t) * oils.SPECIFIC_HEAT
                                                                * (film.side_flow_mean + fed))
         return film, fed, rise
 
+
+def _close_balance(heated, *, stride, tolerance):
+    """The secant steps of :func:`balanced_orbit` on the rise: ((temperature, viscosity, residual, status, orbits),
+    the orbit's fields at the temperature (flat), feed flow), each over the flattened bearings."""
+    supply, oil = heated.supply, heated.oil
+    n = supply.size
     # the coarse orbit starts at the bearing centre with whole-angle steps (on a coarse grid the cold start's laps
     # at two angles per step cost more than they save); the full orbit where the coarse one began
-    coarse, _, r_a = run(supply, slice(None), np.zeros((n, 2)), stride)
+    coarse, _, r_a = heated.run(supply, slice(None), np.zeros((n, 2)), stride)
     t_a = supply.copy()
-    decay = RISE_DECAY_GUESS * np.log(viscosity / oil.viscosity(supply + 1.0, shear_rate=shear_rate))
+    decay = RISE_DECAY_GUESS * np.log(heated.viscosity / oil.viscosity(supply + 1.0, shear_rate=heated.shear_rate))
     t_b = np.clip(_balanced_rise(t_a, r_a, decay, supply), supply, TEMPERATURE_LIMIT)
-    film, fed, r_b = run(t_b, slice(None), coarse.position[:, 0])
+    film, fed, r_b = heated.run(t_b, slice(None), coarse.position[:, 0])
     # every field an array (copied, so reruns fill their rows) except those the orbit leaves None (no tilt)
     fields = {name: None if getattr(film, name) is None else np.array(getattr(film, name))
               for name in film.__dataclass_fields__}
@@ -363,7 +400,7 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
         # a rise that does not fall (or an orbit without friction) gives no decay: a fixed-point step
         k = np.where(np.isfinite(k) & (k > 0) & (np.abs(dt) > 1e-9), k, 0.0)
         t_c = np.clip(_balanced_rise(t_b[rows], r_b[rows], k, supply[rows]), supply[rows], TEMPERATURE_LIMIT)
-        again, fed_c, r_c = run(t_c, rows, fields["position"][rows, 0])
+        again, fed_c, r_c = heated.run(t_c, rows, fields["position"][rows, 0])
         orbits[rows] += 1
         for name in fields:
             if fields[name] is not None and np.ndim(fields[name]):
@@ -377,9 +414,5 @@ def balanced_orbit(loads, crank_angle, *, tier, diameter, length, clearance, spe
     status = np.where(np.abs(residual) < tolerance, HEAT_STATUS.index("balanced"),
                       HEAT_STATUS.index("not_converged"))
     status = np.where((t_b >= TEMPERATURE_LIMIT) & (residual < 0), HEAT_STATUS.index("no_balance_below_limit"), status)
-    mu = viscosity  # of the last orbit of each bearing, at t_b
-    shaped = {name: (v.reshape(*lead, *v.shape[1:]) if v is not None and np.ndim(v) else v)
-              for name, v in fields.items()}
-    return (DynamicHeat(t_b.reshape(lead), mu.reshape(lead), residual.reshape(lead),
-                        status.astype(np.int8).reshape(lead), orbits.reshape(lead)),
-            type(film)(**shaped), fed.reshape(lead))
+    # the viscosity of the last orbit of each bearing, at t_b
+    return (t_b, heated.viscosity, residual, status.astype(np.int8), orbits), fields, fed

@@ -67,6 +67,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _validate as check
+from .._validate import AngleVectors, InRange, OneOf, Positive, renamed, validated
 from . import journal_position, min_film_thickness
 from . import oil as oils
 
@@ -123,20 +124,21 @@ def _arc_trig_integrals(start, end):
     return {k: b[k] - a[k] for k in a}
 
 
-def groove_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, radius, length, groove_width,
-                     groove_arc):
+@renamed(radius="journal_radius", length="bearing_width")
+def groove_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, journal_radius, bearing_width,
+                     groove_width, groove_arc):
     """Pressure-driven flow out of a feed groove over both lands [m^3/s], cycle mean.
 
     Parameters
     ----------
     position : array_like (..., angles, 2)
         Journal centre over the cycle [m].
-    radial_clearance, viscosity, radius, length : array_like (...)
+    radial_clearance, viscosity, journal_radius, bearing_width : array_like (...)
         [m], [Pa s], [m], [m].
     supply_pressure : float or array_like (...)
         [Pa]
     groove_width : float
-        Axial width [m], below ``length``.
+        Axial width [m], below ``bearing_width``.
     groove_arc : (float, float)
         Start and end angle [rad].
 
@@ -159,31 +161,34 @@ def groove_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, 
                 + 3 * c * (mean(x00) * s[2, 0] + 2 * mean(x01) * s[1, 1] + mean(x11) * s[0, 2])
                 - (mean(x00 * x0) * s[3, 0] + 3 * mean(x00 * x1) * s[2, 1] + 3 * mean(x01 * x1) * s[1, 2]
                    + mean(x11 * x1) * s[0, 3]))
-    land = (np.asarray(length) - groove_width) / 2
-    return np.asarray(supply_pressure) * np.asarray(radius) / (6 * np.asarray(viscosity) * land) * integral
+    land = (np.asarray(bearing_width) - groove_width) / 2
+    return np.asarray(supply_pressure) * np.asarray(journal_radius) / (6 * np.asarray(viscosity) * land) * integral
 
 
-def hole_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, length, hole_diameter, hole_angle):
+@renamed(length="bearing_width")
+def hole_feed_flow(position, *, radial_clearance, supply_pressure, viscosity, bearing_width, hole_diameter,
+                   hole_angle):
     """Pressure-driven flow out of a single feed hole in the middle of the bearing [m^3/s], cycle mean.
 
     Parameters as :func:`groove_feed_flow`; ``hole_diameter`` [m] (well below
-    ``length``), ``hole_angle`` [rad].
+    ``bearing_width``), ``hole_angle`` [rad].
     """
     x = np.asarray(position, dtype=float)
     h = np.asarray(radial_clearance, dtype=float)[..., None] - x @ np.array([np.cos(hole_angle), np.sin(hole_angle)])
     mean_h3 = (h**3).mean(axis=-1)
-    log = np.log(4 * np.asarray(length) / (np.pi * hole_diameter))
+    log = np.log(4 * np.asarray(bearing_width) / (np.pi * hole_diameter))
     return np.pi * np.asarray(supply_pressure) * mean_h3 / (6 * np.asarray(viscosity) * log)
 
 
-def feed_flow(position, *, feed, radial_clearance, viscosity, radius, length):
+@renamed(radius="journal_radius", length="bearing_width")
+def feed_flow(position, *, feed, radial_clearance, viscosity, journal_radius, bearing_width):
     """Feed flow [m^3/s] of an :class:`OilFeed`, cycle mean (:func:`groove_feed_flow` or :func:`hole_feed_flow`)."""
     if feed.kind == "groove":
         return groove_feed_flow(position, radial_clearance=radial_clearance, supply_pressure=feed.supply_pressure,
-                                viscosity=viscosity, radius=radius, length=length, groove_width=feed.groove_width,
-                                groove_arc=feed.groove_arc)
+                                viscosity=viscosity, journal_radius=journal_radius, bearing_width=bearing_width,
+                                groove_width=feed.groove_width, groove_arc=feed.groove_arc)
     return hole_feed_flow(position, radial_clearance=radial_clearance, supply_pressure=feed.supply_pressure,
-                          viscosity=viscosity, length=length, hole_diameter=feed.hole_diameter,
+                          viscosity=viscosity, bearing_width=bearing_width, hole_diameter=feed.hole_diameter,
                           hole_angle=feed.hole_angle)
 
 
@@ -221,10 +226,11 @@ class HeatBalance:
         return self.side_flow + self.feed_flow
 
 
-def _check_feed(feed, length):
+def check_feed(feed, bearing_width):
+    """A ValueError where ``feed`` does not fit bearings of ``bearing_width`` [m] (the narrowest one)."""
     check.one_of("feed.kind", feed.kind, FEEDS)
     check.positive("feed.supply_pressure", feed.supply_pressure)
-    short = float(np.min(length))
+    short = float(np.min(bearing_width))
     if feed.kind == "groove":
         width = float(check.positive("feed.groove_width", feed.groove_width))
         if width >= short:
@@ -239,7 +245,15 @@ def _check_feed(feed, length):
         check.finite("feed.hole_angle", feed.hole_angle)
 
 
-def heat_balance(load_history, *, diameter, length, clearance, speed, oil, supply_temperature, feed,
+def _feed_fits(values):
+    check_feed(values["feed"], values["bearing_width"])
+
+
+@renamed(diameter="journal_d", length="bearing_width")
+@validated(method=OneOf(METHODS), load_history=AngleVectors(), journal_d=Positive(), bearing_width=Positive(),
+           clearance=Positive(), speed=Positive(), supply_temperature=InRange(-30.0, 200.0, unit=" degC"),
+           relations=(_feed_fits,))
+def heat_balance(load_history, *, journal_d, bearing_width, clearance, speed, oil, supply_temperature, feed,
                  method="short", shear_thinning=True, tolerance=0.01, max_iterations=60):
     """Effective temperature, viscosity, friction power and oil flow of bearings over the cycle.
 
@@ -249,10 +263,10 @@ def heat_balance(load_history, *, diameter, length, clearance, speed, oil, suppl
         Load on each bearing at equal crank-angle steps of one cycle [N] (the
         frame of :func:`stackup.film.orbit.orbit`); a coarser subsample of the
         cycle gives nearly the same means at a fraction of the cost.
-    diameter, clearance : array_like (...)
+    journal_d, clearance : array_like (...)
         Journal diameter and diametral clearance [m].
-    length : float or array_like (...)
-        Bearing length [m].
+    bearing_width : float or array_like (...)
+        Bearing width [m].
     speed : float
         Journal angular speed [rad/s].
     oil : str or stackup.film.oil.Oil
@@ -272,34 +286,51 @@ def heat_balance(load_history, *, diameter, length, clearance, speed, oil, suppl
     -------
     HeatBalance
     """
-    check.one_of("method", method, METHODS)
-    loads = check.angle_vectors("load_history", load_history)
+    loads = np.asarray(load_history, dtype=float)
     lead = loads.shape[:-2]
-    oil = oils.get(oil)
-    radius = np.broadcast_to(check.positive("diameter", diameter) / 2, lead).ravel()
-    width = np.broadcast_to(check.positive("length", length), lead).ravel()
-    c = np.broadcast_to(check.positive("clearance", clearance) / 2, lead).ravel()
-    omega = float(check.positive("speed", speed))
-    t_in = np.broadcast_to(check.in_range("supply_temperature", supply_temperature, -30.0, 200.0, unit=" degC"),
-                           lead).ravel().astype(float)
-    _check_feed(feed, width)
-    f = loads.reshape(-1, loads.shape[-2], 2)
-    magnitude = np.linalg.norm(f, axis=-1)
-    shear_rate = omega * radius / c
+    radius = np.broadcast_to(np.asarray(journal_d, dtype=float) / 2, lead).ravel()
+    width = np.broadcast_to(np.asarray(bearing_width, dtype=float), lead).ravel()
+    c = np.broadcast_to(np.asarray(clearance, dtype=float) / 2, lead).ravel()
+    t_in = np.broadcast_to(np.asarray(supply_temperature, dtype=float), lead).ravel().astype(float)
+    state = _CycleHeat(loads.reshape(-1, loads.shape[-2], 2), oils.get(oil), feed, method=method, omega=float(speed),
+                       radius=radius, width=width, c=c, t_in=t_in, shear_thinning=shear_thinning)
+    t, status, (mu, power, side, fed) = _false_position(state, t_in, tolerance=tolerance,
+                                                        max_iterations=max_iterations)
+    shape = lambda a: np.asarray(a).reshape(lead)  # noqa: E731
+    return HeatBalance(shape(t), shape(mu), shape(power), shape(side), shape(fed), shape(status))
 
-    def state(t, rows):
-        mu = oil.viscosity(t, shear_rate=shear_rate[rows] if shear_thinning else None)
-        col = (radius[rows, None], width[rows, None], c[rows, None], mu[:, None])
-        film = min_film_thickness(magnitude[rows], diameter=2 * col[0], length=col[1], clearance=2 * col[2],
-                                  viscosity=col[3], speed=omega, method=method)
-        x = journal_position(f[rows], eccentricity=film.eccentricity, attitude_angle=film.attitude_angle,
+
+class _CycleHeat:
+    """The balance's residual g(T) = T - T_supply - rise of flattened bearings, and what it reads on the way."""
+
+    def __init__(self, loads, oil, feed, *, method, omega, radius, width, c, t_in, shear_thinning):
+        self.f, self.oil, self.feed, self.method, self.omega = loads, oil, feed, method, omega
+        self.radius, self.width, self.c, self.t_in = radius, width, c, t_in
+        self.magnitude = np.linalg.norm(loads, axis=-1)
+        self.shear_rate = omega * radius / c if shear_thinning else None
+
+    def __call__(self, t, rows):
+        """(g at temperatures ``t`` of bearings ``rows``, (viscosity, friction power, side flow, feed flow))."""
+        oil, omega, radius, c = self.oil, self.omega, self.radius, self.c
+        mu = oil.viscosity(t, shear_rate=None if self.shear_rate is None else self.shear_rate[rows])
+        col = (radius[rows, None], self.width[rows, None], c[rows, None], mu[:, None])
+        film = min_film_thickness(self.magnitude[rows], journal_d=2 * col[0], bearing_width=col[1],
+                                  clearance=2 * col[2], viscosity=col[3], speed=omega, method=self.method)
+        x = journal_position(self.f[rows], eccentricity=film.eccentricity, attitude_angle=film.attitude_angle,
                              clearance=2 * col[2])
-        fed = feed_flow(x, feed=feed, radial_clearance=c[rows], viscosity=mu, radius=radius[rows], length=width[rows])
+        fed = feed_flow(x, feed=self.feed, radial_clearance=c[rows], viscosity=mu, journal_radius=radius[rows],
+                        bearing_width=self.width[rows])
         power = omega * film.friction_torque.mean(axis=-1)
         side = film.side_flow.mean(axis=-1)
         rise = TEMPERATURE_SHARE * power / (oil.density(t) * oils.SPECIFIC_HEAT * (side + fed))
-        return t - t_in[rows] - rise, (mu, power, side, fed)
+        return t - self.t_in[rows] - rise, (mu, power, side, fed)
 
+
+def _false_position(state, t_in, *, tolerance, max_iterations):
+    """Root of ``state`` per bearing between the supply temperature and the limit: (T, status, values there).
+
+    Bracketed false position with the Illinois halving of an end kept twice in a row.
+    """
     n = t_in.size
     everyone = np.arange(n)
     lo, hi = t_in.copy(), np.full(n, TEMPERATURE_LIMIT)
@@ -333,6 +364,4 @@ def heat_balance(load_history, *, diameter, length, clearance, speed, oil, suppl
         last[rows] = np.where(below, -1, 1)
         status[rows[converged]] = 0
         done[rows[converged]] = True
-    mu, power, side, fed = out
-    shape = lambda a: np.asarray(a).reshape(lead)  # noqa: E731
-    return HeatBalance(shape(t), shape(mu), shape(power), shape(side), shape(fed), shape(status))
+    return t, status, out

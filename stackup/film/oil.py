@@ -60,8 +60,8 @@ from pathlib import Path
 import numpy as np
 from scipy import optimize
 
-from .. import _validate as check
 from .._files import Table, read_toml
+from .._validate import Finite, InRange, Positive, validated
 
 #: Specific heat of engine oil at film temperatures (80-150 degC) [J/(kg K)] (mineral oils 2.0-2.3 kJ/(kg K)).
 SPECIFIC_HEAT = 2000.0
@@ -141,11 +141,13 @@ class Oil:
     critical_shear_rate: float = CROSS_VII.critical_shear_rate
     thinning_exponent: float = CROSS_VII.exponent
 
+    @validated(temperature=InRange(*TEMPERATURE_RANGE, unit=" degC"))
     def low_shear_viscosity(self, temperature):
         """Low-shear (Vogel) dynamic viscosity [Pa s] at temperature [degC]."""
-        t = check.in_range("temperature", temperature, *TEMPERATURE_RANGE, unit=" degC")
-        return self.c1 * np.exp(self.c2 / (t + self.c3))
+        return self.c1 * np.exp(self.c2 / (np.asarray(temperature, dtype=float) + self.c3))
 
+    @validated(temperature=InRange(*TEMPERATURE_RANGE, unit=" degC"), shear_rate=Positive(zero=True),
+               pressure=Positive(zero=True))
     def viscosity(self, temperature, *, shear_rate=None, pressure=0.0):
         """Dynamic viscosity [Pa s] at temperature [degC], shear rate [1/s] and pressure [Pa].
 
@@ -155,17 +157,24 @@ class Oil:
         """
         mu0 = self.low_shear_viscosity(temperature)
         if shear_rate is not None and self.second_newtonian < 1.0:
-            rate = check.positive("shear_rate", shear_rate, allow_zero=True)
+            rate = np.asarray(shear_rate, dtype=float)
             critical = self.critical_shear_rate * self.c1 * np.exp(self.c2 / (CROSS_VII.hths_temperature + self.c3)) / mu0
             r = self.second_newtonian
             mu0 = mu0 * (r + (1 - r) / (1 + (rate / critical) ** self.thinning_exponent))
-        return mu0 * np.exp(self.pressure_coefficient * check.positive("pressure", pressure, allow_zero=True))
+        return mu0 * np.exp(self.pressure_coefficient * np.asarray(pressure, dtype=float))
 
     def density(self, temperature):
         """Density [kg/m^3] at temperature [degC]."""
         return self.density15 / (1.0 + THERMAL_EXPANSION * (np.asarray(temperature) - 15.0))
 
 
+def _one_flow_curve(values):
+    t, mu = values["temperatures"], values["viscosities"]
+    if t.ndim != 1 or t.size < 3 or t.shape != mu.shape or not np.all(np.diff(t) > 0) or not np.all(np.diff(mu) < 0):
+        raise ValueError("fit_vogel: give at least three increasing temperatures with decreasing viscosities")
+
+
+@validated(temperatures=Finite(), viscosities=Positive(), relations=(_one_flow_curve,))
 def fit_vogel(temperatures, viscosities, *, c3_range=VOGEL_C3_RANGE):
     """Vogel constants (C1 [Pa s], C2, C3 [K]) by least squares in ln(viscosity), C3 inside ``c3_range``.
 
@@ -178,10 +187,8 @@ def fit_vogel(temperatures, viscosities, *, c3_range=VOGEL_C3_RANGE):
     c3_range : (float, float)
         Admissible C3 [K]; three points whose exact fit lies inside it are reproduced exactly.
     """
-    t = check.finite("temperatures", temperatures)
-    mu = check.positive("viscosities", viscosities)
-    if t.ndim != 1 or t.size < 3 or t.shape != mu.shape or not np.all(np.diff(t) > 0) or not np.all(np.diff(mu) < 0):
-        raise ValueError("fit_vogel: give at least three increasing temperatures with decreasing viscosities")
+    t = np.asarray(temperatures, dtype=float)
+    mu = np.asarray(viscosities, dtype=float)
     lo, hi = max(c3_range[0], -t[0] + 1e-3), c3_range[1]
     ln = np.log(mu)
 

@@ -3,10 +3,10 @@ r"""Dynamically loaded bearings over the engine cycle: the journal orbit, its fi
 Tiers of :func:`orbit` (``method``); their measured costs and errors are in
 ``reports/film_speed_vs_error.md`` and :func:`cheapest_cycle_tier` picks from them:
 
-``"quasi-static"`` (``"quasi-static-short"``, ``"quasi-static-finite"``, ``"quasi-static-reynolds"``)
-    Each crank angle as a steady load on a steady tier (``steady_method``):
-    no squeeze film.
-``"mobility"`` (alias ``"mobility-short"``)
+``"short"``, ``"finite"``, ``"reynolds"``
+    Quasi-static: each crank angle as a steady load on that steady tier
+    (:func:`stackup.film.min_film_thickness`): no squeeze film.
+``"mobility"``
     The journal centre moves so that the film force balances the load at
     every instant (massless journal, Booker's mobility method), with the
     short-bearing film force in closed form.
@@ -22,7 +22,11 @@ Tiers of :func:`orbit` (``method``); their measured costs and errors are in
     mass-conserving (Elrod-Adams, JFO) cavitation, the journal centre integrated
     over the cycle (:mod:`stackup.film.transient`).
 
-Mobility tiers. In the engine-fixed frame, journal centre :math:`\mathbf x`
+The names before issue 30 stay accepted, with a DeprecationWarning (:data:`ALIASES`):
+``"quasi-static"`` with ``steady_method``, ``"quasi-static-<steady tier>"``, ``"mobility-short"``
+and the study's ``"transient"``.
+
+Mobility tiers (:mod:`stackup.film.mobility`). In the engine-fixed frame, journal centre :math:`\mathbf x`
 (from the bearing centre), journal speed :math:`\omega` (positive from axis 0 to
 axis 1), bearing fixed, :math:`h(\Theta) = c - \mathbf x\cdot\mathbf n(\Theta)`, the
 Reynolds equation's source is
@@ -43,8 +47,7 @@ through Sommerfeld's substitution. Given the load, Newton on :math:`\alpha` find
 :math:`\dot{\mathbf x}` is integrated by the explicit midpoint rule over repeated cycles
 from the bearing centre, two angles per step until the orbit nearly closes, then
 every angle until it closes within :data:`PERIODIC` of the thinnest film (the
-midpoint rule at 1 deg steps is within 0.07 % of RK4 at 1/8 deg on the built-in
-engines' bearings). Per
+rule's step error is part of the tier's error measured in ``reports/film_speed_vs_error.md``). Per
 angle: mid-plane peak pressure :math:`p_{max} = \tfrac32\mu\,(L/c)^2\max_\phi\,\mathbf v_s\cdot\mathbf n/\bar h^3`,
 friction torque on the journal :math:`T = \frac{2\pi\mu\omega R^3 L}{c\sqrt{1-\varepsilon^2}} - \tfrac12(\mathbf x\times\mathbf W)_z`
 (full-film shear plus the pressure couple, as the steady tiers) and side flow
@@ -85,163 +88,77 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+import tomllib
+import warnings
 from functools import lru_cache
 from importlib import resources
 
 import numpy as np
 
-from .. import _validate as check
 from .._kernels import mobility as _kernel
+from .._validate import Finite, Integer, OneOf, Positive, one_of, renamed, validated
+from . import ECCENTRICITY_VALID, Film, min_film_thickness, reynolds
+from .journal import (ECCENTRICITY_LIMIT, STATES, STATUS, Orbit, edge_film, mobility_table,  # noqa: F401 (API)
+                      short_table, table_covers, vector_length)
+from .mobility import PERIODIC, mobility_orbit  # noqa: F401 (PERIODIC: API)
+from .tilt import cycle_tilt
+from .transient import transient_orbit
 
-#: Tier names :func:`orbit` accepts, cheapest first, and what each runs: (method, steady tier).
-TIERS = {
-    "quasi-static-short": ("quasi-static", "short"),
-    "quasi-static-finite": ("quasi-static", "finite"),
-    "mobility": ("mobility", None),
-    "mobility-short": ("mobility", None),
-    "mobility-finite": ("mobility-finite", None),
-    "quasi-static-reynolds": ("quasi-static", "reynolds"),
-    "reynolds-transient": ("reynolds-transient", None),
-}
-METHODS = ("quasi-static", *TIERS)
-#: Status codes of an orbit (CF flag_values 0..4 with these flag_meanings).
-STATUS = ("periodic", "not_periodic", "collapsed", "failed", "edge_contact")
-#: The orbit is periodic when the journal returns after a cycle to within this share of the thinnest film.
-PERIODIC = 1e-3
-#: Largest eccentricity a journal reaches; a film held there has collapsed.
-ECCENTRICITY_LIMIT = 0.995
+#: Cycle tiers :func:`orbit` runs (``method``), cheapest first; the study's film methods are the same names.
+METHODS = ("short", "finite", "mobility", "mobility-finite", "reynolds", "reynolds-transient")
+#: Quasi-static tiers (a steady tier at each angle) and dynamic ones (an orbit integrated over cycles).
+QUASI_STATIC = ("short", "finite", "reynolds")
+DYNAMIC = ("mobility", "mobility-finite", "reynolds-transient")
+#: Deprecated names of the tiers -> their names (``"quasi-static"`` takes its tier from ``steady_method``).
+ALIASES = {"quasi-static-short": "short", "quasi-static-finite": "finite", "quasi-static-reynolds": "reynolds",
+           "mobility-short": "mobility", "transient": "reynolds-transient"}
+#: Measures of a cycle tier's error (:func:`cycle_tier_errors`).
+MEASURES = ("h_min", "h_min_mean", "p_max", "p_max_mean", "friction_power")
 
 
-@dataclass(frozen=True)
-class Orbit:
-    """Film of bearings over a cycle; leading shape (...) of the loads, angles last.
+def canonical_tier(method, steady_method=None, *, stacklevel=2):
+    """The tier's name for one of its deprecated names (:data:`ALIASES`), with a DeprecationWarning; else ``method``.
 
-    Attributes
-    ----------
-    h_min : numpy.ndarray (..., angles)
-        Minimum film thickness in the bearing's mid-plane [m].
-    h_min_edge : numpy.ndarray (..., angles)
-        Minimum film thickness over the bearing width, with the journal's tilt [m]
-        (equals ``h_min`` without tilt).
-    eccentricity : numpy.ndarray (..., angles)
-        Eccentricity ratio of the mid-plane journal centre [-].
-    position : numpy.ndarray (..., angles, 2)
-        Journal centre relative to the bearing centre [m].
-    p_max : numpy.ndarray (..., angles)
-        Peak film pressure [Pa].
-    friction_torque : numpy.ndarray (..., angles)
-        Friction torque on the journal [N m].
-    side_flow : numpy.ndarray (..., angles)
-        Oil leaving both ends of the bearing [m^3/s].
-    status : numpy.ndarray of int8 (...)
-        Index into :data:`STATUS`.
-    cycles : numpy.ndarray of int (...)
-        Cycles integrated (0 for the quasi-static tiers).
-    speed : numpy.ndarray (...)
-        Journal angular speed [rad/s] (for the friction power).
-    tilt : numpy.ndarray (..., angles, 2) or None
-        Slope of the journal against the bearing axis in the film [rad] (the
-        equilibrium with ``tilt_compliance``, else the tilt given).
-    free_tilt : numpy.ndarray (..., angles, 2) or None
-        The tilt given: the beam's slope without the film's moment [rad].
-    tilt_state : numpy.ndarray of int8 (..., angles) or None
-        Index into :data:`stackup.film.tilt.STATES` (``at_limit``: the film cannot
-        hold the journal, an edge at the limit).
+    ``"quasi-static"`` names the steady tier ``steady_method`` (default ``"finite"``).
     """
-
-    h_min: np.ndarray
-    h_min_edge: np.ndarray
-    eccentricity: np.ndarray
-    position: np.ndarray
-    p_max: np.ndarray
-    friction_torque: np.ndarray
-    side_flow: np.ndarray
-    status: np.ndarray
-    cycles: np.ndarray
-    speed: np.ndarray
-    tilt: np.ndarray | None = None
-    free_tilt: np.ndarray | None = None
-    tilt_state: np.ndarray | None = None
-
-    @property
-    def converged(self):
-        """The orbit is periodic with a film (status 0)."""
-        return self.status == 0
-
-    @property
-    def h_min_cycle(self):
-        """Cycle minimum of the mid-plane minimum film (inf h_min) [m]."""
-        return self.h_min.min(axis=-1)
-
-    @property
-    def h_min_mean(self):
-        """Cycle average of the mid-plane minimum film (h*_min) [m] (equal angle steps)."""
-        return self.h_min.mean(axis=-1)
-
-    @property
-    def h_min_edge_cycle(self):
-        """Cycle minimum of the film over the bearing width, with tilt [m]."""
-        return self.h_min_edge.min(axis=-1)
-
-    @property
-    def tilt_max(self):
-        """Cycle maximum of the journal's tilt in the film [rad] (0 without tilt)."""
-        if self.tilt is None:
-            return np.zeros(self.status.shape)
-        return _vector_length(self.tilt).max(axis=-1)
-
-    @property
-    def edge_contact_share(self):
-        """Share of the cycle's angles with an edge at the limit [-] (0 without tilt)."""
-        if self.tilt_state is None:
-            return np.zeros(self.status.shape)
-        return np.mean(self.tilt_state == 1, axis=-1)
-
-    @property
-    def p_max_cycle(self):
-        """Cycle maximum of the peak film pressure (sup p_max) [Pa]."""
-        return self.p_max.max(axis=-1)
-
-    @property
-    def p_max_mean(self):
-        """Cycle average of the peak film pressure (p*_max) [Pa]."""
-        return self.p_max.mean(axis=-1)
-
-    @property
-    def friction_power(self):
-        """Friction power at each angle [W]."""
-        return self.friction_torque * self.speed[..., None]
-
-    @property
-    def friction_power_mean(self):
-        """Cycle average of the friction power (N*) [W]."""
-        return self.friction_power.mean(axis=-1)
-
-    @property
-    def side_flow_mean(self):
-        """Cycle average of the side flow (Q*) [m^3/s]."""
-        return self.side_flow.mean(axis=-1)
+    if method == "quasi-static":
+        tier = "finite" if steady_method is None else steady_method
+        warnings.warn(f"method='quasi-static' with steady_method={tier!r} is deprecated; use method={tier!r}",
+                      DeprecationWarning, stacklevel=stacklevel + 1)
+        return tier
+    if steady_method is not None:
+        warnings.warn("steady_method= is deprecated and read only with method='quasi-static'; name the steady tier "
+                      "as the method", DeprecationWarning, stacklevel=stacklevel + 1)
+    if method in ALIASES:
+        warnings.warn(f"method={method!r} is deprecated; use {ALIASES[method]!r} (same tier)", DeprecationWarning,
+                      stacklevel=stacklevel + 1)
+        return ALIASES[method]
+    return method
 
 
-@lru_cache(maxsize=1)
-def mobility_table():
-    """The finite-length correction of the short-bearing squeeze force (see ``studies/film_mobility_table.py``).
+def tier_names(wrapped_by=0):
+    """Decorator: accept the deprecated tier names in ``method`` (and ``steady_method``) (:func:`canonical_tier`).
 
-    Returns (length_over_diameter (n_ld,), -ln(1 - eccentricity) (n_eps,), table (n_ld, n_eps, n_alpha, 3)):
-    log force ratio, turn [rad] and log peak-pressure ratio of the Reynolds tier to the
-    short bearing, over squeeze directions alpha in [0, pi] (uniform).
+    ``wrapped_by``: decorators applied over this one (the warning names the caller's line).
     """
-    path = resources.files("stackup") / "data" / "film_mobility_table.npz"
-    with np.load(path) as data:
-        table = np.stack([data["log_force_ratio"], data["turn"], data["log_peak_ratio"]], axis=-1)
-        return (np.ascontiguousarray(data["length_over_diameter"]), -np.log1p(-data["eccentricity"]),
-                np.ascontiguousarray(table))
+    def decorate(function):
+        @functools.wraps(function)
+        def call(*args, **kwargs):
+            method = kwargs.get("method")
+            if "steady_method" in kwargs or method == "quasi-static" or method in ALIASES:
+                kwargs["method"] = canonical_tier(kwargs.get("method", "mobility"), kwargs.pop("steady_method", None),
+                                                  stacklevel=2 + wrapped_by)
+            return function(*args, **kwargs)
+
+        return call
+
+    return decorate
 
 
 @lru_cache(maxsize=1)
 def cycle_tier_errors():
-    """Measured cost and film error of each cycle tier against ``reynolds-transient``.
+    """Measured cost and film error of each cycle tier against ``reynolds-transient``, by tier name.
 
     From ``stackup/data/film_cycle_errors.toml``, written by
     ``studies/film_speed_vs_error.py`` on the built-in engines' main bearings: per
@@ -249,14 +166,21 @@ def cycle_tier_errors():
     error of the cycle minimum (``h_min``) and cycle mean (``h_min_mean``) of the
     minimum film, the peak pressure's maximum and mean and the mean friction
     power, against the mass-conserving reference, and in ``"swift-stieber"``
-    against the same reference with the Reynolds cavitation condition.
+    against the same reference with the Reynolds cavitation condition. A file
+    written before the tiers were renamed (:data:`ALIASES`) reads under the names.
     """
-    import tomllib
-
     with open(resources.files("stackup") / "data" / "film_cycle_errors.toml", "rb") as f:
-        return tomllib.load(f)["tiers"]
+        return {ALIASES.get(tier, tier): errors for tier, errors in tomllib.load(f)["tiers"].items()}
 
 
+def _each_measure(field, names):
+    for name in names:
+        one_of(field, name, MEASURES)
+    return names
+
+
+@validated(max_error=Positive(zero=True), measures=_each_measure,
+           reference=OneOf(("mass-conserving", "swift-stieber")))
 def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), reference="mass-conserving", tiers=None):
     """The cheapest cycle tier whose measured errors (``measures``) are all within ``max_error`` [-].
 
@@ -267,10 +191,7 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
     only). ``tiers``: the tiers to choose from (default every measured one). Falls
     back to ``reynolds-transient`` when no cheaper tier qualifies.
     """
-    max_error = float(check.positive("max_error", max_error, allow_zero=True))
-    check.one_of("reference", reference, ("mass-conserving", "swift-stieber"))
-    for name in measures:
-        check.one_of("measures", name, ("h_min", "h_min_mean", "p_max", "p_max_mean", "friction_power"))
+    max_error = float(max_error)
     errors = cycle_tier_errors()
     ranked = sorted((t for t in errors if tiers is None or t in tiers), key=lambda t: errors[t]["seconds"])
 
@@ -281,30 +202,46 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
     return next((t for t in ranked if all(error(t, m) <= max_error for m in measures)), "reynolds-transient")
 
 
-def _short_table():
-    return np.array([1.0, 2.0]), np.array([0.0, 1.0]), np.zeros((1, 2, 2, 3))
+def within_one_cycle(crank_angle):
+    """A ValueError unless the crank angles (angles,) increase and span less than a cycle."""
+    if np.any(np.diff(crank_angle) <= 0) or crank_angle[-1] - crank_angle[0] >= 720.0:
+        raise ValueError("crank_angle: must increase and span less than 720 deg")
 
 
-def _vector_length(vectors):
-    """Length of the 2-vectors on the last axis: ``np.linalg.norm(vectors, axis=-1)`` to the bit, at a sixth of its cost.
+def one_cycle(loads_name):
+    """Relation of :func:`~stackup._validate.validated`: loads ``loads_name`` (..., angles, 2) over ``crank_angle``
+    (angles,) that increase over less than a cycle."""
+    def relation(values):
+        loads, angle = values[loads_name], values["crank_angle"]
+        if angle.ndim != 1 or loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
+            raise ValueError(f"{loads_name}: shape {loads.shape} is not valid; expected (..., {angle.size}, 2)")
+        within_one_cycle(angle)
 
-    norm reduces over an axis of two, which numpy does slowly; on the (bearings, angles, 2) arrays of an orbit its
-    calls cost as much as a tenth of the film stage's Python around the kernels.
-    """
-    x, y = vectors[..., 0], vectors[..., 1]
-    return np.sqrt(x * x + y * y)
-
-
-def resolve(method, steady_method="finite"):
-    """(kernel method, steady tier) of a tier name."""
-    check.one_of("method", method, METHODS)
-    if method == "quasi-static":
-        return "quasi-static", steady_method
-    return TIERS[method]
+    return relation
 
 
-def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, speed, method="mobility",
-          steady_method="finite", tilt=None, tilt_compliance=None, cycles=None, start=None, **transient_options):
+def compliance_with_tilt(values):
+    """Relation: a tilt compliance comes with the free tilt it turns back."""
+    if values["tilt_compliance"] is not None and values["tilt"] is None:
+        raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
+
+
+def _transient_options(values):
+    """The transient tier's options, checked as :func:`stackup.film.transient.transient_orbit` declares them."""
+    options = values["transient_options"]
+    for name, constraint in transient_orbit.constraints.items():
+        if options.get(name) is not None:
+            constraint(name, options[name])
+
+
+@renamed(diameter="journal_d", length="bearing_width")
+@tier_names(wrapped_by=1)
+@validated(method=OneOf(METHODS), load_history=Finite(), crank_angle=Finite(), journal_d=Positive(),
+           bearing_width=Positive(), clearance=Positive(), viscosity=Positive(), speed=Positive(),
+           cycles=Integer(minimum=1), tilt=Finite(), tilt_compliance=Positive(zero=True), start=Finite(),
+           relations=(one_cycle("load_history"), compliance_with_tilt, _transient_options))
+def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, viscosity, speed, method="mobility",
+          tilt=None, tilt_compliance=None, cycles=None, start=None, **transient_options):
     """Film over the engine cycle of dynamically loaded bearings.
 
     Parameters
@@ -314,16 +251,14 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
         bearing, engine-fixed frame).
     crank_angle : array_like (angles,)
         Crank angles [deg], increasing, covering one cycle (720 deg).
-    diameter, length, clearance : float or array_like (...)
-        Journal diameter, bearing length, diametral clearance [m].
+    journal_d, bearing_width, clearance : float or array_like (...)
+        Journal diameter, bearing width, diametral clearance [m].
     viscosity : float or array_like (...)
         Effective oil viscosity [Pa s].
     speed : float or array_like (...)
         Journal angular speed [rad/s] (positive: from load axis 0 towards axis 1).
     method : str
-        A tier of :data:`TIERS`, or ``"quasi-static"`` with ``steady_method``.
-    steady_method : {"short", "finite", "reynolds"}
-        Steady tier of ``"quasi-static"``.
+        A tier of :data:`METHODS` (deprecated names: :data:`ALIASES`).
     tilt : array_like (..., angles, 2), optional
         Slope of the journal axis relative to the bearing axis [rad], per
         component of the engine frame (the journal centre at axial position
@@ -352,180 +287,77 @@ def orbit(load_history, crank_angle, *, diameter, length, clearance, viscosity, 
     -------
     Orbit
     """
-    kind, steady = resolve(method, steady_method)
-    loads, angle = _checked_cycle(load_history, crank_angle)
+    loads = np.asarray(load_history, dtype=float)
     lead = loads.shape[:-2]
-    radius = np.broadcast_to(check.positive("diameter", diameter) / 2, lead)
-    width = np.broadcast_to(check.positive("length", length), lead)
-    c = np.broadcast_to(check.positive("clearance", clearance) / 2, lead)
-    mu = np.broadcast_to(check.positive("viscosity", viscosity), lead)
-    omega = np.broadcast_to(check.positive("speed", speed), lead)
-    cycles = _checked_cycles(cycles, kind)
-    tilt, tilt_compliance = _checked_tilt(tilt, tilt_compliance, loads.shape)
-    return _orbit(loads, angle, kind, steady, radius=radius, length=width, radial_clearance=c, viscosity=mu,
-                  speed=omega, cycles=cycles, tilt=tilt, tilt_compliance=tilt_compliance, start=start,
-                  **transient_options)
-
-
-def _checked_cycle(load_history, crank_angle):
-    """:func:`orbit`'s checks of the loads and crank angles: (loads (..., angles, 2), angles), float arrays."""
-    loads = check.finite("load_history", load_history)
-    angle = check.finite("crank_angle", crank_angle)
-    if angle.ndim != 1 or loads.ndim < 2 or loads.shape[-1] != 2 or loads.shape[-2] != angle.size:
-        raise ValueError(f"load_history: shape {loads.shape} is not valid; expected (..., {angle.size}, 2)")
-    if np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
-        raise ValueError("crank_angle: must increase and span less than 720 deg")
-    return loads, angle
-
-
-def _checked_cycles(cycles, kind):
-    """:func:`orbit`'s ``cycles``: its default for the tier ``kind`` (:func:`resolve`), checked."""
-    if cycles is None:
-        cycles = 8 if kind == "reynolds-transient" else 20
-    return check.integer("cycles", cycles, minimum=1)
-
-
-def _checked_tilt(tilt, tilt_compliance, shape):
-    """:func:`orbit`'s checks of the tilt and the compliance, broadcast to the loads' ``shape`` (None stays None)."""
+    geometry = {name: np.broadcast_to(np.asarray(value, dtype=float), lead) for name, value in (
+        ("journal_radius", np.asarray(journal_d, dtype=float) / 2), ("bearing_width", bearing_width),
+        ("radial_clearance", np.asarray(clearance, dtype=float) / 2), ("viscosity", viscosity), ("speed", speed))}
     if tilt is not None:
-        tilt = np.broadcast_to(check.finite("tilt", tilt), shape)
+        tilt = np.broadcast_to(np.asarray(tilt, dtype=float), loads.shape)
     if tilt_compliance is not None:
-        if tilt is None:
-            raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
-        tilt_compliance = np.broadcast_to(check.positive("tilt_compliance", tilt_compliance, allow_zero=True),
-                                          (*shape[:-2], 2))
-    return tilt, tilt_compliance
+        tilt_compliance = np.broadcast_to(np.asarray(tilt_compliance, dtype=float), (*lead, 2))
+    if start is not None:
+        start = np.broadcast_to(np.asarray(start, dtype=float), (*lead, 2))
+    if cycles is None:
+        cycles = 8 if method == "reynolds-transient" else 20
+    return _run(method, loads, np.asarray(crank_angle, dtype=float), geometry, tilt=tilt,
+                tilt_compliance=tilt_compliance, cycles=cycles, start=start, options=transient_options)
 
 
-def _orbit(loads, angle, kind, steady, *, radius, length, radial_clearance, viscosity, speed, cycles, tilt,
-           tilt_compliance, start, **transient_options):
-    """:func:`orbit` on checked inputs: geometry (...) and tilts broadcast to the loads (:func:`_checked_cycle`,
-    :func:`_checked_tilt`), ``cycles`` an int (``start`` is checked here).
-
-    For callers that run orbits over and over on inputs checked once (:func:`stackup.film.cycle.balanced_orbit`).
-    """
-    lead = loads.shape[:-2]
-    width, c, omega = length, radial_clearance, speed
-    geometry = dict(radius=radius, length=length, radial_clearance=radial_clearance, viscosity=viscosity,
-                    speed=speed)
-
-    if kind == "quasi-static":
-        position, p_max, torque, flow = _quasi_static(loads, steady, **geometry)
+def _run(method, loads, angle, geometry, *, tilt, tilt_compliance, cycles, start, options):
+    """The tier ``method``'s orbit on inputs broadcast to the loads' leading shape (``geometry`` radial, SI)."""
+    if method == "reynolds-transient":
+        return transient_orbit(loads, angle, **geometry, tilt=tilt, tilt_compliance=tilt_compliance, cycles=cycles,
+                               start=start, **options)
+    if method in QUASI_STATIC:
+        position, p_max, torque, flow = _quasi_static(loads, method, **geometry)
+        lead = loads.shape[:-2]
         status, used = np.zeros(lead, np.int8), np.zeros(lead, int)
-        squeeze = -0.5 * omega[..., None, None] * np.stack([-position[..., 1], position[..., 0]], axis=-1)
-        finite = steady != "short"
-    elif kind == "reynolds-transient":
-        from .transient import transient_orbit
-
-        result = transient_orbit(loads, angle, tilt=tilt, tilt_compliance=tilt_compliance, cycles=cycles,
-                                 start=start, **geometry, **transient_options)
-        return result
+        squeeze = -0.5 * geometry["speed"][..., None, None] * np.stack([-position[..., 1], position[..., 0]], axis=-1)
+        finite = method != "short"
     else:
-        if start is not None:
-            start = np.broadcast_to(check.finite("start", start), (*lead, 2))
-        finite = kind == "mobility-finite"
-        position, p_max, torque, flow, status, used, squeeze = _mobility(loads, angle, finite=finite, cycles=cycles,
-                                                                         start=start, **geometry)
-    ecc = _vector_length(position) / c[..., None]
+        finite = method == "mobility-finite"
+        position, p_max, torque, flow, status, used, squeeze = mobility_orbit(loads, angle, finite=finite,
+                                                                              cycles=cycles, start=start, **geometry)
+    return _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, finite=finite,
+                      **geometry)
+
+
+def _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, *, finite,
+               journal_radius, bearing_width, radial_clearance, viscosity, speed):
+    """The :class:`Orbit` of a mid-plane orbit: its films, and the tilt in them (the equilibrium with a compliance)."""
+    c = radial_clearance
+    ecc = vector_length(position) / c[..., None]
     h_min = c[..., None] * (1 - ecc)
     film_tilt, tilt_state = tilt, None
     if tilt_compliance is not None:
-        film_tilt, tilt_state = _tilt_in_film(position, squeeze, tilt, tilt_compliance, finite=finite, **geometry)
-    h_edge, status = edge_film(position, film_tilt, width, c, h_min, status, at_limit=tilt_state)
-    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, omega, film_tilt, tilt, tilt_state)
+        # the finite correction where its table covers the bearing (as the mobility-finite tier)
+        covered = table_covers(bearing_width / (2 * journal_radius))
+        equilibrium = cycle_tilt(position, squeeze, tilt, compliance=tilt_compliance, journal_radius=journal_radius,
+                                 bearing_width=bearing_width, radial_clearance=c, viscosity=viscosity, speed=speed,
+                                 method="finite" if finite and covered else "short")
+        film_tilt, tilt_state = equilibrium.tilt, equilibrium.state
+    h_edge, status = edge_film(position, film_tilt, bearing_width, c, h_min, status, at_limit=tilt_state)
+    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, speed, film_tilt, tilt, tilt_state)
 
 
-def _tilt_in_film(position, squeeze, free_tilt, compliance, *, finite, radius, length, radial_clearance, viscosity,
-                  speed):
-    """Tilt equilibrium on a mid-plane orbit (:func:`stackup.film.tilt.cycle_tilt`): (tilt, state)."""
-    from .tilt import _cycle_tilt
-
-    ld_nodes = mobility_table()[0]
-    ld = length / (2 * radius)
-    # the finite correction where its table covers the bearing (as the mobility-finite tier)
-    covered = bool(np.all((ld >= ld_nodes[0]) & (ld <= ld_nodes[-1])))
-    # orbit() checked the inputs, and its orbit is finite (held at the eccentricity limit at worst)
-    result = _cycle_tilt(position, squeeze, free_tilt, compliance, radius=radius, length=length,
-                         radial_clearance=radial_clearance, viscosity=viscosity, speed=speed,
-                         finite=finite and covered)
-    return result.tilt, result.state
-
-
-def edge_film(position, tilt, width, c, h_min, status, at_limit=None):
-    """Thinnest film over the width of a tilted journal (at an edge), held at the limit where an edge touches.
-
-    ``at_limit`` (..., angles): the tilt equilibrium's state per angle
-    (:data:`stackup.film.tilt.STATES`); an angle in state 1 has its edge at the limit.
-    Returns (edge film (..., angles) [m], status with ``edge_contact`` where a periodic orbit's edge touched).
-    """
-    if tilt is None:
-        return h_min, status
-    half = 0.5 * width[..., None, None] * tilt
-    reach = np.maximum(_vector_length(position + half), _vector_length(position - half))
-    floor = (c * (1 - ECCENTRICITY_LIMIT))[..., None]
-    touching = c[..., None] - reach < floor * (1 + 1e-9)
-    if at_limit is not None:
-        touching = touching | (at_limit == 1)
-    status = np.where((status == 0) & touching.any(axis=-1), STATUS.index("edge_contact"), status).astype(np.int8)
-    return np.maximum(np.minimum(h_min, c[..., None] - reach), floor), status
-
-
-def _mobility(loads, angle, *, finite, cycles, start, radius, length, radial_clearance, viscosity, speed):
-    lead = loads.shape[:-2]
-    n = angle.size
-    c, mu, w = radial_clearance, viscosity, speed
-    scale = mu * w * radius * length**3 / c**2  # load of unit dimensionless force [N]
-    w_bar = np.ascontiguousarray((loads / scale[..., None, None]).reshape(-1, n, 2))
-    tau = np.radians(np.append(angle, angle[0] + 720.0) - angle[0])
-    ld = np.ascontiguousarray((length / (2 * radius)).reshape(-1), dtype=float)
-    if finite:
-        ld_nodes, stretched, tables = mobility_table()
-        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
-            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the mobility-finite "
-                             f"table [{ld_nodes[0]}, {ld_nodes[-1]}]; use method='reynolds-transient'")
-    else:
-        ld_nodes, stretched, tables = _short_table()
-    m = w_bar.shape[0]
-    xi = np.empty((m, n, 2))
-    v = np.empty((m, n, 2))
-    peak = np.empty((m, n))
-    status = np.empty(m, np.int8)
-    used = np.empty(m)
-    warm = start is not None
-    xi0 = np.ascontiguousarray((start / c[..., None]).reshape(-1, 2) if warm else np.zeros((m, 2)), dtype=float)
-    _kernel.orbits(w_bar, tau, ECCENTRICITY_LIMIT, PERIODIC, cycles, tables, ld_nodes, stretched, ld, finite,
-                   xi, v, peak, status, used, xi0, warm)
-    xi = xi.reshape(*lead, n, 2)
-    v = v.reshape(*lead, n, 2)
-    position = xi * c[..., None, None]
-    squeeze = v * (c * w)[..., None, None]
-    ecc = _vector_length(xi)
-    p_max = 1.5 * (mu * w * (length / c) ** 2)[..., None] * peak.reshape(*lead, n)
-    torque = (2 * np.pi * mu * w * radius**3 * length / c)[..., None] / np.sqrt(1 - ecc**2) \
-        + 0.5 * (position[..., 1] * loads[..., 0] - position[..., 0] * loads[..., 1])
-    flow = (2 * radius * length * c * w)[..., None] * _vector_length(v)
-    return position, p_max, torque, flow, status.reshape(lead), used.reshape(lead), squeeze
-
-
-def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity, speed):
+def _quasi_static(loads, steady, *, journal_radius, bearing_width, radial_clearance, viscosity, speed):
     """Steady film at each angle; the journal sits at the attitude angle ahead of the load, in the turning direction."""
-    from . import min_film_thickness
-
     c, mu, w = (a[..., None] for a in (radial_clearance, viscosity, speed))
-    r, l = radius[..., None], length[..., None]
+    r, l = journal_radius[..., None], bearing_width[..., None]
     magnitude = np.linalg.norm(loads, axis=-1)
-    kw = dict(diameter=2 * r, length=l, clearance=2 * c, viscosity=mu, speed=w)
+    kw = dict(journal_d=2 * r, bearing_width=l, clearance=2 * c, viscosity=mu, speed=w)
     if steady == "reynolds":
         film, field_peak = _steady_reynolds(np.maximum(magnitude, 1e-6), **kw)
     else:
         film = min_film_thickness(np.maximum(magnitude, 1e-6), **kw, method=steady)
         eps = np.minimum(film.eccentricity, ECCENTRICITY_LIMIT)
-        ld_nodes, stretched, tables = mobility_table() if steady == "finite" else _short_table()
+        ld_nodes, stretched, tables = mobility_table() if steady == "finite" else short_table()
         flat_eps = np.ascontiguousarray(eps, dtype=float).ravel()
         factor = np.empty(flat_eps.size)
-        _kernel.steady_peak_factors(flat_eps, np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape),
-                                                                   dtype=float).ravel(),
-                                    tables, ld_nodes, stretched, steady == "finite", factor)
+        ld = np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape), dtype=float).ravel()
+        _kernel.steady_peak_factors(flat_eps, ld, _kernel.Correction(tables, ld_nodes, stretched, steady == "finite"),
+                                    factor)
         # v_s = (1/2) k x xi: |v| = eps/2
         field_peak = 1.5 * mu * w * (l / c) ** 2 * 0.5 * eps * factor.reshape(eps.shape)
     direction = np.arctan2(loads[..., 1], loads[..., 0]) + film.attitude_angle
@@ -534,15 +366,13 @@ def _quasi_static(loads, steady, *, radius, length, radial_clearance, viscosity,
     return position, field_peak, film.friction_torque, film.side_flow
 
 
-def _steady_reynolds(load, *, diameter, length, clearance, viscosity, speed):
+def _steady_reynolds(load, *, journal_d, bearing_width, clearance, viscosity, speed):
     """Steady Reynolds tier at each angle, with the peak of its pressure field."""
-    from . import ECCENTRICITY_VALID, Film, reynolds
-
-    load, diameter, length, clearance, viscosity, speed = np.broadcast_arrays(load, diameter, length, clearance,
-                                                                             viscosity, speed)
+    load, journal_d, bearing_width, clearance, viscosity, speed = np.broadcast_arrays(
+        load, journal_d, bearing_width, clearance, viscosity, speed)
     out = {k: np.empty(load.shape) for k in ("eps", "phi", "torque", "flow", "peak")}
     for idx in np.ndindex(load.shape):
-        r, l, c, mu, w = (float(a[idx]) for a in (diameter / 2, length, clearance / 2, viscosity, speed))
+        r, l, c, mu, w = (float(a[idx]) for a in (journal_d / 2, bearing_width, clearance / 2, viscosity, speed))
         unit = mu * w * r**4 / c**2
         field = reynolds.eccentricity_for_load(float(load[idx]) / unit, l / r)
         friction, flow = reynolds.friction_and_flow(field)

@@ -32,7 +32,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
+from scipy import optimize, sparse
+from scipy.sparse.linalg import spsolve
 
 from .._kernels.reynolds import integrate, psor
 
@@ -155,8 +156,6 @@ def squeeze_field(eps, alpha, length_over_radius, *, n_theta=N_THETA_SQUEEZE, n_
     primal-dual active-set method with a sparse direct solve per step
     (Hintermüller, Ito, Kunisch 2003), exact for the discrete problem.
     """
-    from scipy import sparse
-
     theta = stretched_angles(eps, n_theta)
     half = length_over_radius / 2
     z = np.linspace(0.0, half, n_z)
@@ -257,35 +256,59 @@ def tilted_field(position, squeeze, edge_offset, length_over_radius, *, edge_squ
     edge_squeeze : array_like (2,), optional
         :math:`\bar{\mathbf u}` [c omega].
     """
-    from scipy import sparse
-
     xi = np.asarray(position, float)
     v = np.asarray(squeeze, float)
     e = np.asarray(edge_offset, float)
     u = -0.5 * np.array([-e[1], e[0]]) if edge_squeeze is None else np.asarray(edge_squeeze, float)
-    # stretch the angles about the thinnest film over the width
+    theta = _angles_about_the_thinner_edge(xi, e, n_theta)
+    zeta = np.linspace(-1.0, 1.0, n_z)
+
+    def film(angle, z):
+        return 1 - (xi[0] + z * e[0]) * np.cos(angle) - (xi[1] + z * e[1]) * np.sin(angle)
+
+    if np.any(film(theta[:, None], zeta[None, :]) <= 0):
+        raise ValueError("tilted_field: the journal touches the bearing")
+    m, b, width = _tilted_system(film, theta, zeta, v, u, half_width=length_over_radius / 2)
+    p, iteration = _cavitated_solve(m, b, "tilted_field: active set did not settle")
+    pressure = np.zeros((n_theta, n_z))
+    pressure[:, 1:-1] = p.reshape(n_theta, n_z - 2)
+    dzeta = zeta[1] - zeta[0]
+    weights = np.full(n_z, dzeta)
+    weights[[0, -1]] = dzeta / 2
+    line = pressure @ weights  # integral over zeta
+    line_z = pressure @ (weights * zeta)
+    # p_bar = p c^2/(mu omega R^2), dA = R dtheta (L/2) dzeta: force / (mu omega R L^3/c^2) = (R/L)^2/2 sum
+    scale = 0.5 / length_over_radius**2
+    normal = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
+    force = scale * (normal * (line * width)[:, None]).sum(axis=0)
+    moment = 0.5 * scale * (normal * (line_z * width)[:, None]).sum(axis=0)
+    return TiltedField(theta, zeta, film(theta[:, None], zeta[None, :]), pressure, force, moment, iteration)
+
+
+def _angles_about_the_thinner_edge(xi, e, n_theta):
+    """Angles around the bearing stretched (Sommerfeld's map) about the thinnest film over the width."""
     ends = np.stack([xi + e, xi - e])
     worst = ends[np.argmax(np.linalg.norm(ends, axis=1))]
     centre = np.arctan2(worst[1], worst[0])
     k = min(float(np.linalg.norm(worst)), STRETCH_LIMIT)
     g = -np.pi + 2 * np.pi * np.arange(n_theta) / n_theta
-    theta = centre + 2 * np.arctan2(np.sqrt(1 - k) * np.sin(g / 2), np.sqrt(1 + k) * np.cos(g / 2))
-    zeta = np.linspace(-1.0, 1.0, n_z)
+    return centre + 2 * np.arctan2(np.sqrt(1 - k) * np.sin(g / 2), np.sqrt(1 + k) * np.cos(g / 2))
+
+
+def _tilted_system(film, theta, zeta, v, u, *, half_width):
+    """Finite volumes of :func:`tilted_field`: (matrix, source, control-volume widths in theta).
+
+    Unknowns the inner axial nodes of every angle (both ends p = 0), periodic in theta; ``film(angle, zeta)``
+    the film thickness, ``half_width`` L/(2R) (z/R = half_width * zeta).
+    """
     dzeta = zeta[1] - zeta[0]
-    half = length_over_radius / 2  # z/R = half * zeta
-    nt, nz = n_theta, n_z - 2  # unknowns: inner axial nodes
+    nt, nz = theta.size, zeta.size - 2  # unknowns: inner axial nodes
     gap_east = np.diff(np.append(theta, theta[0] + 2 * np.pi))
     width = 0.5 * (gap_east + np.roll(gap_east, 1))
-
-    def film(angle, z):
-        return 1 - (xi[0] + z * e[0]) * np.cos(angle) - (xi[1] + z * e[1]) * np.sin(angle)
-
     inner = zeta[1:-1]
-    if np.any(film(theta[:, None], zeta[None, :]) <= 0):
-        raise ValueError("tilted_field: the journal touches the bearing")
     h_east = film((theta + 0.5 * gap_east)[:, None], inner[None, :])
     h_north = film(theta[:, None], (zeta[:-1] + 0.5 * dzeta)[None, :])  # faces between axial nodes j, j+1 (all)
-    dz = half * dzeta  # axial step in R
+    dz = half_width * dzeta  # axial step in R
     idx = np.arange(nt * nz).reshape(nt, nz)
     a_e = h_east**3 / gap_east[:, None] * dz
     a_n = h_north**3 * width[:, None] / dz  # (nt, n_z - 1): face j between node j and j+1 of the full grid
@@ -307,25 +330,11 @@ def tilted_field(position, squeeze, edge_offset, length_over_radius, *, edge_squ
     m = sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nt * nz,) * 2)
     normal = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
     source = (normal @ v)[:, None] + inner[None, :] * (normal @ u)[:, None]
-    b = (12 * source * width[:, None] * dz).ravel()
-    p, iteration = _cavitated_solve(m, b, "tilted_field: active set did not settle")
-    pressure = np.zeros((nt, n_z))
-    pressure[:, 1:-1] = p.reshape(nt, nz)
-    weights = np.full(n_z, dzeta)
-    weights[[0, -1]] = dzeta / 2
-    line = pressure @ weights  # integral over zeta
-    line_z = pressure @ (weights * zeta)
-    # p_bar = p c^2/(mu omega R^2), dA = R dtheta (L/2) dzeta: force / (mu omega R L^3/c^2) = (R/L)^2/2 sum
-    scale = 0.5 / length_over_radius**2
-    force = scale * (normal * (line * width)[:, None]).sum(axis=0)
-    moment = 0.5 * scale * (normal * (line_z * width)[:, None]).sum(axis=0)
-    return TiltedField(theta, zeta, film(theta[:, None], zeta[None, :]), pressure, force, moment, iteration)
+    return m, (12 * source * width[:, None] * dz).ravel(), width
 
 
 def _cavitated_solve(m, b, message):
     """Pressure p >= 0 with m p = b where p > 0 (Swift-Stieber), by a primal-dual active set; (p, iterations)."""
-    from scipy.sparse.linalg import spsolve
-
     active = b <= 0
     p = np.zeros(b.size)
     for iteration in range(1, 200):

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validate import renamed
+
 
 def short_load_function(eps):
     """Dimensionless load :math:`\\varepsilon\\sqrt{\\pi^2(1-\\varepsilon^2)+16\\varepsilon^2}/(1-\\varepsilon^2)^2`."""
@@ -52,8 +54,10 @@ def invert_monotone(function, target, *, iterations=200):
     return np.where(target > 0, np.minimum(0.5 * (lo + hi), ECCENTRICITY_CEILING), 0.0)
 
 
-def film_quantities(eps, attitude, load, *, radius, length, radial_clearance, viscosity, speed):
+@renamed(radius="journal_radius", length="bearing_width")
+def film_quantities(eps, attitude, load, *, journal_radius, bearing_width, radial_clearance, viscosity, speed):
     """h_min [m], friction torque [N m], side flow [m^3/s] of a film at eccentricity ``eps`` (short-bearing forms)."""
+    radius, length = journal_radius, bearing_width
     h_min = radial_clearance * (1 - eps)
     torque = (2 * np.pi * viscosity * speed * radius**3 * length / (radial_clearance * np.sqrt(1 - eps**2))
               + eps * radial_clearance * load * np.sin(attitude) / 2)
@@ -61,12 +65,13 @@ def film_quantities(eps, attitude, load, *, radius, length, radial_clearance, vi
     return h_min, torque, flow
 
 
-def short(load, *, radius, length, radial_clearance, viscosity, speed):
+@renamed(radius="journal_radius", length="bearing_width")
+def short(load, *, journal_radius, bearing_width, radial_clearance, viscosity, speed):
     """Eccentricity and attitude angle [rad] of a short bearing under a steady load [N] (>= 0).
 
     Zero load gives the concentric journal (attitude pi/2, the limit of the closed form).
     """
-    scale = viscosity * speed * radius * length**3 / (4 * radial_clearance**2)
+    scale = viscosity * speed * journal_radius * bearing_width**3 / (4 * radial_clearance**2)
     eps = invert_monotone(short_load_function, load / scale)
     attitude = np.arctan2(np.pi * np.sqrt(1 - eps**2), 4 * eps)
     return eps, attitude

@@ -71,11 +71,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _validate as check
 from .._kernels import tilt as _kernel
+from .._kernels.mobility import Correction, bearing_table, table_lookup
+from .._validate import AngleVectors, Finite, OneOf, Positive, renamed, validated
+from .journal import ECCENTRICITY_LIMIT, STATES, mobility_table, outside_table, short_table, table_covers  # noqa: F401
 
-#: States of the tilt equilibrium at an angle (flag values 0..2).
-STATES = ("equilibrium", "at_limit", "not_solved")
 #: Gauss-Legendre nodes on the arc that carries pressure and on the rest of the bearing.
 GAUSS_NODES = 12
 DRY_NODES = 6
@@ -87,10 +87,8 @@ TOLERANCE = 1e-2
 #: of two); halving the spacing, each angle between two of the same state takes the mean of their film's turn-back
 #: (free tilt minus tilt; the free tilt itself is known at every angle) where that turn-back differs between them by
 #: less than INTERPOLATE times their thinner edge film (on the wall: times the tilt; the edge film is the limit's
-#: there); the others are solved. On 40 sampled iso-example engines (200 bearings, 720 angles): 287 film moments per
-#: bearing-cycle against 984 with every angle solved; the edge film within 0.08 um on 99 % of the angles (0.27 um on
-#: 99.9 %), the share of the cycle at the limit within 0.8 points on 99 % of the bearings, the largest tilt within
-#: 2.8 %.
+#: there); the others are solved. The tilt tier's cost and its error against the reference, this continuation
+#: included, are measured in ``reports/film_speed_vs_error.md`` (tilt section).
 INTERPOLATE = 1.0
 STRIDE = 8
 METHODS = ("short", "finite")
@@ -170,12 +168,13 @@ def short_film(position, squeeze, edge_offset, *, lines=4096):
 
 
 @functools.cache
-def _quadrature():
-    """Gauss-Legendre nodes and weights on the wet arc and on the rest (read-only; computed once)."""
+def quadrature():
+    """The film moment's quadrature (:data:`stackup._kernels.tilt.Quadrature`): Gauss-Legendre nodes and weights on
+    the wet arc and on the rest (read-only; computed once), and :data:`STRETCH_CAP`."""
     out = (*np.polynomial.legendre.leggauss(GAUSS_NODES), *np.polynomial.legendre.leggauss(DRY_NODES))
     for array in out:
         array.setflags(write=False)
-    return out
+    return _kernel.Quadrature(*out, STRETCH_CAP)
 
 
 @dataclass(frozen=True)
@@ -195,7 +194,41 @@ class TiltedFilm:
     moment: np.ndarray
 
 
-def film_moment(position, squeeze_velocity, tilt, *, radius, length, radial_clearance, viscosity, speed,
+def _dimensionless(position, squeeze_velocity, tilt, *, journal_radius, bearing_width, radial_clearance, viscosity,
+                   speed):
+    """(leading shape, xi, v, e (m, 2), r, l, c, mu, w (m,)) of :func:`film_moment`'s inputs, flattened."""
+    x, vs, gamma = (np.asarray(a, dtype=float) for a in (position, squeeze_velocity, tilt))
+    lead = np.broadcast_shapes(x.shape[:-1], vs.shape[:-1], gamma.shape[:-1])
+    r, l, c, mu, w = (np.broadcast_to(np.asarray(value, dtype=float), lead).ravel() for value in (
+        journal_radius, bearing_width, radial_clearance, viscosity, speed))
+    xi = np.broadcast_to(x, (*lead, 2)).reshape(-1, 2) / c[:, None]
+    v = np.broadcast_to(vs, (*lead, 2)).reshape(-1, 2) / (c * w)[:, None]
+    e = np.broadcast_to(gamma, (*lead, 2)).reshape(-1, 2) * (l / (2 * c))[:, None]
+    return lead, xi, v, e, r, l, c, mu, w
+
+
+def _edges_off_the_bearing(values):
+    _, xi, _, e, *_ = _dimensionless(**{k: values[k] for k in ("position", "squeeze_velocity", "tilt", "journal_radius",
+                                                               "bearing_width", "radial_clearance", "viscosity",
+                                                               "speed")})
+    reach = np.maximum(np.linalg.norm(xi + e, axis=-1), np.linalg.norm(xi - e, axis=-1))
+    if np.any(reach >= 1.0):
+        raise ValueError(f"tilt: an edge of the journal reaches the bearing (edge eccentricity {reach.max():.4g} >= 1)")
+
+
+def _table_covers_the_bearing(values):
+    """The finite correction's table covers the L/D of every bearing (``method="finite"``)."""
+    if values["method"] == "finite":
+        ld = values["bearing_width"] / (2 * values["journal_radius"])
+        if not table_covers(ld):
+            raise outside_table("bearing_width", ld, "the finite correction's table")
+
+
+@renamed(radius="journal_radius", length="bearing_width")
+@validated(method=OneOf(METHODS), position=Finite(), squeeze_velocity=Finite(), tilt=Finite(),
+           journal_radius=Positive(), bearing_width=Positive(), radial_clearance=Positive(), viscosity=Positive(),
+           speed=Positive(), relations=(_edges_off_the_bearing, _table_covers_the_bearing))
+def film_moment(position, squeeze_velocity, tilt, *, journal_radius, bearing_width, radial_clearance, viscosity, speed,
                 method="short"):
     r"""Force and moment of the film on a tilted journal (the cheap tier; compiled).
 
@@ -208,7 +241,7 @@ def film_moment(position, squeeze_velocity, tilt, *, radius, length, radial_clea
         journal: :math:`-\tfrac\omega2\mathbf k\times\mathbf x`).
     tilt : array_like (..., 2)
         Slope of the journal axis against the bearing axis [rad] (held: no tilt squeeze).
-    radius, length, radial_clearance : float or array_like (...)
+    journal_radius, bearing_width, radial_clearance : float or array_like (...)
         [m].
     viscosity : float or array_like (...)
         [Pa s].
@@ -222,45 +255,32 @@ def film_moment(position, squeeze_velocity, tilt, *, radius, length, radial_clea
     -------
     TiltedFilm
     """
-    from .orbit import ECCENTRICITY_LIMIT, mobility_table
-
-    check.one_of("method", method, METHODS)
-    x = check.finite("position", position)
-    vs = check.finite("squeeze_velocity", squeeze_velocity)
-    gamma = check.finite("tilt", tilt)
-    lead = np.broadcast_shapes(x.shape[:-1], vs.shape[:-1], gamma.shape[:-1])
-    r, l, c, mu, w = (np.broadcast_to(check.positive(name, value), lead).ravel() for name, value in (
-        ("radius", radius), ("length", length), ("radial_clearance", radial_clearance), ("viscosity", viscosity),
-        ("speed", speed)))
-    xi = np.broadcast_to(x, (*lead, 2)).reshape(-1, 2) / c[:, None]
-    v = np.broadcast_to(vs, (*lead, 2)).reshape(-1, 2) / (c * w)[:, None]
-    e = np.broadcast_to(gamma, (*lead, 2)).reshape(-1, 2) * (l / (2 * c))[:, None]
-    reach = np.maximum(np.linalg.norm(xi + e, axis=-1), np.linalg.norm(xi - e, axis=-1))
-    if np.any(reach >= 1.0):
-        raise ValueError(f"tilt: an edge of the journal reaches the bearing (edge eccentricity {reach.max():.4g} >= 1)")
-    nodes, weights, dry_nodes, dry_weights = _quadrature()
+    lead, xi, v, e, r, l, c, mu, w = _dimensionless(position, squeeze_velocity, tilt, journal_radius=journal_radius,
+                                                    bearing_width=bearing_width, radial_clearance=radial_clearance,
+                                                    viscosity=viscosity, speed=speed)
+    rule = quadrature()
     out = np.empty((xi.shape[0], 4))
     for i in range(xi.shape[0]):
-        out[i] = _kernel.film_moment(xi[i, 0], xi[i, 1], v[i, 0], v[i, 1], e[i, 0], e[i, 1], nodes, weights, dry_nodes,
-                                     dry_weights, STRETCH_CAP)
+        out[i] = _kernel.film_moment(xi[i, 0], xi[i, 1], v[i, 0], v[i, 1], e[i, 0], e[i, 1], rule)
     if method == "finite":
-        ld_nodes, stretched, tables = mobility_table()
-        ld = l / (2 * r)
-        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
-            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
-                             f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
-        for i in range(xi.shape[0]):
-            table = _kernel.bearing_table(tables, ld_nodes, ld[i], True)
-            alpha = np.angle(np.exp(1j * (np.arctan2(v[i, 1], v[i, 0]) - np.arctan2(xi[i, 1], xi[i, 0]))))
-            log_ratio, turn = _kernel.table_lookup(table, stretched, min(np.hypot(*xi[i]), ECCENTRICITY_LIMIT),
-                                                   alpha)[:2]
-            rotation = np.exp(log_ratio) * np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
-            out[i, :2] = rotation @ out[i, :2]
-            out[i, 2:] = rotation @ out[i, 2:]
+        _finite_correction(out, xi, v, l / (2 * r))
     unit = mu * w * r * l**3 / c**2
     force = (out[:, :2] * unit[:, None]).reshape(*lead, 2)
     moment = (out[:, 2:] * (unit * l)[:, None]).reshape(*lead, 2)
     return TiltedFilm(force, moment)
+
+
+def _finite_correction(out, xi, v, ld):
+    """Scale and turn the short film's force and moment ``out`` (m, 4) in place as the ``mobility-finite`` tier does."""
+    ld_nodes, stretched, tables = mobility_table()
+    correction = Correction(tables, ld_nodes, stretched, True)
+    for i in range(xi.shape[0]):
+        table = bearing_table(correction, ld[i])
+        alpha = np.angle(np.exp(1j * (np.arctan2(v[i, 1], v[i, 0]) - np.arctan2(xi[i, 1], xi[i, 0]))))
+        log_ratio, turn = table_lookup(table, stretched, min(np.hypot(*xi[i]), ECCENTRICITY_LIMIT), alpha)[:2]
+        rotation = np.exp(log_ratio) * np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+        out[i, :2] = rotation @ out[i, :2]
+        out[i, 2:] = rotation @ out[i, 2:]
 
 
 @dataclass(frozen=True)
@@ -282,8 +302,12 @@ class TiltEquilibrium:
     evaluations: np.ndarray
 
 
-def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, length, radial_clearance, viscosity,
-               speed, method="short"):
+@renamed(radius="journal_radius", length="bearing_width")
+@validated(method=OneOf(METHODS), position=AngleVectors(), squeeze_velocity=Finite(), free_tilt=Finite(),
+           compliance=Positive(zero=True), journal_radius=Positive(), bearing_width=Positive(),
+           radial_clearance=Positive(), viscosity=Positive(), speed=Positive(), relations=(_table_covers_the_bearing,))
+def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, journal_radius, bearing_width, radial_clearance,
+               viscosity, speed, method="short"):
     r"""The journal's tilt in its film at every angle of a cycle: the free tilt turned back by the film's moment.
 
     :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M(\boldsymbol\gamma)` on a given mid-plane orbit
@@ -292,13 +316,14 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     Parameters
     ----------
     position, squeeze_velocity : array_like (..., angles, 2)
-        The mid-plane orbit: journal centre [m] and squeeze velocity [m/s] at each angle.
+        The mid-plane orbit: journal centre [m] and squeeze velocity [m/s] at each angle
+        (a cycle tier's orbit is finite: its journal is held at the eccentricity limit at worst).
     free_tilt : array_like (..., angles, 2)
         Slope of the journal against the bearing axis without the film's moment [rad].
     compliance : array_like (..., 2)
         Rotational compliance of the journal at the bearing per component [rad/(N m)]
         (:func:`stackup.crank.support_compliance`); 0 holds the free tilt.
-    radius, length, radial_clearance, viscosity, speed : float or array_like (...)
+    journal_radius, bearing_width, radial_clearance, viscosity, speed : float or array_like (...)
         As :func:`film_moment`.
     method : {"short", "finite"}
         Film moment of :func:`film_moment`.
@@ -307,58 +332,28 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, radius, len
     -------
     TiltEquilibrium
     """
-    from .orbit import mobility_table
-
-    check.one_of("method", method, METHODS)
-    x = check.angle_vectors("position", position)
-    vs = np.broadcast_to(check.finite("squeeze_velocity", squeeze_velocity), x.shape)
-    free = np.broadcast_to(check.finite("free_tilt", free_tilt), x.shape)
-    lead = x.shape[:-2]
-    compliance = np.broadcast_to(check.positive("compliance", compliance, allow_zero=True), (*lead, 2))
-    r, l, c, mu, w = (np.broadcast_to(check.positive(name, value), lead) for name, value in (
-        ("radius", radius), ("length", length), ("radial_clearance", radial_clearance), ("viscosity", viscosity),
-        ("speed", speed)))
-    if method == "finite":
-        ld_nodes = mobility_table()[0]
-        ld = l / (2 * r)
-        if np.any((ld < ld_nodes[0]) | (ld > ld_nodes[-1])):
-            raise ValueError(f"length: L/D {float(ld.min())!r}..{float(ld.max())!r} is outside the finite "
-                             f"correction's table [{ld_nodes[0]}, {ld_nodes[-1]}]")
-    return _cycle_tilt(x, vs, free, compliance, radius=r, length=l, radial_clearance=c, viscosity=mu, speed=w,
-                       finite=method == "finite")
-
-
-def _cycle_tilt(position, squeeze_velocity, free_tilt, compliance, *, radius, length, radial_clearance, viscosity,
-                speed, finite):
-    """:func:`cycle_tilt` on checked float arrays: the orbit's (..., angles, 2), the rest broadcast to (...).
-
-    For :func:`stackup.film.orbit.orbit`, whose orbit and inputs are checked already (a mobility tier's orbit is
-    finite: its kernel holds the journal at the eccentricity limit), and the L/D within the table if ``finite``.
-    """
-    from .orbit import ECCENTRICITY_LIMIT, _short_table, mobility_table
-
-    x, vs, free = position, squeeze_velocity, free_tilt
-    r, l, c, mu, w = radius, length, radial_clearance, viscosity, speed
-    lead = x.shape[:-2]
-    n = x.shape[-2]
+    x = np.asarray(position, dtype=float)
+    lead, n = x.shape[:-2], x.shape[-2]
+    vs = np.broadcast_to(np.asarray(squeeze_velocity, dtype=float), x.shape)
+    free = np.broadcast_to(np.asarray(free_tilt, dtype=float), x.shape)
+    kappa = np.broadcast_to(np.asarray(compliance, dtype=float), (*lead, 2))
+    r, l, c, mu, w = (np.broadcast_to(np.asarray(value, dtype=float), lead) for value in (
+        journal_radius, bearing_width, radial_clearance, viscosity, speed))
     xi = np.ascontiguousarray((x / c[..., None, None]).reshape(-1, n, 2))
     v = np.ascontiguousarray((vs / (c * w)[..., None, None]).reshape(-1, n, 2))
     e_free = np.ascontiguousarray((free * (l / (2 * c))[..., None, None]).reshape(-1, n, 2))
-    kappa = np.ascontiguousarray((compliance * (mu * w * r * l**5 / (2 * c**3))[..., None]).reshape(-1, 2))
-    if finite:
-        ld_nodes, stretched, tables = mobility_table()
-        ld = (l / (2 * r)).reshape(-1)
-    else:
-        ld_nodes, stretched, tables = _short_table()
-        ld = np.ones(xi.shape[0])
+    kappa = np.ascontiguousarray((kappa * (mu * w * r * l**5 / (2 * c**3))[..., None]).reshape(-1, 2))
+    finite = method == "finite"
+    ld_nodes, stretched, tables = mobility_table() if finite else short_table()
+    ld = (l / (2 * r)).reshape(-1) if finite else np.ones(xi.shape[0])
     tilt = np.empty(xi.shape)
     state = np.empty(xi.shape[:2], np.int8)
     evaluations = np.empty(xi.shape[:2], np.int64)
-    nodes, weights, dry_nodes, dry_weights = _quadrature()
     # STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
     stride = 1 << max(0, int(np.floor(np.log2(STRIDE * n / 720))))
-    _kernel.equilibria(xi, v, e_free, kappa, ECCENTRICITY_LIMIT, TOLERANCE, INTERPOLATE, stride, tables, ld_nodes,
-                       stretched, np.ascontiguousarray(ld, dtype=float), finite, nodes, weights, dry_nodes,
-                       dry_weights, STRETCH_CAP, tilt, state, evaluations)
+    _kernel.equilibria(_kernel.Orbits(xi, v, e_free, kappa, np.ascontiguousarray(ld, dtype=float)),
+                       Correction(tables, ld_nodes, stretched, finite),
+                       _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE), INTERPOLATE, stride, tilt, state,
+                       evaluations)
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))

@@ -53,10 +53,14 @@ References
 from __future__ import annotations
 
 import numpy as np
+from scipy import optimize
 
-from .. import _validate as check
 from .._kernels import mobility as _mobility
-from .._kernels.reynolds import elrod_adams
+from .._kernels.reynolds import Grid, Sweeps, elrod_adams
+from .._kernels.tilt import wall_room
+from .._validate import Finite, Integer, OneOf, Positive, renamed, validated
+from .journal import ECCENTRICITY_LIMIT, STATES, Orbit, edge_film, mobility_table, table_covers
+from .mobility import mobility_orbit
 
 CAVITATION = ("elrod-adams", "reynolds")
 #: Grid: angles around the bearing and axial nodes over the width (ends included).
@@ -132,7 +136,10 @@ class _Film:
         return self.n @ (p @ (self.weights * self.z)) * self.dtheta
 
 
-def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, viscosity, speed, tilt=None,
+@renamed(radius="journal_radius", length="bearing_width")
+@validated(cavitation=OneOf(CAVITATION), n_theta=Integer(minimum=24), n_z=Integer(minimum=5),
+           time_order=OneOf((1, 2)), feed_pressure=Positive(zero=True), feed_angle=Finite())
+def transient_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_clearance, viscosity, speed, tilt=None,
                     tilt_compliance=None, tilt_squeeze=True, cycles=8, cavitation="elrod-adams", n_theta=N_THETA,
                     n_z=N_Z, time_order=2, feed_pressure=0.0, feed_angle=FEED_ANGLE, feed=None, start=None):
     """Orbit of each bearing by the transient Reynolds tier (called by :func:`stackup.film.orbit.orbit`).
@@ -164,86 +171,89 @@ def transient_orbit(loads, crank_angle, *, radius, length, radial_clearance, vis
     -------
     stackup.film.orbit.Orbit
     """
-    from .orbit import ECCENTRICITY_LIMIT, Orbit, edge_film, mobility_table, orbit
-    from .tilt import STATES
-
-    check.one_of("cavitation", cavitation, CAVITATION)
-    if time_order not in (1, 2):
-        raise ValueError(f"time_order: {time_order!r} is not one of 1, 2")
-    n_theta = check.integer("n_theta", n_theta, minimum=24)
-    n_z = check.integer("n_z", n_z, minimum=5)
-    feed_pressure = float(check.positive("feed_pressure", feed_pressure, allow_zero=True))
-    feed_angle = float(check.finite("feed_angle", feed_angle))
+    radius, length, c = journal_radius, bearing_width, radial_clearance
+    n_theta, n_z = int(n_theta), int(n_z)  # checked integers (as given where orbit() checked them)
     lead = loads.shape[:-2]
     n = crank_angle.size
     tau = np.radians(np.append(crank_angle, crank_angle[0] + 720.0) - crank_angle[0])
     if tilt is None:
         tilt = np.zeros(loads.shape)
     if start is None:
-        try:
-            seed = orbit(loads, crank_angle, diameter=2 * radius, length=length, clearance=2 * radial_clearance,
-                         viscosity=viscosity, speed=speed, method="mobility-finite", tilt=tilt)
-        except ValueError:
-            seed = orbit(loads, crank_angle, diameter=2 * radius, length=length, clearance=2 * radial_clearance,
-                         viscosity=viscosity, speed=speed, method="mobility", tilt=tilt)
-        start = seed.position[..., 0, :]
+        start = mobility_orbit(loads, crank_angle, finite=table_covers(length / (2 * radius)), cycles=20, start=None,
+                               journal_radius=radius, bearing_width=length, radial_clearance=c, viscosity=viscosity,
+                               speed=speed).position[..., 0, :]
     start = np.broadcast_to(start, (*lead, 2))
-    coupled = tilt_compliance is not None
     out = {k: np.empty((*lead, n)) for k in ("peak", "torque", "flow")}
     film_tilt = np.array(tilt, dtype=float)
-    ld_nodes, stretched, tables = mobility_table()
     position = np.empty((*lead, n, 2))
     status = np.empty(lead, np.int8)
     used = np.empty(lead)
+    options = dict(mass_conserving=cavitation == "elrod-adams", time_order=time_order, tilt_squeeze=tilt_squeeze)
+    feed_options = dict(feed=feed, feed_pressure=feed_pressure, feed_angle=feed_angle)
     for idx in np.ndindex(lead):
-        r, l, c, mu, w = (float(a[idx]) for a in (radius, length, radial_clearance, viscosity, speed))
-        unit_force = mu * w * r**4 / c**2
-        unit_pressure = mu * w * r**2 / c**2
-        if feed is None:
-            arc, share, supply = (feed_angle - FEED_WIDTH / 2, feed_angle + FEED_WIDTH / 2), FEED_LENGTH_SHARE, \
-                feed_pressure
-        elif feed.kind == "groove":
-            arc, share, supply = feed.groove_arc, feed.groove_width / l, feed.supply_pressure
-        else:
-            arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
-            share, supply = feed.hole_diameter / l, feed.supply_pressure
-        film = _Film(length_over_radius=l / r, clearance_over_radius=c / r, n_theta=n_theta, n_z=n_z,
-                     feed_arc=arc, feed_length_share=share, feed_pressure=supply / unit_pressure,
-                     limit=ECCENTRICITY_LIMIT)
-        ld = l / (2 * r)
-        finite = ld_nodes[0] <= ld <= ld_nodes[-1]
-        i, t = _mobility._locate(ld_nodes, ld)
-        table = (1 - t) * tables[i] + t * tables[i + 1]
+        r, l, c_b, mu, w = (float(a[idx]) for a in (radius, length, c, viscosity, speed))
+        unit_force = mu * w * r**4 / c_b**2
+        unit_pressure = mu * w * r**2 / c_b**2
+        film = _Film(length_over_radius=l / r, clearance_over_radius=c_b / r, n_theta=n_theta, n_z=n_z,
+                     **_feed_patch(l, unit_pressure, **feed_options), limit=ECCENTRICITY_LIMIT)
         # the tilt equilibrium in edge offsets e = gamma L/(2c): e + kappa M = e_free, M per mu omega R^5/c^2
-        kappa = (np.asarray(tilt_compliance[idx], float) * mu * w * r**5 * l / (2 * c**3)) if coupled else None
-        result = _bearing_orbit(film, loads[idx] / unit_force, tau, tilt[idx], start[idx] / c, cycles,
-                                cavitation == "elrod-adams", time_order, ECCENTRICITY_LIMIT, table, stretched, finite,
-                                kappa=kappa, edge_per_tilt=l / (2 * c), tilt_squeeze=tilt_squeeze)
-        xi, peak, friction, flow, status[idx], used[idx], gamma = result
-        film_tilt[idx] = gamma
-        position[idx] = xi * c
+        kappa = None if tilt_compliance is None else (np.asarray(tilt_compliance[idx], float) * mu * w * r**5 * l
+                                                      / (2 * c_b**3))
+        result = _bearing_orbit(film, loads[idx] / unit_force, tau, tilt[idx], start[idx] / c_b, cycles,
+                                mobility=_mobility_table_at(l / (2 * r)), kappa=kappa, edge_per_tilt=l / (2 * c_b),
+                                **options)
+        xi, peak, friction, flow, status[idx], used[idx], film_tilt[idx] = result
+        position[idx] = xi * c_b
         out["peak"][idx] = peak * unit_pressure
-        out["torque"][idx] = friction * mu * w * r**4 / c
-        out["flow"][idx] = flow * w * r**2 * c / 12
+        out["torque"][idx] = friction * mu * w * r**4 / c_b
+        out["flow"][idx] = flow * w * r**2 * c_b / 12
+    return _orbit_of(position, out, status, used, tilt, film_tilt, coupled=tilt_compliance is not None,
+                     bearing_width=length, radial_clearance=c, speed=speed)
+
+
+def _feed_patch(length, unit_pressure, *, feed, feed_pressure, feed_angle):
+    """The oil feed of :class:`_Film` (arc [rad], share of the length, dimensionless pressure) of a bearing."""
+    if feed is None:
+        arc, share, supply = (feed_angle - FEED_WIDTH / 2, feed_angle + FEED_WIDTH / 2), FEED_LENGTH_SHARE, \
+            feed_pressure
+    elif feed.kind == "groove":
+        arc, share, supply = feed.groove_arc, feed.groove_width / length, feed.supply_pressure
+    else:
+        arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
+        share, supply = feed.hole_diameter / length, feed.supply_pressure
+    return dict(feed_arc=arc, feed_length_share=share, feed_pressure=supply / unit_pressure)
+
+
+def _mobility_table_at(length_over_diameter):
+    """(table at the bearing's L/D, its eccentricity nodes, whether it covers the L/D) of the mobility prediction."""
+    ld_nodes, stretched, tables = mobility_table()
+    table = _mobility.bearing_table(_mobility.Correction(tables, ld_nodes, stretched, True), length_over_diameter)
+    return table, stretched, table_covers(length_over_diameter)
+
+
+def _orbit_of(position, out, status, used, tilt, film_tilt, *, coupled, bearing_width, radial_clearance, speed):
+    """The :class:`Orbit` of the bearings' orbits: films, and where a tilted journal's edge sits at the limit."""
     ecc = np.linalg.norm(position, axis=-1) / radial_clearance[..., None]
     h_min = radial_clearance[..., None] * (1 - ecc)
     tilt_state = None
     if coupled:
         # an edge past the limit sits on the film the tiers hold there: no film holds the journal
-        half = 0.5 * length[..., None, None] * film_tilt
+        half = 0.5 * bearing_width[..., None, None] * film_tilt
         reach = np.maximum(np.linalg.norm(position + half, axis=-1), np.linalg.norm(position - half, axis=-1))
         at_wall = reach >= radial_clearance[..., None] * ECCENTRICITY_LIMIT * (1 - 1e-6)
         tilt_state = np.where(at_wall, STATES.index("at_limit"), STATES.index("equilibrium")).astype(np.int8)
-    h_edge, status = edge_film(position, film_tilt, length, radial_clearance, h_min, status, at_limit=tilt_state)
+    h_edge, status = edge_film(position, film_tilt, bearing_width, radial_clearance, h_min, status,
+                               at_limit=tilt_state)
     return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
                  np.asarray(speed, dtype=float), film_tilt, tilt, tilt_state)
 
 
-def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order, limit, table, stretched, finite,
-                   kappa=None, edge_per_tilt=1.0, tilt_squeeze=True):
+def _bearing_orbit(film, w, tau, tilt, xi0, cycles, *, mobility, kappa=None, edge_per_tilt=1.0, mass_conserving=True,
+                   time_order=2, tilt_squeeze=True):
     """Periodic orbit of one bearing; dimensionless loads w (n, 2). Returns per-angle arrays, status, cycles, tilt.
 
-    Each step: predict the centre with the mobility tier's rate (``table``), then
+    Each step (:class:`_March`): predict the centre with the mobility tier's rate
+    (``mobility``: its table, eccentricity nodes and whether it is finite), then
     solve the force balance by damped Newton with Broyden updates. With
     ``kappa`` (2,) the tilt is solved too (:func:`_tilted_balance`): unknowns
     (centre, edge offset e = gamma * ``edge_per_tilt``), residual (force - load,
@@ -251,24 +261,10 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
     limit, the edge is held on it (the film cannot hold the journal).
     """
     n = w.shape[0]
-    shape = (film.theta.size, film.z.size)
-    p = np.zeros(shape)
-    fill = np.ones(shape)
-    p[film.fixed] = film.p_fixed[film.fixed]
-    scale = np.abs(w).max() + 1e-300
-    coupled = kappa is not None
-    free = tilt * edge_per_tilt  # (n, 2) edge offsets the beam alone would give
-    xi = np.array(xi0, dtype=float)
-    e = free[0].copy() if coupled else None
-    if coupled:
-        e = _edges_inside(xi, e, limit)
-    gamma_now = e / edge_per_tilt if coupled else tilt[0]
-    h = film.thickness(xi, gamma_now)[0]
-    steps = [(fill.copy(), xi.copy(), h)]  # fill, centre and film of the latest steps (their content g h)
-    dtau_prev = None
-    jac = None
-    held = False  # the tilt held with an edge at the limit (the film cannot hold the journal)
-    alpha = -0.5 * np.pi
+    limit = film.limit
+    march = _March(film, w, tau, tilt, kappa=kappa, edge_per_tilt=edge_per_tilt, mass_conserving=mass_conserving,
+                   time_order=time_order, tilt_squeeze=tilt_squeeze, mobility=mobility)
+    xi, e = march.start(xi0)
     record = np.empty((n, 2))
     record_tilt = np.array(tilt, dtype=float)
     peak = np.empty(n)
@@ -280,83 +276,133 @@ def _bearing_orbit(film, w, tau, tilt, xi0, cycles, mass_conserving, time_order,
         collapsed = False
         for k in range(n):
             record[k] = xi
-            if coupled:
+            if march.coupled:
                 record_tilt[k] = e / edge_per_tilt
-            peak[k], friction[k], flow[k] = _outputs(film, p, fill, h)
+            peak[k], friction[k], flow[k] = _outputs(film, march.p, march.fill, march.h)
             thinnest = max(thinnest, float(np.hypot(*xi)))
-            kn = (k + 1) % n
-            dtau = tau[k + 1] - tau[k]
-            second_order = time_order == 2 and dtau_prev is not None and len(steps) == 2
-            if second_order:
-                r = dtau / dtau_prev
-                a0, a1, a2 = (1 + 2 * r) / (1 + r), 1 + r, r * r / (1 + r)
-            else:
-                a0 = 1.0
-            c_time = 12 * a0 / dtau
-            target = w[kn]
-
-            def history_at(gamma):
-                """12 d(content)/dtau's part from earlier steps (at gamma where the tilt's squeeze is neglected)."""
-                contents = [g * (hh if tilt_squeeze or not coupled else film.thickness(x_old, gamma)[0])
-                            for g, x_old, hh in steps]
-                if second_order:
-                    return 12 * (a1 * contents[-1] - a2 * contents[-2]) / dtau
-                return 12 * contents[-1] / dtau
-
-            fixed_history = history_at(None) if tilt_squeeze or not coupled else None
-
-            def solve_field(centre, gamma):
-                hh, he, h3e, h3n = film.thickness(centre, gamma)
-                history = fixed_history if fixed_history is not None else history_at(gamma)
-                sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta, film.dz,
-                                     RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, mass_conserving)
-                if sweeps < 0:
-                    # over-relaxation can cycle between cavitated and full nodes in a thin, starved film;
-                    # plain Gauss-Seidel from where it stopped is slower but settles
-                    sweeps = elrod_adams(hh, he, h3e, h3n, history, c_time, p, fill, film.fixed, film.dtheta,
-                                         film.dz, 1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, mass_conserving)
-                if sweeps < 0:
-                    raise RuntimeError("field solve did not converge")
-                return hh
-
-            def residual(x, held=False):
-                """Unknowns: the centre and, with the tilt, its edge offset; ``held``: an edge on the limit."""
-                centre = x[:2]
-                if not coupled:
-                    hh = solve_field(centre, tilt[kn])
-                    return film.force(p) - target, hh
-                edge = x[2:]
-                hh = solve_field(centre, edge / edge_per_tilt)
-                balance = edge + kappa * film.moment(p) - free[kn]
-                if not held:
-                    return np.concatenate([film.force(p) - target, scale * balance]), hh
-                # held: the farther edge on the limit, the moment's imbalance only along the wall's normal
-                normal = _wall_normal(centre, edge)
-                reach = max(np.hypot(*(centre + edge)), np.hypot(*(centre - edge)))
-                return np.concatenate([film.force(p) - target, scale * np.array(
-                    [balance[0] * normal[1] - balance[1] * normal[0], reach - limit])]), hh
-
-            predicted, alpha = _predict(xi, w[k], 0.5 * (w[k] + target), dtau, alpha, limit, table, stretched, finite)
             try:
-                if coupled:
-                    x, h, jac, held = _tilted_balance(residual, predicted, e + (free[kn] - free[k]), jac, held,
-                                                      limit, FORCE_TOLERANCE * scale, film, p, kappa, free[kn])
-                else:
-                    x, h, jac = _force_balance(residual, predicted, jac, limit, FORCE_TOLERANCE * scale)
+                x = march.step(k, xi, e)
             except (RuntimeError, np.linalg.LinAlgError):
                 return _failed(record, peak, friction, flow, k, cycle) + (record_tilt,)
-            if coupled:
+            if march.coupled:
                 e = x[2:].copy()
             if np.hypot(*x[:2]) >= limit * (1 - 1e-12):
                 collapsed = True
             xi = x[:2].copy()
-            steps = [steps[-1], (fill.copy(), xi.copy(), h)]
-            dtau_prev = dtau
+            march.taken(xi)
         film_left = 1 - (limit if collapsed else thinnest)
         closure = float(np.hypot(*(xi - start)))
         if cycle > 1 and closure <= PERIODIC * film_left:
             return record, peak, friction, flow, (2 if collapsed else 0), cycle, record_tilt
     return record, peak, friction, flow, (2 if collapsed else 1), cycles, record_tilt
+
+
+class _March:
+    """One bearing's journal marched from angle to angle: its field and fill, and the balance's memory.
+
+    ``w`` (n, 2) dimensionless loads at the times ``tau`` (n + 1,); ``tilt`` (n, 2) the
+    tilt imposed, or with ``kappa`` the free tilt of the equilibrium (:func:`_bearing_orbit`).
+    """
+
+    def __init__(self, film, w, tau, tilt, *, kappa, edge_per_tilt, mass_conserving, time_order, tilt_squeeze,
+                 mobility):
+        self.film, self.w, self.tau, self.tilt = film, w, tau, tilt
+        self.kappa, self.edge_per_tilt, self.coupled = kappa, edge_per_tilt, kappa is not None
+        self.mass_conserving, self.time_order, self.tilt_squeeze = mass_conserving, time_order, tilt_squeeze
+        self.mobility = mobility
+        shape = (film.theta.size, film.z.size)
+        self.p = np.zeros(shape)
+        self.fill = np.ones(shape)
+        self.p[film.fixed] = film.p_fixed[film.fixed]
+        self.scale = np.abs(w).max() + 1e-300
+        self.free = tilt * edge_per_tilt  # (n, 2) edge offsets the beam alone would give
+        self.dtau_prev = None
+        self.jac = None
+        self.held = False  # the tilt held with an edge at the limit (the film cannot hold the journal)
+        self.alpha = -0.5 * np.pi
+
+    def start(self, xi0):
+        """The first angle's centre and edge offset (None without the equilibrium); sets its film."""
+        xi = np.array(xi0, dtype=float)
+        e = self.free[0].copy() if self.coupled else None
+        if self.coupled:
+            e = _edges_inside(xi, e, self.film.limit)
+        gamma_now = e / self.edge_per_tilt if self.coupled else self.tilt[0]
+        self.h = self.film.thickness(xi, gamma_now)[0]
+        self.steps = [(self.fill.copy(), xi.copy(), self.h)]  # fill, centre and film of the latest steps (content)
+        return xi, e
+
+    def step(self, k, xi, e):
+        """The balanced unknowns at angle k + 1 from the centre ``xi`` and edge offset ``e`` at angle k."""
+        n = self.w.shape[0]
+        self.kn = kn = (k + 1) % n
+        self.dtau = dtau = self.tau[k + 1] - self.tau[k]
+        self.second_order = self.time_order == 2 and self.dtau_prev is not None and len(self.steps) == 2
+        if self.second_order:
+            r = dtau / self.dtau_prev
+            a0, self.a1, self.a2 = (1 + 2 * r) / (1 + r), 1 + r, r * r / (1 + r)
+        else:
+            a0 = 1.0
+        self.c_time = 12 * a0 / dtau
+        self.target = target = self.w[kn]
+        self.fixed_history = self.history_at(None) if self.tilt_squeeze or not self.coupled else None
+        limit, tolerance, w, free = self.film.limit, FORCE_TOLERANCE * self.scale, self.w, self.free
+        predicted, self.alpha = _predict(xi, w[k], 0.5 * (w[k] + target), dtau, self.alpha, limit, *self.mobility)
+        if self.coupled:
+            x, self.h, self.jac, self.held = _tilted_balance(self.residual, predicted, e + (free[kn] - free[k]),
+                                                             self.jac, self.held, limit, tolerance, self.film, self.p,
+                                                             self.kappa, free[kn])
+        else:
+            x, self.h, self.jac = _force_balance(self.residual, predicted, self.jac, limit, tolerance)
+        return x
+
+    def taken(self, xi):
+        """The step to ``xi`` is taken: its content joins the history."""
+        self.steps = [self.steps[-1], (self.fill.copy(), xi.copy(), self.h)]
+        self.dtau_prev = self.dtau
+
+    def history_at(self, gamma):
+        """12 d(content)/dtau's part from earlier steps (at gamma where the tilt's squeeze is neglected)."""
+        contents = [g * (hh if self.tilt_squeeze or not self.coupled else self.film.thickness(x_old, gamma)[0])
+                    for g, x_old, hh in self.steps]
+        if self.second_order:
+            return 12 * (self.a1 * contents[-1] - self.a2 * contents[-2]) / self.dtau
+        return 12 * contents[-1] / self.dtau
+
+    def solve_field(self, centre, gamma):
+        """Pressure and fill (in place) of the step's field with the journal at ``centre``, tilt ``gamma``; its film."""
+        film, p, fill = self.film, self.p, self.fill
+        thickness = film.thickness(centre, gamma)
+        history = self.fixed_history if self.fixed_history is not None else self.history_at(gamma)
+        grid = Grid(film.fixed, film.dtheta, film.dz)
+        sweeps = elrod_adams(thickness, history, self.c_time, p, fill, grid,
+                             Sweeps(RELAXATION, FIELD_TOLERANCE, MAX_SWEEPS, self.mass_conserving))
+        if sweeps < 0:
+            # over-relaxation can cycle between cavitated and full nodes in a thin, starved film;
+            # plain Gauss-Seidel from where it stopped is slower but settles
+            sweeps = elrod_adams(thickness, history, self.c_time, p, fill, grid,
+                                 Sweeps(1.0, FIELD_TOLERANCE, 4 * MAX_SWEEPS, self.mass_conserving))
+        if sweeps < 0:
+            raise RuntimeError("field solve did not converge")
+        return thickness[0]
+
+    def residual(self, x, held=False):
+        """Unknowns: the centre and, with the tilt, its edge offset; ``held``: an edge on the limit."""
+        film, p, target, kn = self.film, self.p, self.target, self.kn
+        centre = x[:2]
+        if not self.coupled:
+            hh = self.solve_field(centre, self.tilt[kn])
+            return film.force(p) - target, hh
+        edge = x[2:]
+        hh = self.solve_field(centre, edge / self.edge_per_tilt)
+        balance = edge + self.kappa * film.moment(p) - self.free[kn]
+        if not held:
+            return np.concatenate([film.force(p) - target, self.scale * balance]), hh
+        # held: the farther edge on the limit, the moment's imbalance only along the wall's normal
+        normal = _wall_normal(centre, edge)
+        reach = max(np.hypot(*(centre + edge)), np.hypot(*(centre - edge)))
+        return np.concatenate([film.force(p) - target, self.scale * np.array(
+            [balance[0] * normal[1] - balance[1] * normal[0], reach - film.limit])]), hh
 
 
 def _wall_normal(centre, edge):
@@ -438,9 +484,7 @@ HELD_STEPS = 12
 
 def _edge_on_wall(centre, direction, limit):
     """Edge offset along ``direction`` that puts the farther edge of a journal centred at ``centre`` on the limit."""
-    from .._kernels.tilt import _room
-
-    return direction * _room(centre[0], centre[1], 0.0, 0.0, direction[0], direction[1], limit)
+    return direction * wall_room(centre[0], centre[1], 0.0, 0.0, direction[0], direction[1], limit)
 
 
 def _with_film(residual, centre, direction, limit):
@@ -451,9 +495,7 @@ def _with_film(residual, centre, direction, limit):
 
 def _edges_inside(xi, e, limit):
     """The edge offset e scaled down until both edges of a journal centred at xi are inside 0.99 ``limit``."""
-    from .._kernels.tilt import _room
-
-    room = _room(xi[0], xi[1], 0.0, 0.0, e[0], e[1], 0.99 * limit)
+    room = wall_room(xi[0], xi[1], 0.0, 0.0, e[0], e[1], 0.99 * limit)
     return e * room if room < 1.0 else e
 
 
@@ -529,19 +571,15 @@ def _edge_room(x, step, limit):
     """Largest share (<= 1) of the step that keeps both edges within EDGE_OVERLAP thinnest films past the limit."""
     if x.size == 2:
         return 1.0
-    from .._kernels.tilt import _room
-
     bound = limit + EDGE_OVERLAP * (1.0 - limit)
     # the centre and the edge offset move together: the edges x[:2] +/- x[2:] along step[:2] +/- step[2:]
-    room = min(_room(x[0], x[1], x[2], x[3], step[0] + step[2], step[1] + step[3], bound),
-               _room(x[0], x[1], -x[2], -x[3], step[0] - step[2], step[1] - step[3], bound))
+    room = min(wall_room(x[0], x[1], x[2], x[3], step[0] + step[2], step[1] + step[3], bound),
+               wall_room(x[0], x[1], -x[2], -x[3], step[0] - step[2], step[1] - step[3], bound))
     return min(1.0, room)
 
 
 def _least_squares_balance(residual, x, tolerance):
     """Fallback where the force has a kink (a starved film filling up): Levenberg-Marquardt (MINPACK)."""
-    from scipy import optimize
-
     solution = optimize.root(lambda y: residual(y)[0], x, method="lm", options={"xtol": 1e-12, "ftol": 1e-14})
     f, h = residual(solution.x)
     if not np.linalg.norm(f) <= tolerance:

@@ -5,13 +5,14 @@ Public entry points :func:`press_fit` (one temperature) and
 shell stress, lowest contact pressure), with tiers
 
 - ``"lame"`` (default): closed-form thick rings of steel-equivalent wall,
-  exact within linear plane-stress elasticity for unlined shells (agrees with
-  ``"fe"`` to 1e-7 relative); numba kernel.
+  exact within linear plane-stress elasticity for unlined shells; numba kernel.
 - ``"thin-ring"``: the shell as a thin ring (uniform hoop stress, wall
-  unchanged), the classic shop formula; cheaper, a few per cent off in
-  contact pressure for thick walls (see ``reports/press_fit_tiers.md``).
+  unchanged), the classic shop formula; numba kernel.
 - ``"fe"``: the reference, radial finite elements of both rings (the shell
   as bonded steel back and lining) with contact; slow, for validation.
+
+Each tier's error against ``"fe"`` and its speed are measured in
+``reports/press_fit_tiers.md`` (``studies/press_fit_tiers.py``).
 
 The model (Kopeliovich, *Crush height of engine bearings*) and its
 equations: :mod:`stackup.fit.tiers`. The design limits (least contact
@@ -26,13 +27,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _validate as check
 from .. import materials
+from .._validate import InRange, OneOf, OrNone, Positive, renamed, validated
 from .._kernels import press_fit as _kernel
 from . import reference, tiers
 
 METHODS = ("lame", "thin-ring", "fe")
-
+#: Each tier and its limits in one line, for reports; errors against the finite-element reference are measured
+#: by ``python studies/press_fit_tiers.py`` (reports/press_fit_tiers.md).
+TIER_NOTES = {
+    "lame": "thick-ring (Lamé) tier, exact within linear plane-stress elasticity",
+    "thin-ring": "thin-ring tier (a shop formula: ignores the shell's radial stress)",
+    "fe": "finite-element reference tier",
+}
 
 
 @dataclass(frozen=True)
@@ -69,7 +76,64 @@ class PressFit:
     loss_of_fit: np.ndarray
 
 
-def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, length, check_bore=None,
+#: An operating or assembly temperature the press-fit model is meant for [degC].
+_TEMPERATURE = InRange(-60.0, 300.0, unit=" degC")
+
+#: The checks of the arguments :func:`press_fit` and :func:`press_fit_extremes` share.
+_CHECKS = dict(housing_bore=Positive(), housing_outer=Positive(), shell_wall=Positive(),
+               crush_height=Positive(zero=True), bearing_width=Positive(), check_bore=Positive(),
+               check_stress=InRange(0.0, 2e9, lo_open=True, unit=" Pa"), lining_thickness=Positive(zero=True),
+               assembly_temperature=_TEMPERATURE, housing_material=materials.Known(),
+               shell_material=materials.Known(), journal_material=materials.Known(),
+               lining_material=OrNone(materials.Known()), method=OneOf(METHODS))
+
+
+def _check_bore_given(args):
+    if args["check_bore"] is None:
+        raise ValueError("check_bore: missing; the crush height is defined in a checking block whose bore is the "
+                         "nominal housing bore (ISO 3548-3), e.g. an engine file's press_fit.check_bore "
+                         "(default: the lower drawing limit of the housing bore)")
+
+
+def _lining_material_given(args):
+    if args["lining_material"] is None and np.any(args["lining_thickness"] > 0):
+        raise ValueError("lining_material: missing; a lining_thickness > 0 needs the lining's material")
+
+
+def _inputs_broadcast(args):
+    names = ("housing_bore", "housing_outer", "shell_wall", "lining_thickness", "crush_height", "check_bore",
+             "check_stress", "temperature", "assembly_temperature", "journal_d")
+    shapes = [np.shape(args[name]) for name in names if args.get(name) is not None]
+    try:
+        np.broadcast_shapes(*shapes)
+    except ValueError:
+        raise ValueError("press_fit: the array inputs do not broadcast together: shapes "
+                         + ", ".join(map(str, shapes))) from None
+
+
+def _rings_nest(args):
+    """The housing ring around the bore, the shell wall inside half the bore, the lining inside the wall."""
+    bore, outer = np.broadcast_arrays(args["housing_bore"], args["housing_outer"])
+    if np.any(outer <= bore):
+        i = np.argmax(outer <= bore)
+        raise ValueError(f"housing_outer: {float(outer.flat[i])!r} m is not above housing_bore "
+                         f"{float(bore.flat[i])!r} m; the outer diameter must exceed the bore")
+    if np.any(2.0 * args["shell_wall"] >= args["housing_bore"]):
+        raise ValueError(f"shell_wall: {float(np.max(args['shell_wall']))!r} m is not below half the housing bore")
+    lining, wall = np.broadcast_arrays(args["lining_thickness"], args["shell_wall"])
+    if np.any(lining >= wall):
+        i = np.argmax(lining >= wall)
+        raise ValueError(f"lining_thickness: {float(lining.flat[i])!r} m is not below the shell wall "
+                         f"{float(wall.flat[i])!r} m; the steel back needs a thickness")
+
+
+#: The checks across arguments, in the order they run.
+_RELATIONS = (_check_bore_given, _lining_material_given, _inputs_broadcast, _rings_nest)
+
+
+@renamed(length="bearing_width")
+@validated(relations=_RELATIONS, temperature=_TEMPERATURE, journal_d=Positive(), **_CHECKS)
+def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, bearing_width, check_bore=None,
               housing_material="steel", shell_material="steel", lining_thickness=0.0, lining_material=None,
               temperature=20.0, assembly_temperature=20.0, check_stress=100e6, journal_d=None,
               journal_material="steel", method="lame"):
@@ -86,9 +150,10 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, length, 
     crush_height : array_like
         Crush height per half shell, measured in a checking block of bore
         ``check_bore`` under the check force :math:`F = \sigma_c A_{calc}` [m], >= 0.
-    length : array_like
-        Shell width [m]; plane stress, so it scales forces only (the check
-        force :math:`F = \sigma_c\,t_e\,L`) and is validated.
+    bearing_width : array_like
+        Axial width of the shells [m] (``length`` before, deprecated); plane
+        stress, so it scales forces only (the check force
+        :math:`F = \sigma_c\,t_e\,L`) and is validated.
     check_bore : array_like
         Bore diameter of the checking block the crush height was measured in
         [m]: the standard's block (ISO 3548-3), whose bore is the nominal
@@ -130,72 +195,43 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, length, 
     .. [1] Kopeliovich, D., *Crush height of engine bearings* (press fit,
        crush check on the steel-equivalent section :math:`A_{calc}`).
     """
-    check.one_of("method", method, METHODS)
-    if check_bore is None:
-        raise ValueError("check_bore: missing; the crush height is defined in a checking block whose bore is the "
-                         "nominal housing bore (ISO 3548-3), e.g. an engine file's press_fit.check_bore "
-                         "(default: the lower drawing limit of the housing bore)")
-    housing_bore = check.positive("housing_bore", housing_bore)
-    housing_outer = check.positive("housing_outer", housing_outer)
-    shell_wall = check.positive("shell_wall", shell_wall)
-    crush_height = check.positive("crush_height", crush_height, allow_zero=True)
-    check.positive("length", length)
-    temperature = check.in_range("temperature", temperature, -60.0, 300.0, unit=" degC")
-    assembly_temperature = check.in_range("assembly_temperature", assembly_temperature, -60.0, 300.0, unit=" degC")
-    check_bore = check.positive("check_bore", check_bore)
-    check_stress = check.in_range("check_stress", check_stress, 0.0, 2e9, lo_open=True, unit=" Pa")
-    lining_thickness = check.positive("lining_thickness", lining_thickness, allow_zero=True)
-    if journal_d is not None:
-        journal_d = check.positive("journal_d", journal_d)
     housing, shell, journal = (materials.get(m) for m in (housing_material, shell_material, journal_material))
-    if lining_material is None:
-        if np.any(lining_thickness > 0):
-            raise ValueError("lining_material: missing; a lining_thickness > 0 needs the lining's material")
-        lining = shell
-    else:
-        lining = materials.get(lining_material)
-
-    arrays = [housing_bore, housing_outer, shell_wall, lining_thickness, crush_height, check_bore, check_stress,
-              temperature - assembly_temperature, housing_bore if journal_d is None else journal_d]
-    try:
-        (bore, outer, wall, lining_t, crush, block, stress, delta_t, journal_d_b) = np.broadcast_arrays(*arrays)
-    except ValueError:
-        raise ValueError("press_fit: the array inputs do not broadcast together: shapes "
-                         + ", ".join(str(np.shape(a)) for a in arrays)) from None
-    if np.any(outer <= bore):
-        i = np.argmax(outer <= bore)
-        raise ValueError(f"housing_outer: {float(outer.flat[i])!r} m is not above housing_bore "
-                         f"{float(bore.flat[i])!r} m; the outer diameter must exceed the bore")
-    if np.any(2.0 * wall >= bore):
-        raise ValueError(f"shell_wall: {float(wall.max())!r} m is not below half the housing bore")
-    if np.any(lining_t >= wall):
-        i = np.argmax(lining_t >= wall)
-        raise ValueError(f"lining_thickness: {float(lining_t.flat[i])!r} m is not below the shell wall "
-                         f"{float(wall.flat[i])!r} m; the steel back needs a thickness")
-
-    props = {"housing": (housing.modulus, housing.poisson, housing.expansion),
-             "shell": (shell.modulus, shell.poisson, shell.expansion),
-             "lining": (lining.modulus, lining.poisson, lining.expansion)}
-    shape = bore.shape
+    lining = shell if lining_material is None else materials.get(lining_material)
+    bearings = dict(housing_bore=housing_bore, housing_outer=housing_outer, shell_wall=shell_wall,
+                    lining_thickness=lining_thickness, crush_height=crush_height, check_bore=check_bore,
+                    check_stress=check_stress, journal_d=housing_bore if journal_d is None else journal_d,
+                    delta_t=temperature - assembly_temperature)
+    shape = np.broadcast_shapes(*(np.shape(x) for x in bearings.values()))
+    rings = _kernel.Materials(*(float(value) for m in (housing, shell, lining)
+                                for value in (m.modulus, m.poisson, m.expansion)), float(journal.expansion))
     if method == "fe":
-        rows = [reference.press_fit_one(*args[:7], props["housing"], props["shell"], journal.expansion,
-                                        None if journal_d is None else args[7], lining_thickness=args[8],
-                                        lining=props["lining"])
-                for args in zip(*(x.ravel().tolist()
-                                  for x in (bore, outer, wall, crush, block, stress, delta_t, journal_d_b, lining_t)))]
-        out = {k: np.array([r[k] for r in rows]).reshape(shape) for k in rows[0]} if rows else {}
-        return PressFit(out["contact_pressure"], out["shell_stress"], out["housing_swell"], out["bore_in_service"],
-                        out["shell_bore"], out.get("clearance"), out["loss_of_fit"].astype(bool))
+        return _by_elements(bearings, shape, rings, with_journal=journal_d is not None)
+    return _by_kernel(bearings, shape, rings, thin=method == "thin-ring", with_journal=journal_d is not None)
 
-    flat = [_flat(x, shape) for x in (housing_bore, housing_outer, shell_wall, lining_thickness, crush_height,
-                                      check_bore, check_stress, housing_bore if journal_d is None else journal_d,
-                                      temperature - assembly_temperature)]
-    p, sigma, swell, bore_s, shell_bore, clearance, loss = _kernel.press_fit(
-        bore.size, *flat, *props["housing"], *props["shell"], *props["lining"], journal.expansion, method == "thin-ring",
-        journal_d is not None, tiers.FREE_RADIUS_ITERATIONS)
-    return PressFit(p.reshape(shape), sigma.reshape(shape), swell.reshape(shape), bore_s.reshape(shape),
-                    shell_bore.reshape(shape), None if journal_d is None else clearance.reshape(shape),
+
+def _by_kernel(bearings, shape, rings, *, thin, with_journal):
+    """The closed-form tiers through the numba kernel; inputs as :func:`press_fit` forms them."""
+    flat = _kernel.Bearings(**{name: _flat(x, shape) for name, x in bearings.items()})
+    options = _kernel.Options(thin, with_journal, tiers.FREE_RADIUS_ITERATIONS)
+    p, sigma, swell, bore, shell_bore, clearance, loss = _kernel.press_fit(
+        int(np.prod(shape, dtype=np.int64)), flat, rings, options)
+    return PressFit(p.reshape(shape), sigma.reshape(shape), swell.reshape(shape), bore.reshape(shape),
+                    shell_bore.reshape(shape), clearance.reshape(shape) if with_journal else None,
                     loss.reshape(shape))
+
+
+def _by_elements(bearings, shape, rings, *, with_journal):
+    """The finite-element reference, bearing by bearing; inputs as :func:`press_fit` forms them."""
+    housing, back, lining = rings[0:3], rings[3:6], rings[6:9]
+    names = ("housing_bore", "housing_outer", "shell_wall", "crush_height", "check_bore", "check_stress", "delta_t",
+             "journal_d", "lining_thickness")
+    columns = (np.broadcast_to(bearings[name], shape).ravel().tolist() for name in names)
+    rows = [reference.press_fit_one(*args[:7], housing, back, rings.journal_expansion,
+                                    args[7] if with_journal else None, lining_thickness=args[8], lining=lining)
+            for args in zip(*columns)]
+    out = {k: np.array([r[k] for r in rows]).reshape(shape) for k in rows[0]} if rows else {}
+    return PressFit(out["contact_pressure"], out["shell_stress"], out["housing_swell"], out["bore_in_service"],
+                    out["shell_bore"], out.get("clearance"), out["loss_of_fit"].astype(bool))
 
 
 @dataclass(frozen=True)
@@ -227,7 +263,29 @@ class PressFitExtremes:
     loss_of_fit: np.ndarray
 
 
-def press_fit_extremes(*, temperatures, **press_fit_kwargs):
+def _temperatures(field, value):
+    """Temperatures to check: a non-empty 1-D sequence, each one the model is meant for [degC]."""
+    temps = np.atleast_1d(_TEMPERATURE(field, value))
+    if temps.ndim != 1 or temps.size == 0:
+        raise ValueError(f"{field}: {value!r} is not a non-empty sequence of temperatures")
+    return temps
+
+
+def _no_single_temperature(args):
+    for name in ("temperature", "journal_d"):
+        if name in args["not_arguments"]:
+            raise ValueError(f"{name}: not an argument of press_fit_extremes (the temperatures come in "
+                             "'temperatures'; the check needs no journal)")
+    if args["not_arguments"]:
+        raise TypeError(f"press_fit_extremes: unexpected keyword argument(s) {sorted(args['not_arguments'])}")
+
+
+@renamed(length="bearing_width")
+@validated(relations=(_no_single_temperature, *_RELATIONS), temperatures=_temperatures, **_CHECKS)
+def press_fit_extremes(*, temperatures, housing_bore, housing_outer, shell_wall, crush_height, bearing_width,
+                       check_bore=None, housing_material="steel", shell_material="steel", lining_thickness=0.0,
+                       lining_material=None, assembly_temperature=20.0, check_stress=100e6,
+                       journal_material="steel", method="lame", **not_arguments):
     r"""The press-fit check over declared temperatures: highest shell stress and lowest contact pressure.
 
     Contact pressure and shell stress are linear in the temperature change
@@ -244,24 +302,27 @@ def press_fit_extremes(*, temperatures, **press_fit_kwargs):
     temperatures : sequence of float
         Temperatures of housing, shells and journal to check [degC], e.g.
         ``(cold_start, assembly, operating, hot)``; at least one.
-    **press_fit_kwargs
-        Keyword arguments of :func:`press_fit` except ``temperature`` and
-        ``journal_d`` (arrays per bearing broadcast as there).
+    housing_bore, housing_outer, shell_wall, crush_height, bearing_width, check_bore
+        As in :func:`press_fit` (arrays per bearing broadcast as there).
+    housing_material, shell_material, journal_material, lining_thickness, lining_material
+        As in :func:`press_fit`.
+    assembly_temperature, check_stress, method
+        As in :func:`press_fit`, which also takes ``temperature`` and
+        ``journal_d``; those are no arguments here.
 
     Returns
     -------
     PressFitExtremes
     """
-    for name in ("temperature", "journal_d"):
-        if name in press_fit_kwargs:
-            raise ValueError(f"{name}: not an argument of press_fit_extremes (the temperatures come in "
-                             "'temperatures'; the check needs no journal)")
-    temps = np.atleast_1d(check.in_range("temperatures", temperatures, -60.0, 300.0, unit=" degC"))
-    if temps.ndim != 1 or temps.size == 0:
-        raise ValueError(f"temperatures: {temperatures!r} is not a non-empty sequence of temperatures")
+    fit_args = dict(housing_bore=housing_bore, housing_outer=housing_outer, shell_wall=shell_wall,
+                    crush_height=crush_height, bearing_width=bearing_width, check_bore=check_bore,
+                    housing_material=housing_material, shell_material=shell_material,
+                    lining_thickness=lining_thickness, lining_material=lining_material,
+                    assembly_temperature=assembly_temperature, check_stress=check_stress,
+                    journal_material=journal_material, method=method)
     best = None
-    for t in temps:
-        fit = press_fit(temperature=float(t), **press_fit_kwargs)
+    for t in np.atleast_1d(np.asarray(temperatures, dtype=float)):
+        fit = press_fit(temperature=float(t), **fit_args)
         if best is None:
             best = [fit.shell_stress, np.full(fit.shell_stress.shape, t), fit.contact_pressure,
                     np.full(fit.contact_pressure.shape, t), fit.loss_of_fit]

@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..study import summaries
-from .tables import UM, _assembled, _numbers, converged_engines, grade_usage, kept_summaries
+from ..facts.tables import UM, assembled, converged_engines, grade_usage, kept_summaries, numbers
 
 #: Width of a full-page figure [in] at DPI: the HTML page is 1200 px wide.
 WIDTH, DPI = 11.0, 110
@@ -27,7 +27,7 @@ def _clearance_histograms(ds, name):
     if kept_summaries(ds):
         edges = (summaries.BIN_START + np.arange(summaries.BINS + 1) * summaries.BIN_WIDTH) * UM
         return edges, d.clearance_nominal_histogram.values, d.clearance_operating_histogram.values
-    return None, _assembled(d, "clearance_nominal") * UM, _assembled(d, "clearance_operating") * UM
+    return None, assembled(d, "clearance_nominal") * UM, assembled(d, "clearance_operating") * UM
 
 
 def clearance_histogram(ds, path):
@@ -56,7 +56,7 @@ def clearance_histogram(ds, path):
                 ax.axvline(x, color="tab:red", lw=1.0, ls="--")
         for values, colour, alpha, label in ((nominal, "tab:blue", 0.7, "nominal"),
                                              (operating, "tab:red", 0.55, "operating")):
-            # counted first, drawn as one filled step artist (a bar per bin costs seconds per figure)
+            # counted first, drawn as one filled step artist (a bar per bin is one artist each, slow to draw)
             counts = np.histogram(values, bins=bins)[0] if edges is None else \
                 np.histogram(0.5 * (edges[1:] + edges[:-1]), bins=bins, weights=values)[0]  # re-binned summaries
             ax.stairs(np.where(counts > 0, counts, np.nan), bins, fill=True, baseline=0.5, color=colour,
@@ -88,8 +88,8 @@ def film_by_bearing(ds, path):
         done = converged_engines(ds, i)
         offset = (k - (len(names) - 1) / 2) * width
         # a bearing whose film is not a number (NaN: collapsed, not periodic, failed) has no box point
-        h = [_numbers(ds.h_min.values[i, done, b] * UM) for b in range(len(bearings))]
-        life = [_numbers(ds.life.values[i, done, b] / 3600) for b in range(len(bearings))]
+        h = [numbers(ds.h_min.values[i, done, b] * UM) for b in range(len(bearings))]
+        life = [numbers(ds.life.values[i, done, b] / 3600) for b in range(len(bearings))]
         colour = f"C{k}"
         for ax, values in ((ax_h, h), (ax_l, life)):
             if not done.any():

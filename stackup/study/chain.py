@@ -22,8 +22,8 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.cycle import HEAT_STEP, bearing_films
 from ..film.heat import heat_balance
-from ..film.orbit import _vector_length as vector_length
-from ..fit import press_fit, press_fit_extremes
+from ..film.journal import vector_length
+from .. import _validate as check
 from .. import materials
 from ..contact import composite_roughness, contact_modulus
 from ..life import alpha as boundary_share
@@ -32,6 +32,7 @@ from ..parts import BlockParts, draw_lot
 from ..stats import mean_half_width
 from .._random import lot_generator
 from . import schema
+from .clearance import operating_clearance, press_fit_checks
 
 #: Engines per step of the mechanical chain when it runs to a target error.
 MECHANICS_BATCH = 25
@@ -124,12 +125,25 @@ def run_chunk(ctx, study, first, progress=None):
         (``(MechanicsProgress, h_min_before)``); None for every other study.
     """
     lots, e0, e1 = ctx.bounds(first, study.chunk_lots)
-    n = e1 - e0
-    b = ctx.engine.main_bearings
-    drawn = [draw_lot(ctx.engine, lot_generator(ctx.root, k), min(ctx.lot, study.n_engines - k * ctx.lot),
-                      study.sampler) for k in lots]
-    parts = BlockParts(*(np.concatenate([getattr(p, f) for p, _ in drawn]) for f in BlockParts.__dataclass_fields__))
-    sizes = {"scheme": len(ctx.schemes), "engine": n, "bearing": b, "axis": 2}
+    sizes = {"scheme": len(ctx.schemes), "engine": e1 - e0, "bearing": ctx.engine.main_bearings, "axis": 2}
+    # the stages skip their input checks here: the engine and schemes were checked when read, the study's
+    # parameters when it was made, and every array comes from a stage
+    with check.trusted():
+        drawn = [draw_lot(ctx.engine, lot_generator(ctx.root, k), min(ctx.lot, study.n_engines - k * ctx.lot),
+                          study.sampler) for k in lots]
+        parts = BlockParts(*(np.concatenate([getattr(p, f) for p, _ in drawn])
+                             for f in BlockParts.__dataclass_fields__))
+        out, shells, stages = _assembly_and_fit(ctx, study, parts, drawn, sizes)
+        mech, state = _mechanical_range(ctx, study, parts, stages, (e0, e1), sizes, progress)
+    return ChunkResult(first, range(e0, e1), out, mech, shells, state)
+
+
+def _assembly_and_fit(ctx, study, parts, drawn, sizes):
+    """Every scheme's assembly and press fit of a chunk's ``parts``.
+
+    Returns the chunk's :data:`schema.PER_ENGINE` variables, its shell
+    counters and each scheme's (assembly, press fit) for the mechanical chain.
+    """
     out = {name: var.empty(sizes) for name, var in schema.PER_ENGINE.items()}
     out.update(housing_bore=parts.housing_bore, housing_bore_reading=parts.housing_reading,
                journal_d=parts.journal_d, journal_d_reading=parts.journal_reading,
@@ -147,15 +161,24 @@ def run_chunk(ctx, study, first, progress=None):
         out["loss_of_fit"][i] = fit["loss_of_fit"]
         out["loss_of_fit_any_temperature"][i] = fit["loss_of_fit_any_temperature"]
         stages.append((result, fit))
+    return out, shells, stages
 
+
+def _mechanical_range(ctx, study, parts, stages, engines, sizes, progress):
+    """The mechanical chain on the chunk's engines (``engines``: first and stop) within the mechanical range.
+
+    Engines run in order, in batches at fixed engine numbers, until the target
+    error is met, so the decisions do not depend on the chunking. Returns the
+    :data:`schema.MECHANICS` (with ``history``, :data:`schema.PER_MECH`)
+    variables and the progress after the chunk.
+    """
+    e0, e1 = engines
     mechanical = max(0, min(e1, ctx.mechanics) - e0)  # engines of the chunk in the mechanical range
     kept = schema.PER_MECH if study.history else schema.MECHANICS
     mech = {name: var.empty({**sizes, "mech_engine": mechanical, "crank_angle": ctx.crank_angle.size})
             for name, var in kept.items()}
     state, h_min_before = progress if progress is not None else (MechanicsProgress(min(e0, ctx.mechanics)), None)
     state = MechanicsProgress(state.next, state.done)
-    # mechanical chain: engines in order, in batches at fixed engine numbers, until the target error is
-    # met (decisions do not depend on the chunking)
     a = max(e0, state.next)
     while not state.done and a < min(e1, ctx.mechanics):
         stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
@@ -169,7 +192,7 @@ def run_chunk(ctx, study, first, progress=None):
         if a == ctx.mechanics or (study.target_error and a % MECHANICS_BATCH == 0
                                   and _film_error(mech["h_min"][:, :a - e0], h_min_before) <= study.target_error):
             state.done = True
-    return ChunkResult(first, range(e0, e1), out, mech, shells, state)
+    return mech, state
 
 
 def _record_assembly(out, shells, i, a, scheme, grade_labels):
@@ -215,13 +238,12 @@ def _press_fit(engine, parts, assembly, method):
     NaN (False) where a bearing is not assembled (the status says why).
     """
     ok = assembly.status == ASSEMBLED
-    bearing = dict(housing_bore=parts.housing_bore[ok],
-                   shell_wall=0.5 * (assembly.upper_wall[ok] + assembly.lower_wall[ok]),
-                   crush_height=0.5 * (assembly.upper_crush[ok] + assembly.lower_crush[ok]), method=method)
-    fit = press_fit(journal_d=parts.journal_d[ok], **bearing, **engine.press_fit.kwargs())
+    shells = dict(upper_wall=assembly.upper_wall[ok], lower_wall=assembly.lower_wall[ok],
+                  upper_crush=assembly.upper_crush[ok], lower_crush=assembly.lower_crush[ok], method=method)
+    fit = operating_clearance(engine, housing_bore=parts.housing_bore[ok], journal_d=parts.journal_d[ok], **shells)
     # the design checks over every declared temperature: the stress bites cold for a light-alloy housing,
     # the pressure hot (cold for cast iron)
-    extremes = press_fit_extremes(**bearing, **engine.press_fit.extremes_kwargs())
+    extremes = press_fit_checks(engine, housing_bore=parts.housing_bore[ok], **shells)
     out = {}
     for result, fields in ((fit, {**FIT_FIELDS, "loss_of_fit": "loss_of_fit"}),
                            (extremes, {**EXTREME_FIELDS, "loss_of_fit_any_temperature": "loss_of_fit"})):
@@ -293,54 +315,67 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
     that comes from the film (:data:`schema.FILM_NUMBERS`).
     """
     spec = engine.crank
-    law, law_error = None, np.full(np.shape(clearance), np.nan)
-    if bearing_law == "fitted" and crank_method == "bearing-law":
-        law, law_error = fitted_law(engine, clearance=clearance, journal_d=journal_d, bore_offset=bore_offset,
-                                    journal_eccentricity=journal_eccentricity, crank_angle=crank_angle)
-    r = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
-                      clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
-    # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
-    # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the film's
-    # moment against the crankshaft's rotational compliance there
-    tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
-    compliance, roughness, modulus = _engine_constants(engine)
-    films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
-                          journal_d=journal_d, method=film_method, tilt=tilt,
-                          tilt_compliance=compliance if tilt_method == "equilibrium" else None)
-    wear = engine.wear
-    chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
-                            speed=engine.crank.speed, bearing_radius=np.asarray(journal_d) / 2,
-                            h_lim_cr=wear.critical_film, roughness=roughness, contact_modulus=modulus,
-                            wear_limit=wear.wear_limit)
-    h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
-    life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
-                           h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
-    out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
-            "crank_status": worst_status(r.status),
-            "h_min": films.h_min.min(axis=-1),
+    with check.trusted():  # the stages skip their input checks: every array comes from a stage or a checked input
+        law, law_error = None, np.full(np.shape(clearance), np.nan)
+        if bearing_law == "fitted" and crank_method == "bearing-law":
+            law, law_error = fitted_law(engine, clearance=clearance, journal_d=journal_d, bore_offset=bore_offset,
+                                        journal_eccentricity=journal_eccentricity, crank_angle=crank_angle)
+        r = engine_cycles(spec, bore_offset=bore_offset, journal_eccentricity=journal_eccentricity,
+                          clearance=clearance, crank_angle=crank_angle, method=crank_method, law=law)
+        # the journal's tilt against its bore: the beam's slope at the support (the misaligned bores and
+        # journals bend the beam; the line-bored bores stay parallel to the line), turned back by the film's
+        # moment against the crankshaft's rotational compliance there
+        tilt = support_slopes(_pin_loads(spec, crank_angle)[None], r.displacements, spans=spec.spans, EI=spec.ei)
+        compliance, roughness, modulus = _engine_constants(engine)
+        films = bearing_films(spec, engine.oil_feed, r.reactions, crank_angle, clearance=clearance,
+                              journal_d=journal_d, method=film_method, tilt=tilt,
+                              tilt_compliance=compliance if tilt_method == "equilibrium" else None)
+        out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
+               "crank_status": worst_status(r.status),
+               "tilt_free_max": vector_length(tilt).max(axis=1),
+               "law_fit_error": law_error,
+               "load_history": np.moveaxis(r.reactions, 1, 2),
+               **_film_values(films),
+               **_life_values(engine, films, clearance=clearance, journal_d=journal_d, crank_angle=crank_angle,
+                              life_film=life_film, roughness=roughness, modulus=modulus)}
+    return _not_a_number(out, films.valid)
+
+
+def _film_values(films):
+    """The film's :data:`schema.PER_MECH` variables of a :func:`stackup.film.cycle.bearing_films` result."""
+    return {"h_min": films.h_min.min(axis=-1),
             "h_min_edge": films.h_min_edge.min(axis=-1),
             "tilt_loss": films.h_min.min(axis=-1) - films.h_min_edge.min(axis=-1),
             "tilt_max": films.tilt_max,
-            "tilt_free_max": vector_length(tilt).max(axis=1),
             "edge_contact_share": films.edge_contact_share,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": films.status,
-            "law_fit_error": law_error,
-            "h_min_mean": h_min_mean,
-            "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
-            "life": life.life,
-            "life_wear_chart": chart.life,
-            "wear_rate": chart.wear_rate,
             "film_temperature": films.temperature,
             "friction_power": films.friction_power,
             "oil_flow": films.oil_flow,
             "feed_flow": films.feed_flow,
             "heat_status": films.heat_status,
             "film_valid": films.valid,
-            "load_history": np.moveaxis(r.reactions, 1, 2),
             "h_min_history": films.h_min}
-    return _not_a_number(out, films.valid)
+
+
+def _life_values(engine, films, *, clearance, journal_d, crank_angle, life_film, roughness, modulus):
+    """Life and wear of the bearings with these films: Levanov's method 1 on the film statistic ``life_film``,
+    his wear chart (method 2) on the orbit."""
+    wear = engine.wear
+    chart = levanov_method2(films.position, radial_clearance=np.asarray(clearance) / 2, crank_angle=crank_angle,
+                            speed=engine.crank.speed, journal_radius=np.asarray(journal_d) / 2,
+                            h_lim_cr=wear.critical_film, roughness=roughness, contact_modulus=modulus,
+                            wear_limit=wear.wear_limit)
+    h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
+    life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
+                           h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
+    return {"h_min_mean": h_min_mean,
+            "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
+            "life": life.life,
+            "life_wear_chart": chart.life,
+            "wear_rate": chart.wear_rate}
 
 
 def _not_a_number(values, valid):
@@ -367,7 +402,8 @@ _PINS = []
 def _pin_loads(spec, crank_angle):
     """``spec.pin_loads(crank_angle)``, kept for the next batch: every batch of a study asks for the same loads.
 
-    The slider-crank and cylinder-pressure model costs as much as half the crankshaft stage on one engine.
+    The slider-crank and cylinder-pressure model is a large part of the crankshaft stage's cost on one engine
+    (reports/bench_chain.md computes the loads once per batch).
     """
     for known, angle, loads in _PINS:
         if known is spec and np.array_equal(angle, crank_angle):
@@ -385,7 +421,7 @@ _CONSTANTS = []
 def _engine_constants(engine):
     """The crankshaft's compliance at its supports, the wear's composite roughness and contact modulus of ``engine``.
 
-    Kept for the next batch like the pins' loads: together they cost 1 % of an engine's mechanical chain.
+    Kept for the next batch like the pins' loads: every batch of a study asks for the same constants.
     """
     for known, *constants in _CONSTANTS:
         if known is engine:
@@ -417,15 +453,15 @@ def fitted_law(engine, *, clearance, journal_d, bore_offset, journal_eccentricit
                           clearance=clearance, crank_angle=crank_angle)
     loads = np.moveaxis(first.reactions, 1, 2)
     step = float(crank_angle[1] - crank_angle[0]) if len(crank_angle) > 1 else 720.0
-    heat = heat_balance(loads[..., ::max(1, int(round(HEAT_STEP / step))), :], diameter=journal_d,
-                        length=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
+    heat = heat_balance(loads[..., ::max(1, int(round(HEAT_STEP / step))), :], journal_d=journal_d,
+                        bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed, oil=spec.oil,
                         supply_temperature=spec.oil_supply_temperature, feed=engine.oil_feed, method="finite")
     peak = np.linalg.norm(loads, axis=-1).max(axis=-1)
-    load, displacement = load_displacement(max_load=1.5 * peak, diameter=journal_d, length=spec.bearing_width,
+    load, displacement = load_displacement(max_load=1.5 * peak, journal_d=journal_d, bearing_width=spec.bearing_width,
                                            clearance=clearance, viscosity=heat.viscosity, speed=spec.speed)
     p = spec.law_parameters
     stiff = {k: p.get(k, getattr(BellakhdharLaw, k)) for k in ("k_lv", "k_hv", "theta0", "dtheta")}
-    fit = fit_bellakhdhar(load, displacement, **stiff, clearance_guess=np.asarray(clearance) / 2)
+    fit = fit_bellakhdhar(load, displacement, **stiff, radial_clearance=np.asarray(clearance) / 2)
     law = BellakhdharLaw(clearance=fit.law.clearance[:, None, :], dx=fit.law.dx[:, None, :], **stiff)
     return law, fit.rms_error
 

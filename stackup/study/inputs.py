@@ -17,16 +17,25 @@ import json
 import tomllib
 
 from ..engines import engine_files, load_engine
+from ..patterns import ISO_SCHEMES, adapt
 from ..schemes import Scheme, from_dict, scheme_path
 from ..schemes import load as load_scheme_file
 
 
-def scheme_text(name_or_path):
-    """The TOML text of a scheme given by name, path or :class:`~stackup.schemes.Scheme`."""
+def scheme_text(name_or_path, engine=None):
+    """The TOML text of a scheme given by name, path or :class:`~stackup.schemes.Scheme`.
+
+    An ISO 13778 scheme named by its name (``"iso13778-4"``) is the standard's pattern laid on ``engine``'s
+    drawing (:func:`stackup.patterns.adapt`; on the standard's own drawing, its file as it is).
+    """
     if isinstance(name_or_path, Scheme):
         return name_or_path.to_toml_text()
     path = scheme_path(name_or_path)
-    load_scheme_file(path)  # its errors name the file, the key and the value
+    standard = load_scheme_file(path)  # its errors name the file, the key and the value
+    if engine is not None and str(name_or_path) in ISO_SCHEMES:
+        adapted = adapt(standard, engine)
+        if adapted.to_toml_text() != standard.to_toml_text():
+            return adapted.to_toml_text()
     return path.read_text()
 
 
@@ -39,8 +48,10 @@ def input_files(engine, schemes, given=None):
     given = given or {}
     engine_texts = given.get("engine") or engine_files(engine)
     known = given.get("schemes", {})
+    missing = [label for label in schemes if label not in known]
+    drawing = load_engine(engine_texts["name"], files=engine_texts) if missing else None
     return {"engine": engine_texts,
-            "schemes": {label: known[label] if label in known else scheme_text(label) for label in schemes}}
+            "schemes": {label: known[label] if label in known else scheme_text(label, drawing) for label in schemes}}
 
 
 def load_inputs(files, schemes):

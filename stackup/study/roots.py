@@ -62,8 +62,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from ..fit import press_fit
 from ..tolerances import process_mean
+from .clearance import operating_clearance, preferred_pairs
 
 #: Root-input groups, in the order of the columns (see :meth:`RootModel.columns`); an engine has
 #: those of them its file declares (:attr:`RootModel.groups`).
@@ -208,8 +208,11 @@ class RootModel:
         """Parts and operating clearance of engines with root inputs ``u`` (engines, columns) in [0, 1).
 
         Groups of the engine left out of ``groups`` sit at their median
-        (0.5). Returns a dict of (engines, bearings) arrays:
-        ``housing_bore``, ``journal_d``, ``clearance_operating``, and
+        (0.5). Returns a dict of (engines, bearings) arrays under their
+        dataset names: ``housing_bore``, ``journal_d``, the shells'
+        ``shell_upper_wall``, ``shell_lower_wall``, ``shell_upper_crush``,
+        ``shell_lower_crush`` and ``clearance_operating`` (NaN where not
+        graded; :func:`stackup.study.clearance.operating_clearance`), and
         (engines, bearings, 2) ``bore_offset`` and ``journal_eccentricity``.
         """
         u = np.asarray(u, dtype=float)
@@ -233,7 +236,7 @@ class RootModel:
         journal_read = np.clip(jd.read(journal, _normal(take["journal gauge error"]), form["journal"]), jd.lo, jd.hi)
         if "bolt tension" in take:  # bolted again at assembly: the bore the shells see is not the one read
             bore = bore + hb.bolt_scatter * _normal(take["bolt tension"])
-        upper, lower = scheme.pair_indices(*scheme.grade_indices(bore_read, journal_read))
+        upper, lower = preferred_pairs(scheme, bore_read, journal_read)
         graded = upper >= 0
         walls = []
         for k, grade in enumerate((upper, lower)):
@@ -244,12 +247,14 @@ class RootModel:
         crush_dim = engine.shell_wall.crush
         lo_c, hi_c = crush_dim.process.cdf(crush_dim.lo), crush_dim.process.cdf(crush_dim.hi)
         crush = crush_dim.process.ppf(lo_c + (hi_c - lo_c) * np.clip(take["crush height"], 0.0, 1.0 - 1e-15))
-        fit = press_fit(housing_bore=bore, shell_wall=0.5 * (walls[0] + walls[1]),
-                        crush_height=0.5 * (crush[:, :b] + crush[:, b:]), journal_d=journal,
-                        **engine.press_fit.kwargs())
+        shells = {"shell_upper_wall": walls[0], "shell_lower_wall": walls[1], "shell_upper_crush": crush[:, :b],
+                  "shell_lower_crush": crush[:, b:]}
+        fit = operating_clearance(engine, housing_bore=bore, journal_d=journal, upper_wall=walls[0],
+                                  lower_wall=walls[1], upper_crush=shells["shell_upper_crush"],
+                                  lower_crush=shells["shell_lower_crush"])
         z = _normal(take["misalignment"]).reshape(n, b, 4)
         crank = engine.crank
         coaxiality, runout = (crank.coaxiality, crank.journal_runout) if crank is not None else (0.0, 0.0)
-        return {"housing_bore": bore, "journal_d": journal,
+        return {"housing_bore": bore, "journal_d": journal, **shells,
                 "clearance_operating": np.where(graded, fit.clearance, np.nan),
                 "bore_offset": coaxiality / 8 * z[..., :2], "journal_eccentricity": runout / 8 * z[..., 2:]}

@@ -19,29 +19,38 @@ from dataclasses import replace
 
 from .. import _validate as check
 
-KEYS = ("housing_shift", "journal_shift", "gauge_repeatability", "misalignment_scale")
+#: The keys a scenario may hold and what each must be (see the module docstring).
+CHECKS = {"housing_shift": check.Finite(), "journal_shift": check.Finite(),
+          "gauge_repeatability": check.Positive(zero=True), "misalignment_scale": check.Positive(zero=True)}
+KEYS = tuple(CHECKS)
 
 
-def apply(engine, scenario):
-    """The engine with ``scenario`` applied (see module docstring); validates the keys."""
+def checked(scenario):
+    """``scenario`` with its values as floats, or a ValueError naming the key, the value and what is valid."""
     if not scenario:
-        return engine
+        return {}
     unknown = set(scenario) - set(KEYS)
     if unknown:
         raise ValueError(f"scenario: unknown key(s) {sorted(unknown)}; valid: {', '.join(KEYS)}")
+    return {key: float(CHECKS[key](f"scenario {key}", value)) for key, value in scenario.items()}
+
+
+def apply(engine, scenario):
+    """The engine with ``scenario`` applied (see module docstring); checks the scenario first."""
+    scenario = checked(scenario)
+    if not scenario:
+        return engine
     housing, journal, shells, crank = engine.housing_bore, engine.journal_d, engine.shell_wall, engine.crank
     if "housing_shift" in scenario:
-        housing = housing.shifted(float(check.finite("scenario housing_shift", scenario["housing_shift"]))
-                                  * housing.process.std)
+        housing = housing.shifted(scenario["housing_shift"] * housing.process.std)
     if "journal_shift" in scenario:
-        journal = journal.shifted(float(check.finite("scenario journal_shift", scenario["journal_shift"]))
-                                  * journal.process.std)
+        journal = journal.shifted(scenario["journal_shift"] * journal.process.std)
     if "gauge_repeatability" in scenario:
-        r = float(check.positive("scenario gauge_repeatability", scenario["gauge_repeatability"], allow_zero=True))
+        r = scenario["gauge_repeatability"]
         housing = replace(housing, gauge=replace(housing.gauge, repeatability=r))
         journal = replace(journal, gauge=replace(journal.gauge, repeatability=r))
         shells = replace(shells, gauge=replace(shells.gauge, repeatability=r))
     if "misalignment_scale" in scenario and crank is not None:
-        k = float(check.positive("scenario misalignment_scale", scenario["misalignment_scale"], allow_zero=True))
+        k = scenario["misalignment_scale"]
         crank = replace(crank, coaxiality=k * crank.coaxiality, journal_runout=k * crank.journal_runout)
     return replace(engine, housing_bore=housing, journal_d=journal, shell_wall=shells, crank=crank)

@@ -13,9 +13,9 @@ import os
 
 #: glibc malloc settings for the worker processes of ``scheduler="processes"`` (dask config keys).
 #: The dask nanny sets MALLOC_TRIM_THRESHOLD_=65536, which also fixes glibc's mmap threshold at
-#: 128 kB, so every large numpy array of a chunk is a fresh mmap with its page faults: 1.4x the CPU
-#: time per chunk here. Arrays up to 16 MiB from the heap, trimmed past 64 MiB, cost less
-#: (reports/bench_scale.md); set the same keys for the workers of your own cluster.
+#: 128 kB, so every large numpy array of a chunk is a fresh mmap with its page faults. Arrays up to 16 MiB
+#: from the heap, trimmed past 64 MiB, cost less CPU time per chunk (measured in reports/bench_scale.md); set
+#: the same keys for the workers of your own cluster.
 WORKER_MALLOC = {
     "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 64 * 2**20,
     "distributed.nanny.pre-spawn-environ.MALLOC_MMAP_THRESHOLD_": 16 * 2**20,

@@ -127,7 +127,7 @@ def attributes(study, ctx, mechanics_used):
         "film_method_errors": json.dumps(film_method_errors(ctx.film_method)),
         "mechanics_engines_used": mechanics_used,
         "scheme_sources": json.dumps({s.name: s.source for s in ctx.schemes}),
-        "press_fit": json.dumps(engine.press_fit.kwargs()),
+        "press_fit": json.dumps(engine.press_fit.record()),
         "press_fit_limits_source": engine.press_fit_limits.source,
         "input_files": json.dumps(study.files),
         "crush_height_source": engine.press_fit.crush_source,

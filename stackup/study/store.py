@@ -141,8 +141,8 @@ def _read_array(array, path):
 def _fast(ds):
     """Encoding of every numeric variable: Blosc LZ4 with byte shuffle.
 
-    About 5x faster to write than Zarr's default Zstandard and no larger on
-    sampled dimensions, which barely compress (measured on shell walls).
+    Faster to write than Zarr's default Zstandard, and no larger on sampled
+    dimensions, which barely compress.
     """
     from zarr.codecs import BloscCodec
 
@@ -155,7 +155,7 @@ def to_stored(ds, labels=()):
 
     A variable of fixed-width strings (the grade labels) becomes int8 codes
     into the sorted ``labels`` (plus ""), kept in its attribute
-    :data:`LABELS_ATTR`: ten times faster to write than strings and what
+    :data:`LABELS_ATTR`: much faster to write than strings, and what
     :func:`open_study` decodes. String coordinates become variable-length
     strings, the string type Zarr 3 specifies.
     """

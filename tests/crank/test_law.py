@@ -109,7 +109,7 @@ def test_fit_recovers_the_law_that_made_the_curve():
     j, dx, k = np.array([25e-6, 40e-6]), np.array([4e-6, 12e-6]), 1.2e9
     film = displacement(load, j[:, None], dx[:, None], k) - load / k
     fit = fit_bellakhdhar(np.tile(load, (2, 1)), film, k_lv=k, k_hv=k, theta0=np.radians(97.0),
-                          dtheta=np.radians(15.0), clearance_guess=np.array([30e-6, 30e-6]))
+                          dtheta=np.radians(15.0), radial_clearance=np.array([30e-6, 30e-6]))
     assert fit.converged.all()
     np.testing.assert_allclose(fit.law.clearance, j, rtol=1e-6)
     np.testing.assert_allclose(fit.law.dx, dx, rtol=1e-5)
@@ -121,4 +121,17 @@ def test_fit_rejects_mismatched_samples():
 
     with pytest.raises(ValueError, match="film_displacement: shape"):
         fit_bellakhdhar(np.ones((2, 5)), np.ones((2, 4)), k_lv=1e9, k_hv=1e9, theta0=1.0, dtheta=0.3,
-                        clearance_guess=30e-6)
+                        radial_clearance=30e-6)
+
+
+def test_fit_clearance_guess_is_the_deprecated_name_of_radial_clearance():
+    from stackup.crank.law import displacement, fit_bellakhdhar
+
+    load = np.geomspace(10.0, 8e4, 20)
+    film = displacement(load, 30e-6, 8e-6, 1.2e9) - load / 1.2e9
+    kw = dict(k_lv=1.2e9, k_hv=1.2e9, theta0=np.radians(97.0), dtheta=np.radians(15.0))
+    new = fit_bellakhdhar(load, film, **kw, radial_clearance=30e-6)
+    with pytest.warns(DeprecationWarning, match="clearance_guess= is deprecated; use radial_clearance="):
+        old = fit_bellakhdhar(load, film, **kw, clearance_guess=30e-6)
+    np.testing.assert_array_equal(new.law.clearance, old.law.clearance)
+    np.testing.assert_array_equal(new.law.dx, old.law.dx)

@@ -6,7 +6,7 @@ from stackup.crank.law import PAPER_LAW, displacement, fit_bellakhdhar
 from stackup.film.bearing_law import load_displacement
 
 # Bellakhdhar et al. (2013), Table 1: R = 24 mm, 30 um radial clearance, 22 mm wide, 5 mPa s, 4000 rpm
-PAPER_BEARING = dict(diameter=0.048, length=0.022, clearance=60e-6, viscosity=0.005, speed=4000 * np.pi / 30)
+PAPER_BEARING = dict(journal_d=0.048, bearing_width=0.022, clearance=60e-6, viscosity=0.005, speed=4000 * np.pi / 30)
 STRUCTURE = dict(k_lv=0.98e9, k_hv=1.72e9, theta0=np.radians(97.0), dtheta=np.radians(15.0))
 
 
@@ -20,7 +20,7 @@ def test_law_fitted_to_the_film_has_its_dead_zone_at_the_clearance():
     # film + structure displacement saturates at the clearance plus R/K_d: J lands near the radial
     # clearance (the paper's 37 um came from its own film model and FE structure for 30 um)
     load, u = load_displacement(max_load=9e4, **PAPER_BEARING)
-    fit = fit_bellakhdhar(load, u, **STRUCTURE, clearance_guess=30e-6)
+    fit = fit_bellakhdhar(load, u, **STRUCTURE, radial_clearance=30e-6)
     assert fit.converged
     assert 0.8 * 30e-6 < float(fit.law.clearance) < 1.3 * 30e-6
     assert 0 < float(fit.law.dx) < 15e-6
@@ -33,8 +33,8 @@ def test_law_fitted_to_the_film_has_its_dead_zone_at_the_clearance():
 
 def test_fit_per_engine_and_bearing_follows_each_clearance():
     clearance = np.array([[50e-6, 60e-6, 70e-6]])
-    load, u = load_displacement(max_load=6e4, diameter=0.046, length=0.022, clearance=clearance, viscosity=0.0086,
+    load, u = load_displacement(max_load=6e4, journal_d=0.046, bearing_width=0.022, clearance=clearance, viscosity=0.0086,
                                 speed=419.0)
     assert load.shape == (1, 3, 40)
-    fit = fit_bellakhdhar(load, u, **STRUCTURE, clearance_guess=clearance / 2)
+    fit = fit_bellakhdhar(load, u, **STRUCTURE, radial_clearance=clearance / 2)
     assert fit.converged.all() and np.all(np.diff(fit.law.clearance) > 0)

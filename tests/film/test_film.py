@@ -36,7 +36,7 @@ def test_reynolds_grid_convergence():
 
 
 def test_short_tier_equals_ocvirk_closed_form():
-    f = min_film_thickness(2e4, diameter=0.05, length=0.02, clearance=60e-6, viscosity=0.01, speed=400.0)
+    f = min_film_thickness(2e4, journal_d=0.05, bearing_width=0.02, clearance=60e-6, viscosity=0.01, speed=400.0)
     eps = float(f.eccentricity)
     load = 0.01 * 400.0 * 0.025 * 0.02**3 / (4 * 30e-6**2) * eps * np.sqrt(np.pi**2 * (1 - eps**2) + 16 * eps**2) / (1 - eps**2) ** 2
     assert load == pytest.approx(2e4, rel=1e-10)
@@ -102,7 +102,7 @@ def test_side_flow_conserves_mass():
 
 @pytest.mark.parametrize("method", ["short", "finite", "reynolds"])
 def test_hard_cases(method):
-    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
+    kw = dict(journal_d=0.046, bearing_width=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
     near_zero = min_film_thickness(1e-3, **kw)
     assert float(near_zero.eccentricity) < 1e-3
     heavy = min_film_thickness(2e5 if method != "reynolds" else 6e4, **kw)
@@ -119,7 +119,7 @@ def test_eccentricity_0_99_and_monotone_load():
 
 @pytest.mark.parametrize("method", ["short", "finite", "reynolds"])
 def test_zero_load_gives_the_concentric_journal(method):
-    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
+    kw = dict(journal_d=0.046, bearing_width=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
     film = min_film_thickness(np.array([0.0, 0.0]), **kw)
     np.testing.assert_array_equal(film.eccentricity, 0.0)
     np.testing.assert_array_equal(film.h_min, 25e-6)
@@ -131,7 +131,7 @@ def test_zero_load_gives_the_concentric_journal(method):
 
 @pytest.mark.parametrize("method", ["short", "finite", "reynolds"])
 def test_extreme_loads_give_a_thin_flagged_film_not_an_exception(method):
-    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
+    kw = dict(journal_d=0.046, bearing_width=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method=method)
     loads = np.array([3e7, 1e9, 1e15, 1e300])
     film = min_film_thickness(loads, **kw)
     assert np.all((film.h_min > 0) & (film.h_min < 25e-6 * (1 - ECCENTRICITY_VALID)))
@@ -142,8 +142,8 @@ def test_extreme_loads_give_a_thin_flagged_film_not_an_exception(method):
 
 def test_finite_tier_outside_its_l_over_d_is_flagged_and_held_at_the_edge():
     kw = dict(clearance=50e-6, viscosity=0.01, speed=419.0, method="finite")
-    wide = min_film_thickness(1e4, diameter=0.046, length=0.2, **kw)  # L/D 4.3, above the table's 2
-    edge = min_film_thickness(1e4, diameter=0.046, length=0.092, **kw)  # L/D 2
+    wide = min_film_thickness(1e4, journal_d=0.046, bearing_width=0.2, **kw)  # L/D 4.3, above the table's 2
+    edge = min_film_thickness(1e4, journal_d=0.046, bearing_width=0.092, **kw)  # L/D 2
     assert not wide.valid and edge.valid
     assert 0 < float(wide.h_min) < 25e-6 and float(wide.h_min) > float(edge.h_min)
 
@@ -152,7 +152,7 @@ def test_finite_tier_follows_reynolds_up_to_the_end_of_its_table():
     # above the old table end (0.98) the tier no longer extrapolates: within 2 % of the reference at 0.985-0.995
     for eps in (0.985, 0.99, 0.9937):
         field = reynolds.solve_field(eps, 1.0)
-        film = min_film_thickness(field.force * 1e6, diameter=2.0, length=1.0, clearance=2e-3, viscosity=1.0,
+        film = min_film_thickness(field.force * 1e6, journal_d=2.0, bearing_width=1.0, clearance=2e-3, viscosity=1.0,
                                   speed=1.0, method="finite")
         assert float(film.h_min) == pytest.approx(1e-3 * (1 - eps), rel=0.02) and film.valid
 
@@ -176,7 +176,7 @@ def resources_table():
 def test_journal_position_matches_the_mobility_tiers_steady_orbit():
     from stackup.film.orbit import orbit
 
-    geometry = dict(diameter=0.046, length=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
+    geometry = dict(journal_d=0.046, bearing_width=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
     load = np.array([3e3, 7e3])
     angle = np.arange(0.0, 720.0, 4.0)
     settled = orbit(np.tile(load, (angle.size, 1)), angle, **geometry, method="mobility").position[-1]
@@ -186,7 +186,7 @@ def test_journal_position_matches_the_mobility_tiers_steady_orbit():
 
 
 def test_tiers_agree_where_they_should():
-    kw = dict(diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0)
+    kw = dict(journal_d=0.046, bearing_width=0.022, clearance=50e-6, viscosity=0.01, speed=419.0)
     load = np.array([2e3, 1e4, 3e4])
     ref = min_film_thickness(load, **kw, method="reynolds")
     fin = min_film_thickness(load, **kw, method="finite")
@@ -200,7 +200,7 @@ def test_tiers_agree_where_they_should():
     (dict(method="reynold"), "method: 'reynold' is not one of 'short', 'finite', 'reynolds'"),
 ])
 def test_bad_input(kw, message):
-    args = dict(load=1e4, diameter=0.046, length=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method="finite")
+    args = dict(load=1e4, journal_d=0.046, bearing_width=0.022, clearance=50e-6, viscosity=0.01, speed=419.0, method="finite")
     args.update(kw)
     with pytest.raises(ValueError, match=message):
         min_film_thickness(args.pop("load"), **args)
@@ -284,6 +284,6 @@ def test_reynolds_at_eccentricity_0_99():
     field = reynolds.solve_field(0.99, 1.0)
     assert np.isfinite(field.force) and field.force > reynolds.solve_field(0.97, 1.0).force
     assert field.pressure.min() >= 0 and np.degrees(field.attitude) < 15
-    film = min_film_thickness(field.force * 1e6, diameter=2.0, length=1.0, clearance=2e-3, viscosity=1.0, speed=1.0,
+    film = min_film_thickness(field.force * 1e6, journal_d=2.0, bearing_width=1.0, clearance=2e-3, viscosity=1.0, speed=1.0,
                               method="reynolds")
     assert float(film.eccentricity) == pytest.approx(0.99, abs=1e-6)

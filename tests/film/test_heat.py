@@ -11,7 +11,7 @@ from stackup.film import oil
 from stackup.film.heat import STATUS, TEMPERATURE_LIMIT, OilFeed, groove_feed_flow, heat_balance, hole_feed_flow
 
 GROOVE = OilFeed("groove", 0.35e6, (0.5 * np.pi, 1.5 * np.pi), 3e-3)
-BEARING = dict(diameter=0.046, length=0.022, clearance=55e-6, speed=419.0, oil="SAE-5W-30", supply_temperature=90.0)
+BEARING = dict(journal_d=0.046, bearing_width=0.022, clearance=55e-6, speed=419.0, oil="SAE-5W-30", supply_temperature=90.0)
 
 
 def test_groove_flow_is_the_cycle_mean_of_the_film_cubed_over_the_arc_by_quadrature():
@@ -24,7 +24,7 @@ def test_groove_flow_is_the_cycle_mean_of_the_film_cubed_over_the_arc_by_quadrat
         integrals = [integrate.quad(lambda t, x=x: (c - x[0] * np.cos(t) - x[1] * np.sin(t)) ** 3, start, end,
                                     epsrel=1e-12)[0] for x in position]
         reference = ps * r / (6 * mu * (length - b) / 2) * np.mean(integrals)
-        q = groove_feed_flow(position, radial_clearance=c, supply_pressure=ps, viscosity=mu, radius=r, length=length,
+        q = groove_feed_flow(position, radial_clearance=c, supply_pressure=ps, viscosity=mu, journal_radius=r, bearing_width=length,
                              groove_width=b, groove_arc=(start, end))
         assert float(q) == pytest.approx(reference, rel=1e-10)
 
@@ -33,7 +33,7 @@ def test_full_groove_flow_is_the_classical_circumferential_groove_formula():
     # Shigley (10th ed., sec. 12-9): Q = pi p_s r c^3 (1 + 1.5 eps^2) / (3 mu l'), l' the land width
     c, eps, mu, ps, r, length, b = 30e-6, 0.6, 0.008, 0.3e6, 0.023, 0.022, 4e-3
     position = np.tile([0.0, eps * c], (10, 1))
-    q = groove_feed_flow(position, radial_clearance=c, supply_pressure=ps, viscosity=mu, radius=r, length=length,
+    q = groove_feed_flow(position, radial_clearance=c, supply_pressure=ps, viscosity=mu, journal_radius=r, bearing_width=length,
                          groove_width=b, groove_arc=(0.0, 2 * np.pi))
     land = (length - b) / 2
     assert float(q) == pytest.approx(math.pi * ps * r * c**3 * (1 + 1.5 * eps**2) / (3 * mu * land), rel=1e-12)
@@ -87,7 +87,7 @@ def test_hole_flow_matches_a_finite_difference_hele_shaw_solution():
         formula = 2 * np.pi / math.log(4 * ld / np.pi)  # Q 12 mu / (h^3 p_s) of the closed form
         assert formula == pytest.approx(reference, rel=0.04), ld
     q = hole_feed_flow(np.zeros((4, 2)), radial_clearance=30e-6, supply_pressure=0.3e6, viscosity=0.01,
-                       length=0.03, hole_diameter=5e-3, hole_angle=1.0)
+                       bearing_width=0.03, hole_diameter=5e-3, hole_angle=1.0)
     assert float(q) == pytest.approx(math.pi * 0.3e6 * (30e-6) ** 3 / (6 * 0.01 * math.log(4 * 6 / math.pi)))
 
 

@@ -158,8 +158,9 @@ def test_orbit_kernel_equals_numpy_twin(engine_like):
     peak = np.empty((1, n))
     status = np.empty(1, np.int8)
     cycles = np.empty(1)
-    kernel.orbits(w[None], tau, ECCENTRICITY_LIMIT, PERIODIC, 20, np.zeros((1, 2, 2, 3)), np.array([1.0, 2.0]),
-                  np.array([0.0, 1.0]), np.array([0.5]), False, xi, v, peak, status, cycles, np.zeros((1, 2)), False)
+    short = kernel.Correction(np.zeros((1, 2, 2, 3)), np.array([1.0, 2.0]), np.array([0.0, 1.0]), False)
+    kernel.orbits(w[None], tau, np.zeros((1, 2)), False, np.array([0.5]),
+                  kernel.Integration(ECCENTRICITY_LIMIT, PERIODIC, 20), short, (xi, v, peak, status, cycles))
     assert status[0] == kernel.PERIODIC
     twin = orbit_twin(w, cycles=6)
     film = 1 - np.linalg.norm(twin, axis=-1)

@@ -11,7 +11,7 @@ from scipy import integrate
 from stackup._kernels import mobility as kernel
 from stackup.film.orbit import ECCENTRICITY_LIMIT, PERIODIC, STATUS, orbit
 
-GEOMETRY = dict(diameter=0.046, length=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
+GEOMETRY = dict(journal_d=0.046, bearing_width=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
 
 
 def test_constant_load_mobility_orbit_settles_on_the_steady_short_bearing():
@@ -19,7 +19,7 @@ def test_constant_load_mobility_orbit_settles_on_the_steady_short_bearing():
     loads = np.tile([8e3, 0.0], (angle.size, 1))
     dyn = orbit(loads, angle, **GEOMETRY, method="mobility")
     steady = min_film_thickness(8e3, **GEOMETRY, method="short")
-    qs = orbit(loads, angle, **GEOMETRY, method="quasi-static-short")
+    qs = orbit(loads, angle, **GEOMETRY, method="short")
     assert dyn.converged
     assert dyn.h_min[-1] == pytest.approx(float(steady.h_min), rel=2e-3)
     # the journal sits where the quasi-static short tier puts it, with Ocvirk's torque and flow
@@ -44,7 +44,7 @@ def test_squeeze_film_carries_load_peaks_better_than_quasi_static():
     peak = 3e4 * np.exp(-(((angle + 360) % 720 - 360) / 20.0) ** 2) + 1e3
     loads = np.stack([peak, 0.2 * peak], axis=-1)
     dyn = orbit(loads, angle, **GEOMETRY, method="mobility")
-    qs = orbit(loads, angle, **GEOMETRY, method="quasi-static", steady_method="short")
+    qs = orbit(loads, angle, **GEOMETRY, method="short")
     assert dyn.converged and dyn.h_min.min() > 1.2 * qs.h_min.min()
 
 
@@ -60,12 +60,13 @@ def test_load_reversal_is_followed():
 def test_quasi_static_broadcasts_over_bearings():
     angle = np.arange(0.0, 720.0, 10.0)
     loads = np.random.default_rng(0).normal(0, 1e4, (3, 5, angle.size, 2))
-    qs = orbit(loads, angle, **{**GEOMETRY, "clearance": np.full((3, 5), 60e-6)}, method="quasi-static")
+    qs = orbit(loads, angle, **{**GEOMETRY, "clearance": np.full((3, 5), 60e-6)}, method="finite")
     assert qs.h_min.shape == (3, 5, angle.size) and qs.converged.all()
 
 
 @pytest.mark.parametrize("kw, message", [
-    (dict(method="euler"), "method: 'euler' is not one of 'quasi-static', 'quasi-static-short'"),
+    (dict(method="euler"), "method: 'euler' is not one of 'short', 'finite', 'mobility', 'mobility-finite', "
+                           "'reynolds', 'reynolds-transient'"),
     (dict(crank_angle=np.arange(0, 800.0, 10)), "crank_angle: must increase and span less than 720 deg"),
 ])
 def test_bad_input(kw, message):
@@ -87,7 +88,7 @@ def test_study_stores_film_and_life_for_the_crank_engines():
     for name in ("h_min", "h_min_mean", "alpha", "life", "film_temperature"):
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
     assert np.all(ds.film_temperature.values[:4] > 90.0)
-    assert ds.attrs["film_method_used"] in ("mobility", "mobility-finite", "transient")
+    assert ds.attrs["film_method_used"] in ("mobility", "mobility-finite", "reynolds-transient")
 
 
 def test_study_stores_the_film_status_tilt_and_peak_pressure_with_their_flags():
@@ -161,7 +162,7 @@ def turning_load(size, rate):
 def test_load_turning_with_or_against_the_shaft_has_the_steady_film_at_the_equivalent_speed(method, rate,
                                                                                              equivalent_speed):
     dyn = orbit(turning_load(8e3, rate), ANGLE, **GEOMETRY, method=method)
-    steady_tier = "quasi-static-short" if method == "mobility" else "quasi-static-finite"
+    steady_tier = "short" if method == "mobility" else "finite"
     steady = orbit(np.array([[8e3, 0.0]]), np.array([0.0]), **{**GEOMETRY, "speed": equivalent_speed * 419.0},
                    method=steady_tier)
     assert dyn.status == STATUS.index("periodic")

@@ -3,12 +3,12 @@
 import numpy as np
 import pytest
 
-from stackup._kernels.reynolds import elrod_adams
+from stackup._kernels.reynolds import Grid, Sweeps, elrod_adams
 from stackup.film import min_film_thickness
 from stackup.film.orbit import STATUS, orbit
 from stackup.film.transient import _Film
 
-GEOMETRY = dict(diameter=0.046, length=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
+GEOMETRY = dict(journal_d=0.046, bearing_width=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
 ANGLE = np.arange(0.0, 720.0, 8.0)
 
 
@@ -81,7 +81,7 @@ def test_elrod_adams_kernel_equals_its_twin(seed, mass_conserving):
     film, args, p, fill = small_problem(seed)
     p2, fill2 = p.copy(), fill.copy()
     kw = (film.fixed, film.dtheta, film.dz, 1.5, 1e-10, 20_000, mass_conserving)
-    sweeps = elrod_adams(*args, p, fill, *kw)
+    sweeps = elrod_adams(args[:4], args[4], args[5], p, fill, Grid(*kw[:3]), Sweeps(*kw[3:]))
     assert sweeps > 0
     assert elrod_adams_twin(*args, p2, fill2, *kw) == sweeps
     np.testing.assert_allclose(p, p2, rtol=1e-10, atol=1e-12 * p.max())
@@ -91,7 +91,8 @@ def test_elrod_adams_kernel_equals_its_twin(seed, mass_conserving):
 @pytest.mark.parametrize("seed", range(3))
 def test_elrod_adams_solution_conserves_mass_and_is_complementary(seed):
     film, args, p, fill = small_problem(seed)
-    assert elrod_adams(*args, p, fill, film.fixed, film.dtheta, film.dz, 1.5, 1e-12, 50_000, True) > 0
+    assert elrod_adams(args[:4], args[4], args[5], p, fill, Grid(film.fixed, film.dtheta, film.dz),
+                       Sweeps(1.5, 1e-12, 50_000, True)) > 0
     free = ~film.fixed
     assert np.all(p >= 0) and np.all((fill >= 0) & (fill <= 1))
     assert np.all((p[free] == 0) | (fill[free] == 1))  # pressure only where the film is full

@@ -24,7 +24,7 @@ LININGS = {"plain": 0.0, "copper-lead 0.3 mm": 0.3e-3}
 
 def kopeliovich(bore, wall, crush, block, lining, **kw):
     """A Kopeliovich bearing: OD/ID 1.5, 15 mm wide, tri-metal on a steel back."""
-    return press_fit(housing_bore=bore, housing_outer=1.5 * bore, shell_wall=wall, crush_height=crush, length=15e-3,
+    return press_fit(housing_bore=bore, housing_outer=1.5 * bore, shell_wall=wall, crush_height=crush, bearing_width=15e-3,
                      check_bore=block, shell_material="steel-back", lining_thickness=lining,
                      lining_material=LINING, **kw)
 
@@ -60,7 +60,7 @@ def test_kopeliovich_heating_to_100_degc_lowers_the_stress_by_about_100_mpa(lini
     lo = TABLE2[1.6e-3]
     ext = press_fit_extremes(temperatures=[20.0, 100.0], housing_bore=np.array([lo, lo + 20e-6]),
                              housing_outer=1.5 * lo, shell_wall=np.array([1.600e-3, 1.588e-3]),
-                             crush_height=np.array([0.137e-3, 0.100e-3]), length=15e-3, check_bore=lo,
+                             crush_height=np.array([0.137e-3, 0.100e-3]), bearing_width=15e-3, check_bore=lo,
                              housing_material="aluminium", shell_material="steel-back", lining_thickness=lining,
                              lining_material=LINING)
     hot = kopeliovich(np.array([lo, lo + 20e-6]), np.array([1.600e-3, 1.588e-3]), np.array([0.137e-3, 0.100e-3]),

@@ -9,7 +9,7 @@ from stackup import materials
 from stackup._kernels import press_fit as kernel
 from stackup.fit import press_fit, press_fit_extremes, tiers
 
-BASE = dict(housing_bore=50.009e-3, housing_outer=80e-3, shell_wall=1.98e-3, crush_height=0.08e-3, length=22e-3,
+BASE = dict(housing_bore=50.009e-3, housing_outer=80e-3, shell_wall=1.98e-3, crush_height=0.08e-3, bearing_width=22e-3,
             check_bore=50.000e-3, journal_d=46.009e-3, shell_material="steel-back")
 
 
@@ -149,9 +149,10 @@ def test_kernel_matches_numpy_twin(cases):
         want = tiers.press_fit(bore, bore * cols["ratio"], wall, te, cols["crush"], bore + cols["block"],
                                cols["stress"], cols["dt"], housing, (back[0], back[1], alpha), 11.5e-6, journal, thin,
                                wall_growth=growth)
-        got = kernel.press_fit(bore.size, bore, bore * cols["ratio"], wall, t_lining, cols["crush"],
-                               bore + cols["block"], cols["stress"], journal, cols["dt"], *housing, *back, *lining,
-                               11.5e-6, thin, True, tiers.FREE_RADIUS_ITERATIONS)
+        got = kernel.press_fit(bore.size, kernel.Bearings(bore, bore * cols["ratio"], wall, t_lining, cols["crush"],
+                                                         bore + cols["block"], cols["stress"], journal, cols["dt"]),
+                               kernel.Materials(*housing, *back, *lining, 11.5e-6),
+                               kernel.Options(thin, True, tiers.FREE_RADIUS_ITERATIONS))
         names = ["contact_pressure", "shell_stress", "housing_swell", "bore_in_service", "shell_bore", "clearance", "loss_of_fit"]
         for name, g in zip(names, got):
             np.testing.assert_allclose(g, want[name], rtol=1e-12, atol=1e-18, err_msg=name)
@@ -275,3 +276,63 @@ def test_extremes_refuse_a_single_temperature_argument():
         press_fit_extremes(temperatures=[20.0], temperature=20.0, **EXTREME)
     with pytest.raises(ValueError, match=r"temperatures: 400.0 degC is outside the valid range"):
         press_fit_extremes(temperatures=[20.0, 400.0], **EXTREME)
+
+
+def test_old_name_length_still_gives_the_bearing_width_with_a_warning():
+    new = fit()
+    kw = {k: v for k, v in BASE.items() if k != "bearing_width"}
+    with pytest.warns(DeprecationWarning, match=r"length= is deprecated; use bearing_width="):
+        old = press_fit(**kw, length=22e-3)
+    for name in ("contact_pressure", "shell_stress", "clearance"):
+        np.testing.assert_array_equal(getattr(old, name), getattr(new, name))
+    with pytest.warns(DeprecationWarning, match=r"press_fit_extremes: length= is deprecated"):
+        old = press_fit_extremes(temperatures=[20.0], **{k: v for k, v in kw.items() if k != "journal_d"},
+                                 length=22e-3)
+    np.testing.assert_array_equal(old.highest_shell_stress, new.shell_stress)
+    with pytest.raises(TypeError, match=r"give bearing_width= \(the old name length= is deprecated\), not both"):
+        press_fit(**BASE, length=22e-3)
+
+
+def test_trusted_callers_get_the_same_numbers_without_the_checks():
+    # the study's chain may run in trusted(): the body then sees the caller's values, not the checked arrays
+    from stackup._validate import trusted
+
+    kw = dict(BASE, housing_bore=np.array([50.004e-3, 50.012e-3]), crush_height=[0.07e-3, 0.09e-3],
+              lining_thickness=0.3e-3, lining_material="aluminium-tin", temperature=95.0)
+    checked = fit(**kw)
+    extremes = press_fit_extremes(temperatures=(-20.0, 20.0, 130.0), **{k: v for k, v in kw.items()
+                                                                          if k not in ("journal_d", "temperature")})
+    with trusted():
+        raw = fit(**kw)
+        raw_extremes = press_fit_extremes(temperatures=(-20.0, 20.0, 130.0),
+                                          **{k: v for k, v in kw.items() if k not in ("journal_d", "temperature")})
+    for name in ("contact_pressure", "shell_stress", "housing_swell", "shell_bore", "clearance", "loss_of_fit"):
+        np.testing.assert_array_equal(getattr(raw, name), getattr(checked, name))
+    for name in ("highest_shell_stress", "highest_stress_temperature", "lowest_contact_pressure",
+                 "lowest_pressure_temperature", "loss_of_fit"):
+        np.testing.assert_array_equal(getattr(raw_extremes, name), getattr(extremes, name))
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        ({"bearing_width": 0.0}, r"bearing_width: 0.0 is not valid; must be > 0"),
+        ({"housing_bore": np.full(3, 50e-3), "crush_height": np.full(2, 0.1e-3)},
+         r"press_fit: the array inputs do not broadcast together: shapes \(3,\), \(\), \(\), \(\), \(2,\)"),
+        ({"journal_material": "unobtainium"}, r"journal_material: 'unobtainium' is not a known material"),
+        ({"lining_thickness": 0.3e-3, "lining_material": "unobtainium"},
+         r"lining_material: 'unobtainium' is not a known material"),
+    ],
+)
+def test_declared_checks_name_the_argument(kw, message):
+    with pytest.raises(ValueError, match=message):
+        fit(**kw)
+
+
+def test_extremes_refuse_a_journal_and_unknown_arguments():
+    with pytest.raises(ValueError, match=r"journal_d: not an argument of press_fit_extremes"):
+        press_fit_extremes(temperatures=[20.0], journal_d=46e-3, **EXTREME)
+    with pytest.raises(TypeError, match=r"unexpected keyword argument\(s\) \['colour'\]"):
+        press_fit_extremes(temperatures=[20.0], colour="red", **EXTREME)
+    with pytest.raises(ValueError, match=r"temperatures: \[\] is not a non-empty sequence of temperatures"):
+        press_fit_extremes(temperatures=[], **EXTREME)

@@ -1,10 +1,15 @@
-"""The comparison report's tables: numbers of a study dataset per scheme (and bearing), with intervals.
+"""Numbers of a study dataset per scheme (and bearing position), with their 95 % intervals.
 
 Each function reads a study dataset (every engine kept, or its streaming
-summaries) and returns a pandas DataFrame; nothing is sampled.
+summaries) and returns a pandas DataFrame or plain numbers; nothing is
+sampled. The film and life numbers of a scheme (:func:`film_numbers`) are
+the ones the ranking ranks and the film table shows, computed by one
+function.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -25,9 +30,17 @@ def kept_summaries(ds):
     return ds.attrs.get("kept") == "summaries"
 
 
-def _assembled(d, name):
+def assembled(d, name):
     """Values of ``name`` of one scheme's assembled bearings (a full dataset)."""
     return d[name].values[d.status.values == flag(d.status, "assembled")]
+
+
+def operating_moments(d):
+    """Mean and standard deviation [m] of one scheme's assembled operating clearances (full or summaries)."""
+    if kept_summaries(d):
+        return float(d.clearance_operating_mean), float(d.clearance_operating_std)
+    c = assembled(d, "clearance_operating")
+    return float(c.mean()), float(c.std(ddof=1))
 
 
 def fit_summary(ds):
@@ -47,27 +60,25 @@ def fit_summary(ds):
             hist = d.clearance_operating_histogram.values
             row = {"nominal_mean_um": float(d.clearance_nominal_mean) * UM,
                    "nominal_std_um": float(d.clearance_nominal_std) * UM,
-                   "operating_mean_um": float(d.clearance_operating_mean) * UM,
-                   "operating_std_um": float(d.clearance_operating_std) * UM,
                    "operating_p00135_um": summaries.quantile_ci(hist, TAIL_LOW)[0] * UM,
                    "operating_p99865_um": summaries.quantile_ci(hist, TAIL_HIGH)[0] * UM,
                    "swell_mean_um": float(d.housing_swell_mean) * UM,
                    "contact_pressure_min_mpa": float(d.contact_pressure_min) / 1e6,
                    "shell_stress_max_mpa": float(d.shell_stress_max) / 1e6}
         else:
-            nominal, operating = _assembled(d, "clearance_nominal"), _assembled(d, "clearance_operating")
-            p, sigma = _assembled(d, "contact_pressure_lowest"), _assembled(d, "shell_stress_highest")
+            nominal, operating = assembled(d, "clearance_nominal"), assembled(d, "clearance_operating")
+            p, sigma = assembled(d, "contact_pressure_lowest"), assembled(d, "shell_stress_highest")
             n = p.size
             counts = (np.count_nonzero(p < p_min), np.count_nonzero(sigma > s_max),
-                      np.count_nonzero(_assembled(d, "loss_of_fit_any_temperature")))
+                      np.count_nonzero(assembled(d, "loss_of_fit_any_temperature")))
             row = {"nominal_mean_um": nominal.mean() * UM, "nominal_std_um": nominal.std(ddof=1) * UM,
-                   "operating_mean_um": operating.mean() * UM, "operating_std_um": operating.std(ddof=1) * UM,
                    "operating_p00135_um": quantile_ci(operating, TAIL_LOW)[0] * UM,
                    "operating_p99865_um": quantile_ci(operating, TAIL_HIGH)[0] * UM,
-                   "swell_mean_um": _assembled(d, "housing_swell").mean() * UM,
+                   "swell_mean_um": assembled(d, "housing_swell").mean() * UM,
                    "contact_pressure_min_mpa": p.min() / 1e6, "shell_stress_max_mpa": sigma.max() / 1e6}
         low_p, high_s, lost = (proportion_ci(k, n) for k in counts)
-        rows.append({"scheme": str(name), **row,
+        mean, std = operating_moments(d)
+        rows.append({"scheme": str(name), **row, "operating_mean_um": mean * UM, "operating_std_um": std * UM,
                      "low_pressure_ppm": low_p[0] * 1e6, "low_pressure_ci_ppm": (low_p[1] * 1e6, low_p[2] * 1e6),
                      "high_stress_ppm": high_s[0] * 1e6, "high_stress_ci_ppm": (high_s[1] * 1e6, high_s[2] * 1e6),
                      "loss_of_fit_ppm": lost[0] * 1e6})
@@ -101,7 +112,7 @@ def clearance_summary(ds):
         else:
             status = d.status.values
             counts = {reason: np.count_nonzero(status == flag(d.status, reason)) for reason in STATUS}
-            c = _assembled(d, "clearance_nominal")
+            c = assembled(d, "clearance_nominal")
             n_bearings, n = status.size, c.size
             outside = int(np.count_nonzero((c < lo_stated) | (c > hi_stated)))
             p_lo, p50, p_hi = (quantile_ci(c, q) for q in (TAIL_LOW, 0.5, TAIL_HIGH))
@@ -172,10 +183,43 @@ def converged_engines(ds, i):
     return ds.crank_status.values[i] == flag(ds.crank_status, "converged")
 
 
-def _numbers(values):
+def numbers(values):
     """The values that are numbers, flat: a bearing whose film is not a number is NaN and left out."""
     values = np.asarray(values, dtype=float).ravel()
     return values[~np.isnan(values)]
+
+
+@dataclass(frozen=True)
+class FilmNumbers:
+    """Film and life of one scheme's bearings on the engines whose crankshaft converged.
+
+    The films, boundary-friction shares and lives that are numbers (a bearing whose film is NaN:
+    collapsed, not periodic, failed, is left out and counted in ``left_out``); shares and quantiles as
+    (value, lower, upper) with their 95 % intervals.
+    """
+
+    done: np.ndarray            # engines of the mechanical chain whose crankshaft converged
+    h: np.ndarray               # cycle-minimum films [m]
+    alpha: np.ndarray           # shares of the cycle below the critical film [-]
+    life_h: np.ndarray          # bearing lives [h]
+    left_out: int
+    below_critical: tuple       # share of films below the critical film [-] (None without one)
+    alpha_over_limit: tuple     # share of bearings with alpha above the scuffing limit [-]
+    life_b10_h: tuple
+    life_median_h: tuple
+
+
+def film_numbers(d, h_lim_cr=None):
+    """The :class:`FilmNumbers` of one scheme ``d`` of a study dataset, or None where no crankshaft converged."""
+    done = d.crank_status.values == flag(d.crank_status, "converged")
+    if not done.any() or "h_min" not in d:
+        return None
+    h, a, life = (numbers(d[name].values[done]) for name in ("h_min", "alpha", "life"))
+    life = life / 3600
+    return FilmNumbers(done, h, a, life, int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
+                       None if h_lim_cr is None else proportion_ci(np.count_nonzero(h < h_lim_cr), h.size),
+                       proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size),
+                       quantile_ci(life, 0.10), quantile_ci(life, 0.5))
 
 
 def film_summary(ds):
@@ -189,27 +233,24 @@ def film_summary(ds):
     """
     life_target_hours = float(ds.life_target) / 3600
     rows = []
-    for i, name in enumerate(ds.scheme.values):
-        done = converged_engines(ds, i)
-        h = _numbers(ds.h_min.values[i, done] * UM)
-        a = _numbers(ds.alpha.values[i, done])
-        life = _numbers(ds.life.values[i, done] / 3600)
-        chart = _numbers(ds.life_wear_chart.values[i, done] / 3600)
-        engine_life = ds.life.values[i, done].min(axis=1) / 3600 if done.any() else np.array([])  # NaN stays NaN
-        if h.size == 0:
+    for name in ds.scheme.values:
+        d = ds.sel(scheme=name)
+        film = film_numbers(d)
+        if film is None or film.h.size == 0:
             continue
-        scuff = proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size)
+        done = film.done
+        engine_life = d.life.values[done].min(axis=1) / 3600  # NaN stays NaN
         lived = engine_life[~np.isnan(engine_life)]
         short = proportion_ci(np.count_nonzero(lived < life_target_hours), lived.size)
         rows.append({
-            "scheme": str(name), "engines": int(done.sum()),
-            "left_out": int(np.count_nonzero(np.isnan(ds.h_min.values[i, done]))),
+            "scheme": str(name), "engines": int(done.sum()), "left_out": film.left_out,
             "engines_left_out": int(engine_life.size - lived.size),
-            "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
-            "h_min_mean_median_um": quantile_ci(_numbers(ds.h_min_mean.values[i, done] * UM), 0.5),
-            "alpha_mean": a.mean(), "alpha_over_20_pct": tuple(100 * v for v in scuff),
-            "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5),
-            "wear_chart_b10_h": quantile_ci(chart, 0.10), "engine_life_b10_h": quantile_ci(lived, 0.10),
+            "h_min_p05_um": quantile_ci(film.h * UM, 0.05), "h_min_median_um": quantile_ci(film.h * UM, 0.5),
+            "h_min_mean_median_um": quantile_ci(numbers(d.h_min_mean.values[done] * UM), 0.5),
+            "alpha_mean": film.alpha.mean(), "alpha_over_20_pct": tuple(100 * v for v in film.alpha_over_limit),
+            "life_b10_h": film.life_b10_h, "life_median_h": film.life_median_h,
+            "wear_chart_b10_h": quantile_ci(numbers(d.life_wear_chart.values[done] / 3600), 0.10),
+            "engine_life_b10_h": quantile_ci(lived, 0.10),
             "engines_below_target_pct": tuple(100 * v for v in short),
         })
     return pd.DataFrame(rows).set_index("scheme") if rows else pd.DataFrame()
@@ -229,8 +270,8 @@ def bearing_summary(ds):
         if not done.any():
             continue
         for b, bearing in enumerate(ds.bearing.values):
-            h = _numbers(ds.h_min.values[i, done, b] * UM)
-            life = _numbers(ds.life.values[i, done, b] / 3600)
+            h = numbers(ds.h_min.values[i, done, b] * UM)
+            life = numbers(ds.life.values[i, done, b] / 3600)
             rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(h.size),
                          "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
                          "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5)})
@@ -254,7 +295,7 @@ def centred(ds, scheme, window):
         src = slice(max(0, -shift_bins), hist.size - max(0, shift_bins))
         moved[max(0, shift_bins):hist.size + min(0, shift_bins)] = hist[src]
         return shift_bins * summaries.BIN_WIDTH, summaries.share_beyond(moved, *window), int(hist.sum())
-    c = _assembled(d, "clearance_operating")
+    c = assembled(d, "clearance_operating")
     shift = middle - c.mean()
     moved = c + shift
     return shift, int(np.count_nonzero((moved < window[0]) | (moved > window[1]))), c.size

@@ -1,0 +1,240 @@
+"""The facts of a scheme comparison: every number a report states, computed once from the saved datasets.
+
+:func:`facts` reads a study dataset (every engine kept, or its streaming
+summaries) with its scenarios, sensitivity and tail estimates (a
+:class:`stackup.comparison.Comparison`, or the datasets) and returns
+:class:`Facts`: plain data, per scheme and per bearing position the numbers
+with their 95 % intervals, the rows the ranking ranks
+(:func:`stackup.rank.ranked` orders them; :func:`stackup.rank.rank` uses
+the same rows), and the study's parameters, each dataset attribute parsed
+in one place (:mod:`~stackup.facts.declared`). Nothing is sampled.
+
+- :mod:`~stackup.facts.declared`: the dataset attributes, with the keys they must hold;
+- :mod:`~stackup.facts.tables`: numbers per scheme (and bearing position), with intervals;
+- :mod:`~stackup.facts.metrics`: the ranking's metrics per scheme;
+- :mod:`~stackup.facts.mechanics`: loads, film, heat balance, edge contact and life of the mechanical chain.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from ..plan import plan
+from ..schemes import from_dict
+from ..study.failures import FailureCount
+from ..study.inputs import load_inputs
+from .declared import DesignRecord, FilmErrors, PressFit, Processes, Sources, StudyParameters, Wear, parsed, plain
+from .mechanics import (EdgeContact, FilmOutcomes, HeatBalance, LifeBias, Positions, edge_contact, film_detail,
+                        film_outcomes, heat_balance, life_bias, positions)
+from .metrics import MIN_COUNTED, TAIL_SOURCES, RankingRows, counted_outside, ranking_rows
+from .tables import (UM, bearing_summary, centred, clearance_summary, converged_engines, crank_summary,
+                     film_summary, fit_summary, grade_usage, kept_summaries, separates)
+
+#: Production volume [engines] and service level of the shell plan a comparison reports.
+PLAN_VOLUME, PLAN_SERVICE_LEVEL = 10_000, 0.99
+
+
+@dataclass(frozen=True)
+class About:
+    """What the study was: its dataset's plain attributes and sizes."""
+
+    engine: str
+    title: str
+    version: str
+    seed: int
+    bearings: int                # main bearings per engine
+    summaries: bool              # streaming summaries, not every engine
+    mechanics_engines: int       # engines the crankshaft, film and life ran on per scheme
+    pilot_engines: int
+    lot_engines: int
+    film_method: str             # the film tier used
+
+    @classmethod
+    def of(cls, ds):
+        return cls(plain(ds, "engine"), plain(ds, "title"), plain(ds, "stackup_version"), plain(ds, "seed"),
+                   ds.sizes["bearing"], kept_summaries(ds), int(plain(ds, "mechanics_engines_used", 0)),
+                   plain(ds, "pilot_engines"), plain(ds, "lot_engines"), plain(ds, "film_method_used", ""))
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The engine's design data the dataset carries as variables [m, Pa, degC, s]."""
+
+    clearance_window: tuple
+    contact_pressure_min: float
+    shell_stress_max: float
+    press_fit_temperatures: tuple
+    crush_height: tuple
+    life_target: float
+    critical_film: float
+
+    @classmethod
+    def of(cls, ds):
+        return cls(tuple(ds.clearance_window.values), float(ds.design_contact_pressure_min),
+                   float(ds.design_shell_stress_max), tuple(ds.press_fit_temperatures.values),
+                   tuple(ds.crush_height_limits.values), float(ds.life_target), float(ds.critical_film.max()))
+
+
+@dataclass(frozen=True)
+class Run:
+    """Stages that failed on some engines (one line each, :meth:`FailureCount.lines`) or did not run."""
+
+    failures: list
+    mechanics_engines_used: int
+    mechanics_engines_asked: object   # the study's ``mechanics_engines`` (None: the engine file's default)
+
+    @classmethod
+    def of(cls, ds):
+        return cls(FailureCount.of_dataset(ds).lines(), int(plain(ds, "mechanics_engines_used", 0)),
+                   StudyParameters.of(ds).mechanics_engines)
+
+
+@dataclass(frozen=True)
+class Design:
+    """The scheme designed for the engine before the study, beside the ISO scheme it started from.
+
+    ``grades`` maps each dimension ("housing bore", "journal", "shell wall") to the grades of the start
+    and of the designed scheme, each a list of (label, lower, upper) [m] from the dimension's lower limit,
+    or None where the dimension is not graded.
+    """
+
+    name: str
+    record: DesignRecord
+    grades: dict
+
+
+def _grades(gradeset):
+    if not gradeset.graded:
+        return None
+    lo0 = gradeset.limits[0]
+    return [(label, lo - lo0, hi - lo0) for label, lo, hi in zip(gradeset.labels, gradeset.lo, gradeset.hi)]
+
+
+def designed(ds):
+    """The :class:`Design` of a comparison that designed a scheme, else None (schemes read from the dataset)."""
+    record = DesignRecord.of(ds)
+    if record is None:
+        return None
+    name = plain(ds, "designed_scheme")
+    _, loaded = load_inputs(parsed(ds, "input_files"), StudyParameters.of(ds).schemes)
+    designed = {s.name: s for s in loaded}[name]
+    started = from_dict(tomllib.loads(record.start_text), path=record.start)
+    grades = {label: (_grades(getattr(started, dim)), _grades(getattr(designed, dim)))
+              for label, dim in (("housing bore", "housing"), ("journal", "journal"), ("shell wall", "shell"))}
+    return Design(name, record, grades)
+
+
+def drivers(sensitivity):
+    """Output -> scheme -> the inputs of its Sobol indices, largest total index first (schemes analysed only)."""
+    if sensitivity is None or not sensitivity.sizes.get("output"):
+        return None
+    out = {}
+    for output in sensitivity.output.values:
+        schemes = [s for s in sensitivity.scheme.values
+                   if np.isfinite(sensitivity.ST.sel(output=output, scheme=s).values).any()]
+        out[str(output)] = {str(s): sensitivity.sel(output=output, scheme=s).to_dataframe().dropna(subset=["ST"])
+                            .sort_values("ST", ascending=False) for s in schemes}
+    return out
+
+
+@dataclass(frozen=True)
+class Facts:
+    """Everything a comparison's report states, as plain data (see the module docstring).
+
+    Per scheme (and position) the numbers are pandas DataFrames indexed by scheme (and bearing), in the
+    units their column names say; the rest is in SI units unless a name says otherwise.
+    """
+
+    about: About
+    study: StudyParameters
+    press_fit: PressFit
+    processes: Processes
+    wear: Wear                   # None where the mechanical chain did not run
+    film_errors: FilmErrors      # None where the study measured none
+    sources: Sources
+    limits: Limits
+    run: Run
+    ranking: RankingRows         # the study's, with the scenarios' changes
+    scenario_rankings: dict      # label -> each scenario's own RankingRows
+    clearance: pd.DataFrame      # clearance_summary
+    fit: pd.DataFrame            # fit_summary
+    usage: pd.DataFrame          # grade_usage
+    centred: pd.DataFrame        # per scheme: what centring its clearance in the window would give
+    reading_resolution: dict     # scheme -> its coarsest gauge read-out [m]
+    plan: pd.DataFrame           # shells per grade (None from summaries)
+    crank: pd.DataFrame          # crank_summary (empty where the crankshaft did not run)
+    film: pd.DataFrame           # film_summary (empty where the film did not run)
+    bearings: pd.DataFrame       # bearing_summary
+    detail: pd.DataFrame         # film_detail
+    positions: Positions
+    outcomes: FilmOutcomes
+    heat: HeatBalance
+    edge: EdgeContact
+    life_bias: LifeBias
+    drivers: dict                # drivers(sensitivity), None without one
+    design: Design
+
+
+def _centred(ds, window):
+    """Scheme -> the shift [m] that centres its operating clearance in ``window``, then bearings outside, assembled."""
+    if not np.all(np.isfinite(window)):  # no window to centre in
+        return pd.DataFrame(columns=["shift", "outside", "bearings"])
+    rows = {}
+    for scheme in ds.scheme.values:
+        shift, outside, bearings = centred(ds, scheme, window)
+        rows[str(scheme)] = {"shift": shift, "outside": outside, "bearings": bearings}
+    return pd.DataFrame.from_dict(rows, orient="index")
+
+
+def _film_facts(ds):
+    """The mechanical chain's tables and facts (crank, film, bearings, detail, positions, outcomes, heat, edge)."""
+    crank = crank_summary(ds)
+    film = film_summary(ds)
+    bearings = bearing_summary(ds) if len(film) else pd.DataFrame()
+    return dict(crank=crank, film=film, bearings=bearings, detail=film_detail(ds),
+                positions=positions(ds, bearings) if len(film) else None, outcomes=film_outcomes(ds),
+                heat=heat_balance(ds), edge=edge_contact(ds))
+
+
+def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, h_lim_cr=None):
+    """The :class:`Facts` of a comparison.
+
+    Parameters
+    ----------
+    source : stackup.comparison.Comparison or xarray.Dataset
+        The comparison (its ``dataset``, ``scenarios``, ``sensitivity`` and
+        ``tails``), or the study dataset alone with the others as keywords.
+    scenarios, sensitivity, tails : optional
+        As :class:`~stackup.comparison.Comparison` holds them (ignored when
+        ``source`` is a comparison).
+    window, h_lim_cr : optional
+        The ranking's design window [m] and critical film [m]
+        (:func:`stackup.rank.rank`); default the engine's.
+    """
+    if hasattr(source, "dataset"):
+        source, scenarios, sensitivity, tails = source.dataset, source.scenarios, source.sensitivity, source.tails
+    ds, scenarios = source, scenarios or {}
+    about = About.of(ds)
+    ranking = ranking_rows(ds, scenarios=scenarios or None, tails=tails, window=window, h_lim_cr=h_lim_cr)
+    return Facts(
+        about=about, study=StudyParameters.of(ds), press_fit=PressFit.of(ds), processes=Processes.of(ds),
+        wear=Wear.of(ds) if about.mechanics_engines else None, film_errors=FilmErrors.of(ds),
+        sources=Sources.of(ds), limits=Limits.of(ds), run=Run.of(ds), ranking=ranking,
+        scenario_rankings={label: ranking_rows(other) for label, other in scenarios.items()},
+        clearance=clearance_summary(ds), fit=fit_summary(ds), usage=grade_usage(ds),
+        centred=_centred(ds, ranking.window),
+        reading_resolution={str(s): float(ds.reading_resolution.sel(scheme=s).max()) for s in ds.scheme.values},
+        plan=None if about.summaries else plan(ds, volume=PLAN_VOLUME, service_level=PLAN_SERVICE_LEVEL),
+        **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
+        design=designed(ds))
+
+
+__all__ = ["About", "Design", "EdgeContact", "Facts", "FilmOutcomes", "HeatBalance", "LifeBias", "Limits",
+           "MIN_COUNTED", "PLAN_SERVICE_LEVEL", "PLAN_VOLUME", "Positions", "RankingRows", "Run", "TAIL_SOURCES",
+           "UM", "bearing_summary", "centred", "clearance_summary", "converged_engines", "counted_outside",
+           "crank_summary", "facts", "film_summary", "fit_summary", "grade_usage", "kept_summaries",
+           "ranking_rows", "separates"]

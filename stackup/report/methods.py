@@ -1,0 +1,133 @@
+"""Methods and assumptions, limits of validity and the parameters of a comparison, filled from its facts.
+
+What each stage's tier solves is the stage's own sentence (``TIER_NOTES`` of
+:mod:`stackup.fit`, :mod:`stackup.crank` and :mod:`stackup.film`).
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from ..crank import TIER_NOTES as CRANK_TIERS
+from ..film import TIER_NOTES as FILM_TIERS
+from ..film.orbit import ALIASES as TIER_ALIASES
+from ..fit import TIER_NOTES as FIT_TIERS
+from . import format as fmt
+from . import templates as words
+
+def _folded(text):
+    """Text with its whitespace folded (sources span lines in the engine files)."""
+    return " ".join(text.split())
+
+
+def _dimension(label, d):
+    """One sampled dimension of the engine's processes, in words."""
+    lo, hi = d.limits_m
+    text = words.DIMENSION_PART.format(label=label, lo=lo * 1e3, hi=hi * 1e3, distribution=d.distribution.lower(),
+                                       cpk=d.cpk, std=fmt.um(d.std_m, 2))
+    if d.shared:
+        text += words.SHARED_PART.format(shared=100 * d.shared)
+    if d.gauge_repeatability_m or d.gauge_resolution_m:
+        text += words.GAUGE_PART.format(repeatability=d.gauge_repeatability_m * fmt.UM)
+        if d.gauge_resolution_m:
+            text += words.READ_OUT_PART.format(resolution=d.gauge_resolution_m * fmt.UM)
+    return text
+
+
+def _shells(facts):
+    shell, crush = facts.processes.shell_wall, facts.processes.crush_height
+    if shell.supply != "to-order":
+        return words.SHELLS_SORTED.format(supply=shell.supply, lot=shell.lot_engines, surplus=100 * shell.surplus)
+    return words.SHELLS_TO_ORDER.format(
+        lot=shell.lot_engines, surplus=100 * shell.surplus, sigma=fmt.um(shell.sigma_m, 2),
+        repeatability=fmt.um(shell.gauge_repeatability_m, 2), pilot=fmt.count(facts.about.pilot_engines),
+        lo=crush.limits_m[0] * 1e3, hi=crush.limits_m[1] * 1e3, cpk=crush.cpk)
+
+
+def _clearance_side(facts):
+    """The bullets of the clearance stages: parts, shells, press fit, temperatures, clearance."""
+    press, crank, study = facts.press_fit, facts.processes.crank, facts.study
+    oil = ("." if crank is None else
+           words.OIL_PART.format(oil=crank.oil, supply=crank.oil_supply_temperature_degC))
+    return [
+        words.PARTS.format(housing=_dimension("housing bore", facts.processes.housing_bore),
+                           journal=_dimension("journal", facts.processes.journal_d)),
+        _shells(facts),
+        words.PRESS_FIT.format(housing=press.housing_material, outer=press.housing_outer * 1e3,
+                               shell=press.shell_material, width=press.length * 1e3, bore=press.check_bore * 1e3,
+                               stress=press.check_stress / 1e6, tier=FIT_TIERS.get(study.fit_method, study.fit_method)),
+        words.TEMPERATURES.format(assembly=press.assembly_temperature, running=press.temperature, oil=oil),
+        words.CLEARANCE.format(n_engines=fmt.count(study.n_engines), bearings=facts.about.bearings),
+    ]
+
+
+def _mechanics_side(facts):
+    """The bullets of the mechanical chain: crankshaft and loads, oil film, life."""
+    crank, study = facts.processes.crank, facts.study
+    return [
+        words.CRANKSHAFT.format(tier=CRANK_TIERS.get(study.crank_method, study.crank_method), speed=crank.speed_rpm,
+                                step=study.crank_angle_step, coaxiality=fmt.um(crank.coaxiality_m, 0),
+                                runout=fmt.um(crank.journal_runout_m, 0),
+                                engines=fmt.count(facts.about.mechanics_engines)),
+        _film_method(facts),
+        _life_method(facts),
+    ]
+
+
+def methods(facts):
+    """Methods and assumptions, in one place: processes, gauges, press fit, temperatures, tiers, sample sizes."""
+    lines = _clearance_side(facts)
+    if facts.about.mechanics_engines:
+        lines += _mechanics_side(facts)
+    lines.append(words.STATISTICS)
+    if facts.about.summaries:
+        lines.append(words.SUMMARIES)
+    return lines
+
+
+def _film_method(facts):
+    """The film tier, what it solves and its measured error against the transient reference, in one bullet."""
+    method = facts.about.film_method
+    tier = FILM_TIERS.get(TIER_ALIASES.get(method, method), method)  # a dataset from before the tiers' one name
+    e = facts.film_errors
+    errors = ("" if e is None else
+              words.FILM_ERRORS_PART.format(h_min=100 * e.h_min, h_min_mean=100 * e.h_min_mean,
+                                            milliseconds=1e3 * e.seconds))
+    return words.OIL_FILM.format(method=method, tier=tier, errors=errors)
+
+
+def _life_method(facts):
+    """The life methods, their film and constants with sources, in one bullet."""
+    wear, film = facts.wear, facts.study.life_film
+    return words.LIFE.format(
+        film=film.replace("-", " "), why=words.CYCLE_MEAN_PART if film == "cycle-mean" else words.NOT_CYCLE_MEAN_PART,
+        critical=fmt.um(wear.critical_film_m, 2), journal_rz=fmt.um(wear.journal_rz_m, 2),
+        shell_rz=fmt.um(wear.shell_rz_m, 2), roughness_source=_folded(wear.roughness_source),
+        wear_limit=fmt.um(wear.wear_limit_m, 0), wear_rate=wear.wear_rate_m_per_s,
+        wear_source=_folded(wear.wear_source))
+
+
+def _life_bias(bias):
+    """What the film tier's error on the cycle-mean film does to method 1's life, or '' (no such error)."""
+    if bias is None:
+        return ""
+    thinner = bias.film / (1 + bias.error)
+    return words.LIFE_BIAS_PART.format(error=100 * bias.error, film=fmt.um(bias.film), ratio=bias.life_h /
+                                       bias.thinner_life_h, life=fmt.hours(bias.life_h),
+                                       thinner_life=fmt.hours(bias.thinner_life_h), thinner_film=fmt.um(thinner),
+                                       cap=fmt.whole(bias.cap_h))
+
+
+def limits_of_validity(facts):
+    """What the models leave out, said plainly."""
+    return [*words.LIMITS_BEFORE_LIFE, words.LIFE_LIMIT.format(bias=_life_bias(facts.life_bias)),
+            *words.LIMITS_AFTER_LIFE]
+
+
+def parameters_table(facts):
+    """The study's parameters and the data it used, as rows of (parameter, value) for a readable table."""
+    rows = [(key, "—" if value is None else (", ".join(map(str, value)) if isinstance(value, list) else str(value)))
+            for key, value in facts.study.items]
+    rows += [("engine source", facts.sources.engine), ("stackup version", facts.about.version)]
+    rows += [(f"scheme {k}", v) for k, v in facts.sources.schemes.items()]
+    return pd.DataFrame(rows, columns=["parameter", "value"])
