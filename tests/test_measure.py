@@ -1,6 +1,9 @@
 """Measured data in (issue 35): process fits, bad data refused, the housing calibrated, engine files written."""
 
+import os
 import re
+import subprocess
+import sys
 import tomllib
 import warnings
 
@@ -9,7 +12,7 @@ import pytest
 from scipy import stats
 
 import stackup
-from stackup import measure_cli
+from stackup import cli, measure_cli
 from stackup.engines import engine_path, load_engine
 from stackup.measure import calibrate_housing, fit_csv, fit_process, write_engine
 from stackup.measure.coverage import BORE_LIMITS, synthetic_fitting_tests
@@ -272,6 +275,20 @@ def test_the_engine_file_written_from_fits_loads_strictly_and_runs_the_main_job(
     assert ranking.loc["iso13778-4", "bearings"] == 1000
 
 
+@pytest.mark.slow
+def test_the_engine_file_written_from_measurements_runs_stackup_compare_quick(tmp_path):
+    """The user's route end to end: fits and fitting tests -> engine file -> `stackup compare --engine FILE --quick`."""
+    housing = calibrate_housing(synthetic_fitting_tests(12, 75e-3, np.random.default_rng(5)), "iso-example")
+    written = write_engine("iso-example", tmp_path / "written.toml",
+                           [*_grouped_fit().entries("housing_bore"), housing.entry()], name="written")
+    result = subprocess.run([sys.executable, "-m", "stackup.cli", "compare", "--engine", str(written), "--quick"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=3600, env=dict(os.environ))
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "Traceback" not in result.stderr
+    report = (tmp_path / "reports" / "compare-quick" / "report.md").read_text()
+    assert "written" in report
+
+
 def test_write_engine_never_replaces_a_file_unless_asked(tmp_path):
     out = tmp_path / "e.toml"
     out.write_text("mine")
@@ -336,6 +353,16 @@ def test_measure_fit_command_prints_the_entry_and_draws(tmp_path, capsys):
     assert re.search(r'^process = \{ distribution = "normal", mean = 50\.00\d+, sigma = 0\.00\d+ \}$', out, re.M)
     assert re.search(r"^shared = 0\.\d+", out, re.M)
     assert figure.stat().st_size > 10_000
+
+
+def test_stackup_measure_is_a_subcommand_of_stackup(tmp_path, capsys):
+    table = synthetic_fitting_tests(6, 75e-3, np.random.default_rng(6))
+    path = _csv(tmp_path, "t.csv", [",".join(table)] + [",".join(f"{table[c][i]:.9g}" for c in table)
+                                                         for i in range(6)])
+    assert cli.main(["measure", "swell", str(path)]) == 0
+    assert re.search(r"housing_outer = \d+\.\d mm", capsys.readouterr().out)
+    assert cli.main(["measure", "fit", str(path), "--column", "nothing", "--limits", "50", "50.018"]) == 2
+    assert "no column 'nothing'" in capsys.readouterr().err
 
 
 def test_measure_swell_command_writes_a_copy(tmp_path, capsys):
