@@ -19,12 +19,15 @@ Reads the SYNTHETIC measurement files of ``studies/data/`` (made by
 
     python studies/measured_data.py [--seeds 200] [--engines 20000]
 
-Writes reports/measured_data.md, its figures and engine files in reports/measured_data/.
+Writes reports/measured_data.md, its figures and engine files in reports/measured_data/, and keeps the
+coverage's per-seed records in reports/measured_data/coverage/ (``--coverage-only`` fills them alone; a run
+that stops goes on from them).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import time
 from pathlib import Path
 
@@ -34,12 +37,14 @@ from _common import environment, write_report
 import stackup
 from stackup.measure import calibrate_housing, fit_csv, write_engine
 from stackup.measure.coverage import (BORE_LIMITS, GAUGE, GROUPS, PER_GROUP, SHARED, TRUE_PROCESSES, choice_rate,
-                                      coverage, synthetic_fitting_tests)
+                                      coverage, synthetic_fitting_tests, true_cpk)
 
 DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).parent.parent
 OUT = ROOT / "reports" / "measured_data"
 REPORT = ROOT / "reports" / "measured_data.md"
+#: Per-seed coverage records (the study's slowest part), kept so that a run can stop and go on.
+COVERAGE_CACHE = OUT / "coverage"
 #: The files, their column, drawing limits [mm], gauge repeatability [mm], group and sequence columns, and the
 #: engine file table each fit goes into.
 FILES = (
@@ -48,7 +53,7 @@ FILES = (
     ("synthetic_crush_heights.csv", "crush_height", (0.065, 0.090), 0.001, None, "sequence", "crush_height"),
 )
 TESTS = "synthetic_fitting_tests.csv"
-CASES = (("normal", True), ("normal", False), ("skew-normal", True), ("mixture", True), ("drift", False))
+CASES = (("normal", True), ("skew-normal", True), ("mixture", True), ("normal", False), ("drift", False))
 CHOICE_SIZES = (100, 200, 300, 500)
 HOUSING_TESTS = (5, 10, 20, 40)
 
@@ -108,16 +113,41 @@ def fit_lines(fits, housing):
     return lines
 
 
+def seed_record(case, grouped, seed):
+    """One seed of a coverage case: did the Cpk (and shared) interval hold the truth, its width, the model."""
+    r = coverage(case, 1, grouped=grouped, first_seed=seed)
+    return {"cpk": r.cpk_hits, "shared": r.shared_hits, "width": r.mean_cpk_width, "model": next(iter(r.chosen))}
+
+
+def cached_coverage(case, grouped, seeds):
+    """Records of seeds 0 .. seeds-1 of a case, computed where ``COVERAGE_CACHE`` lacks them (so a long run can stop
+    and go on: every seed is deterministic); the cache is rewritten after every seed."""
+    path = COVERAGE_CACHE / f"{case}-{'groups' if grouped else 'none'}.json"
+    records = json.loads(path.read_text()) if path.exists() else {}
+    for seed in range(seeds):
+        if str(seed) not in records:
+            records[str(seed)] = seed_record(case, grouped, seed)
+            COVERAGE_CACHE.mkdir(parents=True, exist_ok=True)
+            path.write_text(json.dumps(records, indent=0))
+    return [records[str(seed)] for seed in range(seeds)]
+
+
 def coverage_lines(seeds):
     lines = [f"| true process | groups | seeds | Cpk interval holds the truth | shared interval holds {SHARED} | "
              "model chosen | mean Cpk interval width |", "|---|---|---|---|---|---|---|"]
     for case, grouped in CASES:
-        r = coverage(case, seeds, grouped=grouped)
-        shared = "—" if r.shared_hits is None else f"{r.shared_hits}/{seeds} ({r.shared_hits / seeds:.1%})"
-        chosen = ", ".join(f"{k} {v}" for k, v in sorted(r.chosen.items(), key=lambda kv: -kv[1]))
-        lines.append(f"| {case} (Cpk {r.true_cpk:.3f}) | {f'{GROUPS} x {PER_GROUP}' if grouped else 'none'} | "
-                     f"{seeds} | {r.cpk_hits}/{seeds} ({r.cpk_hits / seeds:.1%}) | {shared} | {chosen} | "
-                     f"{r.mean_cpk_width:.3f} |")
+        records = cached_coverage(case, grouped, seeds)
+        cpk_hits = sum(r["cpk"] for r in records)
+        shared_hits = sum(r["shared"] for r in records) if grouped else None
+        chosen = {}
+        for r in records:
+            chosen[r["model"]] = chosen.get(r["model"], 0) + 1
+        truth = true_cpk(TRUE_PROCESSES[case], *BORE_LIMITS)
+        shared = "—" if shared_hits is None else f"{shared_hits}/{seeds} ({shared_hits / seeds:.1%})"
+        chosen = ", ".join(f"{k} {v}" for k, v in sorted(chosen.items(), key=lambda kv: -kv[1]))
+        lines.append(f"| {case} (Cpk {truth:.3f}) | {f'{GROUPS} x {PER_GROUP}' if grouped else 'none'} | "
+                     f"{seeds} | {cpk_hits}/{seeds} ({cpk_hits / seeds:.1%}) | {shared} | {chosen} | "
+                     f"{np.mean([r['width'] for r in records]):.3f} |")
     return lines
 
 
@@ -158,8 +188,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=200, help="seeds of each coverage case (default 200)")
     parser.add_argument("--engines", type=int, default=20_000, help="engines of each comparison (default 20000)")
+    parser.add_argument("--coverage-only", action="store_true", help="only fill the per-seed coverage records "
+                        f"({COVERAGE_CACHE.relative_to(ROOT)}); no report")
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
+    if args.coverage_only:
+        for case, grouped in CASES:
+            cached_coverage(case, grouped, args.seeds)
+            print(f"coverage {case} ({'groups' if grouped else 'none'}): {args.seeds} seeds", flush=True)
+        return
     t0 = time.perf_counter()
     fits, housing = fit_files()
     engines = write_engines(fits, housing)
