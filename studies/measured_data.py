@@ -188,12 +188,19 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=200, help="seeds of each coverage case (default 200)")
     parser.add_argument("--engines", type=int, default=20_000, help="engines of each comparison (default 20000)")
+    parser.add_argument("--choice-seeds", type=int, help="seeds of each model-choice cell (default seeds / 2, "
+                        "at least 50)")
+    parser.add_argument("--housing-seeds", type=int, help="seeds of each housing cell (default seeds)")
     parser.add_argument("--coverage-only", action="store_true", help="only fill the per-seed coverage records "
                         f"({COVERAGE_CACHE.relative_to(ROOT)}); no report")
+    parser.add_argument("--cases", nargs="+", choices=sorted(TRUE_PROCESSES), help="with --coverage-only: these "
+                        "true processes only (to fill them in separate processes)")
     args = parser.parse_args()
+    args.choice_seeds = args.choice_seeds or max(50, args.seeds // 2)
+    args.housing_seeds = args.housing_seeds or args.seeds
     OUT.mkdir(parents=True, exist_ok=True)
     if args.coverage_only:
-        for case, grouped in CASES:
+        for case, grouped in (c for c in CASES if not args.cases or c[0] in args.cases):
             cached_coverage(case, grouped, args.seeds)
             print(f"coverage {case} ({'groups' if grouped else 'none'}): {args.seeds} seeds", flush=True)
         return
@@ -207,8 +214,8 @@ def main():
             tables[f"measured, housing_outer at the {end} end"] = ranking(engines[end], args.engines, scenarios=False)
     print(f"comparisons: {time.perf_counter() - t0:.0f} s")
     cover = coverage_lines(args.seeds)
-    choice = choice_lines(max(50, args.seeds // 2))
-    house = housing_lines(args.seeds)
+    choice = choice_lines(args.choice_seeds)
+    house = housing_lines(args.housing_seeds)
     print(f"coverage: {time.perf_counter() - t0:.0f} s")
     write_report(REPORT, report(fits, housing, engines, tables, cover, choice, house, args))
 
@@ -258,12 +265,12 @@ def report(fits, housing, engines, tables, cover, choice, house, args):
         "",
         *cover,
         "",
-        f"Share of samples (without groups, {max(50, args.seeds // 2)} seeds) whose least-BIC model is the true one:",
+        f"Share of samples (without groups, {args.choice_seeds} seeds) whose least-BIC model is the true one:",
         "",
         *choice,
         "",
         f"Housing calibration on synthetic fitting tests (`stackup.fit.press_fit` at 75 mm plus gauge noise), "
-        f"{args.seeds} seeds:",
+        f"{args.housing_seeds} seeds:",
         "",
         *house,
         "",
