@@ -309,6 +309,25 @@ class SkewNormal(_TabulatedQuantile):
         return replace(self, mean=self.mean + delta)
 
 
+#: Probabilities of the ISO 22514-2 quantile capability index: X_0.135 %, X_50 %, X_99.865 %.
+CPK_QUANTILES = special.ndtr(np.array([-3.0, 0.0, 3.0]))
+
+
+def quantile_cpk(process, lo, hi):
+    r"""Capability index of ``process`` over the limits [``lo``, ``hi``] [m], ISO 22514-2's quantile form.
+
+    .. math:: C_{pk} = \min\left(\frac{U - X_{50}}{X_{99.865} - X_{50}}, \frac{X_{50} - L}{X_{50} - X_{0.135}}\right)
+
+    with the process's quantiles; for a normal process this is the classic
+    :math:`\min(U - \mu, \mu - L)/3\sigma`, and for a skewed or two-machine
+    process it reads the tail that the limits face rather than the standard
+    deviation. Reference: ISO 22514-2:2017, Statistical methods in process
+    management - Capability and performance - Part 2.
+    """
+    low, mid, high = process.ppf(CPK_QUANTILES)
+    return float(min((hi - mid) / (high - mid), (mid - lo) / (mid - low)))
+
+
 def process_mean(process):
     """Mean [m] of a process object (normal, truncated normal, uniform, mixture, tool wear)."""
     if isinstance(process, Uniform):

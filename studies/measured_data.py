@@ -37,7 +37,8 @@ from _common import environment, write_report
 import stackup
 from stackup.measure import calibrate_housing, fit_csv, write_engine
 from stackup.measure.coverage import (BORE_LIMITS, GAUGE, GROUPS, PER_GROUP, SHARED, TRUE_PROCESSES, choice_rate,
-                                      coverage, synthetic_fitting_tests, true_cpk)
+                                      coverage, synthetic_fitting_tests)
+from stackup.tolerances import quantile_cpk
 
 DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).parent.parent
@@ -142,7 +143,7 @@ def coverage_lines(seeds):
         chosen = {}
         for r in records:
             chosen[r["model"]] = chosen.get(r["model"], 0) + 1
-        truth = true_cpk(TRUE_PROCESSES[case], *BORE_LIMITS)
+        truth = quantile_cpk(TRUE_PROCESSES[case], *BORE_LIMITS)
         shared = "—" if shared_hits is None else f"{shared_hits}/{seeds} ({shared_hits / seeds:.1%})"
         chosen = ", ".join(f"{k} {v}" for k, v in sorted(chosen.items(), key=lambda kv: -kv[1]))
         lines.append(f"| {case} (Cpk {truth:.3f}) | {f'{GROUPS} x {PER_GROUP}' if grouped else 'none'} | "

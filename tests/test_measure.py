@@ -19,7 +19,7 @@ from stackup.measure.coverage import BORE_LIMITS, synthetic_fitting_tests
 from stackup.measure.models import SkewNormalModel, _skew_fit, skew_centred, skew_direct
 from stackup.measure.process import anderson_darling
 from stackup.measure.shared import shared_share
-from stackup.tolerances import MAX_SKEWNESS, Normal, SkewNormal, process_from_spec
+from stackup.tolerances import MAX_SKEWNESS, Normal, SkewNormal, process_from_spec, quantile_cpk
 
 MM, UM = 1e-3, 1e-6
 
@@ -49,6 +49,18 @@ def test_skew_normal_centred_parameters_are_the_distributions_moments(skewness):
     u = np.array([1e-4, 0.01, 0.3, 0.5, 0.9, 0.9999])
     # the tabulated quantile: within 1e-4 sigma also at the short tail of a nearly half-normal process
     np.testing.assert_allclose(p.ppf(u), stats.skewnorm.ppf(u, alpha, loc=xi, scale=omega), atol=1e-4 * 0.2)
+
+
+def test_quantile_cpk_is_the_classic_one_for_a_normal_and_reads_the_skewed_tail():
+    lo, hi = 50.000e-3, 50.018e-3
+    assert quantile_cpk(Normal(50.0095e-3, 2e-6), lo, hi) == pytest.approx(0.0085e-3 / 6e-6, rel=1e-9)
+    process = SkewNormal(50.0085e-3, 2.2e-6, 0.6)
+    alpha, xi, omega = process.direct
+    low, mid, high = stats.skewnorm.ppf(stats.norm.cdf([-3.0, 0.0, 3.0]), alpha, loc=xi, scale=omega)
+    expected = min((hi - mid) / (high - mid), (mid - lo) / (mid - low))  # ISO 22514-2 with scipy's quantiles
+    assert quantile_cpk(process, lo, hi) == pytest.approx(expected, rel=1e-4)
+    # the long upper tail faces the upper limit: less than the moment form min(U - mu, mu - L) / 3 sigma
+    assert quantile_cpk(process, lo, hi) < (hi - 50.0085e-3) / (3 * 2.2e-6)
 
 
 def test_skew_normal_engine_file_form_is_read_in_file_units():

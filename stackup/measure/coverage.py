@@ -20,8 +20,8 @@ from .. import materials
 from .._random import as_generator
 from ..engines import load_engine
 from ..fit import press_fit
-from ..tolerances import Dimension, Gauge, Mixture, Normal, SkewNormal, ToolWear
-from .process import CPK_QUANTILES, fit_candidates, fit_process
+from ..tolerances import Dimension, Gauge, Mixture, Normal, SkewNormal, ToolWear, quantile_cpk
+from .process import fit_candidates, fit_process
 
 #: Drawing limits of the example engine's housing bore [m] (ISO 13778's example).
 BORE_LIMITS = (50.000e-3, 50.018e-3)
@@ -38,12 +38,6 @@ _CASE_KEY = {case: k for k, case in enumerate(TRUE_PROCESSES)}
 GAUGE = Gauge(repeatability=0.5e-6, resolution=0.1e-6)
 #: Groups (blocks) and parts per group of a synthetic sample, and the true shared share.
 GROUPS, PER_GROUP, SHARED = 60, 5, 0.3
-
-
-def true_cpk(process, lo, hi):
-    """ISO 22514-2 quantile Cpk of a true process over [lo, hi]."""
-    low, mid, high = process.ppf(CPK_QUANTILES)
-    return float(min((hi - mid) / (high - mid), (mid - lo) / (mid - low)))
 
 
 def synthetic_readings(process, rng, *, groups=GROUPS, per_group=PER_GROUP, shared=SHARED, gauge=GAUGE,
@@ -84,7 +78,7 @@ class Coverage:
 def coverage(case, seeds, *, grouped=True, resamples=1000, first_seed=0):
     """How often the Cpk (and shared-share) intervals of :func:`fit_process` hold the truth of ``case``."""
     process = TRUE_PROCESSES[case]
-    truth = true_cpk(process, *BORE_LIMITS)
+    truth = quantile_cpk(process, *BORE_LIMITS)
     cpk_hits, shared_hits, chosen, widths = 0, 0, {}, []
     for seed in range(first_seed, first_seed + seeds):
         rng = np.random.default_rng([seed, 35, _CASE_KEY[case]])

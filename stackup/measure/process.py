@@ -65,13 +65,12 @@ from scipy import special, stats
 
 from .._random import as_generator
 from .._validate import InRange, Integer, validated
+from ..tolerances import CPK_QUANTILES
 from . import _data
 from .engine_file import inline
 from .models import BY_NAME, MODELS, NormalModel
 from .shared import SharedShare, group_codes, shared_share
 
-#: Probabilities of the ISO 22514-2 quantile capability index: X_0.135 %, X_50 %, X_99.865 %.
-CPK_QUANTILES = np.array([special.ndtr(-3.0), 0.5, special.ndtr(3.0)])
 #: Samples of the parametric bootstrap of the goodness-of-fit test.
 GOF_RESAMPLES = 200
 #: Below this p-value of the goodness-of-fit test the chosen model is said not to fit.
