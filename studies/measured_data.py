@@ -120,11 +120,14 @@ def seed_record(case, grouped, seed):
     return {"cpk": r.cpk_hits, "shared": r.shared_hits, "width": r.mean_cpk_width, "model": next(iter(r.chosen))}
 
 
-def cached_coverage(case, grouped, seeds):
+def cached_coverage(case, grouped, seeds, *, stored_only=False):
     """Records of seeds 0 .. seeds-1 of a case, computed where ``COVERAGE_CACHE`` lacks them (so a long run can stop
-    and go on: every seed is deterministic); the cache is rewritten after every seed."""
+    and go on: every seed is deterministic); the cache is rewritten after every seed. ``stored_only``: the stored
+    seeds 0 .. k-1 only (k <= seeds), none computed."""
     path = COVERAGE_CACHE / f"{case}-{'groups' if grouped else 'none'}.json"
     records = json.loads(path.read_text()) if path.exists() else {}
+    if stored_only:
+        seeds = next((k for k in range(seeds) if str(k) not in records), seeds)
     for seed in range(seeds):
         if str(seed) not in records:
             records[str(seed)] = seed_record(case, grouped, seed)
@@ -133,22 +136,30 @@ def cached_coverage(case, grouped, seeds):
     return [records[str(seed)] for seed in range(seeds)]
 
 
-def coverage_lines(seeds):
+def coverage_lines(seeds, stored_only=False):
     lines = [f"| true process | groups | seeds | Cpk interval holds the truth | shared interval holds {SHARED} | "
              "model chosen | mean Cpk interval width |", "|---|---|---|---|---|---|---|"]
+    short = False
     for case, grouped in CASES:
-        records = cached_coverage(case, grouped, seeds)
+        records = cached_coverage(case, grouped, seeds, stored_only=stored_only)
+        n = len(records)
+        short |= n < seeds
+        if not n:
+            continue
         cpk_hits = sum(r["cpk"] for r in records)
         shared_hits = sum(r["shared"] for r in records) if grouped else None
         chosen = {}
         for r in records:
             chosen[r["model"]] = chosen.get(r["model"], 0) + 1
         truth = quantile_cpk(TRUE_PROCESSES[case], *BORE_LIMITS)
-        shared = "—" if shared_hits is None else f"{shared_hits}/{seeds} ({shared_hits / seeds:.1%})"
+        shared = "—" if shared_hits is None else f"{shared_hits}/{n} ({shared_hits / n:.1%})"
         chosen = ", ".join(f"{k} {v}" for k, v in sorted(chosen.items(), key=lambda kv: -kv[1]))
         lines.append(f"| {case} (Cpk {truth:.3f}) | {f'{GROUPS} x {PER_GROUP}' if grouped else 'none'} | "
-                     f"{seeds} | {cpk_hits}/{seeds} ({cpk_hits / seeds:.1%}) | {shared} | {chosen} | "
+                     f"{n} | {cpk_hits}/{n} ({cpk_hits / n:.1%}) | {shared} | {chosen} | "
                      f"{np.mean([r['width'] for r in records]):.3f} |")
+    if short:
+        lines += ["", f"Cases with fewer than {seeds} seeds (or missing) were still running when this report was "
+                  "written (`--stored-coverage`); `python studies/measured_data.py` goes on from the stored seeds."]
     return lines
 
 
@@ -194,6 +205,8 @@ def main():
     parser.add_argument("--housing-seeds", type=int, help="seeds of each housing cell (default seeds)")
     parser.add_argument("--coverage-only", action="store_true", help="only fill the per-seed coverage records "
                         f"({COVERAGE_CACHE.relative_to(ROOT)}); no report")
+    parser.add_argument("--stored-coverage", action="store_true", help="report the coverage seeds stored so far "
+                        "(up to --seeds) instead of computing the missing ones")
     parser.add_argument("--cases", nargs="+", choices=sorted(TRUE_PROCESSES), help="with --coverage-only: these "
                         "true processes only (to fill them in separate processes)")
     args = parser.parse_args()
@@ -214,7 +227,7 @@ def main():
         if end in engines:
             tables[f"measured, housing_outer at the {end} end"] = ranking(engines[end], args.engines, scenarios=False)
     print(f"comparisons: {time.perf_counter() - t0:.0f} s")
-    cover = coverage_lines(args.seeds)
+    cover = coverage_lines(args.seeds, args.stored_coverage)
     choice = choice_lines(args.choice_seeds)
     house = housing_lines(args.housing_seeds)
     print(f"coverage: {time.perf_counter() - t0:.0f} s")
