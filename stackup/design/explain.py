@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._version import __version__
+from .assess import SELECTION_FACTOR
 
 PPM = 1e6
 
@@ -40,6 +41,10 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
         "(P_out: share of bearings outside the window; surplus, shortfall: planned shells per bearing).",
         f"Design sample: {n_engines:,} engines, seed {seed}, the same random numbers for every candidate and",
         "scenario; shells made to order aimed for the demand each design makes.",
+        f"Shell grades one at a time (1 to {len(s.shell.labels)}): each number of grades also starts from the design",
+        "with one grade fewer, a grade split in two (the nested start); a second sample of "
+        f"{SELECTION_FACTOR * n_engines:,} engines",
+        "(the selection sample) keeps the better of the search's result and the nested start.",
         f"Scenarios: {', '.join(labels[1:]) or 'none'}"
         + (f"; left out (no effect on the clearance): {', '.join(p.skipped)}" if p.skipped else "") + ".",
         "Solvers (scipy): differential evolution and edge-by-edge line searches (housing, journal limits),",
@@ -54,6 +59,8 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
         f"  J = {design.objective * PPM:.4g} ppm; planned surplus {design.surplus.sum():.3f} and shortfall "
         f"{design.shortfall.sum():.4f} shells per bearing; mean operating clearance "
         f"{design.mean_clearance * PPM:.2f} um.",
+        *check_lines(design.check),
+        *ladder_lines(design.levels),
         f"Started from {start_scheme.name} ("
         + ("the ISO 13778 scheme with the lowest J on the design sample, " if chosen else "")
         + f"J = {design.start_objective * PPM:.4g} ppm with its preferred pairs). What changed:",
@@ -84,3 +91,27 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
 def _worst(outside):
     values = list(outside.values())[1:]
     return max(values) if values else np.nan
+
+
+def check_lines(check):
+    """The check sample's figures: share outside the window per scenario with its 95 % interval, and J."""
+    lo, hi = check.objective_interval
+    shares = [f"{label} {check.outside[label] * PPM:.3g} [{check.interval[label][0] * PPM:.3g}, "
+              f"{check.interval[label][1] * PPM:.3g}] ppm" for label in check.outside]
+    return [f"Independent check ({check.samples} samples of {check.engines:,} engines no decision of the designer saw; "
+            "95 % intervals):",
+            f"  P_out {'; '.join(shares)};",
+            f"  J = {check.objective * PPM:.4g} [{lo * PPM:.4g}, {hi * PPM:.4g}] ppm."]
+
+
+def ladder_lines(levels):
+    """One line per number of shell grades: J on the design and the selection sample, and which candidate won."""
+    lines = ["Ladder (J on the design sample / on the selection sample, ppm; the candidate kept):"]
+    for step in levels:
+        lines.append(f"  {step.grades} shell grade{'s' if step.grades > 1 else ''}: {step.objective * PPM:.4g} / "
+                     f"{step.selection_objective * PPM:.4g} ({step.origin})")
+    worse = [(a, b) for a, b in zip(levels, levels[1:]) if b.selection_objective > a.selection_objective]
+    for a, b in worse:
+        lines.append(f"  {b.grades} grades do worse than {a.grades} on the selection sample: no split of the "
+                     f"{a.grades}-grade design tried kept its J.")
+    return lines
