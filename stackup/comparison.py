@@ -160,17 +160,17 @@ def design_record(designed):
     Both figures of the designed scheme: on the design sample it was optimised on (``outside``,
     ``objective``) and on the independent check sample no decision of the designer saw
     (``check_outside`` with ``check_interval`` per scenario, ``check_objective``); ``levels``: the
-    ladder of shell grades (:mod:`stackup.design.ladder`).
+    ladder of shell grades (:mod:`stackup.design.ladder`): per number of grades asked, the grades and
+    :math:`J` of the design kept and the :math:`J` of each candidate tried.
     """
     check = designed.check
     return {"start": designed.start, "objective": designed.objective, "start_objective": designed.start_objective,
             "outside": designed.outside, "start_outside": designed.start_outside, "iso_outside": designed.iso,
-            "selection_objective": designed.selection_objective,
             "check_outside": check.outside, "check_interval": {k: list(v) for k, v in check.interval.items()},
             "check_objective": check.objective, "check_objective_interval": list(check.objective_interval),
             "check_samples": check.samples, "check_engines": check.engines,
-            "levels": [{"grades": step.grades, "objective": step.objective,
-                        "selection_objective": step.selection_objective, "kept": step.origin}
+            "levels": [{"asked": step.asked, "grades": step.grades, "objective": step.objective,
+                        "kept": step.origin, "tried": step.candidates}
                        for step in designed.levels],
             "mean_clearance_m": designed.mean_clearance, "start_mean_clearance_m": designed.start_mean_clearance,
             "seconds": designed.seconds, "evaluations": designed.evaluations, "notes": list(designed.scheme.notes),

@@ -37,6 +37,17 @@ mixed-integer programme (HiGHS through ``scipy.optimize.milp``). The shells
 are integrated out on the sample (:mod:`stackup.design.objective`), so
 shares of a few ppm are resolved by a few thousand engines.
 
+Shell grades one at a time (:mod:`stackup.design.ladder`): the design of
+``k`` grades starts from the design of ``k - 1`` with a grade split in two
+(nested starts), and a design asked for more grades is never worse on
+:math:`J` than the design of fewer (where no ``k``-grade design found does
+better, the one of fewer grades is kept and its notes say so).
+
+Check (:mod:`stackup.design.assess`): the designed scheme is scored again on
+an independent check sample no decision saw; both figures are reported
+(:attr:`Design.objective`, :attr:`Design.outside` on the design sample,
+:attr:`Design.check` on the check sample, with 95 % intervals).
+
 References
 ----------
 .. [1] Mease, D., Nair, V. N., Sudjianto, A., "Selective assembly in
@@ -60,7 +71,7 @@ from ..patterns import ISO_SCHEMES, adapt
 from ..plan import optimise_supply
 from ..scenarios import DECLARED
 from ..schemes import load as load_scheme
-from .assess import CHECK_SAMPLES, selection_samples
+from .assess import CHECK_SAMPLES
 from .assess import check as check_design
 from .explain import notes
 from .ladder import climb
@@ -83,15 +94,13 @@ class Design:
         :math:`J` of the designed scheme on the design sample [-].
     outside : dict of str -> float
         Share of bearings outside the window per sample ("nominal" and each scenario) [-].
-    selection_objective : float
-        Its :math:`J` on the selection sample, which decided between the final candidates [-].
     check : Check
         The designed scheme on the check sample, which decided nothing: share outside the window per
         scenario with 95 % intervals, and :math:`J` (:class:`~stackup.design.assess.Check`).
     start : str
         Name of the scheme the design started from.
     start_objective : float
-        Its :math:`J` without the supply terms, with its preferred pairs [-].
+        Its :math:`J` with its preferred pairs, supply terms included (:meth:`Problem.expected_objective`) [-].
     start_outside : dict of str -> float
         Its share outside the window per sample [-].
     iso : dict of str -> dict of str -> float
@@ -121,7 +130,6 @@ class Design:
     scheme: object
     objective: float
     outside: dict
-    selection_objective: float
     check: object
     start: str
     start_objective: float
@@ -216,14 +224,12 @@ def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=
                             journal_grades=journal_grades, scenarios=scenarios, seed=seed, n_engines=n_engines,
                             sort_share=float(sort_share), readout=float(readout), mixed=bool(mixed_pairs),
                             weights=weights)
-    selection = selection_samples(problem, seed=seed, n_engines=n_engines)
     log("ISO 13778 schemes, laid on the engine's drawing, on the design sample")
     patterns = {k: adapt(k, engine) for k in ISO_SCHEMES}
     iso = {k: problem.expected(scheme) for k, scheme in patterns.items()}
-    start_scheme = (patterns[min(iso, key=lambda k: problem.objective(list(iso[k].values())))] if start is None
-                    else load_scheme(start))
+    start_scheme = min(patterns.values(), key=problem.expected_objective) if start is None else load_scheme(start)
     name = name or f"designed-{engine.name}"
-    levels = climb(problem, selection, start_scheme, generations=generations, seed=seed, log=log, name=name)
+    levels = climb(problem, start_scheme, generations=generations, seed=seed, log=log, name=name)
     top = levels[-1]
     log(f"check sample: the designed scheme on {CHECK_SAMPLES} x {n_engines:,} engines no decision saw")
     checked = check_design(problem, top.scheme, seed=seed, n_engines=n_engines)
@@ -243,14 +249,14 @@ def _design(problem, designed, start_scheme, top, *, iso, check, offer, t0, leve
     start_outside = problem.expected(start_scheme)
     return Design(
         scheme=designed, objective=top.objective, outside=problem.expected(designed),
-        selection_objective=top.selection.objective, check=check, start=start_scheme.name,
-        start_objective=problem.objective(list(start_outside.values())), start_outside=start_outside, iso=iso,
+        check=check, start=start_scheme.name,
+        start_objective=problem.expected_objective(start_scheme), start_outside=start_outside, iso=iso,
         mean_clearance=score(designed, nominal, window).mean_clearance,
         start_mean_clearance=score(start_scheme, nominal, window).mean_clearance,
         surplus=top.surplus, shortfall=top.shortfall, aim_share=top.aim, supply_mean=offer["mean"],
         supply_mean_objective=offer["objective"], supply_centred_objective=offer["centred_objective"],
         seconds=time.perf_counter() - t0, evaluations=sum(level.evaluations for level in levels),
-        levels=tuple(level.step() for level in levels))
+        levels=tuple(level.step(k) for k, level in enumerate(levels, start=1)))
 
 
 __all__ = ["Design", "ISO_SCHEMES", "Weights", "design", "scheme"]

@@ -1,24 +1,17 @@
-r"""A finished design scored on parts the search never saw: the selection and the check samples.
+r"""A finished design scored on parts the search never saw: the check sample.
 
 The search minimises the objective :math:`J` on one design sample, trying
 hundreds of thousands of candidate limits on it; the candidate it keeps is
 the one whose sample happened to suit it best, so its :math:`J` there is
 biased low (over-fitting: the fewer the bearings in a cell, the more a
-pair can be tuned to the few that are there). Two more samples of the same
-engine, each its own random stream (:data:`~stackup.design.sample.SELECTION_KEY`,
-:data:`~stackup.design.sample.CHECK_KEY`), correct for it:
+pair can be tuned to the few that are there). The check sample, its own
+random stream (:data:`~stackup.design.sample.CHECK_KEY`), decides nothing:
+the designer reports the designed scheme's share outside the window on it
+per scenario, with a 95 % Student interval over ``k`` independent
+sub-samples, :math:`\bar p \pm t_{0.975,k-1} s/\sqrt{k}`, beside the design
+sample's figure.
 
-- the **selection sample** decides between the few final candidates of a
-  number of shell grades (the search's result and the nested start,
-  :mod:`stackup.design.ladder`): a choice among a handful is not a search,
-  so its bias is small;
-- the **check sample** decides nothing: the designer reports the designed
-  scheme's share outside the window on it per scenario, with a 95 %
-  Student interval over independent sub-samples,
-  :math:`\bar p \pm t_{0.975,k-1} s/\sqrt{k}`, beside the design sample's
-  figure.
-
-Both score a complete scheme exactly as :func:`stackup.design.objective.score`
+It scores a complete scheme exactly as :func:`stackup.design.objective.score`
 does (its preferred pairs, the shells integrated out, made-to-order shells
 aimed for the demand the scheme makes on that sample).
 """
@@ -33,10 +26,8 @@ from scipy import stats
 from .._random import seed_sequence
 from .objective import demand_share, score
 from .problem import draw_samples
-from .sample import CHECK_KEY, SELECTION_KEY
+from .sample import CHECK_KEY
 
-#: Engines of the selection sample per engine of the design sample.
-SELECTION_FACTOR = 4
 #: Independent sub-samples of the check sample, each as large as the design sample.
 CHECK_SAMPLES = 5
 
@@ -62,17 +53,11 @@ class Assessment:
 
 
 def assess(problem, scheme, samples):
-    """:class:`Assessment` of a complete ``scheme`` on ``samples`` (drawn as ``problem``'s, another stream)."""
+    """:class:`Assessment` of a complete ``scheme`` on ``samples`` (drawn as ``problem``'s design sample, from another stream)."""
     outside = {s.label: score(scheme, s, problem.window).outside for s in samples}
     surplus, shortfall, _ = problem.balance(scheme, demand_share(scheme, samples[0]), samples[0].shell_normals)
     objective = problem.objective(list(outside.values())) + problem.supply_cost(surplus, shortfall)
     return Assessment(outside, objective, surplus, shortfall)
-
-
-def selection_samples(problem, *, seed, n_engines):
-    """The selection sample: :data:`SELECTION_FACTOR` times ``n_engines`` engines per scenario."""
-    return draw_samples(problem.engine, problem.changes, n_engines=SELECTION_FACTOR * n_engines, seed=seed,
-                        window=problem.window, key=SELECTION_KEY)
 
 
 @dataclass(frozen=True)

@@ -2,20 +2,24 @@
 
 A design with ``k`` shell grades is found on a ladder: one grade, two, ...,
 ``k``, each rung searched as the module :mod:`stackup.design` describes,
-with the best design of the rung below among its starts (the nested start):
-that design with one grade split in two at its middle (every grade wide
-enough to split, and a grade added below or above the range), the housing
-and journal limits of the rung below among the limits tried. The rung's
-design is the better of the search's result and the nested start on the
-selection sample (:mod:`stackup.design.assess`), so more shell grades can
-only lose to fewer where splitting a grade itself loses, which the notes
-of a design say when it happens.
+with the rung below's design among its starts (the nested start): that
+design with one grade split in two at its middle (every grade wide enough
+to split, and a grade of the narrowest width added below or above the
+range), the housing and journal limits of the rung below among the limits
+tried. The rung's design is the search's result or the nested start,
+whichever has the lower objective :math:`J` on the design sample.
+
+More grades are never worse on :math:`J`: where a rung's best design does
+worse on the design sample than the design kept below it (splitting a grade
+need not help: the shells made to order are aimed anew, and a cell's pair
+must name one of the two halves), the design kept below is kept again, with
+fewer grades than asked, and the design's notes say so. Asked for ``k``
+grades, the designer returns the best design of at most ``k`` grades it
+found, never one worse than a design of fewer.
 
 Why: the shell search is local (a short differential evolution from a few
 starts); with five grades and a 3 x 3 matrix it found designs worse on its
-own objective than the four-grade design, and the freedom of the extra
-grades let it tune pairs to the few bearings the design sample puts in its
-rare cells (reports/design_scheme.md measures both).
+own objective than the four-grade design (issue 31).
 """
 
 from __future__ import annotations
@@ -26,7 +30,6 @@ import numpy as np
 
 from .._version import __version__
 from ..schemes import from_dict
-from .assess import assess
 from .problem import LABELS
 from .search import search_shells
 from .session import Search
@@ -43,8 +46,9 @@ class Level:
     Attributes
     ----------
     grades : int
+        Shell grades of the design (fewer than the rung's where the design below was kept).
     found : Found
-        The design (:class:`~stackup.design.session.Found`).
+        The design (:class:`~stackup.design.session.Found`, without its cell tables).
     scheme : Scheme
         It as a scheme.
     surplus, shortfall : numpy.ndarray (grades,)
@@ -53,12 +57,10 @@ class Level:
         Share of the shells made aimed at each grade (shells made to order).
     objective : float
         :math:`J` on the design sample, supply terms included [-].
-    selection : Assessment
-        The scheme on the selection sample.
     origin : str
-        "search" or "nested start" (which candidate the selection sample kept).
+        "search", "nested start" (the rung's candidate kept) or "kept from N grades".
     candidates : dict of str -> float
-        :math:`J` on the selection sample of each candidate.
+        :math:`J` on the design sample of each candidate of the rung [-].
     evaluations : int
         Sets of housing and journal limits scored on the rung.
     """
@@ -70,15 +72,13 @@ class Level:
     shortfall: np.ndarray
     aim: np.ndarray | None
     objective: float
-    selection: object
     origin: str
     candidates: dict
     evaluations: int
 
-    def step(self):
-        """What the rung found, without the search's tables: a :class:`Step`."""
-        return Step(self.grades, self.scheme, self.objective, self.selection.objective, self.selection.outside,
-                    self.origin, self.candidates)
+    def step(self, asked):
+        """What the rung of ``asked`` grades kept, without the search's tables: a :class:`Step`."""
+        return Step(asked, self.grades, self.scheme, self.objective, self.origin, self.candidates)
 
 
 @dataclass(frozen=True)
@@ -87,38 +87,46 @@ class Step:
 
     Attributes
     ----------
+    asked : int
+        Shell grades the rung searched.
     grades : int
+        Shell grades of the design it kept (``asked`` unless the design below was kept).
     scheme : Scheme
-    objective, selection_objective : float
-        :math:`J` on the design and the selection sample [-].
-    selection_outside : dict of str -> float
-        Share outside the window per scenario on the selection sample [-].
+    objective : float
+        :math:`J` on the design sample [-].
     origin : str
     candidates : dict of str -> float
-        :math:`J` of each candidate on the selection sample [-].
+        :math:`J` of each of the rung's candidates on the design sample [-].
     """
 
+    asked: int
     grades: int
     scheme: object
     objective: float
-    selection_objective: float
-    selection_outside: dict
     origin: str
     candidates: dict
 
 
-def climb(problem, selection, start_scheme, *, generations, seed, log, name="designed"):
-    """The rungs 1 to ``problem.shell_grades`` (list of :class:`Level`), each from the one below."""
-    levels = []
+def climb(problem, start_scheme, *, generations, seed, log, name="designed"):
+    """The rungs 1 to ``problem.shell_grades``: the design kept at each (list of :class:`Level`, :math:`J`
+    never rising), each rung started from the rung below's own design."""
+    kept, own = [], None
     for k in range(1, problem.shell_grades + 1):
         log(f"{k} shell grade{'s' if k > 1 else ''}: differential evolution and Nelder-Mead over {k + 1} limits"
-            + (f", the {k - 1}-grade design split as a start" if levels else ""))
-        levels.append(rung(replace(problem, shell_grades=k), selection, start_scheme, levels[-1] if levels else None,
-                           generations=generations, seed=seed, log=log, name=name))
-    return levels
+            + (f", the {k - 1}-grade design split as a start" if own else ""))
+        own = rung(replace(problem, shell_grades=k), start_scheme, own, generations=generations, seed=seed, log=log,
+                   name=name)
+        if kept and own.objective > kept[-1].objective:
+            log(f"  {k} grades do worse than {kept[-1].grades} ({own.objective * 1e6:.4g} against "
+                f"{kept[-1].objective * 1e6:.4g} ppm): the {kept[-1].grades}-grade design is kept")
+            kept.append(replace(kept[-1], origin=f"kept from {kept[-1].grades} grades", candidates=own.candidates,
+                                evaluations=own.evaluations))
+        else:
+            kept.append(own)
+    return kept
 
 
-def rung(problem, selection, start_scheme, parent, *, generations, seed, log, name):
+def rung(problem, start_scheme, parent, *, generations, seed, log, name):
     """The :class:`Level` of ``problem.shell_grades`` grades, with the nested starts of ``parent`` (or None)."""
     x0 = _encode_start(start_scheme, problem) if parent is None else _encode_limits(parent.found, problem)
     search = Search(problem, seed=seed, x0=x0)
@@ -131,18 +139,14 @@ def rung(problem, selection, start_scheme, parent, *, generations, seed, log, na
             search.x = _encode_limits(parent.found, problem)
             limits = [(parent.found.housing_edges, parent.found.journal_edges)]
             candidates["nested start"] = search.finish(best, log, limits=limits)
-    scored = {}
-    for origin, (found, surplus, shortfall, aim) in candidates.items():
-        scheme = to_scheme(name, problem, found)
-        scored[origin] = (assess(problem, scheme, selection), found, scheme, surplus, shortfall, aim)
-    origin = min(scored, key=lambda o: scored[o][0].objective)
-    chosen, found, scheme, surplus, shortfall, aim = scored[origin]
-    objective = found.objective + problem.supply_cost(surplus, shortfall)
-    log(f"  {problem.shell_grades} grades: J {objective * 1e6:.4g} ppm on the design sample, "
-        + ", ".join(f"{o} {s[0].objective * 1e6:.4g} ppm" for o, s in scored.items())
-        + f" on the selection sample; kept: {origin}")
-    return Level(problem.shell_grades, replace(found, tables=None), scheme, surplus, shortfall, aim, objective,
-                 chosen, origin, {o: s[0].objective for o, s in scored.items()}, search.evaluations)
+    total = {o: found.objective + problem.supply_cost(surplus, shortfall)
+             for o, (found, surplus, shortfall, _) in candidates.items()}
+    origin = min(total, key=total.get)
+    found, surplus, shortfall, aim = candidates[origin]
+    log(f"  {problem.shell_grades} grades: J " + ", ".join(f"{o} {j * 1e6:.4g} ppm" for o, j in total.items())
+        + f" on the design sample; kept: {origin}")
+    return Level(problem.shell_grades, replace(found, tables=None), to_scheme(name, problem, found), surplus,
+                 shortfall, aim, total[origin], origin, total, search.evaluations)
 
 
 def nested_starts(edges, problem):

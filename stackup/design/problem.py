@@ -134,6 +134,15 @@ class Problem:
         (:func:`~stackup.design.tables.expected_outside`: the tier the search minimises)."""
         return {sample.label: expected_outside(scheme, self.binned, s)[0] for s, sample in enumerate(self.samples)}
 
+    def expected_objective(self, scheme):
+        """:math:`J` of a complete ``scheme`` on the design samples, supply terms included: its
+        :meth:`expected` shares and the planned surplus and shortfall for the demand its preferred pairs
+        make on the nominal sample [-]."""
+        shares = self.expected(scheme)
+        demand = expected_outside(scheme, self.binned, 0)[1]
+        surplus, shortfall, _ = self.balance(scheme, demand)
+        return self.objective(list(shares.values())) + self.supply_cost(surplus, shortfall)
+
     def on_grid(self, edges):
         """Shell limits [m] moved to the shell grid, no grade narrower than the narrowest sortable one."""
         grid = max(int(nm(self.shell_step)), 1)

@@ -33,9 +33,6 @@ from ..study.scenario import apply as apply_scenario
 #: Spawn key of the design sample: apart from a study's lots (0, 1, ...) and its
 #: pilot (2**63), so a study run with the same seed validates on other parts.
 DESIGN_KEY = 2**63 + 1
-#: Spawn key of the selection sample, on which the designer decides between its final candidates
-#: (the search's result and the nested start): parts the search never saw.
-SELECTION_KEY = 2**63 + 2
 #: Spawn key of the reading sample: housing and journal readings of many engines, whose distribution
 #: weights the grid bins of the cell tables (:mod:`stackup.design.tables`).
 READINGS_KEY = 2**63 + 4
@@ -119,7 +116,7 @@ def draw_sample(engine, *, n_engines, seed, window, scenario=None, label="nomina
     """The design sample of ``engine`` (with ``scenario`` applied) for a clearance ``window`` [m].
 
     ``key`` is the spawn key of its random stream under ``seed``: :data:`DESIGN_KEY` (the search's sample),
-    :data:`SELECTION_KEY` or :data:`CHECK_KEY`.
+    :data:`CHECK_KEY` (the check sample).
     """
     engine = apply_scenario(engine, scenario or {})
     parts, normals = draw_lot(engine, lot_generator(seed_sequence(seed), key), n_engines)
