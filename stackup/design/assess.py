@@ -53,7 +53,8 @@ class Assessment:
 
 
 def assess(problem, scheme, samples):
-    """:class:`Assessment` of a complete ``scheme`` on ``samples`` (drawn as ``problem``'s design sample, from another stream)."""
+    """:class:`Assessment` of a complete ``scheme`` on ``samples`` (drawn as ``problem``'s design sample, from
+    another stream)."""
     outside = {s.label: score(scheme, s, problem.window).outside for s in samples}
     surplus, shortfall, _ = problem.balance(scheme, demand_share(scheme, samples[0]), samples[0].shell_normals)
     objective = problem.objective(list(outside.values())) + problem.supply_cost(surplus, shortfall)

@@ -143,7 +143,8 @@ def rung(problem, start_scheme, parent, *, generations, seed, log, name):
              for o, (found, surplus, shortfall, _) in candidates.items()}
     origin = min(total, key=total.get)
     found, surplus, shortfall, aim = candidates[origin]
-    log(f"  {problem.shell_grades} grade{'s' if problem.shell_grades > 1 else ''}: J " + ", ".join(f"{o} {j * 1e6:.4g} ppm" for o, j in total.items())
+    k = problem.shell_grades
+    log(f"  {k} grade{'s' if k > 1 else ''}: J " + ", ".join(f"{o} {j * 1e6:.4g} ppm" for o, j in total.items())
         + f" on the design sample; kept: {origin}")
     return Level(problem.shell_grades, replace(found, tables=None), to_scheme(name, problem, found), surplus,
                  shortfall, aim, total[origin], origin, total, search.evaluations)

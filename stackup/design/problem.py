@@ -236,7 +236,8 @@ def build_problem(engine, *, window, shell_grades, housing_grades, journal_grade
     coef = np.linalg.lstsq(design_matrix, ideal, rcond=None)[0]
     return Problem(
         engine=engine, window=window, binned=Binned.of(samples, readings, housing_grid, journal_grid, window),
-        skipped=skipped, changes=changes, housing_grid=housing_grid, journal_grid=journal_grid, housing=housing, journal=journal,
+        skipped=skipped, changes=changes, housing_grid=housing_grid, journal_grid=journal_grid, housing=housing,
+        journal=journal,
         shell_grades=shell_grades, mixed=mixed, shell_step=shell_step, min_width=max(2 * z * spread, shell_step),
         ideal=coef, centre=0.5 * float(np.median(ideal)),
         span=float(np.diff(np.quantile(ideal, [1e-3, 1 - 1e-3]))[0]), weights=weights, sort_share=sort_share)

@@ -169,7 +169,8 @@ class Binned:
 
         The bearings of one bin differ in what their readings do not tell (gauge error, crush, the
         press fit); that scatter is independent of the shells, so it is folded into the distribution of
-        the wall sum (:meth:`WallSums.cdf`): :math:`P_{out} = P(S - r_{thin} < t_{thin}) + P(S - r_{thick} > t_{thick})`.
+        the wall sum (:meth:`WallSums.cdf`):
+        :math:`P_{out} = P(S - r_{thin} < t_{thin}) + P(S - r_{thick} > t_{thick})`.
         """
         low = sums.cdf(upper, lower, self.scatter[s][0])
         if low is None:
