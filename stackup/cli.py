@@ -472,6 +472,7 @@ def _store_parser(sub):
 def parser():
     """The ``stackup`` argument parser."""
     from .design_cli import add_parser as add_design_parser
+    from .measure_cli import add_parser as add_measure_parser
 
     top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
         "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
@@ -483,6 +484,7 @@ def parser():
     _plan_parser(sub)
     _listing_parsers(sub)
     add_design_parser(sub).formatter_class = _Formatter
+    add_measure_parser(sub).formatter_class = _Formatter
     _store_parser(sub)
     return top
 
