@@ -602,5 +602,6 @@ def _film_error(h_min, h_min_before):
         values = np.nanmean(h[computed], axis=1)
         if values.size < 2:
             return np.inf
-        worst = max(worst, mean_half_width(values) / values.mean())
+        mean = abs(values.mean())  # the film over the surface can be negative (asperities pressed past)
+        worst = max(worst, mean_half_width(values) / mean if mean > 0 else np.inf)
     return worst
