@@ -7,6 +7,11 @@ holds the numpy twins these kernels must match. Dimensionless as
 time :math:`\tau = \omega t` (the crankshaft's angle, rad), force per :math:`\mu\omega R L^3/c^2`, moment per
 :math:`\mu\omega R L^4/c^2`, pressure per :math:`\mu\omega L^2/c^2`.
 
+Per bearing and solved crank angle the unknowns are the journal centre's move
+:math:`\boldsymbol\delta` from the film tier's untilted orbit and the edge offset
+:math:`\mathbf e`; the equations are the film's force (the orbit's load, :func:`bearing_load`
+at no tilt) and the turn-back of every bearing by all the films' moments.
+
 Asperity contact on the elastic layer (:func:`contact_moment`): the rigid film
 :math:`\bar h_r(\theta, \zeta) = 1 - \boldsymbol\xi\cdot\mathbf n - \zeta\,\mathbf e\cdot\mathbf n`
 becomes, through the layer's table (:func:`stackup.contact.layer_contact`), the film
@@ -34,10 +39,12 @@ from .tilt import Quadrature, squeeze_moment, wall_room  # noqa: F401 (Quadratur
 Layer = namedtuple("Layer", ("lo", "step", "film", "pressure"))
 #: Gauss-Legendre nodes and weights on [-1, 1] of the contact patch: around the bearing and along a line.
 ContactRule = namedtuple("ContactRule", ("nodes", "weights", "nodes_axial", "weights_axial"))
-#: The engines' mid-plane orbits: xi, v (E, B, n, 2); free edge offsets (E, B, n, 2); compliance between the
-#: bearings per plane kappa (E, 2, B, B) (edge offset of j per unit film moment of i); per bearing (E, B): sigma/c
-#: and the pressure unit c^2 / (mu omega L^2); L/D (E, B).
+#: The engines' mid-plane orbits without tilt: xi, v (E, B, n, 2); free edge offsets (E, B, n, 2); compliance
+#: between the bearings per plane kappa (E, 2, B, B) (edge offset of j per unit film moment of i); per bearing
+#: (E, B): sigma/c and the pressure unit c^2 / (mu omega L^2); L/D (E, B).
 Engines = namedtuple("Engines", ("xi", "v", "free", "kappa", "roughness", "pressure_unit", "ld"))
+#: Unknowns per bearing: the journal centre's move from the orbit (2) and the edge offset (2), in clearances.
+UNKNOWNS = 4
 #: The time march: the crankshaft's angle per crank-angle sample [rad], the stride, the most cycles, the Newton
 #: tolerance (a share of the thinnest film), the most chord iterations, the eccentricity limit and the periodicity
 #: tolerance (a share of the thinnest film).
@@ -131,142 +138,165 @@ def surface_film(x0, x1, e0, e1, roughness, layer):
 
 
 @njit(cache=True)
-def bearing_moment(x0, x1, v0, v1, e0, e1, u0, u1, correction, roughness, pressure_unit, layer, quadrature, rule,
-                   limit):
-    """Moment (M0, M1) of the film and the asperities on one bearing, dimensionless.
+def bearing_load(x0, x1, v0, v1, e0, e1, u0, u1, correction, roughness, pressure_unit, layer, quadrature, rule,
+                 limit):
+    """Force and moment (F0, F1, M0, M1) of the film and the asperities on one bearing, dimensionless.
 
-    The film's (:func:`stackup._kernels.tilt.squeeze_moment`, tilt squeeze ``u``) at the edge offset
-    whose thinnest edge film is the rigid one where that is above the limit film :math:`f = 1 - \text{limit}`,
-    and :math:`f/(2 - h_r/f)` below it (continuous with its slope, as the transient tier closes its film:
-    the film's moment keeps growing, slowly, where the asperities on the layer carry the rest), scaled and
-    turned by ``correction`` (ratio, cosine, sine of the turn); plus the asperities'.
+    The film's (:func:`stackup._kernels.tilt.squeeze_moment`, tilt squeeze ``u``) with the centre held
+    inside the eccentricity ``limit`` and the edge offset whose thinnest edge film is the rigid one where
+    that is above the limit film :math:`f = 1 - \text{limit}`, and :math:`f/(2 - h_r/f)` below it
+    (continuous with its slope, as the transient tier closes its film: the film's force and moment keep
+    growing, slowly, where the asperities on the layer carry the rest), scaled and turned by ``correction``
+    (ratio, cosine, sine of the turn); plus the asperities' on the layer at the unheld centre and tilt.
     """
     floor = 1.0 - limit
-    rigid = 1.0 - max(math.hypot(x0 + e0, x1 + e1), math.hypot(x0 - e0, x1 - e1))
+    r = math.hypot(x0, x1)
+    y0, y1 = x0, x1
+    if r > limit:
+        y0, y1 = x0 * limit / r, x1 * limit / r
+    rigid = 1.0 - max(math.hypot(y0 + e0, y1 + e1), math.hypot(y0 - e0, y1 - e1))
     held = 1.0
     if rigid < floor:
         film = floor / (2.0 - rigid / floor)
-        held = min(1.0, wall_room(x0, x1, 0.0, 0.0, e0, e1, 1.0 - film))
-    _, _, m0, m1 = squeeze_moment(x0, x1, v0, v1, held * e0, held * e1, u0, u1, quadrature)
+        held = min(1.0, wall_room(y0, y1, 0.0, 0.0, e0, e1, 1.0 - film))
+    f0, f1, m0, m1 = squeeze_moment(y0, y1, v0, v1, held * e0, held * e1, u0, u1, quadrature)
     ratio, ct, st = correction
-    _, _, c0, c1 = contact_moment(x0, x1, e0, e1, roughness, pressure_unit, layer, rule)
-    return ratio * (ct * m0 - st * m1) + c0, ratio * (st * m0 + ct * m1) + c1
+    a0, a1, c0, c1 = contact_moment(x0, x1, e0, e1, roughness, pressure_unit, layer, rule)
+    return (ratio * (ct * f0 - st * f1) + a0, ratio * (st * f0 + ct * f1) + a1,
+            ratio * (ct * m0 - st * m1) + c0, ratio * (st * m0 + ct * m1) + c1)
 
 
 @njit(cache=True)
-def _all_moments(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, limit, out):
-    """Moments (B, 2) into ``out`` of engine ``g`` at angle ``k`` with edge offsets ``e`` (B, 2); the tilt squeeze
-    from ``before`` over ``dtau`` (``quasi``: the tilt held)."""
+def _all_loads(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, limit, out):
+    """Force and moment (B, 4) into ``out`` of engine ``g`` at angle ``k`` with unknowns ``z`` (B, 4): centre move
+    and edge offset; their squeeze from ``before`` over ``dtau`` (``quasi``: both held, only turning with the
+    film's mean speed). The centre's squeeze velocity is the orbit's plus its move's."""
     xi, v, roughness, unit = g.xi, g.v, g.roughness, g.pressure_unit
-    for j in range(e.shape[0]):
-        if quasi:
-            u0 = 0.5 * e[j, 1]
-            u1 = -0.5 * e[j, 0]
-        else:
-            u0 = (e[j, 0] - before[j, 0]) / dtau + 0.5 * e[j, 1]
-            u1 = (e[j, 1] - before[j, 1]) / dtau - 0.5 * e[j, 0]
-        out[j, 0], out[j, 1] = bearing_moment(xi[j, k, 0], xi[j, k, 1], v[j, k, 0], v[j, k, 1], e[j, 0], e[j, 1], u0,
-                                              u1, (corrections[j, k, 0], corrections[j, k, 1], corrections[j, k, 2]),
-                                              roughness[j], unit[j], layer, quadrature, rule, limit)
+    for j in range(z.shape[0]):
+        d0, d1, e0, e1 = z[j, 0], z[j, 1], z[j, 2], z[j, 3]
+        w0 = v[j, k, 0] + 0.5 * d1
+        w1 = v[j, k, 1] - 0.5 * d0
+        u0 = 0.5 * e1
+        u1 = -0.5 * e0
+        if not quasi:
+            w0 += (d0 - before[j, 0]) / dtau
+            w1 += (d1 - before[j, 1]) / dtau
+            u0 += (e0 - before[j, 2]) / dtau
+            u1 += (e1 - before[j, 3]) / dtau
+        out[j, 0], out[j, 1], out[j, 2], out[j, 3] = bearing_load(
+            xi[j, k, 0] + d0, xi[j, k, 1] + d1, w0, w1, e0, e1, u0, u1,
+            (corrections[j, k, 0], corrections[j, k, 1], corrections[j, k, 2]), roughness[j], unit[j], layer,
+            quadrature, rule, limit)
 
 
 @njit(cache=True)
-def _residual(g, k, e, moments, out):
-    """e - free + kappa M, per plane (B, 2) into ``out``."""
+def _residual(g, k, z, loads, target, out):
+    """Per bearing (B, 4) into ``out``: the force's excess over the orbit's ``target`` (B, n, 2), per
+    1 + |target|; then e - free + kappa M per plane."""
     kappa, free = g.kappa, g.free
-    b_n = e.shape[0]
+    b_n = z.shape[0]
     for j in range(b_n):
+        size = 1.0 + math.hypot(target[j, k, 0], target[j, k, 1])
         for c in range(2):
-            s = e[j, c] - free[j, k, c]
+            out[j, c] = (loads[j, c] - target[j, k, c]) / size
+            s = z[j, 2 + c] - free[j, k, c]
             for i in range(b_n):
-                s += kappa[c, j, i] * moments[i, c]
-            out[j, c] = s
+                s += kappa[c, j, i] * loads[i, 2 + c]
+            out[j, 2 + c] = s
+
+
+@njit(cache=True, inline="always")
+def _rigid_film(g, k, z, j):
+    """Thinnest rigid film over bearing j's width at angle k [c]."""
+    x0 = g.xi[j, k, 0] + z[j, 0]
+    x1 = g.xi[j, k, 1] + z[j, 1]
+    return 1.0 - max(math.hypot(x0 + z[j, 2], x1 + z[j, 3]), math.hypot(x0 - z[j, 2], x1 - z[j, 3]))
 
 
 @njit(cache=True)
-def _jacobian(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, limit, moments, jac):
-    """Newton matrix (2B, 2B) into ``jac``: I + kappa dM/de, dM_i/de_i by forward differences per bearing."""
-    b_n = e.shape[0]
-    trial = e.copy()
-    shifted = np.empty((b_n, 2))
-    local = np.empty((b_n, 2, 2))
-    for d in range(2):
+def _jacobian(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, limit, target, loads, jac):
+    """Newton matrix (4B, 4B) into ``jac``, each bearing's own derivatives by forward differences: the force rows
+    dF_j/dz_j per 1 + |target|, the turn-back rows I + kappa dM/dz."""
+    b_n = z.shape[0]
+    trial = z.copy()
+    shifted = np.empty((b_n, UNKNOWNS))
+    local = np.empty((b_n, UNKNOWNS, UNKNOWNS))
+    for d in range(UNKNOWNS):
         for j in range(b_n):
-            film = 1.0 - max(math.hypot(g.xi[j, k, 0] + e[j, 0], g.xi[j, k, 1] + e[j, 1]),
-                             math.hypot(g.xi[j, k, 0] - e[j, 0], g.xi[j, k, 1] - e[j, 1]))
-            trial[j, d] = e[j, d] + 1e-6 + 1e-4 * abs(film)
-        _all_moments(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, limit, shifted)
+            trial[j, d] = z[j, d] + 1e-6 + 1e-4 * abs(_rigid_film(g, k, z, j))
+        _all_loads(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, limit, shifted)
         for j in range(b_n):
-            h = trial[j, d] - e[j, d]
-            for c in range(2):
-                local[j, c, d] = (shifted[j, c] - moments[j, c]) / h
-            trial[j, d] = e[j, d]
+            h = trial[j, d] - z[j, d]
+            for c in range(UNKNOWNS):
+                local[j, c, d] = (shifted[j, c] - loads[j, c]) / h
+            trial[j, d] = z[j, d]
     jac[:] = 0.0
     for j in range(b_n):
+        size = 1.0 + math.hypot(target[j, k, 0], target[j, k, 1])
         for c in range(2):
-            jac[2 * j + c, 2 * j + c] = 1.0
+            for d in range(UNKNOWNS):
+                jac[UNKNOWNS * j + c, UNKNOWNS * j + d] = local[j, c, d] / size
+            jac[UNKNOWNS * j + 2 + c, UNKNOWNS * j + 2 + c] = 1.0
             for i in range(b_n):
-                for d in range(2):
-                    jac[2 * j + c, 2 * i + d] += g.kappa[c, j, i] * local[i, c, d]
+                for d in range(UNKNOWNS):
+                    jac[UNKNOWNS * j + 2 + c, UNKNOWNS * i + d] += g.kappa[c, j, i] * local[i, 2 + c, d]
 
 
 @njit(cache=True)
-def _thinnest(g, k, e):
+def _thinnest(g, k, z):
     """Thinnest rigid film over the bearings at angle k [c] (the Newton tolerance's scale)."""
     out = 1.0
-    for j in range(e.shape[0]):
-        film = 1.0 - max(math.hypot(g.xi[j, k, 0] + e[j, 0], g.xi[j, k, 1] + e[j, 1]),
-                         math.hypot(g.xi[j, k, 0] - e[j, 0], g.xi[j, k, 1] - e[j, 1]))
-        out = min(out, film)
+    for j in range(z.shape[0]):
+        out = min(out, _rigid_film(g, k, z, j))
     return out
 
 
 @njit(cache=True)
-def step(g, k, guess, before, dtau, quasi, corrections, layer, quadrature, rule, march, jac, fresh):
-    """Edge offsets (B, 2) of engine ``g``'s bearings at angle ``k``: Newton on e - free + kappa M(e) = 0.
+def step(g, k, guess, before, dtau, quasi, corrections, target, layer, quadrature, rule, march, jac, fresh):
+    """Unknowns (B, 4) of engine ``g``'s bearings at angle ``k``: Newton on the force and the turn-back.
 
     Chord iterations on the Newton matrix ``jac`` (kept from the last step where ``fresh``), the matrix
-    differenced again where an iteration lowers the residual by less than a factor of four. Returns (e, converged, evaluations).
+    differenced again where an iteration lowers the residual by less than a factor of four. Returns (z, converged,
+    evaluations).
     """
     b_n = guess.shape[0]
-    e = guess.copy()
-    moments = np.empty((b_n, 2))
-    r = np.empty((b_n, 2))
-    _all_moments(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments)
-    _residual(g, k, e, moments, r)
+    z = guess.copy()
+    loads = np.empty((b_n, UNKNOWNS))
+    r = np.empty((b_n, UNKNOWNS))
+    _all_loads(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, loads)
+    _residual(g, k, z, loads, target, r)
     evaluations = 1
     differenced = False
     if not fresh:
-        _jacobian(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments, jac)
-        evaluations += 2
+        _jacobian(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, target, loads, jac)
+        evaluations += UNKNOWNS
         differenced = True
-    trial = np.empty((b_n, 2))
-    r_new = np.empty((b_n, 2))
+    trial = np.empty((b_n, UNKNOWNS))
+    r_new = np.empty((b_n, UNKNOWNS))
     uphill = 0
     for _ in range(march.chords):
         if not (np.isfinite(jac).all() and np.isfinite(r).all()):
-            return e, False, evaluations  # a film moment not a number: no Newton step (the caller's fallbacks)
-        scale = march.tolerance * max(abs(_thinnest(g, k, e)), FILM_FLOOR)
-        delta = np.linalg.solve(jac, -r.reshape(2 * b_n)).reshape(b_n, 2)
+            return z, False, evaluations  # a film force not a number: no Newton step (the caller's fallbacks)
+        scale = march.tolerance * max(abs(_thinnest(g, k, z)), FILM_FLOOR)
+        delta = np.linalg.solve(jac, -r.reshape(UNKNOWNS * b_n)).reshape(b_n, UNKNOWNS)
         size = np.abs(delta).max()
         merit = (r * r).sum()
         t = 1.0
         accepted = False
         for _ in range(HALVINGS):
-            trial[:] = e + t * delta
-            _all_moments(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit,
-                         moments)
+            trial[:] = z + t * delta
+            _all_loads(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, loads)
             evaluations += 1
-            _residual(g, k, trial, moments, r_new)
+            _residual(g, k, trial, loads, target, r_new)
             if (r_new * r_new).sum() <= (1.0 - 1e-4 * t) * merit or size * t <= scale:
                 accepted = True
                 break
             t *= 0.5
         if accepted:
-            e[:] = trial
+            z[:] = trial
             r[:] = r_new
             if size * t <= scale or np.abs(r_new).max() <= RESIDUAL * scale:
-                return e, True, evaluations
+                return z, True, evaluations
             if (r_new * r_new).sum() <= 0.0625 * merit:
                 differenced = False
                 continue  # the chord converges fast enough
@@ -275,18 +305,18 @@ def step(g, k, guess, before, dtau, quasi, corrections, layer, quadrature, rule,
             # so the residual can have a minimum that is not a root; the shortest step is taken all the same
             # (at most UPHILL times), which leaves it
             if uphill == UPHILL:
-                return e, False, evaluations
+                return z, False, evaluations
             uphill += 1
-            e[:] = trial
+            z[:] = trial
             r[:] = r_new
         else:
-            _all_moments(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments)
+            _all_loads(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, loads)
             evaluations += 1
-        # Newton's matrix again, at the point reached (its moments in ``moments``)
-        _jacobian(g, k, e, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, moments, jac)
-        evaluations += 2
+        # Newton's matrix again, at the point reached (its loads in ``loads``)
+        _jacobian(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, target, loads, jac)
+        evaluations += UNKNOWNS
         differenced = True
-    return e, False, evaluations
+    return z, False, evaluations
 
 
 @njit(cache=True)
@@ -309,6 +339,19 @@ def _corrections(g, correction, ld, limit, out):
                 out[j, k, 2] = math.sin(turn)
 
 
+@njit(cache=True)
+def _targets(g, corrections, layer, quadrature, rule, limit, out):
+    """The force (B, n, 2) of the film on the orbit without tilt or centre move: the load the tilted journal's
+    film must carry (the same film model on both sides, so that no tilt leaves the orbit where it is)."""
+    for j in range(g.xi.shape[0]):
+        for k in range(g.xi.shape[1]):
+            f0, f1, _, _ = bearing_load(g.xi[j, k, 0], g.xi[j, k, 1], g.v[j, k, 0], g.v[j, k, 1], 0.0, 0.0, 0.0, 0.0,
+                                        (corrections[j, k, 0], corrections[j, k, 1], corrections[j, k, 2]),
+                                        g.roughness[j], g.pressure_unit[j], layer, quadrature, rule, limit)
+            out[j, k, 0] = f0
+            out[j, k, 1] = f1
+
+
 #: Sub-steps tried, in turn, where Newton fails over a whole step (the tilt moving fast as an edge closes in).
 SUBSTEPS = (4, 16, 64)
 
@@ -323,136 +366,148 @@ def _mix(a, kp, k, w):
     return out
 
 
+@njit(cache=True, inline="always")
+def _guess(g, k, kp, z, out):
+    """Unknowns at angle k from those ``z`` at kp: the centre's move kept, the turn-back (free minus tilt) kept."""
+    for j in range(z.shape[0]):
+        out[j, 0] = z[j, 0]
+        out[j, 1] = z[j, 1]
+        for c in range(2):
+            out[j, 2 + c] = g.free[j, k, c] - (g.free[j, kp, c] - z[j, 2 + c])
+
+
 @njit(cache=True)
-def substeps(g, kp, k, e, dtau, corrections, layer, quadrature, rule, march, parts):
-    """Edge offsets at angle ``k`` from those ``e`` at ``kp``, in ``parts`` backward-Euler sub-steps over the
-    orbit, free tilt and correction interpolated linearly between the two angles. Returns (e, converged,
+def substeps(g, kp, k, z, dtau, corrections, target, layer, quadrature, rule, march, parts):
+    """Unknowns at angle ``k`` from those ``z`` at ``kp``, in ``parts`` backward-Euler sub-steps over the orbit,
+    free tilt, correction and target interpolated linearly between the two angles. Returns (z, converged,
     evaluations)."""
-    b_n = e.shape[0]
-    jac = np.eye(2 * b_n)
+    b_n = z.shape[0]
+    jac = np.eye(UNKNOWNS * b_n)
     count = 0
+    guess = np.empty((b_n, UNKNOWNS))
     for m in range(1, parts + 1):
         w = m / parts
         one = Engines(_mix(g.xi, kp, k, w), _mix(g.v, kp, k, w), _mix(g.free, kp, k, w), g.kappa, g.roughness,
                       g.pressure_unit, g.ld)
         mixed = _mix(corrections, kp, k, w)
+        aim = _mix(target, kp, k, w)
         before_free = _mix(g.free, kp, k, (m - 1) / parts)
-        guess = e.copy()
         for j in range(b_n):
+            guess[j, 0] = z[j, 0]
+            guess[j, 1] = z[j, 1]
             for c in range(2):
-                guess[j, c] = one.free[j, 0, c] - (before_free[j, 0, c] - e[j, c])
-        new, ok, used = step(one, 0, guess, e, dtau / parts, False, mixed, layer, quadrature, rule, march, jac, False)
+                guess[j, 2 + c] = one.free[j, 0, c] - (before_free[j, 0, c] - z[j, 2 + c])
+        new, ok, used = step(one, 0, guess, z, dtau / parts, False, mixed, aim, layer, quadrature, rule, march, jac,
+                             False)
         count += used
         if not ok:
-            new, ok, used = step(one, 0, e, e, dtau / parts, False, mixed, layer, quadrature, rule, march, jac, False)
+            new, ok, used = step(one, 0, z, z, dtau / parts, False, mixed, aim, layer, quadrature, rule, march, jac,
+                                 False)
             count += used
         if not ok:
-            return e, False, count
-        e = new
-    return e, True, count
+            return z, False, count
+        z = new
+    return z, True, count
 
 
 @njit(cache=True)
-def march_engine(g, correction, layer, quadrature, rule, march, tilt, film, state, evaluations):
-    """One engine's support moments over the cycle: backward Euler in the tilt (its squeeze) from the quasi-static
-    balance at the first angle, every ``stride``-th angle, cycle after cycle until the tilt returns within the
-    periodicity tolerance; the angles between take the film's turn-back (free minus tilt) interpolated.
+def _advance(g, kp, k, z, dtau, corrections, target, layer, quadrature, rule, march, jac, fresh):
+    """Unknowns at solved angle ``k`` from those ``z`` at ``kp``: Newton from the guess, from ``z``, then
+    in sub-steps. Returns (z, converged, evaluations)."""
+    guess = np.empty_like(z)
+    _guess(g, k, kp, z, guess)
+    new, ok, count = step(g, k, guess, z, dtau, False, corrections, target, layer, quadrature, rule, march, jac,
+                          fresh)
+    if not ok:
+        # the residual is not monotone (the film's squeeze moment peaks where the edge film runs out): from the
+        # last state, which the squeeze holds the journal near, Newton reaches the root
+        new, ok, used = step(g, k, z, z, dtau, False, corrections, target, layer, quadrature, rule, march, jac,
+                             False)
+        count += used
+    for parts in SUBSTEPS:
+        if ok:
+            break
+        new, ok, used = substeps(g, kp, k, z, dtau, corrections, target, layer, quadrature, rule, march, parts)
+        count += used
+    return new, ok, count
 
-    Writes tilt (B, n, 2), the thinnest film over the surface (B, n) [c], the state per bearing and the film
-    moments computed (the cost).
+
+@njit(cache=True)
+def march_engine(g, correction, layer, quadrature, rule, march, tilt, shift, film, state, evaluations):
+    """One engine's centres and support moments over the cycle: backward Euler in the centre's move and the tilt
+    (their squeeze) from the quasi-static balance at the first angle, every ``stride``-th angle, cycle after
+    cycle until the state returns within the periodicity tolerance; the angles between take the film's
+    turn-back (free minus tilt) and the centre's move interpolated.
+
+    Writes the edge offset (B, n, 2) and the centre's move (B, n, 2) [c], the thinnest film over the surface
+    (B, n) [c], the state per bearing and the film loads computed (the cost).
     """
     b_n, n = g.xi.shape[0], g.xi.shape[1]
     corrections = np.empty((b_n, n, 3))
     _corrections(g, correction, g.ld, march.limit, corrections)
+    target = np.empty((b_n, n, 2))
+    _targets(g, corrections, layer, quadrature, rule, march.limit, target)
     stride = march.stride
     solved = np.arange(0, n, stride)
     dtau = march.dtau * stride
-    jac = np.eye(2 * b_n)
-    before = np.zeros((b_n, 2))
-    e, ok, used = step(g, 0, np.zeros((b_n, 2)), before, dtau, True, corrections, layer, quadrature, rule, march, jac,
-                       False)
-    count = used
+    jac = np.eye(UNKNOWNS * b_n)
+    z = np.zeros((b_n, UNKNOWNS))
+    z, ok, count = step(g, 0, z, z, dtau, True, corrections, target, layer, quadrature, rule, march, jac, False)
     fresh = ok
     status = NOT_PERIODIC
     failed = False
+    states = np.zeros((b_n, n, UNKNOWNS))
     for cycle in range(march.cycles):
         failed = False  # the state of the last cycle, whose tilt is returned
-        first = e.copy()
-        for s in range(solved.shape[0]):
-            k = solved[s]
-            if s == 0:
-                # the first angle: the quasi-static balance, then each cycle's closing step below
-                tilt[:, 0, :] = e
-                continue
-            guess = e.copy()
-            if s > 0:
-                kp = solved[s - 1]
-                for j in range(b_n):
-                    for c in range(2):
-                        guess[j, c] = g.free[j, k, c] - (g.free[j, kp, c] - e[j, c])
-            new, ok, used = step(g, k, guess, e, dtau, False, corrections, layer, quadrature, rule, march, jac, fresh)
+        first = z.copy()
+        states[:, 0, :] = z
+        for s in range(1, solved.shape[0]):
+            z, ok, used = _advance(g, solved[s - 1], solved[s], z, dtau, corrections, target, layer, quadrature, rule,
+                                   march, jac, fresh)
             count += used
-            if not ok:
-                # the residual is not monotone (the film's squeeze moment peaks where the edge film runs out): from
-                # the last tilt, which the tilt's squeeze holds the journal near, Newton reaches the root
-                new, ok, used = step(g, k, e, e, dtau, False, corrections, layer, quadrature, rule, march, jac, False)
-                count += used
-            for parts in SUBSTEPS:
-                if ok:
-                    break
-                new, ok, used = substeps(g, solved[s - 1], k, e, dtau, corrections, layer, quadrature, rule, march,
-                                         parts)
-                count += used
-            if not ok:
-                failed = True
+            failed = failed or not ok
             fresh = ok
-            e = new
-            tilt[:, k, :] = e
-        # periodic: the tilt after a cycle against the tilt a cycle before, within a share of the thinnest film
-        guess = e.copy()
-        last = solved[solved.shape[0] - 1]
-        for j in range(b_n):
-            for c in range(2):
-                guess[j, c] = g.free[j, 0, c] - (g.free[j, last, c] - e[j, c])
-        new, ok, used = step(g, 0, guess, e, dtau, False, corrections, layer, quadrature, rule, march, jac, fresh)
+            states[:, solved[s], :] = z
+        # periodic: the state after a cycle against the state a cycle before, within a share of the thinnest film
+        z, ok, used = _advance(g, solved[solved.shape[0] - 1], 0, z, dtau, corrections, target, layer, quadrature,
+                               rule, march, jac, fresh)
         count += used
-        for parts in SUBSTEPS:
-            if ok:
-                break
-            new, ok, used = substeps(g, last, 0, e, dtau, corrections, layer, quadrature, rule, march, parts)
-            count += used
-        if not ok:
-            failed = True
+        failed = failed or not ok
         fresh = ok
-        gap = np.abs(new - first).max()
-        e = new
-        tilt[:, 0, :] = e
-        if gap <= march.periodic * max(abs(_thinnest(g, 0, e)), FILM_FLOOR):
+        gap = np.abs(z - first).max()
+        states[:, 0, :] = z
+        if gap <= march.periodic * max(abs(_thinnest(g, 0, z)), FILM_FLOOR):
             status = PERIODIC
             break
-    # the angles between the solved ones: the turn-back interpolated
+    # the angles between the solved ones: the turn-back and the centre's move interpolated
     for s in range(solved.shape[0]):
         k = solved[s]
         kn = solved[s + 1] if s + 1 < solved.shape[0] else n
+        kk = kn if kn < n else 0
         for m in range(k + 1, kn):
             w = (m - k) / (kn - k)
-            kk = kn if kn < n else 0
             for j in range(b_n):
                 for c in range(2):
-                    back = (1.0 - w) * (g.free[j, k, c] - tilt[j, k, c]) + w * (g.free[j, kk, c] - tilt[j, kk, c])
-                    tilt[j, m, c] = g.free[j, m, c] - back
+                    states[j, m, c] = (1.0 - w) * states[j, k, c] + w * states[j, kk, c]
+                    back = (1.0 - w) * (g.free[j, k, c] - states[j, k, 2 + c]) + w * (
+                        g.free[j, kk, c] - states[j, kk, 2 + c])
+                    states[j, m, 2 + c] = g.free[j, m, c] - back
     for j in range(b_n):
         state[j] = FAILED if failed else status
         evaluations[j] = count
         for k in range(n):
-            film[j, k] = surface_film(g.xi[j, k, 0], g.xi[j, k, 1], tilt[j, k, 0], tilt[j, k, 1], g.roughness[j],
-                                      layer)
+            shift[j, k, 0] = states[j, k, 0]
+            shift[j, k, 1] = states[j, k, 1]
+            tilt[j, k, 0] = states[j, k, 2]
+            tilt[j, k, 1] = states[j, k, 3]
+            film[j, k] = surface_film(g.xi[j, k, 0] + states[j, k, 0], g.xi[j, k, 1] + states[j, k, 1],
+                                      states[j, k, 2], states[j, k, 3], g.roughness[j], layer)
 
 
 @njit(cache=True, parallel=True)
-def march_engines(engines, correction, layer, quadrature, rule, march, tilt, film, state, evaluations):
-    """:func:`march_engine` for every engine (prange over engines): tilt (E, B, n, 2), film (E, B, n), state and
-    evaluations (E, B)."""
+def march_engines(engines, correction, layer, quadrature, rule, march, tilt, shift, film, state, evaluations):
+    """:func:`march_engine` for every engine (prange over engines): tilt and shift (E, B, n, 2), film (E, B, n),
+    state and evaluations (E, B)."""
     # numba's parallel loop takes arrays and numbers, not tuples holding arrays: the packed inputs are taken apart
     # here and put together again in the loop
     xi, v, free, kappa, roughness, unit, ld = engines
@@ -466,5 +521,5 @@ def march_engines(engines, correction, layer, quadrature, rule, march, tilt, fil
         march_engine(one, Correction(tables, ld_nodes, stretched, finite), Layer(lo, step_, table_film, table_pressure),
                      Quadrature(nodes, weights, nodes_dry, weights_dry, cap),
                      ContactRule(c_nodes, c_weights, a_nodes, a_weights),
-                     March(dtau, stride, cycles, tolerance, chords, limit, periodic), tilt[g], film[g], state[g],
-                     evaluations[g])
+                     March(dtau, stride, cycles, tolerance, chords, limit, periodic), tilt[g], shift[g], film[g],
+                     state[g], evaluations[g])

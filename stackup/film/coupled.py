@@ -3,11 +3,19 @@ r"""The crankshaft's support moments over the cycle: every main bearing's tilt, 
 Rozhdestvensky et al. (2018) solve the crankshaft as a statically indeterminate
 beam whose unknowns include the moments at its supports (their eq. 5), each
 support a film (linear and angular compliance :math:`K_L^\lambda`, :math:`K_L^\varphi`,
-their eq. 6) in series with the block (:math:`K_s^\lambda`, :math:`K_s^\varphi`). Here,
-with the journal centres held where the film tier's mid-plane orbit puts them
-(the linear part: the crankshaft on its bearing law, the support's linear
-compliance in the law's stiffness), the moments :math:`\mathbf M_i` the films
-pass to the supports satisfy, per bending plane :math:`c` and at every crank angle,
+their eq. 6) in series with the block (:math:`K_s^\lambda`, :math:`K_s^\varphi`). Here the
+crankshaft's linear part is the film tier's mid-plane orbit (the crankshaft on its
+bearing law, the support's linear compliance in the law's stiffness, the journal
+aligned); each journal's centre then moves by :math:`\boldsymbol\delta_j` from that orbit so
+that its tilted film carries the same load,
+
+.. math:: \mathbf F_j(\mathbf x_j + \boldsymbol\delta_j, \mathbf v_j + \mathbf v_{\delta,j},
+          \boldsymbol\gamma_j, \dot{\boldsymbol\gamma}_j) = \mathbf F_j(\mathbf x_j, \mathbf v_j, 0, 0)
+
+(a tilt makes one edge's film thinner and the film stronger: at a held centre
+the tilted film of the paper's diesel carries up to twice the load), and the moments
+:math:`\mathbf M_i` the films pass to the supports satisfy, per bending plane :math:`c` and at
+every crank angle,
 
 .. math:: \gamma_{j,c} = \gamma^{free}_{j,c} - \sum_i \left(C^{crank}_{c,ji} + \delta_{ji}K^\varphi_{s,j,c}\right) M_{i,c}(\boldsymbol\xi_i, \boldsymbol\gamma_i, \dot{\boldsymbol\gamma}_i)
 
@@ -35,21 +43,24 @@ plus the asperities' on an elastic layer:
 - the film's moment is taken with both edges inside the eccentricity limit
   (beyond, held there): the asperities on the layer carry the rest.
 
-Time: backward Euler in the tilt (its squeeze) at every ``stride``-th crank
-angle, all bearings of an engine in one Newton (:math:`2B` unknowns, the
-Jacobian :math:`I + \bar\kappa\,\partial\bar{\mathbf M}/\partial\mathbf e`, each bearing's
-block by differences), from the quasi-static balance at the first angle,
-cycle after cycle until the tilt repeats within :data:`PERIODIC` of the thinnest
-film; the angles between take the film's turn-back (free minus tilt)
-interpolated.
+Time: backward Euler in the centre's move and the tilt (their squeeze) at every
+``stride``-th crank angle, all bearings of an engine in one Newton (:math:`4B`
+unknowns; the force rows :math:`\partial\bar{\mathbf F}_j/\partial(\boldsymbol\delta_j, \mathbf e_j)`, the
+turn-back rows :math:`I + \bar\kappa\,\partial\bar{\mathbf M}/\partial(\boldsymbol\delta, \mathbf e)`, each
+bearing's block by differences), from the quasi-static balance at the first angle,
+cycle after cycle until the state repeats within :data:`PERIODIC` of the thinnest
+film; the angles between take the centre's move and the film's turn-back (free
+minus tilt) interpolated.
 
 Simplifications (their error against the transient reference, which carries
 the tilt with its squeeze in its own film but a rigid layer, is measured in
 ``reports/coupled_supports.md``):
 
-- the mid-plane orbit is the film tier's without tilt: the support moments do
-  not move the journal centres, and the reactions the moments add
-  (:math:`\Delta R \sim M/l`) are left out of the film's load;
+- the load is the film tier's own film force on its untilted orbit (the same
+  short-bearing film, finite-corrected at the orbit's state, on both sides), and
+  the reactions the moments add (:math:`\Delta R \sim M/l`) are left out of it;
+  the centre's move has its own squeeze velocity (backward Euler) on top of the
+  orbit's;
 - the elastic layer deflects under the asperities' pressure only, not under
   the film's (no EHD inside the bearing);
 - the supports' thermal offsets and the tolerances enter through the beam's
@@ -153,6 +164,9 @@ class SupportMoments:
     ----------
     tilt : numpy.ndarray (engines, bearings, angles, 2)
         Slope of the journal against its bore [rad].
+    centre : numpy.ndarray (engines, bearings, angles, 2)
+        Journal centre at the mid-plane against the bearing's [m]: the film tier's orbit moved so that the
+        tilted journal's film carries the same load.
     film : numpy.ndarray (engines, bearings, angles)
         Thinnest film over the bearing surface, on the elastic layer [m].
     state : numpy.ndarray of int8 (engines, bearings)
@@ -163,6 +177,7 @@ class SupportMoments:
     """
 
     tilt: np.ndarray
+    centre: np.ndarray
     film: np.ndarray
     state: np.ndarray
     evaluations: np.ndarray
@@ -268,6 +283,7 @@ def support_moments(position, free_tilt, crank_angle, *, compliance, journal_rad
                               np.ascontiguousarray(c**2 / (mu * w * l**2)), np.ascontiguousarray(l / (2 * r)))
     march = _kernel.March(step, int(stride), int(cycles), float(tolerance), CHORDS, ECCENTRICITY_LIMIT, PERIODIC)
     tilt = np.zeros((n_e, n_b, n, 2))
+    shift = np.zeros((n_e, n_b, n, 2))
     film = np.full((n_e, n_b, n), np.nan)
     state = np.full((n_e, n_b), STATES.index("failed"), np.int8)
     evaluations = np.zeros((n_e, n_b), np.int64)
@@ -278,9 +294,11 @@ def support_moments(position, free_tilt, crank_angle, *, compliance, journal_rad
     tilt[~ok] = free[~ok]
     if ok.any():
         run = _kernel.Engines(*(np.ascontiguousarray(a[ok]) for a in engines))
-        parts = [np.empty((int(ok.sum()), *a.shape[1:]), a.dtype) for a in (tilt, film, state, evaluations)]
+        parts = [np.empty((int(ok.sum()), *a.shape[1:]), a.dtype) for a in (tilt, shift, film, state, evaluations)]
         _kernel.march_engines(run, Correction(tables, ld_nodes, stretched, finite), layer.table(), quadrature(),
                               _contact_rule(), march, *parts)
-        for whole, part in zip((tilt, film, state, evaluations), parts):
+        for whole, part in zip((tilt, shift, film, state, evaluations), parts):
             whole[ok] = part
-    return SupportMoments(tilt * (2 * c / l)[..., None, None], film * c[..., None], state, evaluations)
+    cc = c[..., None, None]
+    return SupportMoments(tilt * (2 * c / l)[..., None, None], x + shift * cc, film * c[..., None], state,
+                          evaluations)

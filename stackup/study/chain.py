@@ -453,7 +453,8 @@ def _wear_positions(films, surface, bearing_width, radial_clearance):
     r"""Journal centres whose film around the bearing the wear chart reads (engines, bearings, angles, 2) [m].
 
     Without support moments the mid-plane orbit. With them the thinner edge's
-    centre :math:`\mathbf x \pm \tfrac L2\boldsymbol\gamma`, moved along its direction so
+    centre :math:`\mathbf x \pm \tfrac L2\boldsymbol\gamma` (:math:`\mathbf x` the centre the tilted film
+    carries the load at), moved along its direction so
     that its thinnest film is the film over the layer, :math:`c - |\mathbf x_e| = h`:
     the wear chart of Levanov's method 2 along the edge that carries the
     asperity contact (the contact zone's width across the bearing left out, as
@@ -462,7 +463,7 @@ def _wear_positions(films, surface, bearing_width, radial_clearance):
     if surface is None:
         return films.position
     half = 0.5 * bearing_width * surface.tilt
-    plus, minus = films.position + half, films.position - half
+    plus, minus = surface.centre + half, surface.centre - half
     edge = np.where((vector_length(plus) >= vector_length(minus))[..., None], plus, minus)
     reach = vector_length(edge)
     target = np.asarray(radial_clearance)[..., None] - surface.film

@@ -149,8 +149,10 @@ def test_full_tilt_on_a_rigid_crank_gives_a_computed_negative_film():
     assert np.all(np.isfinite(out.film)) and np.all(out.film < 0) and np.all(out.film > -25e-6)
 
 
-def test_steady_balance_equals_a_numpy_root_of_the_film_moment():
-    # one bearing, steady journal, the tilt held: e = free - kappa M(e), M the short film's moment (numpy twin)
+def test_steady_balance_equals_a_numpy_root_of_the_film_force_and_moment():
+    # one bearing, steady journal, the tilt held: the centre moves by d so that the tilted film carries the
+    # untilted film's load, F(xi + d, e) = F(xi, 0), and e = free - kappa M(xi + d, e); F and M the short
+    # film's (numpy twin), the squeeze velocity -(1/2) k x (xi + d) of a steady journal
     position, free, angle, kw = _case(b=1, eps=0.6, tilt=0.8e-3)
     compliance = np.zeros((2, 1, 1))
     compliance[:] = 20e-6
@@ -159,17 +161,31 @@ def test_steady_balance_equals_a_numpy_root_of_the_film_moment():
     unit = mu * w * r * length**4 / c**2
     scale = length / (2 * c)
     xi = np.array([0.6, 0.0])
-    v = -0.5 * np.array([-xi[1], xi[0]])
 
-    def residual(e):
-        _, moment = short_film(xi, v, e, lines=20000)
-        return e - free[0, 0, 0] * scale + compliance[:, 0, 0] * scale * unit * moment
+    def film(centre, e):
+        return short_film(centre, -0.5 * np.array([-centre[1], centre[0]]), e, lines=20000)
 
-    root = optimize.fsolve(residual, free[0, 0, 0] * scale, xtol=1e-12)
-    assert np.linalg.norm(root) < np.linalg.norm(free[0, 0, 0] * scale)  # the film turns the journal back
-    np.testing.assert_allclose(out.tilt[0, 0, 0] * scale, root, atol=2e-3 * np.linalg.norm(root))
+    load, _ = film(xi, np.zeros(2))
+
+    def residual(z):
+        force, moment = film(xi + z[:2], z[2:])
+        return np.concatenate([(force - load) / (1 + np.linalg.norm(load)),
+                               z[2:] - free[0, 0, 0] * scale + compliance[:, 0, 0] * scale * unit * moment])
+
+    root = optimize.fsolve(residual, np.concatenate([np.zeros(2), free[0, 0, 0] * scale]), xtol=1e-12)
+    assert np.linalg.norm(root[2:]) < np.linalg.norm(free[0, 0, 0] * scale)  # the film turns the journal back
+    assert np.linalg.norm(root[:2]) > 1e-3  # and its centre moves: the tilted film does not carry the load where it was
+    np.testing.assert_allclose(out.tilt[0, 0, 0] * scale, root[2:], atol=2e-3 * np.linalg.norm(root[2:]))
+    np.testing.assert_allclose(out.centre[0, 0, 0] / c, xi + root[:2], atol=2e-3 * np.linalg.norm(root[:2]))
     np.testing.assert_allclose(out.tilt[0, 0], out.tilt[0, 0, :1].repeat(len(angle), 0), atol=1e-3 * np.abs(out.tilt).max())
     assert out.state[0, 0] == 0
+
+
+def test_no_tilt_leaves_the_film_tiers_orbit_where_it_is():
+    position, free, angle, kw = _case(eps=0.7, tilt=0.0)
+    out = support_moments(position, free, angle, compliance=np.full((2, 2, 2), 2e-6) * np.eye(2), **kw)
+    np.testing.assert_allclose(out.centre, position, atol=1e-9 * 25e-6)
+    np.testing.assert_allclose(out.tilt, 0.0, atol=1e-12)
 
 
 def test_more_compliance_turns_the_journal_back_further():
