@@ -128,9 +128,15 @@ def test_plan_from_a_study_dataset_agrees_with_the_process_plan():
     from stackup.plan import planner_table
 
     table = planner_table(from_ds)
-    assert table.loc[("iso13778-5", "all grades"), "needed, 10000 engines [shells]"] == \
-        table.xs("iso13778-5", level="scheme").drop("all grades")["needed, 10000 engines [shells]"].sum()
-    assert "from the 8,000 engines of the study dataset" in " ".join(table.attrs["title"])
+    for scheme in ("iso13778-4", "iso13778-5"):
+        rows = table.xs(scheme, level="scheme")
+        for column in ("needed, 10000 engines [shells]", "made, 10000 engines [shells]"):
+            assert rows.loc["all shells", column] == rows.drop("all shells")[column].sum()
+        # the shells made add up to what the title says, scrap included
+        assert rows.loc["all shells", "made, 10000 engines [shells]"] == from_ds.attrs["shells_made"] == 110_000
+    title = " ".join(table.attrs["title"])
+    assert "from the 8,000 engines of the study dataset" in title
+    assert "Scheme iso13778-4: of the 110,000 shells made for the volume" in title
 
 
 @pytest.mark.parametrize("p, lot", [(0.3, 1), (0.088, 7), (0.5, 50), (0.9, 1000)])
@@ -183,13 +189,19 @@ def test_planner_table_is_whole_parts_that_add_up(plan4):
     from stackup.plan import planner_table
 
     table = planner_table(plan4)
-    grades = table.drop("all grades")
-    made = grades["made, 10000 engines [shells]"]
-    assert made.sum() == round(plan4.made.sum())  # apportioned: the grades add up to the shells made
-    assert (abs(made - plan4.made) < 1).all()
+    grades = table.drop(["scrapped", "all shells"])
+    made = table["made, 10000 engines [shells]"]
+    # apportioned: the grades and the scrap add up to the shells made, which the title states
+    assert made.drop("all shells").sum() == made["all shells"] == plan4.attrs["shells_made"] == 110_000
+    assert (abs(made.drop(["scrapped", "all shells"]) - plan4.made) < 1).all()
+    assert abs(made["scrapped"] - plan4.attrs["scrap_share"] * 110_000) < 1
+    assert f"Of the 110,000 shells made for the volume the gauge sorts {110_000 - made['scrapped']:,} into the grades" \
+        in " ".join(table.attrs["title"])
     assert (grades["needed, 10000 engines [shells]"] >= plan4.demanded - 1e-6).all()  # a whole number stays one
     assert (grades["stock per lot of 1000 engines [shells]"] >= plan4.lot_demand_mean).all()
-    assert table.loc["all grades", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
+    assert table.loc["all shells", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
+    ordered = table["ordered per lot of 1000 engines, aimed at the grade [shells]"]
+    assert ordered["all shells"] == ordered.drop("all shells").sum() == plan4.attrs["shells_per_lot"] == 11_000
     assert table.attrs["title"][0].startswith("How many shells of each grade to make and stock for 10,000 engines")
 
 
