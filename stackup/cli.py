@@ -88,7 +88,7 @@ def _compare(args, state):
                                  scenarios=scenarios, design=design, log=log, window=window,
                                  scheduler="processes" if args.processes else None)
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
-        data = save_comparison(result, staged.staging / "compare.nc")
+        data = save_comparison(result, staged.staging / "compare.nc", compact=args.compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
         saved = open_comparison(data)  # the report reads what was saved, nothing else
         write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
@@ -143,6 +143,7 @@ def _verdict_line(report):
 
 def _report(args, state):
     from .io import open_comparison
+    from .output import stage_report
     from .report import write_report
 
     path = Path(args.dataset)
@@ -155,10 +156,19 @@ def _report(args, state):
     if "study" not in saved.dataset.attrs:
         raise ValueError(f"dataset: {str(path)!r} is not a comparison `stackup compare` saved (no study attribute)")
     out = Path(args.out) if args.out else path.parent
-    out.mkdir(parents=True, exist_ok=True)
+    existed = out.is_dir()
+    staged = stage_report(out)
+    state.stage = "writing the report"
+    state.saved = f"nothing was saved: {out}{' is as it was' if existed else ' holds no report'}"
     same = out.resolve() == path.parent.resolve()
-    write_report(saved.dataset, out, scenarios=saved.scenarios, sensitivity=saved.sensitivity, tails=saved.tails,
-                 dataset_file=path.name if same else str(path.resolve()))
+    try:
+        write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
+                     tails=saved.tails, dataset_file=path.name if same else str(path.resolve()))
+        staged.commit()
+    except BaseException:
+        staged.discard()
+        raise
+    state.stage, state.saved = "", f"{out / 'report.md'} was written"
     print(f"report:  {out / 'report.md'} (and report.html)")
     return 0
 
@@ -258,6 +268,9 @@ def _plan(args, state):
     if args.force and args.csv in (None, "-"):
         raise ValueError("--force: replaces an existing --csv FILE; without --csv FILE nothing is replaced")
     csv = prepare_file(args.csv, force=args.force) if args.csv not in (None, "-") else None
+    state.stage = f"planning {args.part}s"
+    if csv is not None:
+        state.saved = f"nothing was saved: {csv} {'is as it was' if csv.exists() else 'was not created'}"
     frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
                  lot_engines=args.lot, sample_engines=args.sample, seed=args.seed, part=args.part)
     table = planner_table(frame)
@@ -485,6 +498,10 @@ def _compare_parser(sub):
     cmp_.add_argument("--no-design", action="store_true",
                       help="compare only the schemes given, without a scheme designed for the engine and window "
                            "(`stackup design`)")
+    cmp_.add_argument("--compact", action="store_true",
+                      help="store the per-bearing values to 10 nm and 10 kPa (a dataset about a quarter of the size; "
+                           "a study rebuilt from it then differs by up to half that; default: every value as "
+                           "computed, so the dataset rebuilds itself identically)")
     cmp_.add_argument("--force", action="store_true",
                       help="replace another run in the output folder (the same run again is always replaced)")
     cmp_.set_defaults(func=_compare)

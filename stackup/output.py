@@ -53,6 +53,8 @@ class Staged:
     target: Path
     staging: Path
     claim: "Claim | None" = field(default=None, repr=False)
+    #: Files (globs) of the target the staged files replace: a run's, or a report's alone (:func:`stage_report`).
+    replaces: tuple = RUN_FILES
 
     def commit(self):
         """Move the staged files into the target folder (replacing a previous run's files); return the target.
@@ -61,7 +63,7 @@ class Staged:
         """
         with _no_interrupt():
             if self.target.is_dir():
-                for pattern in RUN_FILES:
+                for pattern in self.replaces:
                     for old in self.target.glob(pattern):
                         old.unlink()
                 for new in self.staging.iterdir():
@@ -240,6 +242,17 @@ def prepare_folder(folder, *, identity=None, force=False, option="--out"):
     except BaseException:
         claim.release()
         raise
+
+
+def stage_report(folder, *, option="--out"):
+    """A staging folder inside ``folder`` for a report written again (``stackup report``): on :meth:`Staged.commit`
+    its files replace the report's (``report.md``, ``report.html``, the figures), never the dataset beside them."""
+    folder = Path(folder)
+    where = f"{option} {str(folder)!r}"
+    if folder.exists() and not folder.is_dir():
+        raise OutputRefused(f"{where} is a file, not a folder; give a folder for the report")
+    _make_parents(folder)
+    return Staged(folder, _staging(folder, where), replaces=tuple(p for p in RUN_FILES if p != DATASET))
 
 
 def _remove_stale(folder, claim):
