@@ -142,6 +142,8 @@ def _verdict_line(report):
 
 
 def _report(args, state):
+    state.stage = "reading the dataset"
+    state.saved = f"nothing was saved: {args.out or Path(args.dataset).parent} is as it was"
     from .io import open_comparison
     from .output import stage_report
     from .report import write_report
@@ -618,12 +620,12 @@ def _message(error):
 
 def main(argv=None):
     """Run the command; return its exit code (the console script exits with it)."""
-    try:
-        args = parser().parse_args(argv)
-    except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
-        return done.code
     state = _State()
     try:
+        try:
+            args = parser().parse_args(argv)
+        except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
+            return done.code
         return args.func(args, state)
     except KeyboardInterrupt:
         print(state.interrupted(), file=sys.stderr)

@@ -7,6 +7,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -599,6 +600,7 @@ def _wait_for(process, text):
     raise AssertionError(f"the run ended before {text!r}: {process.stderr.read()}")
 
 
+@pytest.mark.slow
 def test_a_killed_runs_staging_folder_is_removed_by_the_next_run_and_folders_follow_the_umask(tmp_path):
     out = tmp_path / "run"
     killed = _start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
@@ -644,15 +646,46 @@ def test_ctrl_c_inside_a_numba_kernel_is_an_interrupt():
     assert not _interrupt(SystemError("a real one"))
 
 
-def test_ctrl_c_while_planning_or_writing_a_report_again_exits_130_with_one_line(tmp_path):
-    process = _start(["plan", "--scheme", "iso13778-4", "--volume", 10_000, "--sample", 200_000, "--csv",
-                      tmp_path / "plan.csv"])
-    import time
+def _started_after_imports(args):
+    """``stackup ARGS`` in a fresh process that prints "ready" once the package is imported (see the test below)."""
+    code = ("import sys; import stackup.cli as cli; print('ready', flush=True); "
+            f"sys.exit(cli.main({[str(a) for a in args]!r}))")
+    process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert process.stdout.readline() == "ready\n"
+    time.sleep(1)  # into the command
+    return process
 
-    time.sleep(6)  # importing and sampling
+
+def test_ctrl_c_while_planning_exits_130_with_one_line(tmp_path):
+    csv = tmp_path / "plan.csv"
+    process = _started_after_imports(["plan", "--scheme", "iso13778-4", "--volume", 10_000, "--sample", 400_000,
+                                      "--csv", csv])
     process.send_signal(signal.SIGINT)
-    out, err = process.communicate(timeout=120)
-    assert process.returncode == 130 and err.count("\n") == 1, err
-    assert err.startswith("stackup: interrupted") and err.endswith(f"nothing was saved: {tmp_path / 'plan.csv'} "
-                                                                  "was not created\n")
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130
+    assert err == f"stackup: interrupted during planning shells; nothing was saved: {csv} was not created\n"
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.slow
+def test_ctrl_c_while_writing_a_report_again_leaves_the_old_report(small_run):
+    folder, result = small_run
+    assert result.returncode == 0, result.stderr
+    before = listing(folder)
+    process = _started_after_imports(["report", folder / "compare.nc"])
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130
+    assert err in [f"stackup: interrupted during {stage}; nothing was saved: {folder} is as it was\n"
+                   for stage in ("reading the dataset", "writing the report")]
+    assert listing(folder) == before
+
+
+@pytest.mark.xfail(strict=True, reason="stackup/__init__.py imports the whole package (numpy, scipy, numba, xarray: "
+                   "2-16 s) before stackup.cli can catch a Ctrl-C; needs lazy package attributes (PEP 562)")
+def test_ctrl_c_while_the_command_starts_exits_130_with_one_line(tmp_path):
+    process = _start(["plan", "--scheme", "iso13778-4", "--volume", 100])
+    time.sleep(0.5)  # python is up, the package is being imported
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130 and err.startswith("stackup: interrupted") and err.count("\n") == 1, err

@@ -101,7 +101,8 @@ def test_the_dask_example_runs_as_a_script(tmp_path):
     """Pasted into a script it runs: the processes scheduler, in process, and a dask cluster by its address."""
     from distributed import LocalCluster
 
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp",
+                      dashboard_address=None) as cluster:
         code = shrunk(block("from distributed import Client"), [
             ("n_engines=20_000_000", "n_engines=2_000"),
             ('"tcp://scheduler-host:8786"', repr(cluster.scheduler_address)),
