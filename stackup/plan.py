@@ -206,9 +206,10 @@ def unasked(scheme, frame):
     where B runs short. Returns plain data for the plan's attributes:
     ``grades`` (labels), ``shells`` (expected for the volume), ``share`` of
     the shells made [-], ``alternatives`` (the allowed pairs that use them,
-    as "A+C for B+B") and ``pairs``: pairs of them those alternatives could
-    fit in place of the preferred pair (at most its demand), fitting them
-    before the preferred pair.
+    as "A+C for B+B"), ``pairs``: bearings those alternatives could fit in
+    place of the preferred pair (at most its demand, with the shells left
+    over in each grade) if fitted before it, and ``used``: the unasked
+    shells those bearings take.
     """
     labels = list(frame.index)
     made, demanded = frame.made.to_numpy(), frame.demanded.to_numpy()
@@ -216,21 +217,24 @@ def unasked(scheme, frame):
     if not idle:
         return {}
     spare = np.maximum(made - demanded, 0.0)
-    pairs, uses = 0.0, []
+    pairs, used, uses = 0, 0, []
     for (pu, pl), options in scheme.alternatives.items():
+        # bearings of the preferred pair the volume asks for (each takes one shell of each of its grades)
+        wanted = demanded[pu] / 2 if pu == pl else min(demanded[pu], demanded[pl])
         for u, l in options:
             if u not in idle and l not in idle:
                 continue
             uses.append(f"{labels[u]}+{labels[l]} for {labels[pu]}+{labels[pl]}")
-            wanted = demanded[pu] if pu == pl else min(demanded[pu], demanded[pl])
-            k = min(spare[u] / 2, wanted / 2) if u == l else min(spare[u], spare[l], wanted / (2 if pu == pl else 1))
-            k = math.floor(max(k, 0.0))
+            k = math.floor(max(min(wanted, spare[u] / 2 if u == l else min(spare[u], spare[l])), 0.0))
             spare[u] -= k
             spare[l] -= k
+            wanted -= k
             pairs += k
+            used += k * ((u in idle) + (l in idle))
     total = float(made.sum())
     return {"grades": [labels[g] for g in idle], "shells": float(made[idle].sum()),
-            "share": float(made[idle].sum() / total) if total else 0.0, "alternatives": uses, "pairs": int(pairs)}
+            "share": float(made[idle].sum() / total) if total else 0.0, "alternatives": uses, "pairs": int(pairs),
+            "used": int(used)}
 
 
 def _lot(volume, lot_engines, default):
@@ -420,6 +424,9 @@ def planner_table(frame):
                      f"shells made per lot: the surplus of {100 * a['shell_surplus']:.3g} % does not cover the mix of "
                      f"a lot of {lot:,} engines at {100 * level:.4g} %.")
     title += [_idle_line(scheme, record) for scheme, record in idle.items() if record]
+    parts = ({s: frame.xs(s, level="scheme") for s in totals} if isinstance(frame.index, pd.MultiIndex)
+             else {None: frame})
+    title += [line for scheme, rows in parts.items() if (line := _short_line(scheme, rows, a))]
     title.append(_estimated_from(a) + ".")
     table.attrs["title"] = title
     return table
@@ -505,7 +512,20 @@ def _idle_line(scheme, record):
         return text + "; no allowed pair uses them, so they are left over (in the surplus)."
     return (text + f"; the scheme allows {', '.join(record['alternatives'])}, which the assembly fits only where "
             f"the preferred grade runs short, so they are left over (in the surplus). Fitted first, {record['pairs']:,} "
-            f"such pairs would use {2 * record['pairs']:,} of them in place of as many shells of the preferred grade.")
+            f"such pairs would use {record['used']:,} of them in place of as many shells of the preferred grades.")
+
+
+def _short_line(scheme, rows, a):
+    """The grades whose shells made per lot fall below their stock per lot (the order does not pass the check)."""
+    per_lot = rows.made * a["lot_engines"] / a["volume"]
+    short = [(g, per_lot[g], rows.order_up_to[g]) for g in rows.index if per_lot[g] < rows.order_up_to[g] - 0.5]
+    if not short:
+        return ""
+    listed = ", ".join(f"{g} ({math.floor(m):,} made per lot against a stock of {int(s):,})" for g, m, s in short)
+    return (f"{'Scheme ' + scheme + ': t' if scheme is not None else 'T'}he order falls short of the stock per lot "
+            f"in {listed}: more than {100 * (1 - a['service_level']):.2g} % of lots run short of them unless "
+            "shells are left from earlier lots or an allowed alternative pair fits; aim more of the order at those "
+            "grades to cover them.")
 
 
 def _estimated_from(a):

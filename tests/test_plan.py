@@ -219,3 +219,48 @@ def test_old_processes_keyword_still_works_with_a_deprecation_warning():
     assert np.all(covered == 1.0)
     with pytest.raises(TypeError, match="not both"):
         plan("iso13778-5", engine="iso-example", processes="iso-example", volume=10)
+
+
+def test_unasked_shells_are_counted_with_the_alternative_pairs_that_could_fit_them():
+    """Hand-counted: which grades no preferred pair asks for, and how many of their shells the alternatives take."""
+    from stackup.plan import unasked
+    from stackup.schemes import load
+
+    # ISO scheme 2: B+B preferred, A+C allowed; both A and C unasked. 1000 B+B bearings want 2000 B shells.
+    frame = pd.DataFrame({"made": [300.0, 2100.0, 500.0], "demanded": [0.0, 2000.0, 0.0]},
+                         index=pd.Index(["A", "B", "C"], name="grade"))
+    record = unasked(load("iso13778-2"), frame)
+    assert record["grades"] == ["A", "C"] and record["shells"] == 800 and record["share"] == 800 / 2900
+    assert record["alternatives"] == ["A+C for B+B"]
+    assert record["pairs"] == 300 and record["used"] == 600  # A runs out first; each pair takes an A and a C
+    # ISO scheme 6: only D unasked; B+C may take A+D, C+C may take B+D: each such pair takes one D
+    frame = pd.DataFrame({"made": [100.0, 900.0, 1000.0, 50.0], "demanded": [80.0, 800.0, 900.0, 0.0]},
+                         index=pd.Index(list("ABCD"), name="grade"))
+    record = unasked(load("iso13778-6"), frame)
+    assert record["grades"] == ["D"] and record["alternatives"] == ["A+D for B+C", "B+D for C+C"]
+    # A+D: min(bearings wanted 800, spare A 20, spare D 50) = 20; B+D: min(900 / 2, spare B 100, spare D 30) = 30
+    assert record["pairs"] == 50 and record["used"] == 50
+    # nothing unasked: an empty record (no line in the table's title)
+    assert unasked(load("iso13778-2"), pd.DataFrame({"made": [1.0, 10.0, 1.0], "demanded": [1.0, 9.0, 1.0]},
+                                                     index=pd.Index(list("ABC")))) == {}
+
+
+def test_the_title_names_grades_whose_order_falls_short_of_their_stock(plan4):
+    """A grade whose shells made per lot (the made column over the 10 lots) are below its stock per lot is named."""
+    from stackup.plan import planner_table
+
+    table = planner_table(plan4)
+    grades = table.drop(["scrapped", "all shells"])
+    per_lot = grades["made, 10000 engines [shells]"] / 10
+    stock = grades["stock per lot of 1000 engines [shells]"]
+    short = [g for g in grades.index if per_lot[g] < stock[g] - 0.5]
+    line = next((line for line in table.attrs["title"] if line.startswith("The order falls short")), "")
+    assert short and set(short) < set(grades.index)  # the thin edge grades, not the middle ones
+    for g in grades.index:
+        assert (f" {g} (" in line) == (g in short), g
+    frame = plan4.copy()
+    frame.attrs = dict(plan4.attrs)
+    middle = frame.order_up_to.idxmax()
+    frame.loc[middle, "made"] = 10 * frame.loc[middle, "order_up_to"] - 50
+    line = next(line for line in planner_table(frame).attrs["title"] if line.startswith("The order falls short"))
+    assert f" {middle} (" in line and f"against a stock of {int(frame.loc[middle, 'order_up_to']):,})" in line
