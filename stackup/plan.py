@@ -472,8 +472,10 @@ def _shell_title(a, frame):
 
 def _order_line(a, table):
     """Which quantity a buyer orders, and how it is split into grades."""
-    how = ("made to order: each grade aimed at as the column \"ordered per lot\" says, the wall process then spilling "
-           "some into the neighbouring grades" if a["supply"] == "to-order" else
+    aimed = ("as the column \"ordered per lot\" says" if any(c.startswith("ordered per lot") for c in table.columns)
+             else "so that the sorted shells hold the mix of the planned demand")
+    how = (f"made to order: each grade aimed at {aimed}, the wall process then spilling some into the neighbouring "
+           "grades" if a["supply"] == "to-order" else
            "made by one wall process and sorted into the grades by the gauge")
     return (f"To order: {a['shells_per_lot']:,} shells per lot of {a['lot_engines']:,} engines "
             f"({_lots(a['volume'], a['lot_engines'])}), {a['shells_made']:,} for the volume: two per bearing and "
