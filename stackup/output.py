@@ -143,6 +143,9 @@ def _locked(path, where):
     except PermissionError:
         raise OutputRefused(f"{where}: {str(path.parent)!r} cannot be written (no permission); give a folder you "
                             "can write to") from None
+    except OSError as error:  # e.g. /proc: writable by its mode, yet it holds no new file
+        raise OutputRefused(f"{where}: no file can be created in {str(path.parent)!r} ({error.strerror}); give a "
+                            "folder you can write to") from None
     if fcntl is not None:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
