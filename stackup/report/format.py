@@ -86,15 +86,20 @@ def ppm_digits(value, upper=None):
 
 
 def ppm(value, ci=None):
-    """A share in ppm with its unit and interval, to the value's precision: '0.050 ppm [0.034, 0.065]'."""
+    """A share in ppm with its unit and interval, to the value's precision: '0.050 ppm [0.034, 0.065]'.
+
+    An exact zero without an interval, or with an interval [0, 0], is '0 ppm'.
+    """
+    if value == 0 and (ci is None or ci[1] == 0):
+        return "0 ppm"
     digits = ppm_digits(value, None if ci is None else ci[1])
     text = f"{value:,.{digits}f} ppm"
     return text + (f" [{ci[0]:,.{digits}f}, {ci[1]:,.{digits}f}]" if ci is not None else "")
 
 
 def ppm_number(value):
-    """A share in ppm to its precision, without the unit (a table cell)."""
-    return f"{value:,.{ppm_digits(value)}f}"
+    """A share in ppm to its precision, without the unit (a table cell); an exact zero is '0'."""
+    return "0" if value == 0 else f"{value:,.{ppm_digits(value)}f}"
 
 
 def um(value, digits=1):
@@ -113,6 +118,11 @@ def um_edge(value):
 def um_range(lo, hi, digits=1):
     """A range of lengths in µm (already in µm): 'lo–hi'."""
     return f"{lo:.{digits}f}–{hi:.{digits}f}"
+
+
+def percent(share):
+    """A share [-] in per cent: whole from 10 %, a tenth below (58 %, 1.2 %)."""
+    return f"{100 * share:.0f} %" if share >= 0.1 else f"{100 * share:.1f} %"
 
 
 def percent_span(values):

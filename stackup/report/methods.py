@@ -6,6 +6,8 @@ What each stage's tier solves is the stage's own sentence (``TIER_NOTES`` of
 
 from __future__ import annotations
 
+import re
+
 import pandas as pd
 
 from ..crank import TIER_NOTES as CRANK_TIERS
@@ -14,6 +16,7 @@ from ..film.orbit import ALIASES as TIER_ALIASES
 from ..fit import TIER_NOTES as FIT_TIERS
 from . import format as fmt
 from . import templates as words
+
 
 def _folded(text):
     """Text with its whitespace folded (sources span lines in the engine files)."""
@@ -56,7 +59,8 @@ def _clearance_side(facts):
         words.PRESS_FIT.format(housing=press.housing_material, outer=press.housing_outer * 1e3,
                                shell=press.shell_material, width=press.length * 1e3, bore=press.check_bore * 1e3,
                                stress=press.check_stress / 1e6, tier=FIT_TIERS.get(study.fit_method, study.fit_method)),
-        words.TEMPERATURES.format(assembly=press.assembly_temperature, running=press.temperature, oil=oil),
+        words.TEMPERATURES.format(assembly=press.assembly_temperature, running=press.temperature,
+                                  journal=press.temperature + press.journal_temperature_excess, oil=oil),
         words.CLEARANCE.format(n_engines=fmt.count(study.n_engines), bearings=facts.about.bearings),
     ]
 
@@ -125,9 +129,26 @@ def limits_of_validity(facts):
 
 
 def parameters_table(facts):
-    """The study's parameters and the data it used, as rows of (parameter, value) for a readable table."""
+    """The study's parameters and the data it used, as rows of (parameter, value) for a readable table.
+
+    Schemes that share a source (the six ISO schemes) share one row.
+    """
     rows = [(key, "—" if value is None else (", ".join(map(str, value)) if isinstance(value, list) else str(value)))
             for key, value in facts.study.items]
-    rows += [("engine source", facts.sources.engine), ("stackup version", facts.about.version)]
-    rows += [(f"scheme {k}", v) for k, v in facts.sources.schemes.items()]
+    rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible)),
+             ("engine source", facts.sources.engine), ("stackup version", facts.about.version)]
+    by_source = {}
+    for name, source in facts.sources.schemes.items():
+        numbered = re.fullmatch(r"(.*), scheme (\d+)", source)  # one document's numbered schemes: one row
+        key = numbered.group(1) if numbered else source
+        by_source.setdefault(key, []).append((name, numbered.group(2) if numbered else None))
+    for source, named in by_source.items():
+        numbers = [n for _, n in named if n is not None]
+        text = f"{source}, scheme{'s' if len(numbers) > 1 else ''} {', '.join(numbers)}" if numbers else source
+        rows.append((f"source of {', '.join(name for name, _ in named)}", text))
     return pd.DataFrame(rows, columns=["parameter", "value"])
+
+
+def parameters_text(table):
+    """The parameters as one paragraph, ``name: value`` separated by semicolons (a table of two columns)."""
+    return "; ".join(words.PARAMETER.format(name=name, value=value) for name, value in table.itertuples(index=False)) + "."
