@@ -33,7 +33,8 @@ from .verdict import decision_table, verdict
 
 #: Sections in report order (their headings; the verdict and the decision table come before them).
 SECTIONS = ("Ranking", "Scenarios", "Designed scheme", "What drives the spread", "Clearance per scheme",
-            "Operating clearance: press fit, housing swell and temperature", "Loads, oil film and bearing life", "Assembly, scrap and stock", "Planning: shells per grade",
+            "Operating clearance: press fit, housing swell and temperature", "Loads, oil film and bearing life",
+            "Assembly, scrap and stock", "Planning: shells per grade",
             "Methods and assumptions", "Limits of validity", "Parameters")
 
 
@@ -118,6 +119,7 @@ def report_lines(known, *, dataset_file=None):
     return [
         *_header(known),
         *verdict(known, ranking, scenario_rankings),
+        "",
         markdown_table(decision_table(known, ranking)),
         "",
         _contents(known),

@@ -151,4 +151,5 @@ def parameters_table(facts):
 
 def parameters_text(table):
     """The parameters as one paragraph, ``name: value`` separated by semicolons (a table of two columns)."""
-    return "; ".join(words.PARAMETER.format(name=name, value=value) for name, value in table.itertuples(index=False)) + "."
+    return "; ".join(words.PARAMETER.format(name=name, value=str(value).rstrip(". "))
+                     for name, value in table.itertuples(index=False)) + "."
