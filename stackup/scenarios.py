@@ -83,7 +83,7 @@ def _mm(value):
 def housing_stiffness(engine):
     """The :class:`Uncertainty` of the housing's equivalent outer diameter: measured interval, else assumed range."""
     spec, bore = engine.press_fit, engine.housing_bore.lo
-    measure = "the housing swell by fitting tests (`stackup measure swell`)"
+    measure = "the housing swell (fitting tests, `stackup measure swell`)"
     if spec.housing_outer_interval is not None:
         lo, hi = spec.housing_outer_interval
         rigid = hi == float("inf")
@@ -107,7 +107,12 @@ def crush_height(engine):
     return Uncertainty("crush height process (mean)",
                        {f"crush mean +{k:g}σ": {"crush_shift": k}, f"crush mean −{k:g}σ": {"crush_shift": -k}},
                        f"assumed: the engine file's crush process, its mean ±{k:g}σ as the parts' process scenarios",
-                       "the shells' crush heights in a checking block (ISO 3548-3; `stackup measure fit`)")
+                       "the shells' crush heights (checking block, ISO 3548-3; `stackup measure fit`)")
+
+
+def _hotter(kelvin):
+    """A journal-temperature scenario's label: "journal 20 K hotter", or "journal as hot as housing" at 0 K."""
+    return "journal as hot as housing" if kelvin == 0 else f"journal {kelvin:g} K {'hotter' if kelvin > 0 else 'cooler'}"
 
 
 def journal_temperature(engine):
@@ -115,11 +120,10 @@ def journal_temperature(engine):
     nominal = engine.press_fit.journal_temperature_excess
     lo, hi = min(JOURNAL_EXCESS_RANGE[0], nominal), max(JOURNAL_EXCESS_RANGE[1], nominal)
     return Uncertainty("journal–housing temperature difference",
-                       {f"journal {lo:g} K hotter": {"journal_temperature_excess": lo},
-                        f"journal {hi:g} K hotter": {"journal_temperature_excess": hi}},
+                       {_hotter(lo): {"journal_temperature_excess": lo}, _hotter(hi): {"journal_temperature_excess": hi}},
                        "assumed: journals often run 10-20 K above their bulkheads (physics.md sec. 3); 0 K is the "
                        "standard's one temperature",
-                       "the journal's and the bulkhead's temperatures in a running engine")
+                       "journal and bulkhead temperatures in a running engine")
 
 
 #: The model inputs a comparison declares, each a function of the engine giving its :class:`Uncertainty`.

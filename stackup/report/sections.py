@@ -20,7 +20,7 @@ from ..rank import RULE
 from ..stats import proportion_ci
 from . import format as fmt
 from . import templates as words
-from .verdict import scenario_groups
+from .verdict import clearance_level, scenario_groups
 
 
 def markdown_table(frame):
@@ -139,7 +139,8 @@ def ranking_section(facts, ranking):
 
 
 def scenarios_section(facts, ranking, scenario_rankings):
-    """Every scenario's share outside the window per scheme (ranking order), the first under it in bold, and the
+    """Every scenario's share outside the window per scheme (ranking order), the lowest and those level with it in
+    bold, and the
     model-uncertainty ranges with their sources."""
     if not scenario_rankings:
         return section("Scenarios", words.NO_SCENARIOS)
@@ -147,7 +148,7 @@ def scenarios_section(facts, ranking, scenario_rankings):
     rows = []
     for label in [*process, *(x for labels in model.values() for x in labels)]:
         other = scenario_rankings[label]
-        firsts = set(other.index[other["rank"] == 1])
+        firsts = clearance_level(other, ranking.attrs["negligible_ppm"])
         cells = {s: (f"**{fmt.ppm_number(other.loc[s, 'outside_window_ppm'])}**" if s in firsts else
                      fmt.ppm_number(other.loc[s, "outside_window_ppm"])) if s in other.index else "—"
                  for s in ranking.index}

@@ -27,8 +27,10 @@ DATASET = "Dataset: `{file}`; the study's parameters are also in its `study` att
 WINDOW_PART = "the operating-clearance window {lo}–{hi} µm"
 CLEARANCE_PART = "operating clearance {mean:.1f} ± {std:.1f} µm"
 USE_ONLY = "**Use {scheme}**: {share} of its bearings fall outside {window} ({clearance})."
-USE_CLEARANCE = ("**Use {scheme}**: {share} of its bearings fall outside {window}, against {runner_share} for "
-                 "{runner}, the next ({clearance}).")
+USE_CLEARANCE = ("**Use {scheme}**: {share} outside {window} against {runner_share} for the next, {runner} "
+                 "({clearance}).{price}")
+#: What the chosen scheme costs more than the next, where the clearance chose it.
+PRICE_PART = " It costs {costs}."
 USE_COST = "**Use {scheme}**: {reason}, so {decides}: {costs} ({clearance})."
 LEVEL_PART = ("it and {runner} put {share} and {runner_share} of their bearings outside {window}, less than "
               "{negligible} ppm apart")
@@ -40,24 +42,23 @@ COST_PARTS = {
     "alpha_over_limit_pct": "{a:.1f} % of bearings over 20 % of the cycle in boundary friction against {b:.1f} %",
     "shell_grades": "{a:.0f} shell grades against {b:.0f}",
     "part_grades": "{a:.0f} bore and journal grades against {b:.0f}",
-    "stockout_ppm": "{a:.0f} ppm of bearings waiting for a shell against {b:.0f}",
+    "stockout_ppm": "{a:.0f} ppm stock-outs against {b:.0f}",
     "surplus_pct": "{a:.1f} % of the shells left over against {b:.1f} %",
     "life_median_h": "median bearing life {a:,.0f} h against {b:,.0f} h",
 }
 TIE = "{names} tie on {window}, the film and the cost: use any of them."
 NO_MODEL = ("**Model uncertainty:** none declared: the verdict takes the engine file's housing stiffness, crush "
             "height and journal temperature as exact.")
-MODEL_HOLDS = "**Model uncertainty:** it stays first over the declared ranges of the {inputs} ({ranges})."
-MODEL_BREAKS = ("**Model uncertainty:** it does not stay first over every declared range ({ranges}): {flips}. "
-                "Measure {measure} to decide.")
-MODEL_FLIP_PART = ("with {scenario}, {winners} rank{s} first ({winner_share} outside the window, against {share} for "
-                   "{chosen})")
-ASSUMED_PART, MEASURED_PART, SOME_ASSUMED_PART = "ranges assumed", "ranges measured", "some ranges assumed"
-PROCESS_HOLDS = "**Process scenarios:** it stays first under each{worst}."
+MODEL_HOLDS = ("**Model uncertainty:** it stays first over the declared ranges of the {inputs} ({ranges}): no scheme "
+               "puts fewer bearings outside the window at either end.")
+MODEL_BREAKS = "**Model uncertainty:** the choice changes within the declared ranges ({ranges}): {flips}. Measure {measure}."
+MODEL_FLIP_PART = "with {scenario}, {winners} do{s} better ({winner_share} against {share})"
+ASSUMED_PART, MEASURED_PART, SOME_ASSUMED_PART = "assumed", "measured", "some assumed"
+PROCESS_HOLDS = "**Process scenarios:** no scheme puts fewer outside under any{worst}."
 PROCESS_BREAKS = "**Process scenarios:** {flips}{more}{worst}."
-PROCESS_WORST_PART = "; the worst for it, {scenario}, puts {share} outside"
-UNDER_PART = "under {scenario}, {names} rank{s} first"
-MORE_PART = " (and {count} more)"
+PROCESS_WORST_PART = "; the worst, {scenario}, puts {share} outside"
+UNDER_PART = "under {scenario}, {names} put{s} fewer outside"
+MORE_PART = "; likewise under {count} more"
 CHECK_FIRST = "**Check first:** {notes}"
 NO_WINDOW = ("The engine file gives no operating-clearance window (`[targets] operating_clearance`, or `--window LO "
              "HI`): the clearance cannot separate schemes.")
@@ -67,9 +68,8 @@ BLOCKS_LOST = "{share} of the blocks are scrapped (a housing bore read outside i
 CRANKS_LOST = "{share} of the crankshafts are scrapped (a journal read outside its drawing limits)."
 NOT_GRADED_LOST = "{share} of {scheme}'s bearings have a part read outside every grade."
 STOCKOUTS_LOST = "{share} of {scheme}'s bearings wait for a shell (stock-outs)."
-SHELLS_LOST = "{share} of the shells made for {scheme} are scrapped."
-EDGE_NOTE = ("Journal edges touch their shells in {share} of the bearings; the lives do not count that contact (oil "
-             "film section).")
+SHELLS_LOST = "{scheme} scraps {share} of its shells."
+EDGE_NOTE = "Journal edges touch their shells in {share} of the bearings, a contact the lives do not count."
 FAILURES_NOTE = "Stages failed on some engines (left out of the statistics): {lines}."
 NO_MECHANICS_NOTE = "The crankshaft, film and life stages did not run ({reason}): the ranking uses the clearance only."
 NONE_ASKED_PART = "the study asked for none, `mechanics_engines=0`"
@@ -103,7 +103,8 @@ CENTRED_NONE_PART = "none of its {bearings} bearings outside (below {upper} at 9
 
 # --- scenarios ------------------------------------------------------------------------------------------------
 SCENARIOS_INTRO = ("Each scenario reruns the study's engines with one change (same seed, same parts); shares outside "
-                   "the window counted [ppm], the first by the ranking's rule in bold.")
+                   "the window counted [ppm] (no tail estimate); in bold the lowest and those the counts cannot tell "
+                   "from it.")
 NO_SCENARIOS = "The comparison ran no scenarios."
 MODEL_RANGES = "Model-uncertainty ranges and what narrows them:"
 MODEL_RANGE = "- {input}: {labels}; {source}. To narrow it: {measure}."

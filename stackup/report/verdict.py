@@ -66,8 +66,12 @@ def _use(facts, ranking, window):
         tied = list(ranking.index[ranking["rank"] == first["rank"]])
         return words.TIE.format(names=words.bold_listed(tied), window=window_text)
     if decider == "outside_window_ppm":
+        dearer = [words.COST_PARTS[c].format(a=first[c], b=second[c]) for c in COST[:3]
+                  if float(first[c]) > float(second[c])]
+        price = words.PRICE_PART.format(costs=words.listed(dearer)) if dearer else ""
         return words.USE_CLEARANCE.format(scheme=chosen, share=_share(first), window=window_text,
-                                          runner=runner, runner_share=_share(second), clearance=clearance)
+                                          runner=runner, runner_share=_share(second), clearance=clearance,
+                                          price=price)
     reason = (words.LEVEL_NO_WINDOW_PART if not np.isfinite(window[1]) else
               words.LEVEL_PART.format(share=_share(first), runner=runner, runner_share=_share(second),
                                       window=window_text, negligible=fmt.general(ranking.attrs["negligible_ppm"])))
@@ -88,17 +92,34 @@ def scenario_groups(facts):
     return process, model
 
 
-def _flips(labels, scenario_rankings, chosen):
-    """(label, schemes ranked first) of the scenarios among ``labels`` under which ``chosen`` is not first."""
+def clearance_level(other, negligible):
+    """The schemes of the ranking ``other`` whose share outside the window cannot be told from the lowest (95 %
+    intervals overlapping, or less than ``negligible`` ppm apart)."""
+    shares = other["outside_window_ppm"].astype(float)
+    if shares.isna().all():
+        return set(other.index)
+    best = other.loc[shares.idxmin()]
+    return {s for s in other.index if not differs(best, other.loc[s], "outside_window_ppm", "lower", negligible)}
+
+
+def _flips(labels, scenario_rankings, chosen, negligible):
+    """(label, schemes) of the scenarios among ``labels`` under which other schemes put fewer bearings outside the
+    window than ``chosen`` by the ranking's rule (a difference the scenario's counts cannot resolve is no flip:
+    the scenarios count, they carry no tail estimate), the best of those schemes by the scenario's ranking."""
     out = []
     for label in labels:
         other = scenario_rankings[label]
-        if chosen in other.index and other.loc[chosen, "rank"] > 1:
-            out.append((label, list(other.index[other["rank"] == 1])))
+        if chosen not in other.index:
+            continue
+        better = [s for s in other.index if s != chosen and differs(other.loc[s], other.loc[chosen],
+                                                                   "outside_window_ppm", "lower", negligible)]
+        if better:
+            first = other.loc[better, "rank"].min()
+            out.append((label, [s for s in better if other.loc[s, "rank"] == first]))
     return out
 
 
-def _model(facts, scenario_rankings, chosen):
+def _model(facts, scenario_rankings, chosen, negligible):
     """Whether the chosen scheme stays first under the declared model uncertainties; if not, what to measure."""
     _, model = scenario_groups(facts)
     if not model:
@@ -107,7 +128,7 @@ def _model(facts, scenario_rankings, chosen):
     sources = {facts.scenario_about[labels[0]].assumed for labels in model.values()}
     ranges = (words.ASSUMED_PART if sources == {True} else
               words.MEASURED_PART if sources == {False} else words.SOME_ASSUMED_PART)
-    broken = {name: _flips(labels, scenario_rankings, chosen) for name, labels in model.items()}
+    broken = {name: _flips(labels, scenario_rankings, chosen, negligible) for name, labels in model.items()}
     broken = {name: flips for name, flips in broken.items() if flips}
     if not broken:
         return words.MODEL_HOLDS.format(inputs=words.listed(inputs), ranges=ranges)
@@ -116,19 +137,19 @@ def _model(facts, scenario_rankings, chosen):
         label, winners = flips[0]
         other = scenario_rankings[label]
         clauses.append(words.MODEL_FLIP_PART.format(
-            scenario=label, winners=words.bold_listed(winners), s=words.plural(len(winners), "", "s"),
-            chosen=chosen, share=fmt.ppm(other.loc[chosen, "outside_window_ppm"]),
+            scenario=label, winners=words.bold_listed(winners), s=words.plural(len(winners), "", "es"),
+            share=fmt.ppm(other.loc[chosen, "outside_window_ppm"]),
             winner_share=fmt.ppm(other.loc[winners[0], "outside_window_ppm"])))
         measures.append(facts.scenario_about[label].measure)
     return words.MODEL_BREAKS.format(flips="; ".join(clauses), measure=words.listed(measures), ranges=ranges)
 
 
-def _process(facts, ranking, scenario_rankings, chosen):
+def _process(facts, ranking, scenario_rankings, chosen, negligible):
     """Whether the chosen scheme stays first under the process scenarios, and the worst of them for it."""
     process, _ = scenario_groups(facts)
     if not process:
         return None
-    flips = _flips(process, scenario_rankings, chosen)
+    flips = _flips(process, scenario_rankings, chosen, negligible)
     worst = _worst_scenario(facts, ranking, process).get(chosen)
     worst_text = "" if worst is None else words.PROCESS_WORST_PART.format(scenario=worst[0], share=fmt.ppm(worst[1]))
     if not flips:
@@ -181,8 +202,9 @@ def verdict(facts, ranking, scenario_rankings):
     """
     window = ranking.attrs["window_m"]
     chosen = ranking.index[0]
-    paragraphs = [_use(facts, ranking, window), _model(facts, scenario_rankings, chosen),
-                  _process(facts, ranking, scenario_rankings, chosen)]
+    negligible = ranking.attrs["negligible_ppm"]
+    paragraphs = [_use(facts, ranking, window), _model(facts, scenario_rankings, chosen, negligible),
+                  _process(facts, ranking, scenario_rankings, chosen, negligible)]
     notes = check_first(facts, ranking, window)
     if notes:
         paragraphs.append(words.CHECK_FIRST.format(notes=" ".join(notes)))
