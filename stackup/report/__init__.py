@@ -108,7 +108,8 @@ def _header(known):
 def _contents(known):
     """The line of links to the sections (the designed scheme's only where there is one)."""
     titles = [title for title in SECTIONS if title != "Designed scheme" or known.design is not None]
-    return words.CONTENTS.format(links=" · ".join(words.CONTENTS_LINK.format(title=title, anchor=anchor(title))
+    return words.CONTENTS.format(links=" · ".join(words.CONTENTS_LINK.format(title=words.CONTENTS_SHORT.get(title, title),
+                                                                          anchor=anchor(title))
                                                   for title in titles))
 
 
@@ -135,7 +136,7 @@ def report_lines(known, *, dataset_file=None):
         *plan_section(known, ranking),
         *section("Methods and assumptions", *methods(known)),
         *section("Limits of validity", *limits_of_validity(known)),
-        *section("Parameters", parameters_text(parameters_table(known)),
+        *section("Parameters", parameters_text(parameters_table(known)) + " " + words.PARAMETERS_DEFAULTS,
                  *(["", words.DATASET.format(file=dataset_file)] if dataset_file else [])),
     ]
 

@@ -135,3 +135,21 @@ def spread(values, digits=0):
     """(5 %, median, 95 %) as ('lo-hi', 'median') to ``digits`` decimals."""
     lo, mid, hi = values
     return f"{lo:.{digits}f}-{hi:.{digits}f}", f"{mid:.{digits}f}"
+
+
+#: A source longer than this [words] is cited in short on the page (in full in the engine file).
+CITED_WORDS = 30
+
+
+def cited(text, limit=CITED_WORDS):
+    """A source as the page cites it: whole when at most ``limit`` words; else its citation, the part before its
+    first ": " (an author and title, 2 to 15 words), or else its first clause (up to "; "); without a final full
+    stop. The full text stays in the engine file (the dataset's ``input_files``)."""
+    text = " ".join(str(text).split()).rstrip(".;")
+    if len(text.split()) <= limit:
+        return text
+    head = text.split(": ", 1)[0]
+    if 2 <= len(head.split()) <= 15:
+        return head
+    first = text.split("; ", 1)[0]
+    return first if len(first.split()) <= limit else " ".join(first.split()[:limit]) + " …"

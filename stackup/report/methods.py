@@ -8,19 +8,17 @@ from __future__ import annotations
 
 import re
 
+from dataclasses import fields
+
 import pandas as pd
 
 from ..crank import TIER_NOTES as CRANK_TIERS
 from ..film import TIER_NOTES as FILM_TIERS
 from ..film.orbit import ALIASES as TIER_ALIASES
 from ..fit import TIER_NOTES as FIT_TIERS
+from ..study import Study
 from . import format as fmt
 from . import templates as words
-
-
-def _folded(text):
-    """Text with its whitespace folded (sources span lines in the engine files)."""
-    return " ".join(text.split())
 
 
 def _dimension(label, d):
@@ -106,9 +104,9 @@ def _life_method(facts):
     return words.LIFE.format(
         film=film.replace("-", " "), why=words.CYCLE_MEAN_PART if film == "cycle-mean" else words.NOT_CYCLE_MEAN_PART,
         critical=fmt.um(wear.critical_film_m, 2), journal_rz=fmt.um(wear.journal_rz_m, 2),
-        shell_rz=fmt.um(wear.shell_rz_m, 2), roughness_source=_folded(wear.roughness_source),
+        shell_rz=fmt.um(wear.shell_rz_m, 2),
         wear_limit=fmt.um(wear.wear_limit_m, 0), wear_rate=wear.wear_rate_m_per_s,
-        wear_source=_folded(wear.wear_source))
+        wear_source=fmt.cited(wear.wear_source))
 
 
 def _life_bias(bias):
@@ -128,15 +126,27 @@ def limits_of_validity(facts):
             *words.LIMITS_AFTER_LIFE]
 
 
+#: Study parameters the parameters list gives even at their defaults.
+ALWAYS = ("engine", "schemes", "n_engines", "seed")
+
+
+def _text(value):
+    """A parameter's value as the parameters list writes it."""
+    return ", ".join(map(str, value)) if isinstance(value, (list, tuple)) else str(value)
+
+
 def parameters_table(facts):
     """The study's parameters and the data it used, as rows of (parameter, value) for a readable table.
 
-    Schemes that share a source (the six ISO schemes) share one row.
+    Schemes that share a source (the six ISO schemes) share one row. The study's parameters at their
+    :class:`~stackup.study.Study` defaults or unset are left out (:data:`ALWAYS` aside): the dataset's ``study``
+    attribute holds them all; the version is the report's header's.
     """
-    rows = [(key, "—" if value is None else (", ".join(map(str, value)) if isinstance(value, list) else str(value)))
-            for key, value in facts.study.items]
+    defaults = {f.name: _text(f.default) for f in fields(Study)}
+    rows = [(key, _text(value)) for key, value in facts.study.items
+            if value is not None and (key in ALWAYS or _text(value) != defaults.get(key))]
     rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible)),
-             ("engine source", facts.sources.engine), ("stackup version", facts.about.version)]
+             ("engine source", facts.sources.engine)]
     by_source = {}
     for name, source in facts.sources.schemes.items():
         numbered = re.fullmatch(r"(.*), scheme (\d+)", source)  # one document's numbered schemes: one row

@@ -54,22 +54,17 @@ def _column(ranking, name):
 
 
 def _ranking_table(ranking):
-    """The ranking's metrics per scheme; the boundary-friction share only where it separates schemes."""
+    """The ranking's metrics per scheme beside the decision table's (share outside, grades and surplus there); the
+    boundary-friction share only where it separates schemes."""
     table = pd.DataFrame({
         "rank": ranking["rank"],
         "scheme": ranking.index,
         "operating mean ± std [µm]": [fmt.mean_std(m, v) for m, v in zip(ranking.clearance_mean_um,
                                                                           ranking.clearance_std_um)],
-        "outside window [ppm]": [fmt.interval(v, ci, fmt.ppm_digits(v, ci[1])) + ("" if src == "counted" else " †")
-                                 for v, ci, src in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
-                                                       ranking.outside_window_source)],
         "bearing life median [h]": [fmt.significant_triple((v, *ci)) if isinstance(ci, tuple) else "—"
                                     for v, ci in zip(_column(ranking, "life_median_h"),
                                                      _column(ranking, "life_median_h_ci"))],
-        "shell grades": ranking.shell_grades,
-        "bore + journal grades": ["—" if np.isnan(v) else f"{v:.0f}" for v in ranking.part_grades.astype(float)],
         "stock-outs [ppm]": [fmt.interval(v, ci, 0) for v, ci in zip(ranking.stockout_ppm, ranking.stockout_ppm_ci)],
-        "surplus [%]": [fmt.fixed(v, 1) for v in ranking.surplus_pct],
     })
     if "alpha_over_limit_pct_ci" in ranking and separates(*zip(*_bounds(ranking, "alpha_over_limit_pct"))):
         table.insert(4, "α > 20 % [%]", [fmt.interval(v, ci, 1) for v, ci in
@@ -83,12 +78,14 @@ def _bounds(ranking, column):
 
 
 def _estimated_note(ranking):
-    """The † note where the ranking took shares from the tail estimates: how, and what the study counted."""
+    """The † note where the ranking took shares from the tail estimates: how, and what the study counted of
+    those schemes."""
     if not (ranking.outside_window_source != "counted").any():
         return []
     conditional = (ranking.outside_window_source == TAIL_SOURCES["conditional"]).any()
     counted = ", ".join(words.COUNTED_PART.format(count=c, scheme=n)
-                        for n, c in zip(ranking.index, ranking.outside_window_counted))
+                        for n, c, source in zip(ranking.index, ranking.outside_window_counted,
+                                                ranking.outside_window_source) if source != "counted")
     return [words.ESTIMATED_NOTE.format(fewest=MIN_COUNTED, counted=counted,
                                         how=words.CONDITIONAL_HOW if conditional else words.SPLITTING_HOW), ""]
 
@@ -161,8 +158,7 @@ def scenarios_section(facts, ranking, scenario_rankings):
         lines += [words.MODEL_RANGES, ""]
         for name, labels in model.items():
             about = facts.scenario_about[labels[0]]
-            lines.append(words.MODEL_RANGE.format(input=name, labels=words.listed(labels), source=about.source,
-                                                  measure=about.measure))
+            lines.append(words.MODEL_RANGE.format(input=name, source=about.source, measure=about.measure))
     return section("Scenarios", *lines)
 
 
@@ -179,11 +175,8 @@ def _grades_um(grades):
 
 
 def _design_outcome(ranking, scheme):
-    row = ranking.loc[scheme]
-    share = fmt.interval(row.outside_window_ppm, row.outside_window_ppm_ci,
-                         fmt.ppm_digits(row.outside_window_ppm, row.outside_window_ppm_ci[1]))
-    return words.DESIGN_OUTCOME_PART.format(rank=row["rank"], share=share,
-                                            estimated="" if row.outside_window_source == "counted" else " †")
+    """A scheme's rank in words (its share outside the window is in the decision table)."""
+    return words.DESIGN_OUTCOME_PART.format(rank=ranking.loc[scheme, "rank"])
 
 
 def design_section(facts, ranking):
@@ -252,14 +245,13 @@ def clearance_section(facts, ranking):
         "worst case [µm]": [fmt.um_range(a, b) for a, b in zip(summary.worst_case_min_um, summary.worst_case_max_um)],
         "mean [µm]": [fmt.fixed(v, 2) for v in summary.mean_um],
         "std [µm]": [fmt.fixed(v, 2) for v in summary.std_um],
-        "P0.135 % [µm]": [fmt.fixed(v, 1) for v in summary.p00135_um],
-        "P99.865 % [µm]": [fmt.fixed(v, 1) for v in summary.p99865_um],
+        "P0.135–P99.865 % [µm]": [fmt.um_range(a, b) for a, b in zip(summary.p00135_um, summary.p99865_um)],
         "outside stated [ppm]": [fmt.interval(v, ci, 0) for v, ci in zip(summary.outside_stated_ppm,
                                                                           summary.outside_stated_ci_ppm)],
     })
     return section("Clearance per scheme", words.CLEARANCE_INTRO, "", markdown_table(table), "",
                    *read_out_notes(facts, ranking.index), "",
-                   image("Nominal and operating clearance per scheme, with the stated ranges and the design window",
+                   image("Nominal and operating clearance per scheme, stated ranges and window",
                          "clearance_histogram.png"))
 
 
@@ -286,8 +278,16 @@ def _count_share(value, ci):
 
 
 def _source(text):
-    """A source as a list item's end: its own final full stop left to the list's punctuation."""
-    return text.strip().rstrip(".;") if text and text.strip() else words.NO_SOURCE
+    """A source as a list item's end, cited in short (:func:`~stackup.report.format.cited`), its own final full
+    stop left to the list's punctuation."""
+    return fmt.cited(text) if text and text.strip() else words.NO_SOURCE
+
+
+def _window_source(window, source):
+    """The window's list item: its source's own question or exclamation mark ends it, else a full stop."""
+    cited = _source(source)
+    return words.WINDOW_SOURCE.format(lo=window[0], hi=window[1], source=cited,
+                                      end="" if cited.endswith(("?", "!")) else ".")
 
 
 def fit_section(facts, ranking):
@@ -301,7 +301,7 @@ def fit_section(facts, ranking):
              words.CRUSH_SOURCE.format(lo=limits.crush_height[0] * 1e3, hi=limits.crush_height[1] * 1e3,
                                        source=_source(sources.crush_height)),
              words.JOURNAL_SOURCE.format(excess=press.journal_temperature_excess, source=journal),
-             words.WINDOW_SOURCE.format(lo=window[0], hi=window[1], source=_source(sources.clearance_window))]
+             _window_source(window, sources.clearance_window)]
     temperatures = ", ".join(fmt.fixed(t, 0) for t in limits.press_fit_temperatures)
     return section("Operating clearance: press fit, housing swell and temperature",
                    words.FIT_INTRO.format(temperatures=temperatures), "", *lines, "",
@@ -313,14 +313,29 @@ def assembly_section(facts, ranking):
     table = pd.DataFrame({
         "scheme": summary.index,
         "assembled": summary.assembled,
-        **{reason.replace("_", " "): summary[reason] for reason in STATUS if reason != "assembled"},
-        "substituted pairs": ["—" if np.isnan(v) else fmt.fixed(v, 0) for v in summary.substituted],
+        **{reason.replace("_", " "): summary[reason] for reason in STATUS
+           if reason != "assembled" and summary[reason].any()},
+        **({} if not np.nansum(summary.substituted) else
+           {"substituted pairs": ["—" if np.isnan(v) else fmt.fixed(v, 0) for v in summary.substituted]}),
         "shells scrapped [%]": [fmt.fixed(v, 2) for v in summary.shells_scrapped_pct],
     })
     intro = words.ASSEMBLY.format(bearings=fmt.count(int(summary.bearings.max())),
                                   shells=fmt.count(int(summary.shells_made.max())))
     return section("Assembly, scrap and stock", intro, "", markdown_table(table), "",
                    image("Shell grades fitted and made per scheme", "grade_usage.png"))
+
+
+def _intervals_merged(table):
+    """The planner's table with each column "X, 95 % low [u]" and "X, 95 % high [u]" written into "X [u]" as
+    "value [low, high]" (one column instead of three; the planner's own table keeps them apart for spreadsheets)."""
+    table = table.copy()
+    for low in [c for c in table.columns if ", 95 % low" in str(c)]:
+        value, high = low.replace(", 95 % low", ""), low.replace(", 95 % low", ", 95 % high")
+        if value in table and high in table:
+            table[value] = [v if pd.isna(lo) or pd.isna(hi) else f"{v} [{lo}, {hi}]"
+                            for v, lo, hi in zip(table[value], table[low], table[high])]
+            table = table.drop(columns=[low, high])
+    return table
 
 
 def plan_section(facts, ranking):
@@ -331,8 +346,8 @@ def plan_section(facts, ranking):
     frame = facts.plan.loc[[chosen]]
     frame.attrs = dict(facts.plan.attrs)
     table = planner_table(frame)
-    title = table.attrs.get("title", [])
-    body = table.reset_index()
+    title = [line for line in table.attrs.get("title", []) if not line.endswith("?")]  # the heading asks it
+    body = _intervals_merged(table.reset_index())
     if "scheme" in body:
         body = body.drop(columns="scheme")
     return section("Planning: shells per grade", words.PLAN.format(scheme=chosen), "", *[" ".join(title)], "",

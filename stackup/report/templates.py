@@ -18,10 +18,16 @@ SUBTITLE = ("{title}. stackup {version}, seed {seed}, {n_engines} engines × {be
 SUBTITLE_SUMMARIES_PART = " (streaming summaries: quantiles and histograms to 0.1 µm)"
 CONTENTS = "Contents: {links}"
 CONTENTS_LINK = "[{title}](#{anchor})"
+#: The contents line's short names of the sections whose headings are long.
+CONTENTS_SHORT = {"What drives the spread": "Spread", "Operating clearance: press fit, housing swell and temperature":
+                  "Press fit", "Loads, oil film and bearing life": "Film and life", "Assembly, scrap and stock":
+                  "Scrap and stock", "Planning: shells per grade": "Planning", "Methods and assumptions": "Methods",
+                  "Limits of validity": "Limits", "Clearance per scheme": "Clearance", "Designed scheme": "Design"}
 SECTION = "## {title}"
 IMAGE = "![{alt}]({file})"
 PARAMETER = "`{name}` {value}"
-DATASET = "Dataset: `{file}`; the study's parameters are also in its `study` attribute (JSON)."
+DATASET = "Dataset: `{file}`; every parameter of the study, defaults included, is in its `study` attribute (JSON)."
+PARAMETERS_DEFAULTS = "Parameters not listed are at their defaults (`stackup.study.Study`)."
 
 # --- verdict --------------------------------------------------------------------------------------------------
 WINDOW_PART = "the operating-clearance window {lo}–{hi} µm"
@@ -107,7 +113,7 @@ SCENARIOS_INTRO = ("Each scenario reruns the study's engines with one change (sa
                    "from it.")
 NO_SCENARIOS = "The comparison ran no scenarios."
 MODEL_RANGES = "Model-uncertainty ranges and what narrows them:"
-MODEL_RANGE = "- {input}: {labels}; {source}. To narrow it: {measure}."
+MODEL_RANGE = "- {input}: {source}. To narrow it: {measure}."
 KIND = {"process": "process", "model": "model"}
 
 # --- designed scheme ------------------------------------------------------------------------------------------
@@ -115,7 +121,7 @@ DESIGNED = ("`{name}` was designed for this engine and window by `stackup.design
             "sets, {seconds:.0f} s) from `{start}`, the ISO scheme with the lowest objective; the study judged it "
             "like every other scheme: {outcome}{against} Its reasons are the comments of its scheme text (the "
             "dataset's `input_files`). Grade limits in µm from each dimension's lower drawing limit:")
-DESIGN_OUTCOME_PART = "rank {rank}, {share} ppm outside the window{estimated}"
+DESIGN_OUTCOME_PART = "rank {rank}"
 DESIGN_AGAINST_PART = ", against {outcome} for `{start}`."
 DESIGN_START_ABSENT_PART = " (`{start}` is not among the schemes compared)."
 UNGRADED = "ungraded"
@@ -129,9 +135,9 @@ TIGHTEN_FIRST = ("**Tighten first ({scheme}, {output}):** the {first}, total Sob
                  "{st_hi:.2f}] (first-order {s1:.2f}), then the {second} ({second_st:.2f}).{gauges}")
 GAUGES_PART = " Gauges matter through misgrading: {gauges}."
 GAUGE_INDEX_PART = "{name} {st:.2f}"
-SOBOL_EXPLAINED = ("S_1 is the share of the output's variance an input explains alone, S_T with its interactions; "
-                   "the gap between them is the grading (a reading near a grade boundary changes the pair). Process "
-                   "mean shifts are scenarios, not inputs. Read the intervals: the film and life use few engines.")
+SOBOL_EXPLAINED = ("S_1: the share of the output's variance an input explains alone; S_T: with its interactions, "
+                   "the grading among them. Process mean shifts are scenarios, not inputs; the film and life use few "
+                   "engines.")
 
 # --- clearance, press fit -------------------------------------------------------------------------------------
 CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature: the standard's stated ranges) against "
@@ -141,28 +147,28 @@ READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to ha
             "as inside it: its worst case, {worst_lo:.1f}–{worst_hi:.1f} µm, reaches beyond the stated "
             "{stated_lo:.0f}–{stated_hi:.0f} µm.")
 FIT_INTRO = ("Operating clearance: housing and shells at the operating temperature, swollen by the press fit, the "
-             "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources:")
+             "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources (in full: the "
+             "engine file):")
 PRESS_FIT_LIMITS_SOURCE = ("- contact pressure at least {pressure:.0f} MPa, shell compression at most {stress:.0f} "
                            "MPa: {source};")
 CRUSH_SOURCE = "- crush height {lo:.3f}–{hi:.3f} mm: {source};"
 JOURNAL_SOURCE = "- journal {excess:g} K hotter than its housing: {source};"
-WINDOW_SOURCE = "- operating-clearance window {lo:.1f}–{hi:.1f} µm: {source}."
+WINDOW_SOURCE = "- operating-clearance window {lo:.1f}–{hi:.1f} µm: {source}{end}"
 NO_SOURCE = "no source given"
 NOT_GIVEN_JOURNAL = "not given in the engine file (journal and housing at one temperature)"
 
 # --- loads, film and life -------------------------------------------------------------------------------------
 NO_FILM = "The film and life stages did not run (see the verdict)."
-FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α is "
-              "the share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); lives by Levanov et "
-              "al. (2015) method 1; an engine's life is its weakest bearing's (target {target} h). The schemes' mean "
-              "cycle-maximum loads differ by at most {spread} kN at any position{failed}.{none}")
+FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α: the "
+              "share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); lives by Levanov et al. "
+              "(2015) method 1, an engine's its weakest bearing's (target {target} h). Mean cycle-maximum loads "
+              "differ between schemes by at most {spread} kN at any position{failed}.{none}")
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
 NO_SCUFFING_PART = " No bearing spends over 20 % of the cycle below h_lim,cr."
 NONE_SHORT_PART = " No engine's life falls below the target."
 POSITIONS = ("Per bearing position for {scheme} (medians over engines): bearing{s} {heaviest} carr{verb} the largest "
-             "load and the thinnest films are at bearing{thin_s} {thinnest}; the tilt is the journal's largest over "
-             "the cycle, the edge column the engines whose journal edge touches the shell (share of the cycle in "
-             "brackets).")
+             "load, the thinnest films at bearing{thin_s} {thinnest}; tilt: the journal's largest over the cycle; "
+             "edge: engines whose journal edge touches the shell (share of the cycle).")
 TOUCHING_PART = "{share:.0f} %"
 TOUCHING_SHARE_PART = " ({share:.0f} %)"
 NOT_A_NUMBER = ("Of {total} bearing-cycles, {counts} gave no film (NaN, `film_status`), left out of every film and "
@@ -205,13 +211,13 @@ CRANKSHAFT = ("- **Crankshaft:** {tier} at {speed:.0f} rpm in {step:g}° steps, 
               "clearances, bore coaxiality ({coaxiality} µm) and journal run-out ({runout} µm); on the first "
               "{engines} engines of each scheme.")
 OIL_FILM = "- **Oil film:** `{method}` tier, {tier}, with each bearing's heat balance{errors}."
-FILM_ERRORS_PART = ("; against the transient mass-conserving Reynolds reference: up to {h_min:.0f} % on the "
-                    "cycle-minimum film, {h_min_mean:.0f} % on its cycle mean, {milliseconds:.1f} ms per "
-                    "bearing-cycle (reports/film_speed_vs_error.md)")
+FILM_ERRORS_PART = ("; error against the transient mass-conserving Reynolds reference up to {h_min:.0f} % on the "
+                    "cycle-minimum film, {h_min_mean:.0f} % on its mean; {milliseconds:.1f} ms per bearing-cycle "
+                    "(reports/film_speed_vs_error.md)")
 LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why}; h_lim,cr = {critical} µm "
-        "from Rz {journal_rz} + {shell_rz} µm ({roughness_source}); wear limit {wear_limit} µm, wear speed "
+        "from Rz {journal_rz} + {shell_rz} µm (the engine file's `[wear]` sources); wear limit {wear_limit} µm, wear speed "
         "{wear_rate:.0e} m/s ({wear_source}).")
-CYCLE_MEAN_PART = " (the paper's 5-9 µm films with 5-17 % boundary friction need it)"
+CYCLE_MEAN_PART = " (as the paper's 5-9 µm films need)"
 NOT_CYCLE_MEAN_PART = " (the paper implies the cycle mean)"
 STATISTICS = ("- **Statistics:** 95 % intervals: order statistics (quantiles), Clopper–Pearson (shares), normal "
               "(means).")
@@ -222,12 +228,10 @@ LIMITS_BEFORE_LIFE = (
     "- Bores round and straight (no bolt or thermal distortion); journals round unless the engine file samples a "
     "form error.",
     "- Press fit: plane-stress linear elastic rings; no plastic lining, fretting or relaxation of the crush. The "
-    "housing's equivalent ring, the crush process and the journal's temperature are inputs: the scenarios carry "
-    "their uncertainty.",
+    "housing's equivalent ring, the crush process and the journal's temperature: declared ranges (Scenarios).",
     "- Crankshaft: a beam on point supports; block rigid; loads from the engine file's pressure model.",
     "- Oil film: isothermal at the bearing's effective temperature, no EHD; the cheap dynamic tiers carry no film "
-    "content (most of their error, reports/film_speed_vs_error.md). Where the film cannot hold the beam's slope the "
-    "journal edge is held at a floor (boundary contact the lives do not count).",
+    "content (most of their error, reports/film_speed_vs_error.md); journal edges held at a floor where they touch.",
 )
 LIFE_LIMIT = ("- {bias}Levanov's constants were fitted to another engine: compare schemes rather than read the hours "
               "as a guarantee.")
