@@ -112,7 +112,9 @@ def crush_height(engine):
 
 def _hotter(kelvin):
     """A journal-temperature scenario's label: "journal 20 K hotter", or "journal as hot as housing" at 0 K."""
-    return "journal as hot as housing" if kelvin == 0 else f"journal {kelvin:g} K {'hotter' if kelvin > 0 else 'cooler'}"
+    if kelvin == 0:
+        return "journal as hot as housing"
+    return f"journal {abs(kelvin):g} K {'hotter' if kelvin > 0 else 'cooler'}"
 
 
 def journal_temperature(engine):
@@ -120,7 +122,8 @@ def journal_temperature(engine):
     nominal = engine.press_fit.journal_temperature_excess
     lo, hi = min(JOURNAL_EXCESS_RANGE[0], nominal), max(JOURNAL_EXCESS_RANGE[1], nominal)
     return Uncertainty("journal–housing temperature difference",
-                       {_hotter(lo): {"journal_temperature_excess": lo}, _hotter(hi): {"journal_temperature_excess": hi}},
+                       {_hotter(lo): {"journal_temperature_excess": lo},
+                        _hotter(hi): {"journal_temperature_excess": hi}},
                        "assumed: journals often run 10-20 K above their bulkheads (physics.md sec. 3); 0 K is the "
                        "standard's one temperature",
                        "journal and bulkhead temperatures in a running engine")

@@ -221,7 +221,8 @@ def test_the_designed_scheme_is_compared_beside_the_others_and_explained(compari
     report = write_report(ds, tmp_path, scenarios=comparison.scenarios, sensitivity=comparison.sensitivity,
                           tails=comparison.tails).read_text()
     section = report.split("## Designed scheme")[1].split("\n## ")[0]
-    assert f"by `stackup.design` (" in section and f"from `{design['start']}`" in section and "| housing bore |" in section
+    assert "by `stackup.design` (" in section and f"from `{design['start']}`" in section
+    assert "| housing bore |" in section
     assert "Its reasons are the comments of its scheme text" in section
 
 
@@ -427,3 +428,26 @@ def test_a_bore_process_that_scraps_blocks_reaches_the_first_page(tmp_path):
     blocks = (ds.status.values == 1).mean()
     assert blocks > 0.4  # most blocks have a bore outside its limits at C_pk 0.5
     assert "**Check first:**" in first and f"{100 * blocks:.0f} % of the blocks are scrapped" in first
+
+
+def test_a_share_below_the_precision_never_reads_as_zero():
+    from stackup.report import format as fmt
+
+    assert fmt.ppm(2e-7, (0.0, 1e-6)) == "< 0.001 ppm [0, < 0.001]"  # not "0.000 ppm [0.000, 0.000]"
+    assert fmt.ppm(0.0, (0.0, 0.0)) == "0 ppm" and fmt.ppm_interval(0.0, (0.0, 74.0)) == "0 [0, 74]"
+    assert fmt.ppm(0.05, (0.034, 0.065)) == "0.050 ppm [0.034, 0.065]"
+    assert fmt.ppm_interval(11831.0, (10901.0, 12818.0)) == "11831 [10901, 12818]"
+    assert fmt.ppm(59333.0, (51146.0, 68393.0)) == "59,333 ppm [51,146, 68,393]"
+
+
+def test_a_long_source_is_cited_by_its_title():
+    from stackup.report.format import cited
+
+    long = ("MAHLE Clevite, How much clearance do your bearings need?: 0.00075-0.0010 in of clearance per inch of "
+            "journal diameter as the starting point for most applications, 0.0005 in more at the top for highly "
+            "loaded engines.")
+    assert cited(long) == "MAHLE Clevite, How much clearance do your bearings need?"
+    short = "assumed: journals run 10-20 K above their bulkheads"
+    assert cited(short + ".") == short  # short enough: whole, without its full stop
+    words = " ".join(["word"] * 40)
+    assert cited(words) == " ".join(["word"] * 30) + " …"

@@ -108,9 +108,9 @@ def _header(known):
 def _contents(known):
     """The line of links to the sections (the designed scheme's only where there is one)."""
     titles = [title for title in SECTIONS if title != "Designed scheme" or known.design is not None]
-    return words.CONTENTS.format(links=" · ".join(words.CONTENTS_LINK.format(title=words.CONTENTS_SHORT.get(title, title),
-                                                                          anchor=anchor(title))
-                                                  for title in titles))
+    return words.CONTENTS.format(links=" · ".join(
+        words.CONTENTS_LINK.format(title=words.CONTENTS_SHORT.get(title, title), anchor=anchor(title))
+        for title in titles))
 
 
 def report_lines(known, *, dataset_file=None):

@@ -85,16 +85,36 @@ def ppm_digits(value, upper=None):
     return int(min(3, max(1, 1 - np.floor(np.log10(abs(value))))))
 
 
+def _ppm_text(value, digits, grouped=True):
+    """A share in ppm to ``digits`` decimals (thousands grouped or not); an exact zero is '0', a positive share
+    that would read as zero '< 0.001' (its resolution), never '0.000'."""
+    if value == 0:
+        return "0"
+    text = f"{value:{',' if grouped else ''}.{digits}f}"
+    return f"< {10.0 ** -digits:.{digits}f}" if value > 0 and float(text.replace(",", "")) == 0 else text
+
+
+def ppm_interval(value, ci, grouped=False):
+    """A share in ppm with its interval, without the unit (a table cell): '0.050 [0.034, 0.065]'; an estimate
+    below the resolution reads '< 0.001 [0, 0.002]', not '0.000 [0.000, 0.002]'."""
+    if value == 0 and ci[1] == 0:
+        return "0"
+    digits = ppm_digits(value, ci[1])
+    return "{} [{}, {}]".format(*(_ppm_text(v, digits, grouped) for v in (value, *ci)))
+
+
 def ppm(value, ci=None):
     """A share in ppm with its unit and interval, to the value's precision: '0.050 ppm [0.034, 0.065]'.
 
-    An exact zero without an interval, or with an interval [0, 0], is '0 ppm'.
+    An exact zero without an interval, or with an interval [0, 0], is '0 ppm'; a positive share below the
+    precision '< 0.001 ppm'.
     """
     if value == 0 and (ci is None or ci[1] == 0):
         return "0 ppm"
-    digits = ppm_digits(value, None if ci is None else ci[1])
-    text = f"{value:,.{digits}f} ppm"
-    return text + (f" [{ci[0]:,.{digits}f}, {ci[1]:,.{digits}f}]" if ci is not None else "")
+    if ci is None:
+        return f"{_ppm_text(value, ppm_digits(value))} ppm"
+    head, _, rest = ppm_interval(value, ci, grouped=True).partition(" [")
+    return f"{head} ppm [{rest}"
 
 
 def ppm_number(value):

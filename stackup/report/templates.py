@@ -57,7 +57,8 @@ NO_MODEL = ("**Model uncertainty:** none declared: the verdict takes the engine 
             "height and journal temperature as exact.")
 MODEL_HOLDS = ("**Model uncertainty:** it stays first over the declared ranges of the {inputs} ({ranges}): no scheme "
                "puts fewer bearings outside the window at either end.")
-MODEL_BREAKS = "**Model uncertainty:** the choice changes within the declared ranges ({ranges}): {flips}. Measure {measure}."
+MODEL_BREAKS = ("**Model uncertainty:** the choice changes within the declared ranges ({ranges}): {flips}. Measure "
+                "{measure}.")
 MODEL_FLIP_PART = "with {scenario}, {winners} do{s} better ({winner_share} against {share})"
 ASSUMED_PART, MEASURED_PART, SOME_ASSUMED_PART = "assumed", "measured", "some assumed"
 PROCESS_HOLDS = "**Process scenarios:** no scheme puts fewer outside under any{worst}."
@@ -152,7 +153,7 @@ FIT_INTRO = ("Operating clearance: housing and shells at the operating temperatu
 PRESS_FIT_LIMITS_SOURCE = ("- contact pressure at least {pressure:.0f} MPa, shell compression at most {stress:.0f} "
                            "MPa: {source};")
 CRUSH_SOURCE = "- crush height {lo:.3f}–{hi:.3f} mm: {source};"
-JOURNAL_SOURCE = "- journal {excess:g} K hotter than its housing: {source};"
+JOURNAL_SOURCE = "- journal {excess:g} K hotter than its housing ({source});"
 WINDOW_SOURCE = "- operating-clearance window {lo:.1f}–{hi:.1f} µm: {source}{end}"
 NO_SOURCE = "no source given"
 NOT_GIVEN_JOURNAL = "not given in the engine file (journal and housing at one temperature)"

@@ -218,7 +218,7 @@ def decision_table(facts, ranking):
     table = pd.DataFrame({
         "rank": ranking["rank"],
         "scheme": ranking.index,
-        "outside window [ppm]": [fmt.interval(v, ci, fmt.ppm_digits(v, ci[1])) + ("" if s == "counted" else " †")
+        "outside window [ppm]": [fmt.ppm_interval(v, ci) + ("" if s == "counted" else " †")
                                  for v, ci, s in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
                                                      ranking.outside_window_source)],
         "shell grades": ranking.shell_grades,
