@@ -135,6 +135,12 @@ def _text(value):
     return ", ".join(map(str, value)) if isinstance(value, (list, tuple)) else str(value)
 
 
+def _standard(source):
+    """A standard's source cited by its designation ('ISO 13778:2017'; its title is in the scheme files)."""
+    designation = re.match(r"(ISO|DIN|EN|SAE|JIS|GB)[ /][^,]*", source)
+    return designation.group(0) if designation else source
+
+
 def parameters_table(facts):
     """The study's parameters and the data it used, as rows of (parameter, value) for a readable table.
 
@@ -150,7 +156,7 @@ def parameters_table(facts):
     by_source = {}
     for name, source in facts.sources.schemes.items():
         numbered = re.fullmatch(r"(.*), scheme (\d+)", source)  # one document's numbered schemes: one row
-        key = numbered.group(1) if numbered else source
+        key = _standard(numbered.group(1)) if numbered else source
         by_source.setdefault(key, []).append((name, numbered.group(2) if numbered else None))
     for source, named in by_source.items():
         numbers = [n for _, n in named if n is not None]

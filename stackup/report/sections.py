@@ -149,8 +149,8 @@ def scenarios_section(facts, ranking, scenario_rankings):
         cells = {s: (f"**{fmt.ppm_number(other.loc[s, 'outside_window_ppm'])}**" if s in firsts else
                      fmt.ppm_number(other.loc[s, "outside_window_ppm"])) if s in other.index else "—"
                  for s in ranking.index}
-        rows.append({"kind": words.KIND[facts.scenario_about[label].kind], "scenario": label, **cells})
-    rows.append({"kind": "", "scenario": "none (the study, counted)",
+        rows.append({"scenario": label, **cells})
+    rows.append({"scenario": "none (the study, counted)",
                  **{s: fmt.ppm_number(1e6 * c / max(b, 1)) for s, c, b in
                     zip(ranking.index, ranking.outside_window_counted, _assembled(facts, ranking))}})
     lines = [words.SCENARIOS_INTRO, "", markdown_table(pd.DataFrame(rows)), ""]

@@ -91,14 +91,13 @@ METRICS = {"outside_window_ppm": "share outside the window",
            "alpha_over_limit_pct": "share of bearings over 20 % of the cycle in boundary friction",
            "shell_grades": "shell grades", "part_grades": "bore and journal grades", "stockout_ppm": "stock-outs",
            "surplus_pct": "surplus", "life_median_h": "median bearing life"}
-RANKING_RULE = ("Window {lo}–{hi} µm ({whose}). Metrics in turn: {metrics}. On each, the best scheme and those "
-                "not different from it (95 % intervals overlapping, or less than {negligible} ppm apart on the share "
-                "outside, 1 point on the surplus) go on to the next.")
+RANKING_RULE = ("Window {lo}–{hi} µm ({whose}). Metrics in turn: {metrics}; on each, the best scheme and those "
+                "level with it (95 % intervals overlapping, or under {negligible} ppm apart on the share outside, 1 "
+                "point on the surplus) go on to the next.")
 STUDY_WINDOW_PART, ENGINE_WINDOW_PART = "the study's", "the engine's"
 ESTIMATED_NOTE = "† Fewer than {fewest} bearings counted outside: {how}; counted: {counted}."
 COUNTED_PART = "{count} ({scheme})"
-CONDITIONAL_HOW = ("estimated with the shells integrated out (`stackup.design.estimate.outside_share`, without lots "
-                   "and stock-outs: reports/tails_vs_peers.md)")
+CONDITIONAL_HOW = "estimated with the shells integrated out (no lots or stock-outs: reports/tails_vs_peers.md)"
 SPLITTING_HOW = "estimated by generalized splitting through the assembly chain (`stackup.tail`)"
 NON_DISCRIMINATING = "The {metric}{same} does not separate the schemes here."
 SAME_VALUE_PART = " ({value:.3g} for every scheme)"
@@ -109,13 +108,12 @@ CENTRED_SOME_PART = "about {share} outside"
 CENTRED_NONE_PART = "none of its {bearings} bearings outside (below {upper} at 95 %)"
 
 # --- scenarios ------------------------------------------------------------------------------------------------
-SCENARIOS_INTRO = ("Each scenario reruns the study's engines with one change (same seed, same parts); shares outside "
-                   "the window counted [ppm] (no tail estimate); in bold the lowest and those the counts cannot tell "
-                   "from it.")
+SCENARIOS_INTRO = ("Each scenario reruns the study's engines with one change (same seed, same parts): the process "
+                   "scenarios, then the model uncertainties (below). Shares outside the window counted [ppm] (no tail "
+                   "estimate); in bold the lowest and those the counts cannot tell from it.")
 NO_SCENARIOS = "The comparison ran no scenarios."
 MODEL_RANGES = "Model-uncertainty ranges and what narrows them:"
 MODEL_RANGE = "- {input}: {source}. To narrow it: {measure}."
-KIND = {"process": "process", "model": "model"}
 
 # --- designed scheme ------------------------------------------------------------------------------------------
 DESIGNED = ("`{name}` was designed for this engine and window by `stackup.design` ({evaluations} candidate limit "
@@ -187,8 +185,7 @@ SUPPLY_PART = ", oil supplied at {supply:.0f} °C"
 ASSEMBLY = ("Of {bearings} bearings per scheme (and up to {shells} shells made), those not assembled stay in the "
             "dataset with their reason (`status`).")
 PLAN_NEEDS_ENGINES = ("Planning needs each engine's shell demand: run the study with `keep=\"everything\"`.")
-PLAN = ("`stackup.plan` on this study's own engines and shell lots, for {scheme}, the scheme to use (`stackup plan "
-        "--scheme NAME --volume N` plans any other):")
+PLAN = "For {scheme}, the scheme to use, from this study's engines and shell lots (`stackup plan` plans any other):"
 
 # --- methods and assumptions ----------------------------------------------------------------------------------
 PARTS = "- **Parts:** {housing}; {journal}; parts read outside their limits are scrapped."
