@@ -451,3 +451,9 @@ def test_a_long_source_is_cited_by_its_title():
     assert cited(short + ".") == short  # short enough: whole, without its full stop
     words = " ".join(["word"] * 40)
     assert cited(words) == " ".join(["word"] * 30) + " …"
+    # a citation is never cut inside its brackets: the first sentence then
+    source = ("Rozhdestvensky et al. 2018, Tribology in Industry 40 (Table 1: bearing diameter, width, clearance, "
+              "speed; cylinder bore and stroke). Part processes, spans, masses, section inertias and the pressure "
+              "model are assumptions of typical size for such an engine.")
+    assert cited(source) == ("Rozhdestvensky et al. 2018, Tribology in Industry 40 (Table 1: bearing diameter, width, "
+                             "clearance, speed; cylinder bore and stroke)")

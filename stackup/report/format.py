@@ -7,6 +7,8 @@ reached (a life the film never ends).
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 #: Micrometres per metre.
@@ -161,15 +163,22 @@ def spread(values, digits=0):
 CITED_WORDS = 30
 
 
+def _balanced(text):
+    return text.count("(") == text.count(")")
+
+
 def cited(text, limit=CITED_WORDS):
     """A source as the page cites it: whole when at most ``limit`` words; else its citation, the part before its
-    first ": " (an author and title, 2 to 15 words), or else its first clause (up to "; "); without a final full
-    stop. The full text stays in the engine file (the dataset's ``input_files``)."""
+    first ": " (an author and title, 2 to 15 words), or else its first sentence, or else its first clause (up to
+    "; "), each only with its brackets closed; else its first ``limit`` words and "…". Without a final full stop;
+    the full text stays in the engine file (the dataset's ``input_files``)."""
     text = " ".join(str(text).split()).rstrip(".;")
     if len(text.split()) <= limit:
         return text
     head = text.split(": ", 1)[0]
-    if 2 <= len(head.split()) <= 15:
+    if 2 <= len(head.split()) <= 15 and _balanced(head):
         return head
-    first = text.split("; ", 1)[0]
-    return first if len(first.split()) <= limit else " ".join(first.split()[:limit]) + " …"
+    for part in (re.split(r"(?<=[.?!])\s+(?=[A-Z])", text, maxsplit=1)[0].rstrip("."), text.split("; ", 1)[0]):
+        if len(part.split()) <= limit and _balanced(part):
+            return part
+    return " ".join(text.split()[:limit]) + " …"

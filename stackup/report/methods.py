@@ -152,15 +152,17 @@ def parameters_table(facts):
     rows = [(key, _text(value)) for key, value in facts.study.items
             if value is not None and (key in ALWAYS or _text(value) != defaults.get(key))]
     rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible)),
-             ("engine source", facts.sources.engine)]
+             ("engine source", " ".join(facts.sources.engine.split()))]
     by_source = {}
     for name, source in facts.sources.schemes.items():
-        numbered = re.fullmatch(r"(.*), scheme (\d+)", source)  # one document's numbered schemes: one row
-        key = _standard(numbered.group(1)) if numbered else source
+        # one document's numbered schemes (laid on the engine's drawing or not): one row
+        numbered = re.fullmatch(r"(.*?), scheme (\d+)(;.*)?", " ".join(source.split()))
+        key = (_standard(numbered.group(1)), numbered.group(3) or "") if numbered else (source, "")
         by_source.setdefault(key, []).append((name, numbered.group(2) if numbered else None))
-    for source, named in by_source.items():
+    for (source, after), named in by_source.items():
         numbers = [n for _, n in named if n is not None]
-        text = f"{source}, scheme{'s' if len(numbers) > 1 else ''} {', '.join(numbers)}" if numbers else source
+        text = (f"{source}, scheme{'s' if len(numbers) > 1 else ''} {', '.join(numbers)}{after}" if numbers
+                else source)
         rows.append((f"source of {', '.join(name for name, _ in named)}", text))
     return pd.DataFrame(rows, columns=["parameter", "value"])
 

@@ -48,7 +48,7 @@ COST_PARTS = {
     "alpha_over_limit_pct": "{a:.1f} % of bearings over 20 % of the cycle in boundary friction against {b:.1f} %",
     "shell_grades": "{a:.0f} shell grades against {b:.0f}",
     "part_grades": "{a:.0f} bore and journal grades against {b:.0f}",
-    "stockout_ppm": "{a:.0f} ppm stock-outs against {b:.0f}",
+    "stockout_ppm": "{a:,.0f} ppm stock-outs against {b:,.0f}",
     "surplus_pct": "{a:.1f} % of the shells left over against {b:.1f} %",
     "life_median_h": "median bearing life {a:,.0f} h against {b:,.0f} h",
 }
