@@ -33,8 +33,7 @@ PARAMETERS_DEFAULTS = "Parameters not listed are at their defaults (`stackup.stu
 WINDOW_PART = "the operating-clearance window {lo}–{hi} µm"
 CLEARANCE_PART = "operating clearance {mean:.1f} ± {std:.1f} µm"
 USE_ONLY = "**Use {scheme}**: {share} of its bearings fall outside {window} ({clearance})."
-USE_CLEARANCE = ("**Use {scheme}**: {share} outside {window} against {runner_share} for the next, {runner} "
-                 "({clearance}).{price}")
+USE_CLEARANCE = "**Use {scheme}**: {share} outside {window} against {runner_share} for {runner} ({clearance}).{price}"
 #: What the chosen scheme costs more than the next, where the clearance chose it.
 PRICE_PART = " It costs {costs}."
 USE_COST = "**Use {scheme}**: {reason}, so {decides}: {costs} ({clearance})."
@@ -76,7 +75,7 @@ CRANKS_LOST = "{share} of the crankshafts are scrapped (a journal read outside i
 NOT_GRADED_LOST = "{share} of {scheme}'s bearings have a part read outside every grade."
 STOCKOUTS_LOST = "{share} of {scheme}'s bearings wait for a shell (stock-outs)."
 SHELLS_LOST = "{scheme} scraps {share} of its shells."
-EDGE_NOTE = "Journal edges touch their shells in {share} of the bearings, a contact the lives do not count."
+EDGE_NOTE = "Journal edges touch their shells in {share} of the bearings; the lives ignore that contact."
 FAILURES_NOTE = "Stages failed on some engines (left out of the statistics): {lines}."
 NO_MECHANICS_NOTE = "The crankshaft, film and life stages did not run ({reason}): the ranking uses the clearance only."
 NONE_ASKED_PART = "the study asked for none, `mechanics_engines=0`"
