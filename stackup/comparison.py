@@ -123,6 +123,8 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         log("design: a scheme for the engine and its window (stackup.design)")
         designed = design_scheme(engine, window=study_options.get("window"), scenarios=scenarios, seed=seed,
                                  **design)
+        designed = replace(designed, scheme=replace(designed.scheme, name=_distinct_name(
+            designed.scheme.name, [load_scheme(s).name for s in schemes])))
         schemes = (*schemes, designed.scheme)
     study = Study(engine=engine, schemes=tuple(schemes), n_engines=n_engines, seed=seed, progress=progress,
                   **study_options)
@@ -182,6 +184,15 @@ def _scenario_runs(scenarios, uncertainties):
     return runs
 
 
+def _distinct_name(name, taken):
+    """``name``, or ``name-this-run`` (then ``-2``, ``-3``, ...) where a scheme given beside it has that name
+    (e.g. a scheme file an earlier ``stackup design`` wrote)."""
+    if name not in taken:
+        return name
+    candidates = (f"{name}-this-run", *(f"{name}-this-run-{k}" for k in range(2, len(taken) + 3)))
+    return next(c for c in candidates if c not in taken)
+
+
 @contextlib.contextmanager
 def _client(scheduler):
     """The scheduler for every study run of a comparison: "processes" becomes one local cluster for all of them."""
@@ -193,9 +204,23 @@ def _client(scheduler):
 
 
 def design_record(designed):
-    """What a :class:`~stackup.design.Design` found, as plain data for the dataset's ``design`` attribute."""
+    """What a :class:`~stackup.design.Design` found, as plain data for the dataset's ``design`` attribute.
+
+    Both figures of the designed scheme: on the design sample it was optimised on (``outside``,
+    ``objective``) and on the independent check sample no decision of the designer saw
+    (``check_outside`` with ``check_interval`` per scenario, ``check_objective``); ``levels``: the
+    ladder of shell grades (:mod:`stackup.design.ladder`): per number of grades asked, the grades and
+    :math:`J` of the design kept and the :math:`J` of each candidate tried.
+    """
+    check = designed.check
     return {"start": designed.start, "objective": designed.objective, "start_objective": designed.start_objective,
             "outside": designed.outside, "start_outside": designed.start_outside, "iso_outside": designed.iso,
+            "check_outside": check.outside, "check_interval": {k: list(v) for k, v in check.interval.items()},
+            "check_objective": check.objective, "check_objective_interval": list(check.objective_interval),
+            "check_samples": check.samples, "check_engines": check.engines,
+            "levels": [{"asked": step.asked, "grades": step.grades, "objective": step.objective,
+                        "kept": step.origin, "tried": step.candidates}
+                       for step in designed.levels],
             "mean_clearance_m": designed.mean_clearance, "start_mean_clearance_m": designed.start_mean_clearance,
             "seconds": designed.seconds, "evaluations": designed.evaluations, "notes": list(designed.scheme.notes),
             "start_text": scheme_text(designed.start)}

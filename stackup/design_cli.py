@@ -13,6 +13,9 @@ from __future__ import annotations
 import sys
 import time
 
+#: Fewest engines of a design sample (stackup.design.design's n_engines).
+MIN_ENGINES = 100
+
 
 def add_parser(subparsers):
     """Add ``design`` to the ``stackup`` subcommands (an ``argparse`` subparsers object)."""
@@ -39,12 +42,52 @@ def add_parser(subparsers):
     return p
 
 
+#: The library's parameter names as the options that set them, for messages in the command's words.
+OPTIONS = {"shell_grades": "--grades", "housing_grades": "--housing-grades", "journal_grades": "--journal-grades",
+           "n_engines": "--n", "seed": "--seed", "generations": "--generations", "start": "--start",
+           "engine": "--engine", "name": "--name"}
+
+
+def checked(args):
+    """The options of parsed ``args`` checked in the command's words (``ValueError`` naming the option and
+    what is valid); returns the window in m or None."""
+    from .design.problem import LABELS
+
+    for option, value in (("--grades", args.grades), ("--housing-grades", args.housing_grades),
+                          ("--journal-grades", args.journal_grades)):
+        if not 1 <= value <= len(LABELS):
+            raise ValueError(f"{option}: {value} is not valid; give a number of grades from 1 to {len(LABELS)}"
+                             + (" (1: ungraded)" if option != "--grades" else ""))
+    if args.n < MIN_ENGINES:
+        raise ValueError(f"--n: {args.n} is not valid; the design sample needs at least {MIN_ENGINES} engines")
+    for option, value in (("--seed", args.seed), ("--generations", args.generations)):
+        if value < 0:
+            raise ValueError(f"{option}: {value} is not valid; give a whole number >= 0")
+    if args.window is None:
+        return None
+    lo, hi = args.window
+    if not 0.0 < lo < hi < 1000.0:
+        raise ValueError(f"--window: {lo:g} {hi:g} um is not a clearance window; give LO HI in micrometres with "
+                         "0 < LO < HI < 1000, e.g. --window 45 65")
+    return lo * 1e-6, hi * 1e-6
+
+
+def in_options(error):
+    """``error`` (a ValueError of the library) with a leading parameter name spelled as its option."""
+    text = str(error)
+    for name, option in OPTIONS.items():
+        if text.startswith(f"{name}:"):
+            return ValueError(option + text[len(name):])
+    return error
+
+
 def run(args, state=None):
     """Design the scheme of parsed ``args``, write it, print its explanation."""
     from .design import design
     from .output import prepare_file, write_file
     from .scenarios import DECLARED
 
+    window = checked(args)
     out = prepare_file(args.out, force=args.force, option="--out")  # refused before the design runs
     t0 = time.perf_counter()
     terminal = sys.stdout.isatty()
@@ -52,12 +95,18 @@ def run(args, state=None):
     def log(line):
         print(f"[{time.perf_counter() - t0:5.1f} s] {line}" if not terminal else line, flush=True)
 
-    window = None if args.window is None else (args.window[0] * 1e-6, args.window[1] * 1e-6)
-    result = design(args.engine, window=window, shell_grades=args.grades, housing_grades=args.housing_grades,
-                    journal_grades=args.journal_grades, scenarios={} if args.no_scenarios else DECLARED,
-                    seed=args.seed, n_engines=args.n, start=args.start, generations=args.generations,
-                    name=args.name, log=log)
+    try:
+        result = design(args.engine, window=window, shell_grades=args.grades, housing_grades=args.housing_grades,
+                        journal_grades=args.journal_grades, scenarios={} if args.no_scenarios else DECLARED,
+                        seed=args.seed, n_engines=args.n, start=args.start, generations=args.generations,
+                        name=args.name, log=log)
+    except ValueError as error:
+        raise in_options(error) from None
     write_file(out, result.scheme.to_toml_text())
     print("\n".join(result.scheme.notes))
+    check = result.check
+    print(f"share outside the window, nominal: {result.outside['nominal'] * 1e6:.3g} ppm on the design sample, "
+          f"{check.outside['nominal'] * 1e6:.3g} [{check.interval['nominal'][0] * 1e6:.3g}, "
+          f"{check.interval['nominal'][1] * 1e6:.3g}] ppm on the independent check sample")
     print(f"scheme: {out}")
     return 0

@@ -37,6 +37,17 @@ mixed-integer programme (HiGHS through ``scipy.optimize.milp``). The shells
 are integrated out on the sample (:mod:`stackup.design.objective`), so
 shares of a few ppm are resolved by a few thousand engines.
 
+Shell grades one at a time (:mod:`stackup.design.ladder`): the design of
+``k`` grades starts from the design of ``k - 1`` with a grade split in two
+(nested starts), and a design asked for more grades is never worse on
+:math:`J` than the design of fewer (where no ``k``-grade design found does
+better, the one of fewer grades is kept and its notes say so).
+
+Check (:mod:`stackup.design.assess`): the designed scheme is scored again on
+an independent check sample no decision saw; both figures are reported
+(:attr:`Design.objective`, :attr:`Design.outside` on the design sample,
+:attr:`Design.check` on the check sample, with 95 % intervals).
+
 References
 ----------
 .. [1] Mease, D., Nair, V. N., Sudjianto, A., "Selective assembly in
@@ -53,24 +64,20 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._version import __version__
 from .. import _validate as check
 from .._validate import InRange, Integer, Positive, Window, validated
 from ..engines import load_engine
 from ..patterns import ISO_SCHEMES, adapt
 from ..plan import optimise_supply
 from ..scenarios import DECLARED
-from ..schemes import from_dict
 from ..schemes import load as load_scheme
+from .assess import CHECK_SAMPLES
+from .assess import check as check_design
 from .explain import notes
+from .ladder import climb
 from .objective import score
 from .problem import LABELS, Weights, build_problem
-from .search import search_shells
-from .session import Search
-from .tables import nm
 
-#: Nelder-Mead evaluations per shell grade limit after the differential evolution of the shell limits.
-POLISH_PER_LIMIT = 10
 #: Engines the optimal process mean of a sorted shell supply is stated for (stackup.plan.optimise_supply).
 SUPPLY_VOLUME = 10_000
 
@@ -87,10 +94,13 @@ class Design:
         :math:`J` of the designed scheme on the design sample [-].
     outside : dict of str -> float
         Share of bearings outside the window per sample ("nominal" and each scenario) [-].
+    check : Check
+        The designed scheme on the check sample, which decided nothing: share outside the window per
+        scenario with 95 % intervals, and :math:`J` (:class:`~stackup.design.assess.Check`).
     start : str
         Name of the scheme the design started from.
     start_objective : float
-        Its :math:`J` without the supply terms, with its preferred pairs [-].
+        Its :math:`J` with its preferred pairs, supply terms included (:meth:`Problem.expected_objective`) [-].
     start_outside : dict of str -> float
         Its share outside the window per sample [-].
     iso : dict of str -> dict of str -> float
@@ -112,11 +122,15 @@ class Design:
         Wall time of the design [s].
     evaluations : int
         Sets of housing and journal limits scored.
+    levels : tuple of Step
+        The ladder: the design of each number of shell grades up to this one
+        (:class:`~stackup.design.ladder.Step`).
     """
 
     scheme: object
     objective: float
     outside: dict
+    check: object
     start: str
     start_objective: float
     start_outside: dict
@@ -131,6 +145,7 @@ class Design:
     supply_centred_objective: float
     seconds: float
     evaluations: int
+    levels: tuple
 
 
 def scheme(engine="iso-example", **options):
@@ -211,119 +226,37 @@ def design(engine="iso-example", *, window=None, shell_grades=4, housing_grades=
                             weights=weights)
     log("ISO 13778 schemes, laid on the engine's drawing, on the design sample")
     patterns = {k: adapt(k, engine) for k in ISO_SCHEMES}
-    iso = {k: {s.label: score(scheme, s, window).outside for s in problem.samples} for k, scheme in patterns.items()}
-    start_scheme = (patterns[min(iso, key=lambda k: problem.objective(list(iso[k].values())))] if start is None
-                    else load_scheme(start))
-    search = Search(problem, seed=seed, x0=_encode_start(start_scheme, problem))
-    found, surplus, shortfall, aim = _search(search, start_scheme, generations=generations, seed=seed, log=log)
-    designed = _build(name or f"designed-{engine.name}", problem, found)
+    iso = {k: problem.expected(scheme) for k, scheme in patterns.items()}
+    start_scheme = min(patterns.values(), key=problem.expected_objective) if start is None else load_scheme(start)
+    name = name or f"designed-{engine.name}"
+    levels = climb(problem, start_scheme, generations=generations, seed=seed, log=log, name=name)
+    top = levels[-1]
+    log(f"check sample: the designed scheme on {CHECK_SAMPLES} x {n_engines:,} engines no decision saw")
+    checked = check_design(problem, top.scheme, seed=seed, n_engines=n_engines)
     log("process mean of a sorted shell supply (stackup.plan.optimise_supply)")
-    offer = optimise_supply(designed, engine, volume=SUPPLY_VOLUME, sample_engines=n_engines, seed=seed)
-    result = _design(problem, designed, start_scheme, iso=iso, surplus=surplus, shortfall=shortfall, aim=aim,
-                     offer=offer, t0=t0, evaluations=search.evaluations)
+    offer = optimise_supply(top.scheme, engine, volume=SUPPLY_VOLUME, sample_engines=n_engines, seed=seed)
+    result = _design(problem, top.scheme, start_scheme, top, iso=iso, check=checked, offer=offer, t0=t0,
+                     levels=levels)
     lines = notes(result, problem=problem, start_scheme=start_scheme, chosen=start is None, seed=seed,
                   n_engines=n_engines)
-    return replace(result, scheme=replace(designed, notes=tuple(lines)))
+    return replace(result, scheme=replace(top.scheme, notes=tuple(lines)))
 
 
-def _search(search, start_scheme, *, generations, seed, log):
-    """Shell limits by differential evolution and Nelder-Mead, then the final limits and pairing of them.
-
-    The starts: equal shell grades from the narrowest sortable width to a
-    wide one, and the start scheme's grades where their count matches.
-    Returns the :meth:`Search.finish` of the best limits: (Found, surplus,
-    shortfall, aim share).
-    """
-    problem = search.problem
-    k_s = problem.shell_grades
-    wide = max(2 * problem.min_width, problem.span / max(problem.levels - 1, 1) * (1 if problem.mixed else 2))
-    starts = [(np.arange(k_s + 1) - 0.5 * k_s) * w for w in np.linspace(problem.min_width, wide, 4)]
-    start_edges = _start_shells(start_scheme, k_s, problem.min_width)
-    if start_edges is not None:
-        starts.append(start_edges - problem.centre)
-    log(f"shell grades: differential evolution and Nelder-Mead over {k_s + 1} limits")
-    relative = search_shells(search.evaluate, starts, lower=np.array([-0.5 * wide] + [problem.min_width] * k_s),
-                             upper=np.array([0.5 * wide] + [2 * wide] * k_s), generations=generations,
-                             polish=POLISH_PER_LIMIT * (k_s + 1), seed=seed)
-    log("final limits and pairing (HiGHS)")
-    return search.finish(problem.on_grid(problem.centre + relative), log)
-
-
-def _design(problem, designed, start_scheme, *, iso, surplus, shortfall, aim, offer, t0, evaluations):
-    """The :class:`Design` of the scheme ``designed``: its scores and the start scheme's on the design sample
-    (``t0``: :func:`time.perf_counter` when the design began)."""
-    samples, window, weights = problem.samples, problem.window, problem.weights
-    start_scores = [score(start_scheme, s, window) for s in samples]
-    start_outside = {s.label: sc.outside for s, sc in zip(samples, start_scores)}
-    scores = [score(designed, s, window) for s in samples]
-    outside = {s.label: sc.outside for s, sc in zip(samples, scores)}
-    objective = problem.objective(list(outside.values())) + weights.surplus * surplus.sum() \
-        + weights.shortfall * shortfall.sum()
+def _design(problem, designed, start_scheme, top, *, iso, check, offer, t0, levels):
+    """The :class:`Design` of the scheme ``designed`` (the ladder's ``top`` rung): its scores and the start
+    scheme's on the design sample (``t0``: :func:`time.perf_counter` when the design began)."""
+    nominal, window = problem.samples[0], problem.window
+    start_outside = problem.expected(start_scheme)
     return Design(
-        scheme=designed, objective=objective, outside=outside, start=start_scheme.name,
-        start_objective=problem.objective(list(start_outside.values())), start_outside=start_outside, iso=iso,
-        mean_clearance=scores[0].mean_clearance, start_mean_clearance=start_scores[0].mean_clearance,
-        surplus=surplus, shortfall=shortfall, aim_share=aim, supply_mean=offer["mean"],
+        scheme=designed, objective=top.objective, outside=problem.expected(designed),
+        check=check, start=start_scheme.name,
+        start_objective=problem.expected_objective(start_scheme), start_outside=start_outside, iso=iso,
+        mean_clearance=score(designed, nominal, window).mean_clearance,
+        start_mean_clearance=score(start_scheme, nominal, window).mean_clearance,
+        surplus=top.surplus, shortfall=top.shortfall, aim_share=top.aim, supply_mean=offer["mean"],
         supply_mean_objective=offer["objective"], supply_centred_objective=offer["centred_objective"],
-        seconds=time.perf_counter() - t0, evaluations=evaluations)
-
-
-def _encode_start(start, problem):
-    """The start scheme's housing and journal limits as a point of the search cube, where the counts match."""
-    parts = []
-    for grades, limits, grid in ((start.housing, problem.housing, problem.housing_grid),
-                                 (start.journal, problem.journal, problem.journal_grid)):
-        if grades.fine or len(grades.labels) != limits.grades:
-            return None
-        lo, hi = grades.bins()
-        index = np.clip(np.searchsorted(grid.edges, nm(np.append(np.sort(lo), hi.max()))), 0, grid.bins)
-        index[0], index[-1] = 0, grid.bins
-        point = limits.encode(index)
-        if point is None:
-            return None
-        parts.append(point)
-    return np.concatenate(parts)
-
-
-def _start_shells(start, k, min_width):
-    """The start scheme's shell limits [m] if it has ``k`` grades no narrower than ``min_width`` (overlaps split)."""
-    if len(start.shell.labels) != k or not start.shell.graded:
-        return None
-    lo, hi = start.shell.bins()
-    edges = np.append(np.sort(lo), hi.max())
-    if np.any(np.diff(edges) < min_width - 1e-12):
-        return None
-    return edges
-
-
-def _build(name, problem, found):
-    """The designed scheme of a :class:`~stackup.design.session.Found` design."""
-    engine, window = problem.engine, problem.window
-
-    def mm(value_m):
-        return float(nm(value_m)) / 1e6
-
-    def dimension(grid, edges, limits):
-        if len(edges) == 2:
-            return {"limits": [mm(limits[0]), mm(limits[1])]}
-        metres = grid.metres(np.asarray(edges))
-        return {"grades": {LABELS[k]: [mm(metres[k]), mm(metres[k + 1])] for k in range(len(edges) - 1)}}
-
-    housing = dimension(problem.housing_grid, found.housing_edges, (engine.housing_bore.lo, engine.housing_bore.hi))
-    journal = dimension(problem.journal_grid, found.journal_edges, (engine.journal_d.lo, engine.journal_d.hi))
-    k_s = len(found.edges) - 1
-    shell = {"grades": {LABELS[k]: [mm(found.edges[k]), mm(found.edges[k + 1])] for k in range(k_s)}}
-    h_labels = list(housing.get("grades", {"-": None}))
-    j_labels = list(journal.get("grades", {"-": None}))
-    up, lo = found.upper, found.lower
-    table = {jl: {hl: f"{LABELS[up[h, j]]}+{LABELS[lo[h, j]]}" for h, hl in enumerate(h_labels)}
-             for j, jl in enumerate(j_labels)}
-    data = {"name": name,
-            "title": f"Designed for {engine.name}: {len(h_labels)} x {len(j_labels)} matrix, {k_s} shell grades",
-            "source": (f"stackup {__version__} stackup.design for engine {engine.name!r}, operating-clearance "
-                       f"window {window[0] * 1e6:.4g}-{window[1] * 1e6:.4g} um"),
-            "units": "mm", "housing": housing, "journal": journal, "shell": shell, "pairing": {"table": table}}
-    return from_dict(data)
+        seconds=time.perf_counter() - t0, evaluations=sum(level.evaluations for level in levels),
+        levels=tuple(level.step(k) for k, level in enumerate(levels, start=1)))
 
 
 __all__ = ["Design", "ISO_SCHEMES", "Weights", "design", "scheme"]

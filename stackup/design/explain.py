@@ -40,6 +40,9 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
         "(P_out: share of bearings outside the window; surplus, shortfall: planned shells per bearing).",
         f"Design sample: {n_engines:,} engines, seed {seed}, the same random numbers for every candidate and",
         "scenario; shells made to order aimed for the demand each design makes.",
+        f"Shell grades one at a time (1 to {len(design.levels)}): each number of grades also starts from the",
+        "design with one grade fewer, a grade split in two (the nested start), and keeps the better of the",
+        "search's result and the nested start; more grades are kept only where they lower J.",
         f"Scenarios: {', '.join(labels[1:]) or 'none'}"
         + (f"; left out (no effect on the clearance): {', '.join(p.skipped)}" if p.skipped else "") + ".",
         "Solvers (scipy): differential evolution and edge-by-edge line searches (housing, journal limits),",
@@ -54,16 +57,19 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
         f"  J = {design.objective * PPM:.4g} ppm; planned surplus {design.surplus.sum():.3f} and shortfall "
         f"{design.shortfall.sum():.4f} shells per bearing; mean operating clearance "
         f"{design.mean_clearance * PPM:.2f} um.",
+        *check_lines(design.check),
+        *ladder_lines(design.levels),
         f"Started from {start_scheme.name} ("
         + ("the ISO 13778 scheme with the lowest J on the design sample, " if chosen else "")
-        + f"J = {design.start_objective * PPM:.4g} ppm with its preferred pairs). What changed:",
+        + f"J = {design.start_objective * PPM:.4g} ppm with its preferred pairs, supply terms included). What changed:",
         f"  housing: {describe(start_scheme.housing)} -> {describe(s.housing)}",
         f"  journal: {describe(start_scheme.journal)} -> {describe(s.journal)}",
         f"  shells: {describe(start_scheme.shell)} -> {describe(s.shell)}",
         f"  mean operating clearance {design.start_mean_clearance * PPM:.2f} -> {design.mean_clearance * PPM:.2f} um "
         f"(window middle {0.5 * (window[0] + window[1]) * PPM:.4g} um);",
-        f"  P_out nominal {design.start_outside['nominal'] * PPM:.3g} -> {design.outside['nominal'] * PPM:.3g} ppm, "
-        f"worst scenario {_worst(design.start_outside) * PPM:.3g} -> {_worst(design.outside) * PPM:.3g} ppm.",
+        f"  P_out nominal {design.start_outside['nominal'] * PPM:.3g} -> {design.outside['nominal'] * PPM:.3g} ppm"
+        + (f", worst scenario {_worst(design.start_outside) * PPM:.3g} -> {_worst(design.outside) * PPM:.3g} ppm."
+           if len(design.outside) > 1 else "."),
         "",
         "Shell supply offered with these grades:",
     ]
@@ -84,3 +90,29 @@ def notes(design, *, problem, start_scheme, chosen, seed, n_engines):
 def _worst(outside):
     values = list(outside.values())[1:]
     return max(values) if values else np.nan
+
+
+def check_lines(check):
+    """The check sample's figures: share outside the window per scenario with its 95 % interval, and J."""
+    lo, hi = check.objective_interval
+    shares = [f"{label} {check.outside[label] * PPM:.3g} [{check.interval[label][0] * PPM:.3g}, "
+              f"{check.interval[label][1] * PPM:.3g}] ppm" for label in check.outside]
+    return [f"Independent check ({check.samples} samples of {check.engines:,} engines no decision of the designer saw; "
+            "95 % intervals):",
+            f"  P_out {'; '.join(shares)};",
+            f"  J = {check.objective * PPM:.4g} [{lo * PPM:.4g}, {hi * PPM:.4g}] ppm."]
+
+
+def ladder_lines(levels):
+    """One line per number of shell grades: J on the design sample and the design kept, and a line for each
+    number of grades that did no better than fewer."""
+    lines = ["Ladder (J on the design sample, ppm, of the design kept at each number of shell grades):"]
+    for step in levels:
+        tried = ", ".join(f"{origin} {j * PPM:.4g}" for origin, j in step.candidates.items())
+        lines.append(f"  {step.asked} shell grade{'s' if step.asked > 1 else ''}: {step.objective * PPM:.4g} "
+                     f"({step.origin}; tried: {tried})")
+    for step in levels:
+        if step.grades < step.asked:
+            lines.append(f"  No {step.asked}-grade design found did better than the {step.grades}-grade one: "
+                         f"it is kept, with {step.grades} grades.")
+    return lines

@@ -43,8 +43,10 @@ class WallSums:
     mean: np.ndarray  # (grades,) mean true wall [m]
     landing: np.ndarray  # (grades,) share of the shells made that land in each grade
 
-    def cdf(self, upper, lower):
-        """Cumulative distribution of ``s_upper + s_lower``: (points [m], probabilities) for np.interp."""
+    def cdf(self, upper, lower, scatter=None):
+        """Cumulative distribution of ``s_upper + s_lower``, or of ``s_upper + s_lower - r`` with ``r``
+        distributed as ``scatter`` (a :class:`Scatter`), independent of the shells: (points [m],
+        probabilities) for np.interp; None if a grade holds no shell."""
         a, b = self.pmf[upper], self.pmf[lower]
         ia, ib = np.flatnonzero(a), np.flatnonzero(b)
         if ia.size == 0 or ib.size == 0:
@@ -53,8 +55,27 @@ class WallSums:
         # the sum of two values in bins i and j lies in [i + j, i + j + 2) bins above twice the origin;
         # its mass is placed at the middle of that range and the CDF interpolated between mass points
         start = 2 * self.origin + (ia[0] + ib[0] + 1) * WALL_BIN
+        if scatter is not None:
+            # r in bin k sits at origin_r + (k + 0.5) step: the difference's mass points stay on the same step
+            conv = np.convolve(conv, scatter.pmf[::-1])
+            start = start - scatter.origin - (scatter.pmf.size - 0.5) * WALL_BIN
         x = start + WALL_BIN * np.arange(conv.size + 1) - 0.5 * WALL_BIN
         return x, np.concatenate(([0.0], np.cumsum(conv)))
+
+
+@dataclass(frozen=True)
+class Scatter:
+    """Histogram of a quantity on bins of :data:`WALL_BIN` from ``origin`` [m] (``pmf`` sums to 1): here what
+    a bearing's readings leave unexplained of the wall sum that puts it at an edge of the window."""
+
+    origin: float
+    pmf: np.ndarray
+
+    @classmethod
+    def of(cls, values):
+        origin = float(np.min(values)) - WALL_BIN
+        index = np.floor((np.asarray(values) - origin) / WALL_BIN).astype(np.int64)
+        return cls(origin, np.bincount(index) / index.size)
 
 
 def wall_sums(scheme, supply, normals, aim_share=None):

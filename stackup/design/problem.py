@@ -13,10 +13,13 @@ from scipy import special
 
 from .. import _validate as check
 from ..schemes import from_dict
-from .sample import clearance_changes, draw_sample
+from .objective import wall_sums
+from .sample import DESIGN_KEY, clearance_changes, draw_readings, draw_sample
 from .search import Limits
-from .tables import Binned, ReadoutGrid, allowed_pairs, cell_tables, nm
+from .tables import Binned, ReadoutGrid, allowed_pairs, cell_tables, expected_outside, nm
 
+#: Engines of the reading sample (:func:`~stackup.design.sample.draw_readings`) per engine of the design sample.
+READINGS_FACTOR = 25
 #: Labels of designed grades, thinnest shell (smallest bore, journal) first, as ISO 13778 schemes 4 and 5.
 LABELS = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
@@ -59,6 +62,8 @@ class Problem:
         clearance) binned on the read-out grids.
     skipped : list of str
         Declared scenarios left out because they do not change the clearance.
+    changes : dict of str -> dict
+        The scenario of each sample after the nominal one, by label (:mod:`stackup.scenarios`).
     housing_grid, journal_grid : ReadoutGrid
     housing, journal : Limits
         Grades and narrowest grade (in grid bins) of each dimension.
@@ -82,6 +87,7 @@ class Problem:
     window: tuple
     binned: Binned
     skipped: list
+    changes: dict
     housing_grid: ReadoutGrid
     journal_grid: ReadoutGrid
     housing: Limits
@@ -123,6 +129,20 @@ class Problem:
         shares = np.asarray(shares, dtype=float)
         return float(shares[0] + (self.weights.scenario * shares[1:].max() if shares.size > 1 else 0.0))
 
+    def expected(self, scheme):
+        """Expected share outside the window of a complete ``scheme`` per design sample, label -> share [-]
+        (:func:`~stackup.design.tables.expected_outside`: the tier the search minimises)."""
+        return {sample.label: expected_outside(scheme, self.binned, s)[0] for s, sample in enumerate(self.samples)}
+
+    def expected_objective(self, scheme):
+        """:math:`J` of a complete ``scheme`` on the design samples, supply terms included: its
+        :meth:`expected` shares and the planned surplus and shortfall for the demand its preferred pairs
+        make on the nominal sample [-]."""
+        shares = self.expected(scheme)
+        demand = expected_outside(scheme, self.binned, 0)[1]
+        surplus, shortfall, _ = self.balance(scheme, demand)
+        return self.objective(list(shares.values())) + self.supply_cost(surplus, shortfall)
+
     def on_grid(self, edges):
         """Shell limits [m] moved to the shell grid, no grade narrower than the narrowest sortable one."""
         grid = max(int(nm(self.shell_step)), 1)
@@ -150,22 +170,49 @@ class Problem:
         k = self.shell_grades
         return (np.bincount(up[nearest], minlength=k) + np.bincount(lo[nearest], minlength=k) + 1.0) / ideal.size
 
+    def balance(self, shells, demand, normals=None):
+        """Planned shells per bearing left over and missing for ``demand`` (grades,) with the shell grades of
+        ``shells``: (surplus, shortfall, aim share or None).
+
+        Shells made to order are aimed by the plan for the demand (:meth:`ShellSupply.aim_share`) and land
+        in the grades by the supply's spill matrix; one process sorted into grades lands in the shares its
+        shells (drawn from ``normals``, default the nominal design sample's) fall into.
+        """
+        supply = self.supply
+        if supply.mode == "to-order":
+            aim = supply.aim_share(shells, demand)
+            made = self.shells_per_bearing * supply.spill(shells) @ aim
+        else:
+            aim = None
+            normals = self.samples[0].shell_normals if normals is None else normals
+            made = self.shells_per_bearing * wall_sums(shells, supply, normals).landing
+        return np.maximum(made - demand, 0.0), np.maximum(demand - made, 0.0), aim
+
+    def supply_cost(self, surplus, shortfall):
+        """The supply terms of the objective for planned ``surplus`` and ``shortfall`` shells per bearing [-]."""
+        return self.weights.surplus * float(np.sum(surplus)) + self.weights.shortfall * float(np.sum(shortfall))
+
     def tables(self, shells, demand):
         """Cell tables of the shell grades of ``shells`` with aims planned for ``demand``."""
         return cell_tables(self.binned, shells, self.window, mixed=self.mixed, demand=demand)
 
 
+def draw_samples(engine, changes, *, n_engines, seed, window, key=DESIGN_KEY):
+    """The nominal sample and one per scenario of ``changes`` (label -> scenario), all from one random stream
+    (``key`` under ``seed``: :func:`~stackup.design.sample.draw_sample`)."""
+    return [draw_sample(engine, n_engines=n_engines, seed=seed, window=window, key=key)] + [
+        draw_sample(engine, n_engines=n_engines, seed=seed, window=window, scenario=change, label=label, key=key)
+        for label, change in changes.items()]
+
+
 def build_problem(engine, *, window, shell_grades, housing_grades, journal_grades, scenarios, seed, n_engines,
                   sort_share, readout, mixed, weights):
     """The :class:`Problem` of the designer's (validated) options."""
-    samples = [draw_sample(engine, n_engines=n_engines, seed=seed, window=window)]
-    skipped = []
-    for label, change in scenarios.items():
-        if clearance_changes(engine, change):
-            samples.append(draw_sample(engine, n_engines=n_engines, seed=seed, window=window, scenario=change,
-                                       label=label))
-        else:
-            skipped.append(label)
+    changes = {label: change for label, change in scenarios.items() if clearance_changes(engine, change)}
+    skipped = [label for label in scenarios if label not in changes]
+    samples = draw_samples(engine, changes, n_engines=n_engines, seed=seed, window=window)
+    readings = [draw_readings(engine, n_engines=READINGS_FACTOR * n_engines, seed=seed, scenario=change)
+                for change in [None, *changes.values()]]
     z = special.ndtri(0.5 * (1.0 + sort_share))  # half-width of the sortable grade in reading spreads
     housing_grid = ReadoutGrid.over(engine.housing_bore.lo, engine.housing_bore.hi,
                                     max(readout, engine.housing_bore.gauge.resolution))
@@ -188,8 +235,9 @@ def build_problem(engine, *, window, shell_grades, housing_grades, journal_grade
     design_matrix = np.column_stack([np.ones(ideal.size), nominal.housing_reading, nominal.journal_reading])
     coef = np.linalg.lstsq(design_matrix, ideal, rcond=None)[0]
     return Problem(
-        engine=engine, window=window, binned=Binned.of(samples, housing_grid, journal_grid, window),
-        skipped=skipped, housing_grid=housing_grid, journal_grid=journal_grid, housing=housing, journal=journal,
+        engine=engine, window=window, binned=Binned.of(samples, readings, housing_grid, journal_grid, window),
+        skipped=skipped, changes=changes, housing_grid=housing_grid, journal_grid=journal_grid, housing=housing,
+        journal=journal,
         shell_grades=shell_grades, mixed=mixed, shell_step=shell_step, min_width=max(2 * z * spread, shell_step),
         ideal=coef, centre=0.5 * float(np.median(ideal)),
         span=float(np.diff(np.quantile(ideal, [1e-3, 1 - 1e-3]))[0]), weights=weights, sort_share=sort_share)

@@ -33,6 +33,12 @@ from ..study.scenario import apply as apply_scenario
 #: Spawn key of the design sample: apart from a study's lots (0, 1, ...) and its
 #: pilot (2**63), so a study run with the same seed validates on other parts.
 DESIGN_KEY = 2**63 + 1
+#: Spawn key of the reading sample: housing and journal readings of many engines, whose distribution
+#: weights the grid bins of the cell tables (:mod:`stackup.design.tables`).
+READINGS_KEY = 2**63 + 4
+#: Spawn key of the check sample (its sub-sample k under ``SeedSequence(seed, spawn_key=(k,))``): parts
+#: no decision of the designer saw, for the figures it reports beside the design sample's.
+CHECK_KEY = 2**63 + 3
 #: Half step of the central difference of the operating clearance in the shell wall [m].
 WALL_STEP = 2.5e-6
 
@@ -78,6 +84,27 @@ class DesignSample:
         return self.clearance_offset - self.wall_factor * wall_sum
 
 
+@dataclass(frozen=True)
+class Readings:
+    """Gauge readings of the housing bores of the blocks kept and of the journals of the crankshafts kept [m].
+
+    An engine is built when its block and its crankshaft are kept, two independent events, so the
+    readings of one built bearing are distributed as the product of these two distributions.
+    """
+
+    housing: np.ndarray
+    journal: np.ndarray
+
+
+def draw_readings(engine, *, n_engines, seed, scenario=None, key=READINGS_KEY):
+    """:class:`Readings` of ``n_engines`` engines of ``engine`` (with ``scenario`` applied), from the stream
+    ``key`` under ``seed``."""
+    engine = apply_scenario(engine, scenario or {})
+    parts, _ = draw_lot(engine, lot_generator(seed_sequence(seed), key), n_engines)
+    return Readings(parts.housing_reading[~parts.block_scrapped].ravel(),
+                    parts.journal_reading[~parts.crank_scrapped].ravel())
+
+
 def clearance_changes(engine, scenario):
     """True if ``scenario`` changes what the operating clearance depends on (parts, gauges, shells)."""
     other = apply_scenario(engine, scenario)
@@ -85,10 +112,14 @@ def clearance_changes(engine, scenario):
                                                                       engine.shell_wall)
 
 
-def draw_sample(engine, *, n_engines, seed, window, scenario=None, label="nominal"):
-    """The design sample of ``engine`` (with ``scenario`` applied) for a clearance ``window`` [m]."""
+def draw_sample(engine, *, n_engines, seed, window, scenario=None, label="nominal", key=DESIGN_KEY):
+    """The design sample of ``engine`` (with ``scenario`` applied) for a clearance ``window`` [m].
+
+    ``key`` is the spawn key of its random stream under ``seed``: :data:`DESIGN_KEY` (the search's sample),
+    :data:`CHECK_KEY` (the check sample).
+    """
     engine = apply_scenario(engine, scenario or {})
-    parts, normals = draw_lot(engine, lot_generator(seed_sequence(seed), DESIGN_KEY), n_engines)
+    parts, normals = draw_lot(engine, lot_generator(seed_sequence(seed), key), n_engines)
     built = np.broadcast_to(~(parts.block_scrapped | parts.crank_scrapped)[:, None], parts.housing_bore.shape)
     bore, journal = parts.housing_bore[built], parts.journal_d[built]
     # each bearing gets the crush heights of two shells of the sample within the crush limits

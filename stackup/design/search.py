@@ -173,7 +173,7 @@ def search_shells(evaluate, starts, *, lower, upper, generations, polish, seed):
 
     The variables are the middle of the shell range and the width of each
     grade, bounded by ``lower`` and ``upper`` (so widths never fall below
-    the sorting limit). Differential evolution (scipy; ``generations`` generations of
+    the sorting limit), widened to hold every start. Differential evolution (scipy; ``generations`` generations of
     four candidates per variable, the best of ``starts`` in the first)
     explores the shell grades; bounded Nelder-Mead with at most ``polish``
     evaluations refines the best.
@@ -189,7 +189,9 @@ def search_shells(evaluate, starts, *, lower, upper, generations, polish, seed):
     def f(v):
         return evaluate(to_edges(v))
 
-    points = [np.clip(from_edges(e), lower, upper) for e in starts]
+    raw = np.array([from_edges(e) for e in starts])
+    lower, upper = np.minimum(lower, raw.min(axis=0)), np.maximum(upper, raw.max(axis=0))  # every start inside
+    points = list(raw)
     values = [f(v) for v in points]
     best = points[int(np.argmin(values))]
     bounds = list(zip(lower, upper))

@@ -120,10 +120,11 @@ class Search:
                                          tables).objective
         return self.cache[key]
 
-    def finish(self, edges, log):
+    def finish(self, edges, log, limits=()):
         """The best design with shell limits ``edges`` [m]: the search's, or one of a final, longer search of
-        the limits with the cheapest pairs or the pairs of the MILP (:func:`choose_pairs`), whichever
-        has the lowest objective with the planned surplus and shortfall added. Returns
+        the limits with the cheapest pairs or the pairs of the MILP (:func:`choose_pairs`), or one of the
+        housing and journal ``limits`` given (pairs (grid indices, grid indices), e.g. a nested start's),
+        whichever has the lowest objective with the planned surplus and shortfall added. Returns
         (Found, surplus, shortfall, aim share)."""
         p = self.problem
         shells = p.shell_scheme(edges)
@@ -132,31 +133,30 @@ class Search:
         landing = None if spill is not None else wall_sums(shells, supply, p.samples[0].shell_normals).landing
 
         def balance(found):
-            demand = found.demand[0]
-            if spill is not None:
-                aim = supply.aim_share(shells, demand)
-                made = p.shells_per_bearing * spill @ aim
-            else:
-                aim, made = None, p.shells_per_bearing * landing
-            surplus, shortfall = np.maximum(made - demand, 0.0), np.maximum(demand - made, 0.0)
-            total = found.objective + p.weights.surplus * surplus.sum() + p.weights.shortfall * shortfall.sum()
-            return total, found, surplus, shortfall, aim
+            surplus, shortfall, aim = p.balance(shells, found.demand[0])
+            return found.objective + p.supply_cost(surplus, shortfall), found, surplus, shortfall, aim
 
         best = None
         if self.best is not None and np.array_equal(nm(self.best.edges), nm(edges)):
             best = balance(self.best)
-        for _ in range(FINAL_ROUNDS):
+        rounds = [None] * FINAL_ROUNDS + [tuple(map(np.asarray, pair)) for pair in limits]
+        for given in rounds:
             tables = p.tables(shells, self.demand(edges))
-            limits, cheapest = self.limits(tables, popsize=10, maxiter=100)
-            h, j = limits.housing_edges[None], limits.journal_edges[None]
-            outside = cell_sums(tables.outside, h, j)[:, :, 0] / tables.bearings[:, None, None, None]
-            count = cell_sums(tables.count[:1], h, j)[0, 0] / tables.bearings[0]
-            tie = tie_break(tables, p.housing_grid, p.journal_grid, h, j, p.ideal_at)[:, 0]
+            if given is None:
+                found_limits, cheapest = self.limits(tables, popsize=10, maxiter=100)
+                h, j = found_limits.housing_edges, found_limits.journal_edges
+            else:
+                h, j = given
+                tie = tie_break(tables, p.housing_grid, p.journal_grid, h[None], j[None], p.ideal_at)
+                cheapest = score_limits(tables, h[None], j[None], scenario_weight=p.weights.scenario, tie=tie).pair[0]
+            outside = cell_sums(tables.outside, h[None], j[None])[:, :, 0] / tables.bearings[:, None, None, None]
+            count = cell_sums(tables.count[:1], h[None], j[None])[0, 0] / tables.bearings[0]
+            tie = tie_break(tables, p.housing_grid, p.journal_grid, h[None], j[None], p.ideal_at)[:, 0]
             milp = choose_pairs(outside, count, tables.pairs, p.shell_grades, scenario_weight=p.weights.scenario,
                                 surplus_weight=p.weights.surplus, shortfall_weight=p.weights.shortfall,
                                 shells_per_bearing=p.shells_per_bearing, spill=spill, landing=landing, tie=tie)
             for pair in (milp.pair, cheapest):
-                found = self.score(edges, shells, limits.housing_edges, limits.journal_edges, pair, tables)
+                found = self.score(edges, shells, h, j, pair, tables)
                 log(f"  limits and pairs: J {found.objective * 1e6:.4g} ppm "
                     f"(outside per sample {np.round(found.shares * 1e6, 1)} ppm)")
                 candidate = balance(found)
