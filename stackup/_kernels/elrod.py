@@ -1,7 +1,7 @@
 r"""The ``elrod-coarse`` cycle tier's kernels: Elrod's universal variable on a coarse grid, Newton per step (numba).
 
 The readable statement (equations, units, sources) is in :mod:`stackup.film.elrod`;
-``tests/film/test_elrod.py`` holds the numpy twin these kernels must match. Everything
+``tests/test_elrod.py`` holds the numpy twins these kernels must match. Everything
 is dimensionless as in :mod:`stackup.film.transient`: :math:`\bar h = h/c`,
 :math:`\bar z = z/R`, :math:`\tau = \omega t`, :math:`\bar p = p c^2/(\mu\omega R^2)`.
 
@@ -16,8 +16,9 @@ uneven) is
 
 (:math:`c_t g_P \bar h_P - H_P` is 12 times the content's time derivative by BDF2). The
 residual is piecewise linear in :math:`\phi`: the step's nodes and the journal centre
-:math:`\xi` (and the tilt slopes :math:`s`, with the tilt equilibrium) are solved
-together by a semismooth Newton method, the force balance :math:`\bar F(\phi) = \bar W`
+:math:`\xi` are solved together by a semismooth Newton method (the tilt slopes
+:math:`s` are imposed; :func:`assemble` also gives their columns, ``n_unknowns`` 4,
+for a tilt equilibrium the tier does not solve yet), the force balance :math:`\bar F(\phi) = \bar W`
 bordering the field's Jacobian, which is block cyclic tridiagonal (a block per
 angle: the nodes over the width) and is factored directly.
 """
@@ -361,8 +362,12 @@ def solve(inverse, west, ahead, last, below, bottom, b):
 
 
 #: Work arrays of one bearing's march (allocated once per bearing by :func:`workspace`).
-Work = namedtuple("Work", ("h", "dh", "he", "dhe", "hn", "dhn", "pressure", "d_pressure", "fill", "d_fill", "residual", "diag", "west", "east", "coupling",
+Work = namedtuple("Work", ("h", "dh", "he", "dhe", "hn", "dhn", "pressure", "d_pressure", "fill", "d_fill",
+                           "residual", "diag", "west", "east", "coupling",
                            "force_rows", "inverse", "ahead", "last", "below", "bottom", "scratch", "rhs", "saved"))
+#: The unit of the force balance's tolerance is the cycle's largest load, at least this (per mu omega R^4 / c^2:
+#: a journal without load is balanced to the tolerance of this force).
+SMALLEST_SCALE = 1e-3
 #: Most halvings of a Newton step whose residuals do not fall; Newton gives up after this many short steps in a
 #: row (a tenth of the step or less).
 LINE_SEARCH = 8
@@ -390,7 +395,8 @@ def _evaluate(phi, xi, slope, history, c_time, target, scale, grid, smoothing, w
     """
     film(xi, slope, grid, work.h, work.dh, work.he, work.dhe, work.hn, work.dhn)
     fields(phi, grid, smoothing, work.pressure, work.d_pressure, work.fill, work.d_fill)
-    force = assemble((work.pressure, work.d_pressure, work.fill, work.d_fill), (work.h, work.dh, work.he, work.dhe, work.hn, work.dhn), history, c_time, grid, 2,
+    force = assemble((work.pressure, work.d_pressure, work.fill, work.d_fill),
+                     (work.h, work.dh, work.he, work.dhe, work.hn, work.dhn), history, c_time, grid, 2,
                      work.residual, work.diag, work.west, work.east, work.coupling, work.force_rows)
     g0 = force[0] - target[0]
     g1 = force[1] - target[1]
@@ -480,7 +486,8 @@ def balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limi
                 y1 *= limit / e
             xi[0] = y0
             xi[1] = y1
-            trial, g0, g1, worst = _evaluate(phi, xi, slope, history, c_time, target, scale, grid, tol.smoothing, work, free)
+            trial, g0, g1, worst = _evaluate(phi, xi, slope, history, c_time, target, scale, grid, tol.smoothing, work,
+                                             free)
             if trial <= (1.0 - 1e-4 * alpha) * merit:
                 break
             alpha *= 0.5
@@ -678,7 +685,7 @@ def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, 
     history = np.empty((n_t, n_z))
     target = np.empty(2)
     tilt = np.empty(2)
-    scale = 1e-300
+    scale = SMALLEST_SCALE
     for k in range(n):
         scale = max(scale, abs(w[k, 0]) + abs(w[k, 1]))
     xi = xi0.copy()

@@ -37,8 +37,9 @@ flux through a face with :math:`\bar h^3` at the face, Couette flux
 at both ends, the engine's groove (or hole) held full at its supply pressure.
 Without tilt the film is symmetric about the mid-plane and only half the width
 is solved. Time: BDF2 on the content (variable step, backward Euler at the first
-step) at the crank angles given (every ``stride``-th: the loads between are not
-read, the film is interpolated back onto every angle).
+step), the step sized to the change of the journal centre from its prediction
+(:data:`STEP_TOLERANCE`); loads and tilt linear between the crank angles given,
+the outputs linear between steps onto every angle.
 
 Each step is one nonlinear system: the nodes' :math:`\phi` and the journal centre
 :math:`\xi` (massless journal, Booker [3]_: the film force equals the load). The node
@@ -102,7 +103,7 @@ BALANCE_TOLERANCE = 1e-6
 MAX_NEWTON = 25
 #: Width of the band of the universal variable over which the switch between pressure and fill is smoothed
 #: (pressure per mu omega R^2 / c^2, fill): p (1 - g) = SMOOTHING^2 / 4.
-SMOOTHING = 1e-3
+SMOOTHING = 1e-2
 #: Periodic when the journal returns after a cycle to within this share of the thinnest film.
 PERIODIC = 2e-3
 #: The feed when none is given: a patch on the block side (Theta = pi), its width [rad] and share of the length
@@ -253,7 +254,7 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
         slope = np.zeros((n, 2)) if tilt is None else np.ascontiguousarray(tilt[idx] * r / c_b)
         work = _kernel.workspace(g.fixed.shape[0], g.fixed.shape[1], g.j0, 2)
         record, outs = np.empty((n, 2)), np.empty((n, 3))
-        status[idx], used[idx], n_steps, iterations, leaps = _kernel.march(
+        status[idx], used[idx], _, _, _ = _kernel.march(
             np.ascontiguousarray(loads[idx] / unit_force), tau, slope, np.array(start[idx] / c_b, dtype=float), g,
             tol, stepping, ECCENTRICITY_LIMIT, PERIODIC, int(cycles), work, record, outs)
         position[idx] = record * c_b
@@ -266,14 +267,3 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
     return Orbit(h_min, h_edge, ecc, position, out["peak"], out["torque"], out["flow"], status, used,
                  np.asarray(speed, dtype=float), tilt, tilt, None)
 
-
-def _onto_angles(values, steps, n):
-    """Values at the step angles (m, ...) linearly onto every angle (n, ...), periodic over the cycle."""
-    if steps.size == n:
-        return values
-    x = np.append(steps, n)
-    v = np.concatenate([values, values[:1]])
-    at = np.arange(n)
-    if v.ndim == 1:
-        return np.interp(at, x, v)
-    return np.stack([np.interp(at, x, v[:, k]) for k in range(v.shape[1])], axis=-1)
