@@ -112,7 +112,7 @@ from .elrod import elrod_orbit
 from .transient import transient_orbit
 
 #: Cycle tiers :func:`orbit` runs (``method``), cheapest first; the study's film methods are the same names.
-METHODS = ("short", "finite", "mobility", "mobility-finite", "reynolds", "elrod-coarse", "reynolds-transient")
+METHODS = ("short", "finite", "mobility", "mobility-finite", "elrod-coarse", "reynolds", "reynolds-transient")
 #: Quasi-static tiers (a steady tier at each angle) and dynamic ones (an orbit integrated over cycles).
 QUASI_STATIC = ("short", "finite", "reynolds")
 DYNAMIC = ("mobility", "mobility-finite", "elrod-coarse", "reynolds-transient")
