@@ -298,7 +298,7 @@ def _dimension(top, key, *, scale, units, plausible, what, required=True):
     lo, hi = t.lengths("limits", count=2, required=True, scale=scale, units=units, plausible=plausible, what=what,
                        increasing=True)
     field = f"{t.where}, key {t.path}"
-    process = process_from_spec(t.get("process", {}), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
+    process = process_from_spec(t.get("process", required=True), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
     gauge_table = t.get("gauge")
     gauge = gauge_from_spec(gauge_table, scale=scale, field=f"{field}.gauge")
     shared = t.number("shared", 0.0, lo=0.0, hi=1.0, hi_open=True)

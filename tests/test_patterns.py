@@ -1,5 +1,6 @@
 """ISO 13778's schemes laid on an engine's own drawing (stackup.patterns)."""
 
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -14,6 +15,17 @@ from stackup.schemes import from_dict, load
 
 #: An engine file of another size and bearing count, written as a user would (tests/data).
 INLINE_SIX = Path(__file__).parent / "data" / "inline6.toml"
+README = Path(__file__).parents[1] / "README.md"
+
+
+def readme_engine(tmp_path):
+    """The smallest engine file of the README's "Your own engine", written to ``tmp_path``."""
+    text = README.read_text(encoding="utf-8")
+    block = re.search(r"A seven-bearing inline six.*?```toml\n(.*?)```", text, re.S)
+    assert block, "README.md: the engine-file example of 'Your own engine' is missing"
+    path = tmp_path / "readme-six.toml"
+    path.write_text(block.group(1), encoding="utf-8")
+    return path
 
 
 def _drawn(engine, *, housing=None, journal=None):
@@ -108,6 +120,19 @@ def test_adapted_schemes_grade_the_engines_bearings(engine, name):
     h, j = scheme.grade_indices(parts.housing_reading[built], parts.journal_reading[built])
     upper, _ = scheme.pair_indices(h, j)
     assert np.mean(upper >= 0) >= 0.95
+
+
+def test_the_readmes_engine_file_loads_and_its_iso_schemes_grade_its_bearings(tmp_path):
+    """The README's engine file is complete: it loads strictly, has a window and a crank, and is graded."""
+    engine = load_engine(readme_engine(tmp_path))
+    assert engine.main_bearings == 7 and engine.crank is not None
+    assert engine.clearance_window == pytest.approx((0.00075 * 59.981e-3, 0.00125 * 59.981e-3))
+    parts, _ = draw_lot(engine, lot_generator(seed_sequence(1), 0), 2000)
+    built = ~(parts.block_scrapped | parts.crank_scrapped)
+    for name in ISO_SCHEMES:
+        h, j = adapt(name, engine).grade_indices(parts.housing_reading[built], parts.journal_reading[built])
+        upper, _ = adapt(name, engine).pair_indices(h, j)
+        assert np.mean(upper >= 0) >= 0.95, name
 
 
 def test_adapted_scheme_file_reads_back_identically(tmp_path):
