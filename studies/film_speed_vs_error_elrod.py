@@ -37,7 +37,7 @@ TARGET_ERROR = 0.05
 TARGET_SECONDS = 0.050
 #: Grids and step tolerances measured; the tier's defaults first.
 VARIANTS = (dict(), dict(n_theta=36), dict(n_theta=72), dict(n_land=4), dict(step_tolerance=0.02, largest_step=8.0),
-            dict(step_tolerance=0.005, largest_step=8.0), dict(groove="reference grid"))
+            dict(step_tolerance=0.1, largest_step=20.0), dict(groove="reference grid"))
 #: Main bearings run (4 and 5 of these engines mirror 2 and 1: the same cycle statistics, as the reference's table
 #: above shows).
 BEARINGS = (0, 1, 2)
@@ -130,7 +130,9 @@ def section(cases, bearings, out, seconds, reference, ref_seconds):
         f"{seconds[default] / seconds['mobility-finite']:,.0f} times `mobility-finite` and "
         f"{ref_seconds / seconds[default]:,.0f} times less than the reference (its time from its own run, "
         "possibly under another load): the speed target is "
-        f"{'met' if fast else 'missed'} on this machine ({load_note()}). Against the same reference `mobility-finite` "
+        f"{'met' if fast else 'missed'} on this machine ({load_note()}: on a shared, loaded machine the times, and "
+        "the ratios between the variants below, are uncertain; rerun on an idle one before reading the speed "
+        "against the target). Against the same reference `mobility-finite` "
         f"is off by {100 * abs(worst_of(out['mobility-finite'], reference, 'h_min')):.1f} % and "
         f"{100 * abs(worst_of(out['mobility-finite'], reference, 'h_min_mean')):.1f} %. "
         + groove_note(bearings, out, reference, default, snapped),

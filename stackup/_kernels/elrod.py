@@ -128,14 +128,8 @@ def assemble(state, films, history, c_time, grid, n_unknowns, residual, diag, we
     dt = grid.dtheta
     it2 = 1.0 / (dt * dt)
     couette = 6.0 / dt
-    force = np.zeros(2)
+    force = film_force(pr, grid)
     diag[:] = 0.0
-    for i in range(n_t):
-        s = 0.0
-        for j in range(n_z):
-            s += grid.weight[j] * pr[i, j]
-        force[0] += s * grid.normal[0, i] * dt
-        force[1] += s * grid.normal[1, i] * dt
     for i in range(n_t):
         im = i - 1 if i > 0 else n_t - 1
         ip = i + 1 if i + 1 < n_t else 0
@@ -203,20 +197,6 @@ def assemble(state, films, history, c_time, grid, n_unknowns, residual, diag, we
                                            + n_p * node) * z + n_p * (north * grid.z_north[j] + south * z_s))
                     force_rows[i, r, k] = weight * n_p * z
     return force
-
-
-@njit(cache=True, fastmath=FAST)
-def moment(pressure, grid):
-    """Film moment about the mid-plane (2,): sum of p z n over the nodes (per unit of mu omega R^5 / c^2)."""
-    n_t, n_z = pressure.shape
-    out = np.zeros(2)
-    for i in range(n_t):
-        s = 0.0
-        for j in range(n_z):
-            s += grid.weight[j] * grid.z[j] * pressure[i, j]
-        out[0] += s * grid.normal[0, i] * grid.dtheta
-        out[1] += s * grid.normal[1, i] * grid.dtheta
-    return out
 
 
 @njit(cache=True, fastmath=FAST)

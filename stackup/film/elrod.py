@@ -90,8 +90,8 @@ N_THETA = 48
 N_LAND = 2
 #: Time steps: the change of the journal centre from its prediction allowed per step, as a share of the film left
 #: (the local error the steps are sized to), the largest step and the first and smallest [deg of crank angle].
-STEP_TOLERANCE = 0.1
-LARGEST_STEP = 20.0
+STEP_TOLERANCE = 0.05
+LARGEST_STEP = 12.0
 FIRST_STEP = 1.0
 SMALLEST_STEP = 1.0 / 64
 #: A step this short [deg] that finds no balance near its prediction leaps (the journal crosses the clearance).
