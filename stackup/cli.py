@@ -85,14 +85,15 @@ def _compare(args, state):
     log = _Log(state)
     try:
         result = stackup.compare(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed,
-                                 scenarios=scenarios, design=design, log=log, window=window,
+                                 scenarios=scenarios, uncertainties=None if args.no_scenarios else "declared",
+                                 negligible=args.negligible, design=design, log=log, window=window,
                                  scheduler="processes" if args.processes else None)
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
         data = save_comparison(result, staged.staging / "compare.nc", compact=args.compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
         saved = open_comparison(data)  # the report reads what was saved, nothing else
         write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
-                     tails=saved.tails, dataset_file=data.name)
+                     tails=saved.tails, dataset_file=data.name, volume=args.volume)
         folder = staged.commit()
     except BaseException:
         staged.discard()
@@ -165,7 +166,8 @@ def _report(args, state):
     same = out.resolve() == path.parent.resolve()
     try:
         write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
-                     tails=saved.tails, dataset_file=path.name if same else str(path.resolve()))
+                     tails=saved.tails, dataset_file=path.name if same else str(path.resolve()),
+                     negligible=args.negligible, volume=args.volume)
         staged.commit()
     except BaseException:
         staged.discard()
@@ -443,6 +445,17 @@ class _Formatter(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescription
         return super()._get_help_string(action)
 
 
+def _share_ppm(text):
+    """A share of bearings in ppm, zero or more."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of ppm") from None
+    if not value >= 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text} ppm is not a share of bearings >= 0")
+    return value
+
+
 def _count(minimum, what):
     def parse(text):
         try:
@@ -493,7 +506,13 @@ def _compare_parser(sub):
     cmp_.add_argument("--quick", action="store_true",
                       help=f"a smaller run: {QUICK_ENGINES} engines, written to {QUICK_OUT} (the designer, tails and "
                            "Sobol stages do not shrink with it: add --no-design to skip the designer)")
-    cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
+    cmp_.add_argument("--no-scenarios", action="store_true",
+                      help="skip the robustness scenarios (process and model uncertainty)")
+    cmp_.add_argument("--negligible", type=_share_ppm, default=1.0, metavar="PPM",
+                      help="shares of bearings outside the window less than this apart do not separate schemes; "
+                           "cost decides between them (default: 1 ppm)")
+    cmp_.add_argument("--volume", type=_count(1, "engines"), default=10_000, metavar="ENGINES",
+                      help="production volume the report's shell plan is for (default: 10000)")
     cmp_.add_argument("--processes", action="store_true",
                       help="run the study and its scenarios on one local worker process per core (dask; the same "
                            "numbers, faster on a large run)")
@@ -518,6 +537,11 @@ def _report_parser(sub):
                          epilog="example:\n  stackup report reports/compare/compare.nc")
     rpt.add_argument("dataset", metavar="DATASET", help="compare.nc written by `stackup compare`")
     rpt.add_argument("--out", metavar="FOLDER", help="folder for the report (default: the dataset's folder)")
+    rpt.add_argument("--negligible", type=_share_ppm, metavar="PPM",
+                     help="shares outside the window less than this apart do not separate schemes (default: the "
+                          "comparison's)")
+    rpt.add_argument("--volume", type=_count(1, "engines"), default=10_000, metavar="ENGINES",
+                     help="production volume the shell plan is for (default: 10000)")
     rpt.set_defaults(func=_report)
 
 
@@ -594,6 +618,7 @@ def _store_parser(sub):
 def parser():
     """The ``stackup`` argument parser."""
     from .design_cli import add_parser as add_design_parser
+    from .measure_cli import add_parser as add_measure_parser
 
     top = argparse.ArgumentParser(prog="stackup", formatter_class=_Formatter, description=(
         "Monte Carlo tolerance stack-up and ISO 13778 selective assembly of engine main bearings."),
@@ -605,6 +630,7 @@ def parser():
     _plan_parser(sub)
     _listing_parsers(sub)
     add_design_parser(sub).formatter_class = _Formatter
+    add_measure_parser(sub).formatter_class = _Formatter
     _store_parser(sub)
     return top
 

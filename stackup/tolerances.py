@@ -246,6 +246,88 @@ class ToolWear(_TabulatedQuantile):
         return replace(self, start=self.start + delta, end=self.end + delta)
 
 
+#: Largest skewness a skew-normal distribution can have, :math:`\sqrt{2}(4-\pi)/(\pi-2)^{3/2}` (its
+#: half-normal limit).
+MAX_SKEWNESS = float(np.sqrt(2.0) * (4.0 - np.pi) / (np.pi - 2.0) ** 1.5)
+#: Declared checks of a skew-normal's fields (:func:`stackup._validate.fields`).
+_SKEW_NORMAL_CHECKS = {"mean": check.Finite(), "sigma": check.Positive(),
+                       "skewness": check.InRange(-MAX_SKEWNESS, MAX_SKEWNESS, lo_open=True, hi_open=True)}
+
+
+@dataclass(frozen=True)
+class SkewNormal(_TabulatedQuantile):
+    r"""Skew-normal process (Azzalini) of mean ``mean`` [m], standard deviation ``sigma`` [m] and skewness [-].
+
+    The centred parameters (mean, standard deviation, Pearson's skewness
+    :math:`\gamma_1`, :math:`|\gamma_1| <` :data:`MAX_SKEWNESS`) are what a
+    fitted process reports; the direct ones follow from them with
+    :math:`b = \sqrt{2/\pi}`, :math:`r = (2\gamma_1/(4-\pi))^{1/3}`,
+    :math:`\mu_z = r/\sqrt{1+r^2}`, :math:`\delta = \mu_z/b`:
+
+    .. math:: \alpha = \frac{\delta}{\sqrt{1-\delta^2}}, \quad
+              \omega = \frac{\sigma}{\sqrt{1-\mu_z^2}}, \quad \xi = \mu - \omega\,\mu_z
+
+    (shape, scale, location of ``scipy.stats.skewnorm``). A machining process
+    that stops at one side of its size (grinding to size) is skewed.
+
+    References
+    ----------
+    .. [1] Azzalini, A., *The Skew-Normal and Related Families*, Cambridge
+       University Press, 2014, sec. 2.1 and 3.1.4 (centred parameters).
+    """
+
+    mean: float
+    sigma: float
+    skewness: float
+
+    def __post_init__(self):
+        check.fields(self, _SKEW_NORMAL_CHECKS, prefix="skew-normal ")
+
+    @cached_property
+    def direct(self):
+        """Direct parameters (shape alpha [-], location xi [m], scale omega [m]) of ``scipy.stats.skewnorm``."""
+        r = np.cbrt(2.0 * self.skewness / (4.0 - np.pi))
+        mu_z = r / np.sqrt(1.0 + r * r)
+        delta = mu_z / np.sqrt(2.0 / np.pi)
+        omega = self.sigma / np.sqrt(1.0 - mu_z * mu_z)
+        return float(delta / np.sqrt(1.0 - delta * delta)), float(self.mean - omega * mu_z), float(omega)
+
+    @property
+    def std(self):
+        return self.sigma
+
+    def cdf(self, x):
+        # Phi(z) - 2 T(z, alpha) (Owen's T): scipy's skewnorm.cdf integrates numerically for some arguments
+        alpha, xi, omega = self.direct
+        z = (np.asarray(x) - xi) / omega
+        return np.clip(special.ndtr(z) - 2.0 * special.owens_t(z, alpha), 0.0, 1.0)
+
+    def _support(self):
+        return self.mean - 10.0 * self.sigma, self.mean + 10.0 * self.sigma
+
+    def shifted(self, delta):
+        return replace(self, mean=self.mean + delta)
+
+
+#: Probabilities of the ISO 22514-2 quantile capability index: X_0.135 %, X_50 %, X_99.865 %.
+CPK_QUANTILES = special.ndtr(np.array([-3.0, 0.0, 3.0]))
+
+
+def quantile_cpk(process, lo, hi):
+    r"""Capability index of ``process`` over the limits [``lo``, ``hi``] [m], ISO 22514-2's quantile form.
+
+    .. math:: C_{pk} = \min\left(\frac{U - X_{50}}{X_{99.865} - X_{50}}, \frac{X_{50} - L}{X_{50} - X_{0.135}}\right)
+
+    with the process's quantiles; for a normal process this is the classic
+    :math:`\min(U - \mu, \mu - L)/3\sigma`, and for a skewed or two-machine
+    process it reads the tail that the limits face rather than the standard
+    deviation. Reference: ISO 22514-2:2017, Statistical methods in process
+    management - Capability and performance - Part 2.
+    """
+    low, mid, high = process.ppf(CPK_QUANTILES)
+    return float(min((hi - mid) / (high - mid), (mid - lo) / (mid - low)))
+
+
 def process_mean(process):
     """Mean [m] of a process object (normal, truncated normal, uniform, mixture, tool wear)."""
     if isinstance(process, Uniform):
@@ -483,7 +565,10 @@ class Dimension:
         return replace(self, process=self.process.shifted(delta))
 
 
-_DISTRIBUTIONS = ("normal", "truncated-normal", "uniform", "mixture", "tool-wear")
+#: The engine file's name of each process form (``distribution = ...``).
+DISTRIBUTION_NAMES = {Normal: "normal", TruncatedNormal: "truncated-normal", Uniform: "uniform", Mixture: "mixture",
+                      ToolWear: "tool-wear", SkewNormal: "skew-normal"}
+_DISTRIBUTIONS = tuple(DISTRIBUTION_NAMES.values())
 
 
 def _spec_table(field, spec):
@@ -533,6 +618,7 @@ def process_from_spec(spec, *, lo, hi, scale, field):
         {distribution = "uniform"}                             # lo, hi default to the limits
         {distribution = "mixture", components = [{weight = 0.6, distribution = ...}, ...]}
         {distribution = "tool-wear", start = ..., end = ..., sigma = ...}
+        {distribution = "skew-normal", mean = ..., sigma = ..., skewness = 0.5}   # skewness [-]
 
     Any form takes ``mean_shift`` (added to the process mean).
     """
@@ -571,6 +657,13 @@ def process_from_spec(spec, *, lo, hi, scale, field):
             raise ValueError(f"{field}: uniform hi {process.hi:.6g} m is not above lo {process.lo:.6g} m")
     elif kind == "mixture":
         process = _mixture_from_spec(spec.pop("components", None), lo=lo, hi=hi, scale=scale, field=field)
+    elif kind == "skew-normal":
+        mean, sigma = length("mean", 0.5 * (lo + hi)), length("sigma", positive=True)
+        skewness = _scalar(f"{field}.skewness", spec.pop("skewness", 0.0))
+        if not abs(skewness) < MAX_SKEWNESS:
+            raise ValueError(f"{field}.skewness: {skewness:g} is not valid; a skew-normal's skewness lies in "
+                             f"(-{MAX_SKEWNESS:.4f}, {MAX_SKEWNESS:.4f})")
+        process = SkewNormal(mean, sigma, skewness)
     else:
         process = ToolWear(length("start"), length("end"), length("sigma", positive=True))
     if spec:

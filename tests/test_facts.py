@@ -85,6 +85,7 @@ def test_every_tier_has_a_note_without_measured_figures():
     from stackup.fit import TIER_NOTES as fit_notes
 
     assert set(fit_notes) == set(FIT_METHODS) and set(crank_notes) == set(CRANK_METHODS)
-    assert {"short", "finite", "reynolds", "mobility", "mobility-finite", "reynolds-transient"} == set(film_notes)
+    assert {"short", "finite", "reynolds", "mobility", "mobility-finite", "elrod-coarse",
+            "reynolds-transient"} == set(film_notes)
     for note in (*fit_notes.values(), *crank_notes.values(), *film_notes.values()):
         assert not re.search(r"\d", re.sub(r"\(\d{4}\)", "", note)), note  # a year of a source, no figures

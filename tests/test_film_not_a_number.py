@@ -92,6 +92,6 @@ def test_the_report_says_the_collapsed_bearing_is_left_out(collapsed, tmp_path):
 
     text = write_report(collapsed[0], tmp_path).read_text()
     assert "1 collapsed" in text
-    assert "left out of every film and life statistic above and of the ranking (1 bearing)" in text
-    assert "the 1 engine with such a bearing has no engine life" in text
+    assert "1 collapsed gave no film (NaN, `film_status`), left out of every film and life statistic" in text
+    assert "; 1 engine with such a bearing has no engine life" in text
     assert "still in the tables" not in text

@@ -15,7 +15,7 @@ import xarray as xr
 
 from ..film.cycle import film_method_errors
 from .._version import __version__
-from ..tolerances import process_mean
+from ..tolerances import DISTRIBUTION_NAMES, process_mean, quantile_cpk
 from . import schema
 from . import summaries as summarise
 from .chain import ChunkResult, MechanicsProgress, ShellCounts
@@ -91,8 +91,10 @@ def processes(engine):
     """How the engine's parts are made and read, as plain data in SI units (keys say the unit)."""
     def dimension(dim):
         mean, std = float(process_mean(dim.process)), float(dim.process.std)
-        return {"limits_m": [dim.lo, dim.hi], "distribution": type(dim.process).__name__, "mean_m": mean,
-                "std_m": std, "cpk": min(dim.hi - mean, mean - dim.lo) / (3 * std), "shared": dim.shared,
+        # the engine file's name of the distribution and ISO 22514-2's quantile C_pk: for a normal process the
+        # classic min(U - mu, mu - L) / 3 sigma; for a skewed or two-machine one the tail the limits face
+        return {"limits_m": [dim.lo, dim.hi], "distribution": DISTRIBUTION_NAMES[type(dim.process)], "mean_m": mean,
+                "std_m": std, "cpk": quantile_cpk(dim.process, dim.lo, dim.hi), "shared": dim.shared,
                 "gauge_repeatability_m": dim.gauge.repeatability, "gauge_resolution_m": dim.gauge.resolution}
 
     supply = engine.shell_wall
