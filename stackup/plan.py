@@ -407,7 +407,7 @@ def planner_table(frame):
         table = pd.concat({scheme: _shell_table(frame.xs(scheme, level="scheme"), a, a["scrap_share"][scheme])
                            for scheme in schemes}, names=["scheme", "grade"])
         totals = {scheme: table.loc[(scheme, "all shells")] for scheme in schemes}
-        idle = a["unasked"]
+        idle = {scheme: a["unasked"].get(scheme, {}) for scheme in schemes}  # the schemes of this frame only
     else:
         table = _shell_table(frame, a, a["scrap_share"])
         totals, idle = {None: table.loc["all shells"]}, {None: a["unasked"]}

@@ -264,3 +264,17 @@ def test_the_title_names_grades_whose_order_falls_short_of_their_stock(plan4):
     frame.loc[middle, "made"] = 10 * frame.loc[middle, "order_up_to"] - 50
     line = next(line for line in planner_table(frame).attrs["title"] if line.startswith("The order falls short"))
     assert f" {middle} (" in line and f"against a stock of {int(frame.loc[middle, 'order_up_to']):,})" in line
+
+
+def test_the_table_of_one_scheme_of_a_study_speaks_of_that_scheme_only():
+    """The report plans the scheme it recommends: a frame cut to it carries no other scheme's lines."""
+    from stackup.plan import planner_table
+    from stackup.study import Study
+
+    ds = Study(schemes=["iso13778-2", "iso13778-4"], n_engines=300, seed=2).run()
+    frame = plan(ds, volume=1000)
+    one = frame.loc[["iso13778-4"]]
+    one.attrs = dict(frame.attrs)
+    title = " ".join(planner_table(one).attrs["title"])
+    assert "iso13778-2" not in title.split("?", 1)[1]  # past the heading's question
+    assert "Scheme iso13778-2" in " ".join(planner_table(frame).attrs["title"])  # A and C of scheme 2, unasked
