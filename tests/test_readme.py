@@ -24,8 +24,8 @@ def python_blocks():
 
 
 #: A line of each README block, the one the test of that block finds it by.
-TESTED = ("c = ds.clearance_operating", "xr.testing.assert_identical", "import stackup.schemes as schemes",
-          "from distributed import Client")
+TESTED = ("c = ds.clearance_operating", "xr.testing.assert_identical", "stackup.rank(open_comparison(",
+          "import stackup.schemes as schemes", "from distributed import Client")
 
 
 def block(containing):
@@ -68,7 +68,7 @@ def compare_folder(tmp_path_factory):
 
 @pytest.mark.slow
 def test_the_datasets_examples_run_and_the_study_rebuilds_from_it_identically(compare_folder):
-    for first in ("c = ds.clearance_operating", "xr.testing.assert_identical"):
+    for first in ("c = ds.clearance_operating", "xr.testing.assert_identical", "stackup.rank(open_comparison("):
         code = block(first)
         lines = code.splitlines()
         last = lines[-1].split("#")[0].strip()
