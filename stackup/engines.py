@@ -35,6 +35,7 @@ from . import materials
 from .crank import BellakhdharLaw
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
+from .life import LEVANOV_2015, METHOD1_SCALE
 from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
 from ._files import Table, did_you_mean, locations, parse_toml, read_toml, units_of
@@ -212,8 +213,9 @@ class WearSpec:
     journal_rq: float  # [m]
     shell_rq: float  # [m]
     critical_film: float  # h_lim,cr [m]
-    wear_limit: float  # limiting wear [m]
+    wear_limit: float  # limiting wear [m]: method 2 (Levanov et al. 2015, sec. 4)
     wear_rate: float  # wear speed gamma [m/s]
+    method1_wear_limit: float  # Delta h_lim of method 1 [m]: the scale its results support (stackup.life)
     lining_material: str
     roughness_source: str
     wear_source: str
@@ -222,9 +224,9 @@ class WearSpec:
 #: Used when an engine file has no [wear] table: the paper's diesel (h_lim,cr = 1.9 um split between the surfaces).
 DEFAULT_WEAR = WearSpec(
     journal_rz=0.8e-6, shell_rz=1.1e-6, journal_rq=0.2e-6, shell_rq=0.3e-6, critical_film=1.9e-6, wear_limit=30e-6,
-    wear_rate=1e-13, lining_material="aluminium",
+    wear_rate=1e-13, method1_wear_limit=LEVANOV_2015.method1_wear_limit, lining_material="aluminium",
     roughness_source="default: h_lim,cr = 1.9 um of Levanov et al. 2015 split as journal Rz 0.8 um, shell Rz 1.1 um",
-    wear_source="default: Levanov et al. 2015, sec. 4 (30 um, 1e-13 m/s)")
+    wear_source="default: Levanov et al. 2015, sec. 4 (30 um, 1e-13 m/s); method 1 on 10 um, the scale of its results")
 
 
 @dataclass(frozen=True)
@@ -488,10 +490,13 @@ def _wear(top, *, scale, units):
                              f"{critical / scale!r} (Levanov et al. 2015, eq. 3: h_lim,cr > Rz1 + Rz2)")
         critical = given
 
+    rate = t.number("wear_rate", required=True, lo=0.0, hi=1e-3 / scale, lo_open=True) * scale
     spec = WearSpec(journal_rz=rz1, shell_rz=rz2, journal_rq=rq1, shell_rq=rq2, critical_film=critical,
                     wear_limit=t.length("wear_limit", required=True, scale=scale, units=units,
                                         plausible=PLAUSIBLE["wear"], what="limiting wear"),
-                    wear_rate=t.number("wear_rate", required=True, lo=0.0, hi=1e-3 / scale, lo_open=True) * scale,
+                    wear_rate=rate,
+                    method1_wear_limit=t.length("method1_wear_limit", METHOD1_SCALE * rate / scale, scale=scale,
+                                                units=units, plausible=PLAUSIBLE["wear"], what="method-1 limiting wear"),
                     lining_material=_material(t, "lining_material", "aluminium"),
                     roughness_source=t.source("roughness_source"), wear_source=t.source("wear_source"))
     t.close()

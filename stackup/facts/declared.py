@@ -174,6 +174,12 @@ class Wear(_Attribute):
     wear_rate_m_per_s: float
     roughness_source: str
     wear_source: str
+    method1_wear_limit_m: float = None  # absent from datasets written before method 1 had its own scale
+
+    @property
+    def method1_limit_m(self):
+        """Method 1's limiting wear [m] (the method-2 one in datasets that did not distinguish them)."""
+        return self.wear_limit_m if self.method1_wear_limit_m is None else self.method1_wear_limit_m
 
 
 @dataclass(frozen=True)

@@ -196,6 +196,6 @@ def life_bias(ds):
     h = float(np.median(films))
     # the study stores lives at its bearings' own films only, not at these two: method 1 is evaluated here
     lives = levanov_method1(np.array([h, h / (1 + errors.h_min_mean)]), h_lim_cr=wear.critical_film_m,
-                            wear_limit=wear.wear_limit_m, wear_rate=wear.wear_rate_m_per_s).life / 3600
+                            wear_limit=wear.method1_limit_m, wear_rate=wear.wear_rate_m_per_s).life / 3600
     return LifeBias(errors.h_min_mean, h, float(lives[0]), float(lives[1]),
-                    wear.wear_limit_m / wear.wear_rate_m_per_s / 3600)
+                    wear.method1_limit_m / wear.wear_rate_m_per_s / 3600)

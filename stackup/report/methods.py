@@ -106,6 +106,7 @@ def _life_method(facts):
         critical=fmt.um(wear.critical_film_m, 2), journal_rz=fmt.um(wear.journal_rz_m, 2),
         shell_rz=fmt.um(wear.shell_rz_m, 2),
         wear_limit=fmt.um(wear.wear_limit_m, 0), wear_rate=wear.wear_rate_m_per_s,
+        method1_limit=fmt.um(wear.method1_limit_m, 0), method1_scale=wear.method1_limit_m / wear.wear_rate_m_per_s,
         wear_source=fmt.cited(wear.wear_source))
 
 

@@ -212,8 +212,10 @@ FILM_ERRORS_PART = ("; error against the transient mass-conserving Reynolds refe
                     "cycle-minimum film, {h_min_mean:.0f} % on its mean; {milliseconds:.1f} ms per bearing-cycle "
                     "(reports/film_speed_vs_error.md)")
 LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why}; h_lim,cr = {critical} µm "
-        "from Rz {journal_rz} + {shell_rz} µm (the engine file's `[wear]` sources); wear limit {wear_limit} µm, wear speed "
-        "{wear_rate:.0e} m/s ({wear_source}).")
+        "from Rz {journal_rz} + {shell_rz} µm (the engine file's `[wear]` sources); wear speed {wear_rate:.0e} m/s; "
+        "method 1 on Δh_lim = {method1_limit} µm (Δh_lim/γ = {method1_scale:.1e} s, the scale at which the paper's "
+        "method-1 results are reproduced; its text's {wear_limit} µm would lengthen every method-1 life), method 2 on "
+        "{wear_limit} µm ({wear_source}).")
 CYCLE_MEAN_PART = " (as the paper's 5-9 µm films need)"
 NOT_CYCLE_MEAN_PART = " (the paper implies the cycle mean)"
 STATISTICS = ("- **Statistics:** 95 % intervals: order statistics (quantiles), Clopper–Pearson (shares), normal "

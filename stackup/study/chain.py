@@ -370,7 +370,7 @@ def _life_values(engine, films, *, clearance, journal_d, crank_angle, life_film,
                             wear_limit=wear.wear_limit)
     h_min_mean = cycle_film(films.h_min, statistic="cycle-mean")
     life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(films.h_min, statistic=life_film),
-                           h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
+                           h_lim_cr=wear.critical_film, wear_limit=wear.method1_wear_limit, wear_rate=wear.wear_rate)
     return {"h_min_mean": h_min_mean,
             "alpha": boundary_share(films.h_min, h_lim_cr=wear.critical_film),
             "life": life.life,

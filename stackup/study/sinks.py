@@ -138,6 +138,7 @@ def attributes(study, ctx, mechanics_used):
         "wear": json.dumps({"journal_rz_m": engine.wear.journal_rz, "shell_rz_m": engine.wear.shell_rz,
                             "journal_rq_m": engine.wear.journal_rq, "shell_rq_m": engine.wear.shell_rq,
                             "critical_film_m": engine.wear.critical_film, "wear_limit_m": engine.wear.wear_limit,
+                            "method1_wear_limit_m": engine.wear.method1_wear_limit,
                             "wear_rate_m_per_s": engine.wear.wear_rate, "lining_material": engine.wear.lining_material,
                             "roughness_source": engine.wear.roughness_source, "wear_source": engine.wear.wear_source}),
         "oil_feed_source": engine.oil_feed.source,
