@@ -38,7 +38,7 @@ from .film.heat import FEEDS, OilFeed
 from .life import LEVANOV_2015, METHOD1_SCALE
 from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
-from ._files import Table, locations, parse_toml, read_toml, units_of
+from ._files import Table, did_you_mean, locations, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
 
 
@@ -277,7 +277,7 @@ def engine_path(name_or_path):
     found = engine_locations().get(text)
     if found is None:
         raise ValueError(f"engine: {text!r} is not a built-in engine nor one in STACKUP_ENGINE_PATH "
-                         f"({', '.join(available_engines())}) nor a file")
+                         f"({', '.join(available_engines())}) nor a file{did_you_mean(text, available_engines())}")
     return found
 
 
