@@ -681,8 +681,6 @@ def test_ctrl_c_while_writing_a_report_again_leaves_the_old_report(small_run):
     assert listing(folder) == before
 
 
-@pytest.mark.xfail(strict=True, reason="stackup/__init__.py imports the whole package (numpy, scipy, numba, xarray: "
-                   "2-16 s) before stackup.cli can catch a Ctrl-C; needs lazy package attributes (PEP 562)")
 def test_ctrl_c_while_the_command_starts_exits_130_with_one_line(tmp_path):
     process = _start(["plan", "--scheme", "iso13778-4", "--volume", 100])
     time.sleep(0.5)  # python is up, the package is being imported
