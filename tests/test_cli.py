@@ -648,7 +648,8 @@ def test_ctrl_c_inside_a_numba_kernel_is_an_interrupt():
 
 def _started_after_imports(args):
     """``stackup ARGS`` in a fresh process that prints "ready" once the package is imported (see the test below)."""
-    code = ("import sys; import stackup.cli as cli; print('ready', flush=True); "
+    code = ("import sys; import stackup.cli as cli; import stackup.comparison, stackup.plan, stackup.report; "
+            "print('ready', flush=True); "
             f"sys.exit(cli.main({[str(a) for a in args]!r}))")
     process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     assert process.stdout.readline() == "ready\n"

@@ -280,4 +280,5 @@ def test_outside_share_agrees_with_the_study_count_where_the_study_counts_hundre
     counted_lo, counted_hi = row["outside_window_ppm_ci"]
     estimate = outside_share("iso-example", "iso13778-3", seed=3, samples=4, n_engines=5000)
     assert counted_lo < estimate.outside * 1e6 < counted_hi  # about 2400 ppm: some 240 bearings counted
-    assert estimate.above > 100 * estimate.below  # scheme 3's clearances sit high in the window
+    # with the journal 10 K above its housing, scheme 3's clearances sit low in the window
+    assert estimate.below > 20 * estimate.above

@@ -198,6 +198,8 @@ ENGINE_DEFAULTS = {
     ("wear",): lambda e, d: e.wear == engines.DEFAULT_WEAR,
     ("wear", "critical_film"): lambda e, d: e.wear.critical_film == e.wear.journal_rz + e.wear.shell_rz,
     ("wear", "lining_material"): "aluminium",
+    # Levanov's method-1 scale (1e8 s, stackup.life.METHOD1_SCALE) at the file's wear speed
+    ("wear", "method1_wear_limit"): lambda e, d: abs(e.wear.method1_wear_limit - 1e8 * e.wear.wear_rate) < 1e-12,
     ("oil_feed",): lambda e, d: e.oil_feed.source.startswith("default:"),
     ("oil_feed", "groove_arc"): [90.0, 270.0], ("oil_feed", "hole_angle"): 180.0,
     ("targets", "operating_clearance"): lambda e, d: e.clearance_window == (0.0, np.inf),
