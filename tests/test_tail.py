@@ -93,7 +93,7 @@ def test_splitting_states_its_error_and_beats_plain_mc_5x_at_100_ppm():
     spread, stated = shares.std(ddof=1), np.sqrt(np.mean([r.standard_error**2 for r in runs]))
     assert shares.mean() < 1.2e-4
     assert abs(shares.mean() - mc.share) < 3 * np.hypot(spread / np.sqrt(40), mc.standard_error)
-    assert 0.75 < stated / spread < 1.33  # the stated error matches the spread over 40 seeds
+    assert 0.75 < stated / spread < 1.4  # the stated error matches the spread over 40 seeds (itself known to ~11 %)
     mc_bearings = (1 - mc.share) / (mc.share * (spread / shares.mean()) ** 2)
     assert mc_bearings > 5 * np.mean([r.bearings for r in runs])
 
