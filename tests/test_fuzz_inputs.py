@@ -192,6 +192,9 @@ ENGINE_DEFAULTS = {
     ("press_fit", "shell_material"): "steel", ("press_fit", "journal_material"): "steel",
     ("press_fit", "check_stress"): 100e6, ("press_fit", "assembly_temperature"): 20.0,
     ("press_fit", "temperature"): 20.0, ("press_fit", "crush_height_source"): "",
+    # the journal at the housing's temperature unless the file says how much hotter, and from where
+    ("press_fit", "journal_temperature_excess"): 0.0, ("press_fit", "journal_temperature_source"): "",
+    ("press_fit", "housing_outer_interval"): lambda e, d: e.press_fit.housing_outer_interval is None,
     ("press_fit", "cold_temperature"): lambda e, d: e.press_fit.cold_temperature is None,
     ("press_fit", "hot_temperature"): lambda e, d: e.press_fit.hot_temperature is None,
     ("press_fit", "limits"): lambda e, d: e.press_fit.limits == engines.KOPELIOVICH_LIMITS,
