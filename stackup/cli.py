@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 from ._version import __version__
+from .design_cli import window_option
 
 #: Engines of ``stackup compare``, of ``stackup compare --quick`` and the fewest it runs: the report's 95 %
 #: intervals, the plan's safety stock and the sensitivity regression need about a hundred engines.
@@ -22,10 +23,6 @@ COMPARE_ENGINES, QUICK_ENGINES, COMPARE_MIN_ENGINES = 100_000, 10_000, 100
 #: Output folders of ``stackup compare`` and ``stackup compare --quick`` (relative to the working folder).
 COMPARE_OUT, QUICK_OUT = "reports/compare", "reports/compare-quick"
 EXIT_DAMAGED, EXIT_REFUSED, EXIT_INTERRUPTED = 1, 2, 130
-#: Smallest diametral clearance a main bearing runs with, as a share of its journal diameter [-]: 0.1 per mille
-#: (4.6 um on the 46 mm example journal), a tenth of the usual 0.75-1.25 per mille (MAHLE Clevite, in the
-#: example engine's [targets]); a --window below it is no clearance window (most likely one in mm).
-MIN_CLEARANCE_RATIO = 1e-4
 #: Largest share of a pilot sample's bearings a scheme may leave ungraded in the main job: the share of missing
 #: samples its Sobol stage accepts (stackup.sensitivity.sobol_indices, max_missing).
 UNGRADED_LIMIT = 0.01
@@ -128,7 +125,7 @@ def _checked_inputs(args, schemes, n, design):
     engine = load_engine(args.engine)
     for scheme in schemes:
         load_scheme(scheme)
-    window = _window(args.window, engine)
+    window = window_option(args.window, engine)
     _check_grading(args.engine, schemes, args.seed)
     _check_memory(n, engine, len(schemes) + (design is not None))
     return engine, window
@@ -175,27 +172,6 @@ def _report(args, state):
     state.stage, state.saved = "", f"{out / 'report.md'} was written"
     print(f"report:  {out / 'report.md'} (and report.html)")
     return 0
-
-
-def _window(window_um, engine):
-    """The --window in m from LO HI in um, or None; a window no main bearing could have is refused naming why."""
-    if window_um is None:
-        return None
-    lo, hi = window_um
-    if not 0.0 < lo < hi < 1000.0:
-        raise ValueError(f"--window: {lo:g} {hi:g} um is not a clearance window; give LO HI in micrometres with "
-                         "0 < LO < HI < 1000, e.g. --window 45 65")
-    journal = engine.journal_d.lo
-    if hi * 1e-6 < MIN_CLEARANCE_RATIO * journal:
-        likely = "; give LO HI in micrometres"
-        for unit, scale in (("millimetres", 1e3), ("metres", 1e6)):
-            if MIN_CLEARANCE_RATIO * journal <= hi * scale * 1e-6 <= 1e-3:
-                likely = f"; these look like {unit}: give --window {lo * scale:.6g} {hi * scale:.6g} (micrometres)"
-        raise ValueError(f"--window: {lo:g} {hi:g} um is no main bearing's clearance: {engine.name}'s "
-                         f"{journal * 1e3:g} mm journal runs with some tens of micrometres (a diametral clearance "
-                         f"below {MIN_CLEARANCE_RATIO * journal * 1e6:.1f} um, {1e3 * MIN_CLEARANCE_RATIO:g} per "
-                         f"mille of the journal, is below its oil film){likely}")
-    return lo / 1e6, hi / 1e6
 
 
 def _check_grading(engine, schemes, seed):
