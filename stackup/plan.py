@@ -397,7 +397,8 @@ def planner_table(frame):
     pandas.DataFrame
         Indexed by grade (scheme and grade for a plan from a study dataset),
         whole numbers as nullable integers, with the lines that say what the
-        table answers in ``attrs["title"]`` (a list of str).
+        table answers in ``attrs["title"]`` (a list of str) and, among them, those
+        that say what the order does not cover in ``attrs["warnings"]``.
     """
     a = frame.attrs
     if a.get("part", "shell") != "shell":
@@ -416,19 +417,20 @@ def planner_table(frame):
     if a.get("lot_note"):
         title.append(a["lot_note"][0].upper() + a["lot_note"][1:] + ".")
     title.append(_stock_line(a))
+    warnings = []
     stock = int(frame.order_up_to.groupby(level="scheme").sum().max() if isinstance(frame.index, pd.MultiIndex)
                 else frame.order_up_to.sum())
     lot, level = a["lot_engines"], a["service_level"]
     if stock > a["shells_per_lot"]:
-        title.append(f"Note: that stock ({stock:,} shells of all grades) is more than the {a['shells_per_lot']:,} "
+        warnings.append(f"Note: that stock ({stock:,} shells of all grades) is more than the {a['shells_per_lot']:,} "
                      f"shells made per lot: the surplus of {100 * a['shell_surplus']:.3g} % does not cover the mix of "
                      f"a lot of {lot:,} engines at {100 * level:.4g} %.")
-    title += [_idle_line(scheme, record) for scheme, record in idle.items() if record]
+    warnings += [_idle_line(scheme, record) for scheme, record in idle.items() if record]
     parts = ({s: frame.xs(s, level="scheme") for s in totals} if isinstance(frame.index, pd.MultiIndex)
              else {None: frame})
-    title += [line for scheme, rows in parts.items() if (line := _short_line(scheme, rows, a))]
-    title.append(_estimated_from(a) + ".")
-    table.attrs["title"] = title
+    warnings += [line for scheme, rows in parts.items() if (line := _short_line(scheme, rows, a))]
+    table.attrs["title"] = [*title, *warnings, _estimated_from(a) + "."]
+    table.attrs["warnings"] = warnings  # what the order does not cover (a short report keeps these lines whole)
     return table
 
 

@@ -159,7 +159,10 @@ def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_pa
     ds = comparison.dataset.assign(design_contact_pressure_min=20e6, design_shell_stress_max=300e6,
                                    life_target=1e9 * 3600)
     text = write_report(ds, tmp_path).read_text()
-    assert "p < 20 MPa [ppm]" in text and "σ > 300 MPa [ppm]" in text and "engines < 1000000000 h [%]" in text
+    # a check no bearing fails is said in a sentence, not as a column of zeros
+    assert "p < 20 MPa [ppm]" in text or "falls below 20 MPa of contact pressure" in text
+    assert "σ > 300 MPa [ppm]" in text or "compresses its shells beyond 300 MPa" in text
+    assert "engines < 1000000000 h [%]" in text
 
 
 def test_report_of_streaming_summaries_agrees_and_says_what_needs_every_engine(tmp_path):

@@ -153,7 +153,7 @@ def parameters_table(facts):
     rows = [(key, _text(value)) for key, value in facts.study.items
             if value is not None and (key in ALWAYS or _text(value) != defaults.get(key))]
     rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible)),
-             ("engine source", " ".join(facts.sources.engine.split()))]
+             ("engine source", fmt.cited(facts.sources.engine) + words.IN_FULL_PART)]
     by_source = {}
     for name, source in facts.sources.schemes.items():
         # one document's numbered schemes (laid on the engine's drawing or not): one row

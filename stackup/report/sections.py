@@ -303,9 +303,17 @@ def fit_section(facts, ranking):
              words.JOURNAL_SOURCE.format(excess=press.journal_temperature_excess, source=journal),
              _window_source(window, sources.clearance_window)]
     temperatures = ", ".join(fmt.fixed(t, 0) for t in limits.press_fit_temperatures)
+    table = _fit_table(facts, ranking.index)
+    checks = {f"p < {limits.contact_pressure_min / 1e6:.0f} MPa [ppm]": words.FIT_LOW_PRESSURE,
+              f"σ > {limits.shell_stress_max / 1e6:.0f} MPa [ppm]": words.FIT_HIGH_STRESS,
+              "loss of fit [ppm]": words.FIT_LOST}
+    passed = [column for column in checks if (table[column] == "0").all()]  # said once, not as columns of zeros
+    after = ([words.FIT_ALL_PASS.format(checks=words.listed(checks[c].format(
+        pressure=limits.contact_pressure_min / 1e6, stress=limits.shell_stress_max / 1e6) for c in passed), last="or")]
+        if passed else [])
     return section("Operating clearance: press fit, housing swell and temperature",
                    words.FIT_INTRO.format(temperatures=temperatures), "", *lines, "",
-                   markdown_table(_fit_table(facts, ranking.index)))
+                   markdown_table(table.drop(columns=passed)), *([""] + after if after else []))
 
 
 def assembly_section(facts, ranking):
@@ -346,12 +354,18 @@ def plan_section(facts, ranking):
     frame = facts.plan.loc[[chosen]]
     frame.attrs = dict(facts.plan.attrs)
     table = planner_table(frame)
-    title = [line for line in table.attrs.get("title", []) if not line.endswith("?")]  # the heading asks it
+    a = frame.attrs
+    scrapped = table.xs("scrapped", level="grade")["share of shells made [%]"].iloc[0]
+    summary = words.PLAN.format(
+        scheme=chosen, ordered=a["shells_per_lot"], lot=a["lot_engines"], surplus=100 * a["shell_surplus"],
+        how=words.PLAN_TO_ORDER if a["supply"] == "to-order" else words.PLAN_SORTED,
+        scrap=0.0 if pd.isna(scrapped) else float(scrapped), level=100 * a["service_level"])
+    # The order's explanation is `stackup plan`'s; the report keeps what the order does not cover, whole.
     body = _intervals_merged(table.reset_index())
     if "scheme" in body:
         body = body.drop(columns="scheme")
-    return section("Planning: shells per grade", words.PLAN.format(scheme=chosen), "", *[" ".join(title)], "",
-                   markdown_table(body))
+    return section("Planning: shells per grade", " ".join([summary, *table.attrs["warnings"],
+                                                          table.attrs["title"][-1]]), "", markdown_table(body))
 
 
 __all__ = ["PLAN_SERVICE_LEVEL", "assembly_section", "centring", "clearance_section", "design_section",

@@ -116,8 +116,8 @@ MODEL_RANGE = "- {input}: {source}. To narrow it: {measure}."
 
 # --- designed scheme ------------------------------------------------------------------------------------------
 DESIGNED = ("`{name}` was designed for this engine and window by `stackup.design` ({evaluations} candidate limit "
-            "sets, {seconds:.0f} s) from `{start}`, the ISO scheme with the lowest objective; the study judged it "
-            "like every other scheme: {outcome}{against} Its reasons are the comments of its scheme text (the "
+            "sets, {seconds:.0f} s) from `{start}`, the ISO scheme with the lowest objective, and judged like every "
+            "other scheme: {outcome}{against} Its reasons are the comments of its scheme text (the "
             "dataset's `input_files`). Grade limits in µm from each dimension's lower drawing limit:")
 DESIGN_OUTCOME_PART = "rank {rank}"
 DESIGN_AGAINST_PART = ", against {outcome} for `{start}`."
@@ -129,11 +129,12 @@ GRADE_PART = "{label} {lo:+.1f}…{hi:+.1f}"
 NO_SENSITIVITY = "The Sobol indices come with `stackup.compare` (its `sensitivity` dataset); none was given."
 #: Sobol outputs in words.
 OUTPUTS = {"clearance_operating": "operating clearance", "h_min": "smallest film", "life": "life"}
-TIGHTEN_FIRST = ("**Tighten first ({scheme}, {output}):** the {first}, total Sobol index {st:.2f} [{st_lo:.2f}, "
-                 "{st_hi:.2f}] (first-order {s1:.2f}), then the {second} ({second_st:.2f}).{gauges}")
+TIGHTEN_FIRST = ("**Tighten first ({scheme}, {output}):** the {first}, S_T {st:.2f} [{st_lo:.2f}, {st_hi:.2f}] "
+                 "(S_1 {s1:.2f}), then the {second} ({second_st:.2f}).{gauges}")
 GAUGES_PART = " Gauges matter through misgrading: {gauges}."
 GAUGE_INDEX_PART = "{name} {st:.2f}"
-SOBOL_EXPLAINED = ("S_1: the share of the output's variance an input explains alone; S_T: with its interactions, "
+SOBOL_EXPLAINED = ("Sobol indices: S_1, the share of the output's variance an input explains alone; S_T, with its "
+                   "interactions, "
                    "the grading among them. Process mean shifts are scenarios, not inputs; the film and life use few "
                    "engines.")
 
@@ -147,6 +148,11 @@ READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to ha
 FIT_INTRO = ("Operating clearance: housing and shells at the operating temperature, swollen by the press fit, the "
              "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources (in full: the "
              "engine file):")
+IN_FULL_PART = " (in full: the engine file)"
+FIT_ALL_PASS = "No bearing of any scheme {checks} at any checked temperature."
+FIT_LOW_PRESSURE = "falls below {pressure:.0f} MPa of contact pressure"
+FIT_HIGH_STRESS = "compresses its shells beyond {stress:.0f} MPa"
+FIT_LOST = "loses its fit"
 PRESS_FIT_LIMITS_SOURCE = ("- contact pressure at least {pressure:.0f} MPa, shell compression at most {stress:.0f} "
                            "MPa: {source};")
 CRUSH_SOURCE = "- crush height {lo:.3f}–{hi:.3f} mm: {source};"
@@ -184,7 +190,12 @@ SUPPLY_PART = ", oil supplied at {supply:.0f} °C"
 ASSEMBLY = ("Of {bearings} bearings per scheme (and up to {shells} shells made), those not assembled stay in the "
             "dataset with their reason (`status`).")
 PLAN_NEEDS_ENGINES = ("Planning needs each engine's shell demand: run the study with `keep=\"everything\"`.")
-PLAN = "For {scheme}, the scheme to use, from this study's engines and shell lots (`stackup plan` plans any other):"
+PLAN = ("For {scheme}, the scheme to use, from this study's engines and shell lots (`stackup plan` plans any other "
+        "and explains every column): order {ordered:,} shells per lot of {lot:,} engines (two per bearing and "
+        "{surplus:.3g} % more, {how}); the gauge scraps {scrap:.2g} % of them. The stock per lot covers a lot's "
+        "demand for the grade in {level:.4g} % of lots.")
+PLAN_TO_ORDER = "made to order, each grade aimed at its share of the demand"
+PLAN_SORTED = "one wall process sorted into the grades"
 
 # --- methods and assumptions ----------------------------------------------------------------------------------
 PARTS = "- **Parts:** {housing}; {journal}; parts read outside their limits are scrapped."
@@ -211,11 +222,10 @@ OIL_FILM = "- **Oil film:** `{method}` tier, {tier}, with each bearing's heat ba
 FILM_ERRORS_PART = ("; error against the transient mass-conserving Reynolds reference up to {h_min:.0f} % on the "
                     "cycle-minimum film, {h_min_mean:.0f} % on its mean; {milliseconds:.1f} ms per bearing-cycle "
                     "(reports/film_speed_vs_error.md)")
-LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why}; h_lim,cr = {critical} µm "
-        "from Rz {journal_rz} + {shell_rz} µm (the engine file's `[wear]` sources); wear speed {wear_rate:.0e} m/s; "
-        "method 1 on Δh_lim = {method1_limit} µm (Δh_lim/γ = {method1_scale:.1e} s, the scale at which the paper's "
-        "method-1 results are reproduced; its text's {wear_limit} µm would lengthen every method-1 life), method 2 on "
-        "{wear_limit} µm ({wear_source}).")
+LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why} and Δh_lim = "
+        "{method1_limit} µm (Δh_lim/γ = {method1_scale:.1e} s, the scale of the paper's method-1 results), method 2 on "
+        "{wear_limit} µm ({wear_source}); h_lim,cr = {critical} µm from Rz {journal_rz} + {shell_rz} µm; wear speed "
+        "{wear_rate:.0e} m/s.")
 CYCLE_MEAN_PART = " (as the paper's 5-9 µm films need)"
 NOT_CYCLE_MEAN_PART = " (the paper implies the cycle mean)"
 STATISTICS = ("- **Statistics:** 95 % intervals: order statistics (quantiles), Clopper–Pearson (shares), normal "
@@ -247,10 +257,10 @@ def plural(count, many="s", one=""):
     return one if count == 1 else many
 
 
-def listed(items):
-    """Items written out: 'a', 'a and b', 'a, b and c'."""
+def listed(items, last="and"):
+    """Items written out: 'a', 'a and b', 'a, b and c' (``last="or"``: 'a, b or c')."""
     items = [str(i) for i in items]
-    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + f" {last} " + items[-1]
 
 
 def bold_listed(names):
