@@ -40,15 +40,17 @@ from .facts import ranking_rows
 #: moves by about a percentage point with the rounding of lots.
 RULE = (("outside_window_ppm", "lower", "negligible"),
         ("alpha_over_limit_pct", "lower", 0.0),
+        ("life_below_target_pct", "lower", 0.0),
         ("shell_grades", "lower", 0.0),
         ("part_grades", "lower", 0.0),
         ("stockout_ppm", "lower", 0.0),
         ("surplus_pct", "lower", 1.0),
-        ("life_median_h", "higher", 0.0))
+        ("engine_life_median_h", "higher", 0.0))
 #: The metrics of the rule that are the scheme's cost.
 COST = ("shell_grades", "part_grades", "stockout_ppm", "surplus_pct")
 #: The metrics whose worst change over the scenarios the ranking gives (``worst_<column>``).
-WORST = (("outside_window_ppm", "lower"), ("alpha_over_limit_pct", "lower"), ("life_median_h", "higher"))
+WORST = (("outside_window_ppm", "lower"), ("alpha_over_limit_pct", "lower"), ("life_below_target_pct", "lower"),
+         ("engine_life_median_h", "higher"))
 
 
 def _value(row, column):

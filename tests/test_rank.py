@@ -60,8 +60,8 @@ def test_a_scenario_on_fewer_engines_is_compared_on_the_same_engines(study):
     # although their life median differs from that of all 30 engines
     same = study.isel(mech_engine=slice(0, 10))
     r = stackup.rank(study, scenarios={"first ten": same}, window=(40e-6, 70e-6))
-    np.testing.assert_array_equal(r.worst_life_median_h.to_numpy(), 0.0)
-    assert np.any(stackup.rank(same, window=(40e-6, 70e-6)).life_median_h != r.life_median_h)
+    np.testing.assert_array_equal(r.worst_engine_life_median_h.to_numpy(), 0.0)
+    assert np.any(stackup.rank(same, window=(40e-6, 70e-6)).engine_life_median_h != r.engine_life_median_h)
 
 def test_bad_window(study):
     with pytest.raises(ValueError, match="window: .* is not a"):
@@ -97,8 +97,8 @@ def test_summaries_rank_like_the_full_dataset():
     kw = dict(n_engines=2500, mechanics_engines=25, crank_angle_step=12.0, progress=False, pilot_engines=3000,
               schemes=("iso13778-1", "iso13778-4"))
     full, summary = rank(Study(**kw).run()), rank(Study(**kw, keep="summaries").run())
-    exact = ["bearings", "outside_window_ppm", "stockout_ppm", "shell_grades", "surplus_pct", "life_median_h",
-             "alpha_over_limit_pct", "rank"]
+    exact = ["bearings", "outside_window_ppm", "stockout_ppm", "shell_grades", "surplus_pct", "engine_life_median_h",
+             "alpha_over_limit_pct", "life_below_target_pct", "rank"]
     pd.testing.assert_frame_equal(summary[exact], full[exact])
     np.testing.assert_allclose(summary.clearance_mean_um, full.clearance_mean_um, rtol=1e-12)
     np.testing.assert_allclose(summary.clearance_std_um, full.clearance_std_um, rtol=1e-9)

@@ -40,7 +40,7 @@ def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(tmp
     images = int(dom.split('data-images="')[1].split('"')[0])
     decoded = int(dom.split('data-decoded="')[1].split('"')[0])
     top = int(dom.split('data-verdict-top="')[1].split('"')[0])
-    assert images == 4 and decoded == images  # clearance, contributions, film, grades: each decoded
+    assert images == 5 and decoded == images  # clearance, contributions, film twice, grades: each decoded
     bottom = int(dom.split('data-table-bottom="')[1].split('"')[0])
     assert 0 <= top < 400 and 0 < bottom <= 1000  # the verdict and the decision table on the first screen
     assert "Use " in dom and "Model uncertainty:" in dom

@@ -29,12 +29,13 @@ from ..study.failures import FailureCount
 from ..study.inputs import load_inputs
 from .declared import (DesignRecord, FilmErrors, PressFit, Processes, ScenarioAbout, Sources, StudyParameters, Wear,
                        parsed, plain)
-from .mechanics import (EdgeContact, FilmOutcomes, HeatBalance, LifeBias, Positions, edge_contact, film_detail,
-                        film_outcomes, heat_balance, life_bias, positions)
+from .mechanics import (ClearanceTrends, EdgeContact, FilmOutcomes, HeatBalance, LifeBias, Positions,
+                        clearance_trends, edge_contact, film_detail, film_outcomes, heat_balance, life_bias, positions)
 from .metrics import (MIN_COUNTED, NEGLIGIBLE_PPM, TAIL_SOURCES, RankingRows, counted_outside, part_grades,
                       ranking_rows)
 from .tables import (UM, bearing_summary, centred, clearance_summary, converged_engines, crank_summary,
-                     film_summary, fit_summary, grade_usage, kept_summaries, separates)
+                     film_summary, fit_summary, grade_usage, kept_summaries, paired_life_changes, position_risks,
+                     separates)
 
 #: Production volume [engines] and service level of the shell plan a comparison reports.
 PLAN_VOLUME, PLAN_SERVICE_LEVEL = 10_000, 0.99
@@ -211,6 +212,8 @@ class Facts:
     life_bias: LifeBias
     drivers: dict                # drivers(sensitivity), None without one
     design: Design
+    life_changes: dict           # scenario -> paired_life_changes (scenarios that ran the mechanical chain)
+    trends: ClearanceTrends      # film and life against the operating clearance per position (None: not computed)
 
 
 def _centred(ds, window):
@@ -273,12 +276,21 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
         reading_resolution={str(s): float(ds.reading_resolution.sel(scheme=s).max()) for s in ds.scheme.values},
         plan=None if about.summaries else plan(ds, volume=volume, service_level=PLAN_SERVICE_LEVEL),
         **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
-        design=designed(ds))
+        design=designed(ds), life_changes=_life_changes(ds, scenarios),
+        trends=clearance_trends(ds) if about.mechanics_engines else None)
 
 
-__all__ = ["About", "Design", "EdgeContact", "Facts", "FilmOutcomes", "HeatBalance", "LifeBias", "Limits",
+def _life_changes(ds, scenarios):
+    """Scenario -> :func:`~stackup.facts.tables.paired_life_changes` (per position, per engine), where it ran the
+    mechanical chain."""
+    changes = {label: paired_life_changes(ds, other) for label, other in scenarios.items()}
+    return {label: pair for label, pair in changes.items() if pair[0] is not None}
+
+
+__all__ = ["About", "ClearanceTrends", "Design", "EdgeContact", "Facts", "FilmOutcomes", "HeatBalance", "LifeBias",
+           "Limits",
            "MIN_COUNTED", "NEGLIGIBLE_PPM", "PLAN_SERVICE_LEVEL", "PLAN_VOLUME", "Positions", "RankingRows", "Run",
            "ScenarioAbout", "Scrap", "TAIL_SOURCES", "part_grades",
            "UM", "bearing_summary", "centred", "clearance_summary", "converged_engines", "counted_outside",
            "crank_summary", "facts", "film_summary", "fit_summary", "grade_usage", "kept_summaries",
-           "ranking_rows", "separates"]
+           "paired_life_changes", "position_risks", "ranking_rows", "separates"]

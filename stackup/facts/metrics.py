@@ -2,8 +2,10 @@
 
 Operating clearance (mean, spread, share outside the design window with
 where it comes from), film and life (:func:`stackup.facts.tables.film_numbers`:
-share of bearings below h_lim,cr, share with alpha above 20 %, life B10 and
-median) and shell stock (grades used, stock-outs, surplus); and, for
+share of bearings below h_lim,cr; Levanov's operability criteria at the worst
+bearing position, the share of its bearings with alpha above 20 % and the
+share living less than the target; the engines' life, their weakest
+bearing's, B10 and median) and shell stock (grades used, stock-outs, surplus); and, for
 declared scenarios, each scenario's rows beside the study's on the same
 engines. :func:`stackup.rank.ranked` orders them.
 """
@@ -135,14 +137,18 @@ def scheme_metrics(d, window, h_lim_cr, tail=None, part_grades=np.nan):
     }
     film = film_numbers(d, h_lim_cr)
     if film is not None:
-        below, scuff, b10, median = film.below_critical, film.alpha_over_limit, film.life_b10_h, film.life_median_h
+        below, scuff, short = film.below_critical, film.alpha_over_limit, film.life_below_target
+        b10, median = film.engine_life_b10_h, film.engine_life_median_h
         row.update({
             "film_bearings": int(film.h.size),
             "film_left_out": film.left_out,
             "h_min_below_critical_pct": 100 * below[0], "h_min_below_critical_pct_ci": (100 * below[1], 100 * below[2]),
             "alpha_over_limit_pct": 100 * scuff[0], "alpha_over_limit_pct_ci": (100 * scuff[1], 100 * scuff[2]),
-            "life_b10_h": b10[0], "life_b10_h_ci": b10[1:],
-            "life_median_h": median[0], "life_median_h_ci": median[1:],
+            "alpha_over_limit_position": int(d.bearing.values[film.alpha_position]),
+            "life_below_target_pct": 100 * short[0], "life_below_target_pct_ci": (100 * short[1], 100 * short[2]),
+            "life_below_target_position": int(d.bearing.values[film.life_position]),
+            "engine_life_b10_h": b10[0], "engine_life_b10_h_ci": b10[1:],
+            "engine_life_median_h": median[0], "engine_life_median_h_ci": median[1:],
         })
     return row
 

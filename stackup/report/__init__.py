@@ -92,6 +92,7 @@ def _draw(ds, sensitivity, known, out):
     figures.clearance_histogram(ds, out / "clearance_histogram.png")
     if len(known.film):
         figures.film_by_bearing(ds, out / "film_life.png")
+        figures.film_life_by_clearance(ds, out / "film_life_clearance.png")
     figures.grade_usage_chart(ds, out / "grade_usage.png")
 
 

@@ -113,6 +113,47 @@ def film_by_bearing(ds, path):
     return _save(fig, path)
 
 
+def film_life_by_clearance(ds, path, bins=12):
+    """Cycle-minimum film and life against the operating clearance, one colour per main-bearing position; PNG.
+
+    Every scheme's bearings of the mechanical chain together (the schemes
+    differ in which clearances they give, not in how a bearing responds to
+    one): points, and each position's median in clearance bins with at
+    least 10 bearings, so an engineer sees which clearance each position
+    prefers. Needs every engine kept (``clearance_operating``); returns None
+    from streaming summaries.
+    """
+    if kept_summaries(ds) or "clearance_operating" not in ds:
+        return None
+    m = ds.sizes["mech_engine"]
+    clearance = ds.clearance_operating.values[:, :m] * UM
+    h, life = ds.h_min.values * UM, ds.life.values / 3600
+    done = np.stack([converged_engines(ds, i) for i in range(ds.sizes["scheme"])])[..., None]
+    fig = Figure(figsize=(WIDTH, 4.2), layout="constrained")
+    ax_h, ax_l = fig.subplots(1, 2, sharex=True)
+    edges = np.linspace(np.nanmin(clearance), np.nanmax(clearance), bins + 1)
+    middles = 0.5 * (edges[1:] + edges[:-1])
+    for b, bearing in enumerate(ds.bearing.values):
+        c = clearance[..., b]
+        for ax, values in ((ax_h, h[..., b]), (ax_l, life[..., b])):
+            ok = done[..., 0] & np.isfinite(c) & np.isfinite(values)
+            ax.scatter(c[ok], values[ok], s=3, alpha=0.15, color=f"C{b}", rasterized=True)
+            which = np.digitize(c[ok], edges[1:-1])
+            medians = [np.median(values[ok][which == k]) if np.count_nonzero(which == k) >= 10 else np.nan
+                       for k in range(bins)]
+            ax.plot(middles, medians, color=f"C{b}", lw=2, label=f"bearing {bearing}")
+    for ax in (ax_h, ax_l):
+        ax.set_xlabel("operating clearance (diametral) [µm]")
+    ax_l.set_yscale("log")
+    ax_l.axhline(float(ds.life_target) / 3600, color="k", ls="--", lw=1, label="life target")
+    ax_h.set_ylabel("cycle-minimum film h_min [µm]")
+    ax_l.set_ylabel("bearing life, Levanov method 1 [h]")
+    ax_h.set_title("Oil film against clearance per position (lines: medians)", fontsize=10)
+    ax_l.set_title("Life against clearance per position (lines: medians)", fontsize=10)
+    ax_h.legend(fontsize=8, ncols=2)
+    return _save(fig, path)
+
+
 def sensitivity_chart(sensitivity, path):
     """Total and first-order Sobol indices per input, one panel per scheme and output, 95 % intervals; PNG."""
     panels = [(str(o), str(s)) for o in sensitivity.output.values for s in sensitivity.scheme.values

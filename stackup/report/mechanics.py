@@ -16,18 +16,23 @@ from .sections import image, in_order, markdown_table, section
 
 
 def _film_table(facts, order):
+    """Per scheme: films, Levanov's operability criteria at the worst position (where any bearing fails one) and
+    the engines' life (their weakest bearing's); lives are never pooled over positions."""
     film, target = in_order(facts.film, order), facts.limits.life_target / 3600
     table = pd.DataFrame({
         "scheme": film.index,
         "h_min P5 [µm]": [fmt.triple(q, 2) for q in film.h_min_p05_um],
         "h_min median [µm]": [fmt.fixed(q[0], 2) for q in film.h_min_median_um],
-        "α > 20 % [% of bearings]": [fmt.triple(v, 1) for v in film.alpha_over_20_pct],
-        "bearing life B10 [h]": [fmt.significant_triple(q) for q in film.life_b10_h],
-        "engine life B10 [h]": [fmt.significant(q[0]) for q in film.engine_life_b10_h],
-        f"engines < {target:.0f} h [%]": [fmt.triple(v, 1) for v in film.engines_below_target_pct],
+        words.ALPHA_COLUMN: [words.AT_POSITION.format(share=fmt.triple(v, 1), bearing=b)
+                             for v, b in zip(film.alpha_over_20_pct, film.alpha_over_20_position)],
+        words.SHORT_COLUMN.format(target=target): [
+            words.AT_POSITION.format(share=fmt.triple(v, 1), bearing=b)
+            for v, b in zip(film.life_below_target_pct, film.life_below_target_position)],
+        "engine life B10 [h]": [fmt.significant_triple(q) for q in film.engine_life_b10_h],
+        "engine life median [h]": [fmt.significant_triple(q) for q in film.engine_life_median_h],
     })
-    for column, shares in (("α > 20 % [% of bearings]", film.alpha_over_20_pct),
-                           (f"engines < {target:.0f} h [%]", film.engines_below_target_pct)):
+    for column, shares in ((words.ALPHA_COLUMN, film.alpha_over_20_pct),
+                           (words.SHORT_COLUMN.format(target=target), film.life_below_target_pct)):
         if all(v[0] == 0 for v in shares):  # none anywhere: the intro says so
             table = table.drop(columns=column)
     return table
@@ -36,7 +41,7 @@ def _film_table(facts, order):
 def _none_text(film):
     """What the film table leaves out because it is zero for every scheme."""
     scuffing = all(v[0] == 0 for v in film.alpha_over_20_pct)
-    short = all(v[0] == 0 for v in film.engines_below_target_pct)
+    short = all(v[0] == 0 for v in film.life_below_target_pct)
     return (words.NO_SCUFFING_PART if scuffing else "") + (words.NONE_SHORT_PART if short else "")
 
 
@@ -83,8 +88,27 @@ def film_section(facts, ranking):
     if scheme is not None:
         lines += [_positions_text(facts.positions, scheme), "", markdown_table(_positions_table(facts, scheme)), ""]
     return section("Loads, oil film and bearing life", *lines, *_outcomes_text(facts.outcomes, facts.edge),
-                   *_heat_text(facts.heat, facts.processes.crank),
-                   image("Oil film and life per bearing position", "film_life.png"))
+                   *_heat_text(facts.heat, facts.processes.crank), *_trends_text(facts.trends),
+                   image("Oil film and life per bearing position", "film_life.png"),
+                   *([] if facts.about.summaries else
+                     ["", image("Oil film and life against operating clearance per position",
+                                "film_life_clearance.png")]))
+
+
+def _trends_text(trends):
+    """Where method 1's life and the cycle-minimum film follow the clearance in opposite directions (figure)."""
+    if trends is None or not trends.opposed:
+        return []
+    every = len(trends.opposed) == len(trends.film)
+    where = words.EVERY_POSITION if every else words.AT_POSITIONS.format(bearings=words.listed(trends.opposed))
+    return [words.OPPOSED_TRENDS.format(where=where, film=_span(trends.film[trends.opposed]),
+                                        life=_span(trends.life[trends.opposed]), pairs=fmt.count(trends.pairs)), ""]
+
+
+def _span(values):
+    """Correlations as '+0.41' or '−0.52 to −0.31'."""
+    lo, hi = (f"{v:+.2f}".replace("-", "−") for v in (min(values), max(values)))
+    return lo if lo == hi else f"{lo} to {hi}"
 
 
 def _outcomes_text(outcomes, edge_contact):

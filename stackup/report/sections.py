@@ -53,25 +53,6 @@ def _column(ranking, name):
     return ranking[name] if name in ranking else pd.Series(np.nan, index=ranking.index, dtype=object)
 
 
-def _ranking_table(ranking):
-    """The ranking's metrics per scheme beside the decision table's (share outside, grades and surplus there); the
-    boundary-friction share only where it separates schemes."""
-    table = pd.DataFrame({
-        "rank": ranking["rank"],
-        "scheme": ranking.index,
-        "operating mean ± std [µm]": [fmt.mean_std(m, v) for m, v in zip(ranking.clearance_mean_um,
-                                                                          ranking.clearance_std_um)],
-        "bearing life median [h]": [fmt.significant_triple((v, *ci)) if isinstance(ci, tuple) else "—"
-                                    for v, ci in zip(_column(ranking, "life_median_h"),
-                                                     _column(ranking, "life_median_h_ci"))],
-        "stock-outs [ppm]": [fmt.interval(v, ci, 0) for v, ci in zip(ranking.stockout_ppm, ranking.stockout_ppm_ci)],
-    })
-    if "alpha_over_limit_pct_ci" in ranking and separates(*zip(*_bounds(ranking, "alpha_over_limit_pct"))):
-        table.insert(4, "α > 20 % [%]", [fmt.interval(v, ci, 1) for v, ci in
-                                         zip(ranking.alpha_over_limit_pct, ranking.alpha_over_limit_pct_ci)])
-    return table
-
-
 def _bounds(ranking, column):
     """The 95 % interval bounds of a ranking column per scheme, (NaN, NaN) where a scheme has none."""
     return [ci if isinstance(ci, tuple) else (np.nan, np.nan) for ci in ranking[f"{column}_ci"]]
@@ -91,18 +72,22 @@ def _estimated_note(ranking):
 
 
 def non_discriminating(ranking):
-    """Sentences naming the film and life metrics that do not separate the schemes here."""
-    out = []
-    for column in ("alpha_over_limit_pct", "life_median_h"):
+    """One sentence naming the film and life metrics that do not separate the schemes here (none: no sentence)."""
+    items = []
+    for column in ("alpha_over_limit_pct", "life_below_target_pct", "engine_life_median_h"):
         if column not in ranking or f"{column}_ci" not in ranking:
             continue
         low, high = zip(*_bounds(ranking, column))
         if not separates(low, high):
             values = ranking[column].astype(float)
-            same = (words.SAME_VALUE_PART.format(value=values.iloc[0]) if np.allclose(values, values.iloc[0])
-                    else "")
-            out.append(words.NON_DISCRIMINATING.format(metric=words.METRICS[column], same=same))
-    return out
+            same = (words.NONE_PART if np.all(values == 0) else
+                    words.SAME_VALUE_PART.format(value=values.iloc[0]) if np.allclose(values, values.iloc[0]) else "")
+            items.append(words.NON_DISCRIMINATING_NAMES[column] + same)
+    if not items:
+        return []
+    metrics = words.listed(items)
+    return [words.NON_DISCRIMINATING.format(metrics=metrics[0].upper() + metrics[1:],
+                                            verb="does" if len(items) == 1 else "do")]
 
 
 def centring(facts, ranking):
@@ -131,8 +116,9 @@ def ranking_section(facts, ranking):
         lo=fmt.um_edge(window[0]), hi=fmt.um_edge(window[1]), metrics=metrics,
         negligible=fmt.general(ranking.attrs["negligible_ppm"]),
         whose=words.STUDY_WINDOW_PART if facts.study.window else words.ENGINE_WINDOW_PART)
-    return section("Ranking", rule, "", markdown_table(_ranking_table(ranking)), "", *_estimated_note(ranking),
-                   *centring(facts, ranking), *non_discriminating(ranking))
+    # the decision table on the first page is the ranking's table; the film and life metrics are the film section's
+    return section("Ranking", rule, "", *_estimated_note(ranking), *centring(facts, ranking),
+                   *non_discriminating(ranking))
 
 
 def scenarios_section(facts, ranking, scenario_rankings):
@@ -154,12 +140,36 @@ def scenarios_section(facts, ranking, scenario_rankings):
                  **{s: fmt.ppm_number(1e6 * c / max(b, 1)) for s, c, b in
                     zip(ranking.index, ranking.outside_window_counted, _assembled(facts, ranking))}})
     lines = [words.SCENARIOS_INTRO, "", markdown_table(pd.DataFrame(rows)), ""]
+    lines += [line for label, (positions, engines) in facts.life_changes.items()
+              for line in (_life_change_line(label, positions, engines, ranking.index[0]), "")]
     if model:
         lines += [words.MODEL_RANGES, ""]
         for name, labels in model.items():
             about = facts.scenario_about[labels[0]]
             lines.append(words.MODEL_RANGE.format(input=name, source=about.source, measure=about.measure))
     return section("Scenarios", *lines)
+
+
+def _hours_change(value):
+    """A change of life in hours, signed and grouped ('+27', '−1,393')."""
+    return f"{value:+,.0f}".replace("-", "−")
+
+
+def _life_change_line(label, positions, engines, chosen):
+    """What a scenario that ran the mechanical chain does to the chosen scheme's lives per position and engine, and
+    where any scheme's life at a position rises beyond its 95 % interval (paired on the same engines)."""
+    mine = positions.xs(chosen, level="scheme")
+    changes = [v[0] for v in mine.life_change_h]
+    rises = [(scheme, bearing, row) for (scheme, bearing), row in positions.iterrows() if row.life_change_h[1] > 0]
+    where = (words.LIVES_NONE_RISE if not rises else words.LIVES_RISE.format(where=words.listed(
+        words.LIFE_RISE_PART.format(bearing=bearing, scheme=scheme, change=_hours_change(row.life_change_h[0]),
+                                    film=fmt.fixed(row.h_min_mean_change_um[0], 2, sign=True))
+        for scheme, bearing, row in rises)))
+    return words.SCENARIO_LIVES.format(scenario=label, pairs=int(mine.pairs.min()), scheme=chosen,
+                                       lo=_hours_change(min(changes)), hi=_hours_change(max(changes)),
+                                       bearing=mine.index[int(np.argmin(changes))],
+                                       engine=_hours_change(engines.loc[chosen, "engine_life_change_h"][0]),
+                                       where=where)
 
 
 def _assembled(facts, ranking):
@@ -240,9 +250,8 @@ def clearance_section(facts, ranking):
     summary = in_order(facts.clearance, ranking.index)
     table = pd.DataFrame({
         "scheme": summary.index,
-        "stated [µm]": [fmt.um_range(a, b, 0) if np.isfinite(a) else words.NONE_STATED
-                        for a, b in zip(summary.stated_min_um, summary.stated_max_um)],
-        "worst case [µm]": [fmt.um_range(a, b) for a, b in zip(summary.worst_case_min_um, summary.worst_case_max_um)],
+        "stated (worst case) [µm]": [_stated_and_worst(*row) for row in zip(
+            summary.stated_min_um, summary.stated_max_um, summary.worst_case_min_um, summary.worst_case_max_um)],
         "mean [µm]": [fmt.fixed(v, 2) for v in summary.mean_um],
         "std [µm]": [fmt.fixed(v, 2) for v in summary.std_um],
         "P0.135–P99.865 % [µm]": [fmt.um_range(a, b) for a, b in zip(summary.p00135_um, summary.p99865_um)],
@@ -255,10 +264,22 @@ def clearance_section(facts, ranking):
                          "clearance_histogram.png"))
 
 
+def _stated_and_worst(stated_lo, stated_hi, worst_lo, worst_hi):
+    """A scheme's stated range, with its worst case over the allowed combinations in brackets where it differs."""
+    worst = fmt.um_range(worst_lo, worst_hi)
+    if not np.isfinite(stated_lo):
+        return words.NONE_STATED.format(worst=worst)
+    stated = fmt.um_range(stated_lo, stated_hi, 0)
+    same = abs(worst_lo - stated_lo) < 0.05 and abs(worst_hi - stated_hi) < 0.05
+    return stated if same else f"{stated} ({worst})"
+
+
 def _fit_table(facts, order):
     fit, limits = in_order(facts.fit, order), facts.limits
     return pd.DataFrame({
         "scheme": fit.index,
+        "operating mean ± std [µm]": [fmt.mean_std(m, v)
+                                      for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
         "operating P0.135–P99.865 % [µm]": [fmt.um_range(a, b) for a, b in zip(fit.operating_p00135_um,
                                                                                fit.operating_p99865_um)],
         "swell [µm]": [fmt.fixed(v, 2) for v in fit.swell_mean_um],
@@ -318,17 +339,22 @@ def fit_section(facts, ranking):
 
 def assembly_section(facts, ranking):
     summary = in_order(facts.clearance, ranking.index)
+    lost = [reason for reason in STATUS if reason != "assembled" and summary[reason].any()]
+    # losses every scheme shares (scrapped blocks and crankshafts: the same parts) are said once, not as a column
+    shared = [reason for reason in lost if len(summary) > 1 and (summary[reason] == summary[reason].iloc[0]).all()]
     table = pd.DataFrame({
         "scheme": summary.index,
         "assembled": summary.assembled,
-        **{reason.replace("_", " "): summary[reason] for reason in STATUS
-           if reason != "assembled" and summary[reason].any()},
+        **{reason.replace("_", " "): summary[reason] for reason in lost if reason not in shared},
         **({} if not np.nansum(summary.substituted) else
            {"substituted pairs": ["—" if np.isnan(v) else fmt.fixed(v, 0) for v in summary.substituted]}),
         "shells scrapped [%]": [fmt.fixed(v, 2) for v in summary.shells_scrapped_pct],
     })
     intro = words.ASSEMBLY.format(bearings=fmt.count(int(summary.bearings.max())),
                                   shells=fmt.count(int(summary.shells_made.max())))
+    if shared:
+        intro += " " + words.ASSEMBLY_SHARED.format(losses=words.listed(
+            words.LOSSES[reason].format(count=fmt.count(int(summary[reason].iloc[0]))) for reason in shared))
     return section("Assembly, scrap and stock", intro, "", markdown_table(table), "",
                    image("Shell grades fitted and made per scheme", "grade_usage.png"))
 

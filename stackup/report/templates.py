@@ -44,12 +44,14 @@ COST_DECIDES_PART = "cost decides"
 METRIC_DECIDES_PART = "the {metric} decides"
 #: How the verdict compares the chosen scheme with the next on the metric that decided, and on each cheaper cost.
 COST_PARTS = {
-    "alpha_over_limit_pct": "{a:.1f} % of bearings over 20 % of the cycle in boundary friction against {b:.1f} %",
+    "alpha_over_limit_pct": ("{a:.1f} % of the bearings at its worst position over 20 % of the cycle in boundary "
+                             "friction against {b:.1f} %"),
+    "life_below_target_pct": "{a:.1f} % of the bearings at its worst position below the life target against {b:.1f} %",
     "shell_grades": "{a:.0f} shell grades against {b:.0f}",
     "part_grades": "{a:.0f} bore and journal grades against {b:.0f}",
     "stockout_ppm": "{a:,.0f} ppm stock-outs against {b:,.0f}",
     "surplus_pct": "{a:.1f} % of the shells left over against {b:.1f} %",
-    "life_median_h": "median bearing life {a:,.0f} h against {b:,.0f} h",
+    "engine_life_median_h": "median engine life {a:,.0f} h against {b:,.0f} h",
 }
 TIE = "{names} tie on {window}, the film and the cost: use any of them."
 NO_MODEL = ("**Model uncertainty:** none declared: the verdict takes the engine file's housing stiffness, crush "
@@ -66,6 +68,9 @@ PROCESS_WORST_PART = "; the worst, {scenario}, puts {share} outside"
 UNDER_PART = "under {scenario}, {names} put{s} fewer outside"
 MORE_PART = "; likewise under {count} more"
 CHECK_FIRST = "**Check first:** {notes}"
+SCUFFING_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings spend over 20 % of the cycle in boundary "
+                 "friction (scuffing risk).")
+SHORT_LIFE_NOTE = "At bearing {bearing}, {share} % of {scheme}'s bearings live less than the {target} h target."
 NO_WINDOW = ("The engine file gives no operating-clearance window (`[targets] operating_clearance`, or `--window LO "
              "HI`): the clearance cannot separate schemes.")
 NOT_MET = ("No scheme meets the window {lo}–{hi} µm: the best puts {best} outside it; check the window against the "
@@ -87,9 +92,10 @@ WORST_CELL = "{share} ({scenario})"
 # --- ranking --------------------------------------------------------------------------------------------------
 #: The ranking's metrics in words.
 METRICS = {"outside_window_ppm": "share outside the window",
-           "alpha_over_limit_pct": "share of bearings over 20 % of the cycle in boundary friction",
+           "alpha_over_limit_pct": "scuffing risk (α > 20 %) at the worst position",
+           "life_below_target_pct": "lives below the target at the worst position",
            "shell_grades": "shell grades", "part_grades": "bore and journal grades", "stockout_ppm": "stock-outs",
-           "surplus_pct": "surplus", "life_median_h": "median bearing life"}
+           "surplus_pct": "surplus", "engine_life_median_h": "median engine life"}
 RANKING_RULE = ("Window {lo}–{hi} µm ({whose}). Metrics in turn: {metrics}; on each, the best scheme and those "
                 "level with it (95 % intervals overlapping, or under {negligible} ppm apart on the share outside, 1 "
                 "point on the surplus) go on to the next.")
@@ -98,8 +104,13 @@ ESTIMATED_NOTE = "† Fewer than {fewest} bearings counted outside: {how}; count
 COUNTED_PART = "{count} ({scheme})"
 CONDITIONAL_HOW = "estimated with the shells integrated out (no lots or stock-outs: reports/tails_vs_peers.md)"
 SPLITTING_HOW = "estimated by generalized splitting through the assembly chain (`stackup.tail`)"
-NON_DISCRIMINATING = "The {metric}{same} does not separate the schemes here."
+NON_DISCRIMINATING = "{metrics} {verb} not separate the schemes here."
 SAME_VALUE_PART = " ({value:.3g} for every scheme)"
+NONE_PART = " (none in any scheme)"
+#: The film and life metrics of the ranking as the sentence naming those that do not separate schemes says them.
+NON_DISCRIMINATING_NAMES = {"alpha_over_limit_pct": "boundary friction over 20 % of the cycle",
+                            "life_below_target_pct": "lives below the target",
+                            "engine_life_median_h": "the median engine life"}
 CENTRED = ("**Centring:** {scheme} has the narrowest operating clearance ({std:.2f} µm standard deviation against "
            "{chosen_std:.2f} µm) but its mean sits {shift} µm {side} the window's middle: with shells aimed {half} µm "
            "{verb} each it would put {result}; `stackup design` designs such a scheme.")
@@ -140,8 +151,8 @@ SOBOL_EXPLAINED = ("Sobol indices: S_1, the share of the output's variance an in
 
 # --- clearance, press fit -------------------------------------------------------------------------------------
 CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature: the standard's stated ranges) against "
-                   "each scheme's stated range and its worst case over the allowed combinations.")
-NONE_STATED = "— (none stated)"
+                   "each scheme's stated range and, where it differs, its worst case over the allowed combinations.")
+NONE_STATED = "none ({worst})"
 READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to half a step outside its class is paired "
             "as inside it: its worst case, {worst_lo:.1f}–{worst_hi:.1f} µm, reaches beyond the stated "
             "{stated_lo:.0f}–{stated_hi:.0f} µm.")
@@ -149,6 +160,12 @@ FIT_INTRO = ("Operating clearance: housing and shells at the operating temperatu
              "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources (in full: the "
              "engine file):")
 IN_FULL_PART = " (in full: the engine file)"
+SCENARIO_LIVES = ("**Lives under {scenario}** ({pairs} engines, each against itself): {scheme}'s median bearing life "
+                  "changes by {lo} h (bearing {bearing}) to {hi} h over the positions, its engines' by {engine} h; "
+                  "{where}.")
+LIVES_NONE_RISE = "no scheme's life rises at any position beyond its 95 % interval"
+LIVES_RISE = "lives rise beyond their 95 % intervals at {where}"
+LIFE_RISE_PART = "bearing {bearing} of {scheme} ({change} h; cycle-mean film {film} µm)"
 FIT_ALL_PASS = "No bearing of any scheme {checks} at any checked temperature."
 FIT_LOW_PRESSURE = "falls below {pressure:.0f} MPa of contact pressure"
 FIT_HIGH_STRESS = "compresses its shells beyond {stress:.0f} MPa"
@@ -165,11 +182,19 @@ NOT_GIVEN_JOURNAL = "not given in the engine file (journal and housing at one te
 NO_FILM = "The film and life stages did not run (see the verdict)."
 FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α: the "
               "share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); lives by Levanov et al. "
-              "(2015) method 1, an engine's its weakest bearing's (target {target} h). Mean cycle-maximum loads "
-              "differ between schemes by at most {spread} kN at any position{failed}.{none}")
+              "(2015) method 1, per position, an engine's its weakest bearing's (target {target} h). Mean "
+              "cycle-maximum loads differ between schemes by at most {spread} kN at any position{failed}.{none}")
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
+OPPOSED_TRENDS = ("With more operating clearance (last figure) the cycle-minimum film thins {where} (rank "
+                  "correlation {film}, {pairs}+ bearings each) while method 1's life lengthens ({life}): the method "
+                  "reads the cycle-mean film, which thickens with clearance.")
+EVERY_POSITION = "at every position"
+AT_POSITIONS = "at bearings {bearings}"
 NO_SCUFFING_PART = " No bearing spends over 20 % of the cycle below h_lim,cr."
-NONE_SHORT_PART = " No engine's life falls below the target."
+NONE_SHORT_PART = " No bearing's life falls below the target."
+ALPHA_COLUMN = "α > 20 %, worst position [% of its bearings]"
+SHORT_COLUMN = "life < {target:.0f} h, worst position [% of its bearings]"
+AT_POSITION = "{share} (bearing {bearing})"
 POSITIONS = ("Per bearing position for {scheme} (medians over engines): bearing{s} {heaviest} carr{verb} the largest "
              "load, the thinnest films at bearing{thin_s} {thinnest}; tilt: the journal's largest over the cycle; "
              "edge: engines whose journal edge touches the shell (share of the cycle).")
@@ -189,6 +214,11 @@ SUPPLY_PART = ", oil supplied at {supply:.0f} °C"
 # --- assembly, planning ---------------------------------------------------------------------------------------
 ASSEMBLY = ("Of {bearings} bearings per scheme (and up to {shells} shells made), those not assembled stay in the "
             "dataset with their reason (`status`).")
+ASSEMBLY_SHARED = "Every scheme loses the same {losses} (the same parts)."
+LOSSES = {"block_scrapped": "{count} bearings to scrapped blocks",
+          "crank_scrapped": "{count} to scrapped crankshafts",
+          "not_graded": "{count} to parts read outside every grade",
+          "shell_stockout": "{count} to shell stock-outs"}
 PLAN_NEEDS_ENGINES = ("Planning needs each engine's shell demand: run the study with `keep=\"everything\"`.")
 PLAN = ("For {scheme}, the scheme to use, from this study's engines and shell lots (`stackup plan` plans any other "
         "and explains every column): order {ordered:,} shells per lot of {lot:,} engines (two per bearing and "
@@ -240,7 +270,7 @@ LIMITS_BEFORE_LIFE = (
     "housing's equivalent ring, the crush process and the journal's temperature: declared ranges (Scenarios).",
     "- Crankshaft: a beam on point supports; block rigid; loads from the engine file's pressure model.",
     "- Oil film: isothermal at the bearing's effective temperature, no EHD; the cheap dynamic tiers carry no film "
-    "content (most of their error, reports/film_speed_vs_error.md); journal edges held at a floor where they touch.",
+    "content (most of their error, reports/film_speed_vs_error.md).",
 )
 LIFE_LIMIT = ("- {bias}Levanov's constants were fitted to another engine: compare schemes rather than read the hours "
               "as a guarantee.")

@@ -174,7 +174,8 @@ def _worst_scenario(facts, ranking, labels):
 
 def check_first(facts, ranking, window):
     """What makes the result less trustworthy, each in a few words: no window, a window nobody meets, losses
-    above :data:`LOSS_SHARE`, stages that failed or did not run, journal edges in contact."""
+    above :data:`LOSS_SHARE`, stages that failed or did not run, the chosen scheme failing Levanov's operability
+    criteria at some position, journal edges in contact."""
     notes = []
     if not np.isfinite(window[1]):
         notes.append(words.NO_WINDOW)
@@ -188,6 +189,13 @@ def check_first(facts, ranking, window):
         if share > LOSS_SHARE:
             notes.append(template.format(share=fmt.percent(share), scheme=scheme))
     notes += run_notes(facts.run)
+    chosen = ranking.loc[ranking.index[0]]
+    for column, template in (("alpha_over_limit_pct", words.SCUFFING_NOTE), ("life_below_target_pct",
+                                                                            words.SHORT_LIFE_NOTE)):
+        if float(chosen.get(column, 0.0)) > 0:  # Levanov's operability criteria, at the worst position
+            notes.append(template.format(bearing=chosen[column.replace("_pct", "_position")], scheme=ranking.index[0],
+                                         share=fmt.interval(chosen[column], chosen[f"{column}_ci"], 1),
+                                         target=fmt.whole(facts.limits.life_target / 3600)))
     edge = facts.edge
     if edge is not None and edge.computed and edge.touching >= EDGE_SHARE * edge.computed:
         notes.append(words.EDGE_NOTE.format(share=fmt.percent(edge.touching / edge.computed)))
