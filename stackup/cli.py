@@ -20,6 +20,8 @@ from .design_cli import window_option
 #: Engines of ``stackup compare``, of ``stackup compare --quick`` and the fewest it runs: the report's 95 %
 #: intervals, the plan's safety stock and the sensitivity regression need about a hundred engines.
 COMPARE_ENGINES, QUICK_ENGINES, COMPARE_MIN_ENGINES = 100_000, 10_000, 100
+#: Engines per scheme whose films ``stackup compare`` checks with the mass-conserving tier (control variates).
+FILM_CHECK_ENGINES = 5
 #: Output folders of ``stackup compare`` and ``stackup compare --quick`` (relative to the working folder).
 COMPARE_OUT, QUICK_OUT = "reports/compare", "reports/compare-quick"
 EXIT_DAMAGED, EXIT_REFUSED, EXIT_INTERRUPTED = 1, 2, 130
@@ -84,7 +86,8 @@ def _compare(args, state):
         result = stackup.compare(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed,
                                  scenarios=scenarios, uncertainties=None if args.no_scenarios else "declared",
                                  negligible=args.negligible, design=design, log=log, window=window,
-                                 scheduler="processes" if args.processes else None)
+                                 scheduler="processes" if args.processes else None,
+                                 film_check_engines=args.film_check_engines)
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
         data = save_comparison(result, staged.staging / "compare.nc", compact=args.compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
@@ -489,6 +492,11 @@ def _compare_parser(sub):
                            "cost decides between them (default: 1 ppm)")
     cmp_.add_argument("--volume", type=_count(1, "engines"), default=10_000, metavar="ENGINES",
                       help="production volume the report's shell plan is for (default: 10000)")
+    cmp_.add_argument("--film-check-engines", type=_count(0, "engines"), default=FILM_CHECK_ENGINES,
+                      metavar="ENGINES",
+                      help="engines per scheme whose films run again with the mass-conserving elrod-coarse tier, "
+                           "which corrects the film and life means of the report by control variates (0: none; "
+                           f"default: {FILM_CHECK_ENGINES})")
     cmp_.add_argument("--processes", action="store_true",
                       help="run the study and its scenarios on one local worker process per core (dask; the same "
                            "numbers, faster on a large run)")

@@ -34,8 +34,8 @@ from .mechanics import (ClearanceTrends, EdgeContact, FilmOutcomes, HeatBalance,
 from .metrics import (MIN_COUNTED, NEGLIGIBLE_PPM, TAIL_SOURCES, RankingRows, counted_outside, part_grades,
                       ranking_rows)
 from .tables import (UM, bearing_summary, centred, clearance_summary, converged_engines, crank_summary,
-                     film_summary, fit_summary, grade_usage, kept_summaries, paired_life_changes, position_risks,
-                     separates)
+                     film_summary, fit_summary, grade_usage, kept_summaries, multi_fidelity, paired_life_changes,
+                     position_risks, separates)
 
 #: Production volume [engines] and service level of the shell plan a comparison reports.
 PLAN_VOLUME, PLAN_SERVICE_LEVEL = 10_000, 0.99
@@ -214,6 +214,7 @@ class Facts:
     design: Design
     life_changes: dict           # scenario -> paired_life_changes (scenarios that ran the mechanical chain)
     trends: ClearanceTrends      # film and life against the operating clearance per position (None: not computed)
+    corrected: pd.DataFrame      # multi_fidelity: film and life means corrected by the check tier (empty: no check)
 
 
 def _centred(ds, window):
@@ -277,7 +278,7 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
         plan=None if about.summaries else plan(ds, volume=volume, service_level=PLAN_SERVICE_LEVEL),
         **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
         design=designed(ds), life_changes=_life_changes(ds, scenarios),
-        trends=clearance_trends(ds) if about.mechanics_engines else None)
+        trends=clearance_trends(ds) if about.mechanics_engines else None, corrected=multi_fidelity(ds))
 
 
 def _life_changes(ds, scenarios):
@@ -293,4 +294,4 @@ __all__ = ["About", "ClearanceTrends", "Design", "EdgeContact", "Facts", "FilmOu
            "ScenarioAbout", "Scrap", "TAIL_SOURCES", "part_grades",
            "UM", "bearing_summary", "centred", "clearance_summary", "converged_engines", "counted_outside",
            "crank_summary", "facts", "film_summary", "fit_summary", "grade_usage", "kept_summaries",
-           "paired_life_changes", "position_risks", "ranking_rows", "separates"]
+           "multi_fidelity", "paired_life_changes", "position_risks", "ranking_rows", "separates"]

@@ -16,7 +16,7 @@ import pandas as pd
 
 from ..assembly import STATUS
 from ..life import ALPHA_SCUFFING
-from ..stats import mean_half_width, proportion_ci, quantile_ci
+from ..stats import control_variate_mean, mean_half_width, proportion_ci, quantile_ci
 from ..study import summaries
 from ..study.schema import flag
 
@@ -396,3 +396,40 @@ def paired_life_changes(ds, other):
                         "engine_life_change_h": quantile_ci(engine, 0.5)})
     return (pd.DataFrame(positions).set_index(["scheme", "bearing"]),
             pd.DataFrame(engines).set_index("scheme"))
+
+
+#: The study's film and life variables whose means the check tier corrects, and their check twins.
+CHECKED = {"h_min": "h_min_check", "h_min_mean": "h_min_mean_check", "life": "life_check"}
+
+
+def multi_fidelity(ds):
+    """Per scheme and position, the means of the film and life corrected by the check tier (control variates).
+
+    The study's tier ran on every engine of the mechanical chain, the check
+    tier (``film_check_engines``) on its first ones: the control-variate
+    estimator (:func:`stackup.stats.control_variate_mean`) gives the check
+    tier's mean over all those engines, unbiased for the study tier's error,
+    with a 95 % interval. Columns per variable of :data:`CHECKED` (SI):
+    ``<name>_cheap`` (the study tier's mean) and ``<name>_corrected``
+    (estimate, lower, upper); ``pairs`` and ``engines``. Empty without a
+    check (fewer than 3 pairs at a position).
+    """
+    if "h_min_check" not in ds or not np.isfinite(ds.h_min_check.values).any():
+        return pd.DataFrame()
+    rows = []
+    for i, name in enumerate(ds.scheme.values):
+        done = converged_engines(ds, i)
+        for b, bearing in enumerate(ds.bearing.values):
+            row = {"scheme": str(name), "bearing": int(bearing)}
+            for cheap, check in CHECKED.items():
+                x_all = ds[cheap].values[i, done, b]
+                y = ds[check].values[i, done, b]
+                shared = np.isfinite(y) & np.isfinite(x_all)
+                if np.count_nonzero(shared) < 3:
+                    break
+                e = control_variate_mean(y[shared], x_all[shared], x_all[np.isfinite(x_all)])
+                row.update({f"{cheap}_cheap": e.cheap, f"{cheap}_corrected": (e.estimate, e.lower, e.upper),
+                            "pairs": e.n_accurate, "engines": e.n_cheap})
+            else:
+                rows.append(row)
+    return pd.DataFrame(rows).set_index(["scheme", "bearing"]) if rows else pd.DataFrame()

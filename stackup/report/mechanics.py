@@ -7,9 +7,12 @@ per-position detail is the chosen scheme's (the schemes hardly differ there).
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import pandas as pd
 
+from ..film.cycle import CHECK_METHOD
 from . import format as fmt
 from . import templates as words
 from .sections import image, in_order, markdown_table, section
@@ -88,11 +91,33 @@ def film_section(facts, ranking):
     if scheme is not None:
         lines += [_positions_text(facts.positions, scheme), "", markdown_table(_positions_table(facts, scheme)), ""]
     return section("Loads, oil film and bearing life", *lines, *_outcomes_text(facts.outcomes, facts.edge),
-                   *_heat_text(facts.heat, facts.processes.crank), *_trends_text(facts.trends),
+                   *_heat_text(facts.heat, facts.processes.crank), *_corrected_text(facts.corrected, scheme),
+                   *_trends_text(facts.trends),
                    image("Oil film and life per bearing position", "film_life.png"),
                    *([] if facts.about.summaries else
                      ["", image("Oil film and life against operating clearance per position",
                                 "film_life_clearance.png")]))
+
+
+def _corrected_text(corrected, scheme):
+    """The chosen scheme's film and life means corrected by the check tier, over the positions, against the study
+    tier's (multi-fidelity control variates)."""
+    if not len(corrected) or scheme not in corrected.index.get_level_values("scheme"):
+        return []
+    mine = corrected.xs(scheme, level="scheme")
+
+    def span(column, scale, write):
+        lows, values, highs = (np.array([q[k] for q in mine[f"{column}_corrected"]]) * scale for k in range(3))
+        cheap = mine[f"{column}_cheap"].to_numpy() * scale
+        return words.CORRECTED_SPAN.format(lo=write(values.min()), hi=write(values.max()),
+                                           half=write(np.max(np.maximum(values - lows, highs - values))),
+                                           cheap_lo=write(cheap.min()), cheap_hi=write(cheap.max()))
+
+    film = partial(fmt.fixed, digits=2)
+    return [words.CORRECTED.format(method=CHECK_METHOD, pairs=int(mine.pairs.min()), engines=int(mine.engines.max()),
+                                   scheme=scheme, h_min=span("h_min", fmt.UM, film),
+                                   h_min_mean=span("h_min_mean", fmt.UM, film),
+                                   life=span("life", 1 / 3600, fmt.significant)), ""]
 
 
 def _trends_text(trends):

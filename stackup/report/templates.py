@@ -185,6 +185,10 @@ FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engin
               "(2015) method 1, per position, an engine's its weakest bearing's (target {target} h). Mean "
               "cycle-maximum loads differ between schemes by at most {spread} kN at any position{failed}.{none}")
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
+CORRECTED = ("Corrected by the `{method}` tier on {pairs} engines per scheme (control variates on all {engines}), "
+             "{scheme}'s means over the positions: cycle-minimum film {h_min} µm, cycle-mean film {h_min_mean} µm, "
+             "life {life} h.")
+CORRECTED_SPAN = "{lo}–{hi} (±{half}; study tier {cheap_lo}–{cheap_hi})"
 OPPOSED_TRENDS = ("With more operating clearance (last figure) the cycle-minimum film thins {where} (rank "
                   "correlation {film}, {pairs}+ bearings each) while method 1's life lengthens ({life}): the method "
                   "reads the cycle-mean film, which thickens with clearance.")

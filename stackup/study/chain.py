@@ -11,7 +11,7 @@ mechanical chain's progress.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -20,7 +20,7 @@ from ..crank import support_compliance, support_slopes
 from ..crank.cycle import engine_cycles, worst_status
 from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
-from ..film.cycle import HEAT_STEP, bearing_films
+from ..film.cycle import HEAT_STEP, bearing_films, checked_film
 from ..film.heat import heat_balance
 from ..film.journal import vector_length
 from .. import _validate as check
@@ -184,8 +184,9 @@ def _mechanical_range(ctx, study, parts, stages, engines, sizes, progress):
         stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
         rows = slice(a - e0, stop - e0)
         for i, (result, fit) in enumerate(stages):
+            checked = max(0, min(stop, study.film_check_engines) - a)  # the batch's first engines the check runs on
             for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film,
-                                          study.bearing_law, study.tilt_method).items():
+                                          study.bearing_law, study.tilt_method, checked).items():
                 if name in mech:
                     mech[name][i, rows] = value
         a = state.next = stop
@@ -256,10 +257,11 @@ def _press_fit(engine, parts, assembly, method):
 
 
 def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper",
-               tilt_method="equilibrium"):
+               tilt_method="equilibrium", checked=0):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
-    Engines with a bearing not assembled are skipped (``not_computed``).
+    Engines with a bearing not assembled are skipped (``not_computed``); the
+    first ``checked`` engines of ``rows`` also run the check tier.
     Returns the :data:`schema.PER_MECH` variables of one scheme, engines first.
     """
     engine, crank_angle = ctx.engine, ctx.crank_angle
@@ -273,14 +275,16 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing
                                   journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
                                   journal_eccentricity=parts.journal_eccentricity[rows][built],
                                   crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method,
-                                  life_film=life_film, bearing_law=bearing_law, tilt_method=tilt_method)
+                                  life_film=life_film, bearing_law=bearing_law, tilt_method=tilt_method,
+                                  check_engines=int(np.count_nonzero(built[:checked])))
         for name, value in values.items():
             out[name][built] = value
     return out
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="equilibrium"):
+                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="equilibrium",
+                     check_engines=0):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
     Parameters
@@ -309,6 +313,10 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         crankshaft's rotational compliance (:mod:`stackup.film.tilt`), or that
         slope held (the film's moment neglected: an upper bound of the tilt,
         cheaper by the equilibrium's film moments).
+    check_engines : int
+        The first engines whose films run again with the check tier
+        (:func:`stackup.film.cycle.checked_film`: ``h_min_check``,
+        ``h_min_mean_check``, ``life_check``; NaN on the others).
 
     A bearing whose film is not a number (``film_status`` collapsed,
     not_periodic or failed; ``film_valid`` false) has NaN for every value
@@ -337,8 +345,38 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                "load_history": np.moveaxis(r.reactions, 1, 2),
                **_film_values(films),
                **_life_values(engine, films, clearance=clearance, journal_d=journal_d, crank_angle=crank_angle,
-                              life_film=life_film, roughness=roughness, modulus=modulus)}
+                              life_film=life_film, roughness=roughness, modulus=modulus),
+               **_check_values(engine, films, r.reactions, crank_angle, clearance=clearance, journal_d=journal_d,
+                               film_method=film_method, life_film=life_film, engines=check_engines)}
     return _not_a_number(out, films.valid)
+
+
+def _check_values(engine, films, reactions, crank_angle, *, clearance, journal_d, film_method, life_film, engines):
+    """The check tier's film and life on the first ``engines`` engines (NaN on the others).
+
+    The study's cycle-minimum and cycle-mean films are scaled by the ratio of
+    the check tier's to the study tier's on the aligned journal
+    (:func:`stackup.film.cycle.checked_film`); a bearing where the check tier
+    fails is NaN.
+    """
+    shape = np.shape(clearance)
+    out = {name: np.full(shape, np.nan) for name in ("h_min_check", "h_min_mean_check", "life_check")}
+    if engines == 0:
+        return out
+    first = slice(0, engines)
+    part = replace(films, viscosity=films.viscosity[first])
+    cheap, accurate = checked_film(engine.crank, engine.oil_feed, reactions[first], crank_angle, part,
+                                   clearance=np.asarray(clearance)[first], journal_d=np.asarray(journal_d)[first],
+                                   method=film_method)
+    h_min, h_mean = films.h_min[first].min(axis=-1), cycle_film(films.h_min[first], statistic="cycle-mean")
+    out["h_min_check"][first] = h_min * accurate.min(axis=-1) / cheap.min(axis=-1)
+    out["h_min_mean_check"][first] = h_mean * cycle_film(accurate, statistic="cycle-mean") / cycle_film(
+        cheap, statistic="cycle-mean")
+    read = out["h_min_mean_check"] if life_film == "cycle-mean" else out["h_min_check"]
+    wear = engine.wear
+    out["life_check"][first] = levanov_method1(read[first], h_lim_cr=wear.critical_film,
+                                               wear_limit=wear.method1_wear_limit, wear_rate=wear.wear_rate).life
+    return out
 
 
 def _film_values(films):
