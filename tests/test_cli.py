@@ -22,6 +22,12 @@ from stackup.study import Study, open_study
 from stackup.study.damage import DamagedStore
 
 # a small comparison with scenarios (a minute here; the tests that use it stop it at once)
+def _interruptible():
+    """In the child before it starts: Ctrl-C as a terminal delivers it, even where pytest itself runs with SIGINT
+    ignored (a background job of a shell without job control), which Python would otherwise inherit."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 SMALL_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "iso13778-6", "--no-design"]
 # the smallest comparison, with its own design window: about 20 s here
 WINDOW_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "--no-scenarios", "--no-design",
@@ -221,6 +227,7 @@ def test_compare_refuses_a_window_that_is_not_one_in_micrometres(tmp_path):
 def test_ctrl_c_ends_a_run_with_one_line_and_leaves_nothing(tmp_path):
     out = tmp_path / "run"
     process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *SMALL_COMPARE, "--out", str(out)],
+                               preexec_fn=_interruptible,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     first = process.stdout.readline()
     assert "study: 100 engines" in first
@@ -300,6 +307,7 @@ def test_the_same_run_again_replaces_it_and_ctrl_c_while_saving_leaves_it_as_it_
     out, _ = small_run
     before = listing(out)
     process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *WINDOW_COMPARE, "--out", str(out)],
+                               preexec_fn=_interruptible,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     for line in process.stdout:
         if "saving the dataset" in line:
@@ -590,7 +598,7 @@ def test_a_run_claims_its_folder_so_a_second_run_at_once_is_refused(tmp_path):
 
 def _start(args, **kwargs):
     return subprocess.Popen([sys.executable, "-m", "stackup.cli", *map(str, args)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, **kwargs)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_interruptible, **kwargs)
 
 
 def _wait_for(process, text):
@@ -651,7 +659,8 @@ def _started_after_imports(args):
     code = ("import sys; import stackup.cli as cli; import stackup.comparison, stackup.plan, stackup.report; "
             "print('ready', flush=True); "
             f"sys.exit(cli.main({[str(a) for a in args]!r}))")
-    process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               preexec_fn=_interruptible)
     assert process.stdout.readline() == "ready\n"
     time.sleep(1)  # into the command
     return process
