@@ -57,3 +57,17 @@ def test_a_check_on_part_of_the_engines_covers_the_full_check(checked):
         assert row.pairs == 3 and row.engines == 6
         lower, upper = row.h_min_mean_corrected[1:]
         assert lower <= full.loc[index, "h_min_mean_corrected"][0] <= upper
+
+
+def test_the_report_states_the_corrected_means_and_a_check_below_the_target(checked, tmp_path):
+    from stackup.report import format as fmt
+    from stackup.report import write_report
+
+    corrected = multi_fidelity(checked).xs("iso13778-3", level="scheme")
+    life = [q[0] / 3600 for q in corrected.life_corrected]
+    text = write_report(checked, tmp_path).read_text()
+    assert f"life {fmt.significant(min(life))}–{fmt.significant(max(life))} (±" in text
+    # a target above every corrected life: the first page says where the check falls short
+    short = write_report(checked.assign(life_target=2 * max(life) * 3600), tmp_path / "short").read_text()
+    first_page = short.split("<!-- /verdict -->")[0]
+    assert "Checked by the mass-conserving tier, iso13778-3's mean life falls below" in first_page

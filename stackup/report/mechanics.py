@@ -107,7 +107,7 @@ def _corrected_text(corrected, scheme):
     mine = corrected.xs(scheme, level="scheme")
 
     def span(column, scale, write):
-        lows, values, highs = (np.array([q[k] for q in mine[f"{column}_corrected"]]) * scale for k in range(3))
+        values, lows, highs = (np.array([q[k] for q in mine[f"{column}_corrected"]]) * scale for k in range(3))
         cheap = mine[f"{column}_cheap"].to_numpy() * scale
         return words.CORRECTED_SPAN.format(lo=write(values.min()), hi=write(values.max()),
                                            half=write(np.max(np.maximum(values - lows, highs - values))),

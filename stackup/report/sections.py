@@ -159,6 +159,8 @@ def _life_change_line(label, positions, engines, chosen):
     """What a scenario that ran the mechanical chain does to the chosen scheme's lives per position and engine, and
     where any scheme's life at a position rises beyond its 95 % interval (paired on the same engines)."""
     mine = positions.xs(chosen, level="scheme")
+    if all(v == (0.0, 0.0, 0.0) for v in positions.life_change_h):  # e.g. doubled misalignment of an engine with none
+        return words.SCENARIO_LIVES_SAME.format(scenario=label, pairs=int(mine.pairs.min()))
     changes = [v[0] for v in mine.life_change_h]
     rises = [(scheme, bearing, row) for (scheme, bearing), row in positions.iterrows() if row.life_change_h[1] > 0]
     where = (words.LIVES_NONE_RISE if not rises else words.LIVES_RISE.format(where=words.listed(

@@ -68,6 +68,8 @@ PROCESS_WORST_PART = "; the worst, {scenario}, puts {share} outside"
 UNDER_PART = "under {scenario}, {names} put{s} fewer outside"
 MORE_PART = "; likewise under {count} more"
 CHECK_FIRST = "**Check first:** {notes}"
+CHECKED_SHORT_NOTE = ("Checked by the mass-conserving tier, {scheme}'s mean life falls below the {target} h target at "
+                      "bearing{s} {bearings} ({lives} h): the study tier's lives are too long there.")
 SCUFFING_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings spend over 20 % of the cycle in boundary "
                  "friction (scuffing risk).")
 SHORT_LIFE_NOTE = "At bearing {bearing}, {share} % of {scheme}'s bearings live less than the {target} h target."
@@ -163,6 +165,8 @@ IN_FULL_PART = " (in full: the engine file)"
 SCENARIO_LIVES = ("**Lives under {scenario}** ({pairs} engines, each against itself): {scheme}'s median bearing life "
                   "changes by {lo} h (bearing {bearing}) to {hi} h over the positions, its engines' by {engine} h; "
                   "{where}.")
+SCENARIO_LIVES_SAME = ("**Lives under {scenario}** ({pairs} engines, each against itself): no life of any scheme "
+                       "changes; the engine file gives the scenario nothing to act on.")
 LIVES_NONE_RISE = "no scheme's life rises at any position beyond its 95 % interval"
 LIVES_RISE = "lives rise beyond their 95 % intervals at {where}"
 LIFE_RISE_PART = "bearing {bearing} of {scheme} ({change} h; cycle-mean film {film} µm)"
