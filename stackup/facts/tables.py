@@ -216,6 +216,29 @@ class FilmNumbers:
     engines_below_target: tuple  # share of engines living less than the target [-]
 
 
+def checked_lives(d, done):
+    """Bearing lives [h] of one scheme ``d`` on the engines ``done`` (engines, positions), on the check tier's scale.
+
+    Where the study ran the mass-conserving check (``film_check_engines``,
+    at least 3 engines at a position), each position's lives are scaled by
+    the ratio of the control-variate estimate of the check tier's mean life
+    to the study tier's mean (:func:`multi_fidelity`): every engine's life
+    carries the accurate tier's mean, on the assumption that the tiers'
+    ratio is the same for every engine at a position. Elsewhere the study
+    tier's lives.
+    """
+    life = d.life.values[done] / 3600
+    if "life_check" not in d:
+        return life
+    for b in range(life.shape[-1]):
+        cheap, check = d.life.values[done, b], d.life_check.values[done, b]
+        shared = np.isfinite(cheap) & np.isfinite(check)
+        if np.count_nonzero(shared) >= 3:
+            e = control_variate_mean(check[shared], cheap[shared], cheap[np.isfinite(cheap)])
+            life[:, b] *= e.estimate / e.cheap
+    return life
+
+
 def position_risks(d, life_target_h, done=None):
     """Per main-bearing position of one scheme ``d``: Levanov's operability criteria and the life.
 
@@ -225,10 +248,11 @@ def position_risks(d, life_target_h, done=None):
     Levanov et al. 2015's scuffing risk), ``life_below_target`` (share living
     less than ``life_target_h``), ``life_b10_h`` and ``life_median_h``; each a
     list over positions of (value, lower, upper) 95 % intervals
-    (Clopper-Pearson for shares, order statistics for quantiles).
+    (Clopper-Pearson for shares, order statistics for quantiles). Lives on
+    the check tier's scale where the study ran it (:func:`checked_lives`).
     """
     done = d.crank_status.values == flag(d.crank_status, "converged") if done is None else done
-    alpha, life = d.alpha.values[done], d.life.values[done] / 3600
+    alpha, life = d.alpha.values[done], checked_lives(d, done)
     out = {"alpha_over_limit": [], "life_below_target": [], "life_b10_h": [], "life_median_h": []}
     for b in range(alpha.shape[-1]):
         a, hours = numbers(alpha[:, b]), numbers(life[:, b])
@@ -255,7 +279,7 @@ def film_numbers(d, h_lim_cr=None):
     risks = position_risks(d, target, done)
     alpha_position, alpha_over = _worst(risks["alpha_over_limit"])
     life_position, short = _worst(risks["life_below_target"])
-    engine_life = d.life.values[done].min(axis=1) / 3600  # NaN stays NaN: left out
+    engine_life = checked_lives(d, done).min(axis=1)  # NaN stays NaN: left out
     lived = engine_life[~np.isnan(engine_life)]
     return FilmNumbers(done, h, a, int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
                        None if h_lim_cr is None else proportion_ci(np.count_nonzero(h < h_lim_cr), h.size),

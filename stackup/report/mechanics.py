@@ -85,6 +85,7 @@ def film_section(facts, ranking):
                                     target=fmt.whole(facts.limits.life_target / 3600),
                                     engines=fmt.count(facts.about.mechanics_engines), spread=fmt.fixed(spread, 1),
                                     failed=words.FAILED_PART.format(failed=failed) if failed else "",
+                                    scaled=words.SCALED_PART if len(facts.corrected) else "",
                                     none=_none_text(facts.film))
     lines = [intro, "", markdown_table(_film_table(facts, ranking.index)), ""]
     scheme = next((s for s in ranking.index if s in facts.bearings.index.get_level_values("scheme")), None)

@@ -68,11 +68,11 @@ PROCESS_WORST_PART = "; the worst, {scenario}, puts {share} outside"
 UNDER_PART = "under {scenario}, {names} put{s} fewer outside"
 MORE_PART = "; likewise under {count} more"
 CHECK_FIRST = "**Check first:** {notes}"
-CHECKED_SHORT_NOTE = ("Checked by the mass-conserving tier, {scheme}'s mean life falls below the {target} h target at "
-                      "bearing{s} {bearings} ({lives} h): the study tier's lives are too long there.")
 SCUFFING_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings spend over 20 % of the cycle in boundary "
                  "friction (scuffing risk).")
-SHORT_LIFE_NOTE = "At bearing {bearing}, {share} % of {scheme}'s bearings live less than the {target} h target."
+SHORT_LIFE_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings live less than the {target} h "
+                   "target{checked}.")
+CHECKED_PART = " (lives on the mass-conserving check's scale)"
 NO_WINDOW = ("The engine file gives no operating-clearance window (`[targets] operating_clearance`, or `--window LO "
              "HI`): the clearance cannot separate schemes.")
 NOT_MET = ("No scheme meets the window {lo}–{hi} µm: the best puts {best} outside it; check the window against the "
@@ -186,8 +186,9 @@ NOT_GIVEN_JOURNAL = "not given in the engine file (journal and housing at one te
 NO_FILM = "The film and life stages did not run (see the verdict)."
 FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α: the "
               "share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); lives by Levanov et al. "
-              "(2015) method 1, per position, an engine's its weakest bearing's (target {target} h). Mean "
+              "(2015) method 1, per position, an engine's its weakest bearing's (target {target} h){scaled}. Mean "
               "cycle-maximum loads differ between schemes by at most {spread} kN at any position{failed}.{none}")
+SCALED_PART = ", on the scale of the mass-conserving check (below)"
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
 CORRECTED = ("Corrected by the `{method}` tier on {pairs} engines per scheme (control variates on all {engines}), "
              "{scheme}'s means over the positions: cycle-minimum film {h_min} µm, cycle-mean film {h_min_mean} µm, "

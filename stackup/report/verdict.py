@@ -195,28 +195,12 @@ def check_first(facts, ranking, window):
         if float(chosen.get(column, 0.0)) > 0:  # Levanov's operability criteria, at the worst position
             notes.append(template.format(bearing=chosen[column.replace("_pct", "_position")], scheme=ranking.index[0],
                                          share=fmt.interval(chosen[column], chosen[f"{column}_ci"], 1),
-                                         target=fmt.whole(facts.limits.life_target / 3600)))
-    notes += _checked_short(facts, ranking.index[0])
+                                         target=fmt.whole(facts.limits.life_target / 3600),
+                                         checked=words.CHECKED_PART if len(facts.corrected) else ""))
     edge = facts.edge
     if edge is not None and edge.computed and edge.touching >= EDGE_SHARE * edge.computed:
         notes.append(words.EDGE_NOTE.format(share=fmt.percent(edge.touching / edge.computed)))
     return notes
-
-
-def _checked_short(facts, scheme):
-    """The positions where the check tier's corrected mean life of ``scheme`` is below the life target, upper end of
-    its 95 % interval included (:func:`stackup.facts.multi_fidelity`)."""
-    corrected, target = facts.corrected, facts.limits.life_target
-    if not len(corrected) or scheme not in corrected.index.get_level_values("scheme"):
-        return []
-    mine = corrected.xs(scheme, level="scheme")
-    short = [(int(b), q) for b, q in mine.life_corrected.items() if q[2] < target]
-    if not short:
-        return []
-    return [words.CHECKED_SHORT_NOTE.format(
-        scheme=scheme, target=fmt.whole(target / 3600), s="s" if len(short) > 1 else "",
-        bearings=words.listed(b for b, _ in short),
-        lives=", ".join(fmt.significant(q[0] / 3600) for _, q in short))]
 
 
 def verdict(facts, ranking, scenario_rankings):
