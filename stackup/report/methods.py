@@ -123,8 +123,9 @@ def _life_bias(bias):
 
 def limits_of_validity(facts):
     """What the models leave out, said plainly."""
-    return [*words.LIMITS_BEFORE_LIFE, words.LIFE_LIMIT.format(bias=_life_bias(facts.life_bias)),
-            *words.LIMITS_AFTER_LIFE]
+    # with the mass-conserving check the lives carry its scale: the cheap tier's bias is corrected, not a limit
+    bias = words.LIFE_CHECKED_PART if len(facts.corrected) else _life_bias(facts.life_bias)
+    return [*words.LIMITS_BEFORE_LIFE, words.LIFE_LIMIT.format(bias=bias), *words.LIMITS_AFTER_LIFE]
 
 
 #: Study parameters the parameters list gives even at their defaults.

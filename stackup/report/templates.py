@@ -190,13 +190,11 @@ FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engin
               "cycle-maximum loads differ between schemes by at most {spread} kN at any position{failed}.{none}")
 SCALED_PART = ", on the scale of the mass-conserving check (below)"
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
-CORRECTED = ("Corrected by the `{method}` tier on {pairs} engines per scheme (control variates on all {engines}), "
-             "{scheme}'s means over the positions: cycle-minimum film {h_min} µm, cycle-mean film {h_min_mean} µm, "
-             "life {life} h.")
+CORRECTED = ("Checked by `{method}` on {pairs} engines per scheme (control variates on {engines}), {scheme}'s "
+             "means per position: cycle-minimum film {h_min} µm, cycle-mean film {h_min_mean} µm, life {life} h.")
 CORRECTED_SPAN = "{lo}–{hi} (±{half}; study tier {cheap_lo}–{cheap_hi})"
-OPPOSED_TRENDS = ("With more operating clearance (last figure) the cycle-minimum film thins {where} (rank "
-                  "correlation {film}, {pairs}+ bearings each) while method 1's life lengthens ({life}): the method "
-                  "reads the cycle-mean film, which thickens with clearance.")
+OPPOSED_TRENDS = ("With more clearance (last figure) the cycle-minimum film thins {where} (Spearman ρ {film}, "
+                  "{pairs}+ bearings each) while method 1's life lengthens (ρ {life}): it reads the cycle-mean film.")
 EVERY_POSITION = "at every position"
 AT_POSITIONS = "at bearings {bearings}"
 NO_SCUFFING_PART = " No bearing spends over 20 % of the cycle below h_lim,cr."
@@ -286,6 +284,8 @@ LIFE_LIMIT = ("- {bias}Levanov's constants were fitted to another engine: compar
 LIFE_BIAS_PART = ("Method 1 reads the cycle-mean film, up to {error:.0f} % thicker than the transient reference: at "
                   "the median {film} µm that makes a life {ratio:.1f} times as long ({life} h against {thinner_life} "
                   "h at {thinner_film} µm); the method caps a life at Δh_lim/γ = {cap} h. ")
+LIFE_CHECKED_PART = ("Lives are scaled per position by the mass-conserving check's ratio, assumed the same for every "
+                     "engine there. ")
 LIMITS_AFTER_LIFE = (
     "- Schemes are judged on their preferred and allowed pairs as written; lots are independent.",
 )
