@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..study import summaries
-from ..facts.tables import UM, assembled, converged_engines, grade_usage, kept_summaries, numbers
+from ..facts.tables import UM, assembled, checked_lives, converged_engines, grade_usage, kept_summaries, numbers
 
 #: Width of a full-page figure [in] at DPI: the HTML page is 1200 px wide.
 WIDTH, DPI = 11.0, 110
@@ -89,7 +89,8 @@ def film_by_bearing(ds, path):
         offset = (k - (len(names) - 1) / 2) * width
         # a bearing whose film is not a number (NaN: collapsed, not periodic, failed) has no box point
         h = [numbers(ds.h_min.values[i, done, b] * UM) for b in range(len(bearings))]
-        life = [numbers(ds.life.values[i, done, b] / 3600) for b in range(len(bearings))]
+        lives = checked_lives(ds.isel(scheme=i), done)  # on the check tier's scale where the study ran it
+        life = [numbers(lives[:, b]) for b in range(len(bearings))]
         colour = f"C{k}"
         for ax, values in ((ax_h, h), (ax_l, life)):
             if not done.any():
@@ -127,8 +128,10 @@ def film_life_by_clearance(ds, path, bins=12):
         return None
     m = ds.sizes["mech_engine"]
     clearance = ds.clearance_operating.values[:, :m] * UM
-    h, life = ds.h_min.values * UM, ds.life.values / 3600
+    h, life = ds.h_min.values * UM, np.full(ds.life.shape, np.nan)
     done = np.stack([converged_engines(ds, i) for i in range(ds.sizes["scheme"])])[..., None]
+    for i in range(ds.sizes["scheme"]):  # lives on the check tier's scale where the study ran it
+        life[i, done[i, :, 0]] = checked_lives(ds.isel(scheme=i), done[i, :, 0])
     fig = Figure(figsize=(WIDTH, 4.2), layout="constrained")
     ax_h, ax_l = fig.subplots(1, 2, sharex=True)
     edges = np.linspace(np.nanmin(clearance), np.nanmax(clearance), bins + 1)
