@@ -67,6 +67,9 @@ def test_the_report_states_the_corrected_means_and_a_check_below_the_target(chec
     life = [q[0] / 3600 for q in corrected.life_corrected]
     text = write_report(checked, tmp_path).read_text()
     assert f"life {fmt.significant(min(life))}–{fmt.significant(max(life))} (±" in text
+    # the film tier's error the Methods quote is this engine's, as the check measured it
+    thick = 100 * max(c / q[0] - 1 for c, q in zip(corrected.h_min_mean_cheap, corrected.h_min_mean_corrected))
+    assert f"on the cycle-minimum film, {thick:.0f} % on its mean" in text
     # a target above every corrected life: the first page says where the check falls short
     short = write_report(checked.assign(life_target=2 * max(life) * 3600), tmp_path / "short").read_text()
     first_page = short.split("<!-- /verdict -->")[0]

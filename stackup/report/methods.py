@@ -91,10 +91,17 @@ def _film_method(facts):
     """The film tier, what it solves and its measured error against the transient reference, in one bullet."""
     method = facts.about.film_method
     tier = FILM_TIERS.get(TIER_ALIASES.get(method, method), method)  # a dataset from before the tiers' one name
-    e = facts.film_errors
+    e, checked = facts.film_errors, facts.corrected
     errors = ("" if e is None else
               words.FILM_ERRORS_PART.format(h_min=100 * e.h_min, h_min_mean=100 * e.h_min_mean,
                                             milliseconds=1e3 * e.seconds))
+    if len(checked):  # this engine's own error, as the check measured it, in place of the built-in engines'
+
+        def thick(column):
+            return 100 * max(cheap / q[0] - 1 for cheap, q in zip(checked[f"{column}_cheap"],
+                                                                   checked[f"{column}_corrected"]))
+
+        errors = words.CHECKED_ERRORS_PART.format(h_min=thick("h_min"), h_min_mean=thick("h_min_mean"))
     return words.OIL_FILM.format(method=method, tier=tier, errors=errors)
 
 

@@ -259,6 +259,8 @@ OIL_FILM = "- **Oil film:** `{method}` tier, {tier}, with each bearing's heat ba
 FILM_ERRORS_PART = ("; error against the transient mass-conserving Reynolds reference up to {h_min:.0f} % on the "
                     "cycle-minimum film, {h_min_mean:.0f} % on its mean; {milliseconds:.1f} ms per bearing-cycle "
                     "(reports/film_speed_vs_error.md)")
+CHECKED_ERRORS_PART = ("; against the mass-conserving check on this engine thick by up to {h_min:.0f} % on the "
+                       "cycle-minimum film, {h_min_mean:.0f} % on its mean (reports/film_speed_vs_error.md)")
 LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why} and Δh_lim = "
         "{method1_limit} µm (Δh_lim/γ = {method1_scale:.1e} s, the scale of the paper's method-1 results), method 2 on "
         "{wear_limit} µm ({wear_source}); h_lim,cr = {critical} µm from Rz {journal_rz} + {shell_rz} µm; wear speed "
