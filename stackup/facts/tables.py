@@ -216,6 +216,10 @@ class FilmNumbers:
     engines_below_target: tuple  # share of engines living less than the target [-]
 
 
+#: The study's film and life variables whose means the check tier corrects, and their check twins.
+CHECKED = {"h_min": "h_min_check", "h_min_mean": "h_min_mean_check", "life": "life_check"}
+
+
 def checked_lives(d, done):
     """Bearing lives [h] of one scheme ``d`` on the engines ``done`` (engines, positions), on the check tier's scale.
 
@@ -228,18 +232,27 @@ def checked_lives(d, done):
     tier's lives.
     """
     life = d.life.values[done] / 3600
-    if "life_check" not in d:
-        return life
     for b in range(life.shape[-1]):
-        cheap, check = d.life.values[done, b], d.life_check.values[done, b]
-        shared = np.isfinite(cheap) & np.isfinite(check)
-        if np.count_nonzero(shared) >= 3:
-            e = control_variate_mean(check[shared], cheap[shared], cheap[np.isfinite(cheap)])
+        e = checked_mean(d, done, "life", b)
+        if e is not None:
             life[:, b] *= e.estimate / e.cheap
     return life
 
 
-def position_risks(d, life_target_h, done=None):
+def checked_mean(d, done, name, b):
+    """The control-variate estimate (:func:`stackup.stats.control_variate_mean`) of the check tier's mean of
+    ``name`` (a key of :data:`CHECKED`) at position index ``b`` of one scheme ``d``, over the engines ``done``;
+    None where the check ran on fewer than 3 of them."""
+    if CHECKED[name] not in d:
+        return None
+    cheap, check = d[name].values[done, b], d[CHECKED[name]].values[done, b]
+    shared = np.isfinite(cheap) & np.isfinite(check)
+    if np.count_nonzero(shared) < 3:
+        return None
+    return control_variate_mean(check[shared], cheap[shared], cheap[np.isfinite(cheap)])
+
+
+def position_risks(d, life_target_h, done=None, lives=None):
     """Per main-bearing position of one scheme ``d``: Levanov's operability criteria and the life.
 
     Over the engines whose crankshaft converged (``done``, else found), each
@@ -249,10 +262,11 @@ def position_risks(d, life_target_h, done=None):
     less than ``life_target_h``), ``life_b10_h`` and ``life_median_h``; each a
     list over positions of (value, lower, upper) 95 % intervals
     (Clopper-Pearson for shares, order statistics for quantiles). Lives on
-    the check tier's scale where the study ran it (:func:`checked_lives`).
+    the check tier's scale where the study ran it: ``lives``, else
+    :func:`checked_lives`.
     """
     done = d.crank_status.values == flag(d.crank_status, "converged") if done is None else done
-    alpha, life = d.alpha.values[done], checked_lives(d, done)
+    alpha, life = d.alpha.values[done], checked_lives(d, done) if lives is None else lives
     out = {"alpha_over_limit": [], "life_below_target": [], "life_b10_h": [], "life_median_h": []}
     for b in range(alpha.shape[-1]):
         a, hours = numbers(alpha[:, b]), numbers(life[:, b])
@@ -276,10 +290,11 @@ def film_numbers(d, h_lim_cr=None):
         return None
     h, a = (numbers(d[name].values[done]) for name in ("h_min", "alpha"))
     target = float(d.life_target) / 3600
-    risks = position_risks(d, target, done)
+    lives = checked_lives(d, done)
+    risks = position_risks(d, target, done, lives)
     alpha_position, alpha_over = _worst(risks["alpha_over_limit"])
     life_position, short = _worst(risks["life_below_target"])
-    engine_life = checked_lives(d, done).min(axis=1)  # NaN stays NaN: left out
+    engine_life = lives.min(axis=1)  # NaN stays NaN: left out
     lived = engine_life[~np.isnan(engine_life)]
     return FilmNumbers(done, h, a, int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
                        None if h_lim_cr is None else proportion_ci(np.count_nonzero(h < h_lim_cr), h.size),
@@ -422,10 +437,6 @@ def paired_life_changes(ds, other):
             pd.DataFrame(engines).set_index("scheme"))
 
 
-#: The study's film and life variables whose means the check tier corrects, and their check twins.
-CHECKED = {"h_min": "h_min_check", "h_min_mean": "h_min_mean_check", "life": "life_check"}
-
-
 def multi_fidelity(ds):
     """Per scheme and position, the means of the film and life corrected by the check tier (control variates).
 
@@ -442,16 +453,13 @@ def multi_fidelity(ds):
         return pd.DataFrame()
     rows = []
     for i, name in enumerate(ds.scheme.values):
-        done = converged_engines(ds, i)
+        d, done = ds.isel(scheme=i), converged_engines(ds, i)
         for b, bearing in enumerate(ds.bearing.values):
             row = {"scheme": str(name), "bearing": int(bearing)}
-            for cheap, check in CHECKED.items():
-                x_all = ds[cheap].values[i, done, b]
-                y = ds[check].values[i, done, b]
-                shared = np.isfinite(y) & np.isfinite(x_all)
-                if np.count_nonzero(shared) < 3:
+            for cheap in CHECKED:
+                e = checked_mean(d, done, cheap, b)
+                if e is None:
                     break
-                e = control_variate_mean(y[shared], x_all[shared], x_all[np.isfinite(x_all)])
                 row.update({f"{cheap}_cheap": e.cheap, f"{cheap}_corrected": (e.estimate, e.lower, e.upper),
                             "pairs": e.n_accurate, "engines": e.n_cheap})
             else:
