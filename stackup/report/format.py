@@ -20,6 +20,11 @@ def fixed(value, digits=1, sign=False):
     return f"{value:{'+' if sign else ''}.{digits}f}"
 
 
+def signed(value, digits=0):
+    """``value`` with its sign, grouped, to ``digits`` decimals, the minus a minus sign ('+27', '−1,393', '+0.41')."""
+    return f"{value:+,.{digits}f}".replace("-", "−")
+
+
 def interval(value, ci, digits=1):
     """'value [lower, upper]' to ``digits`` decimals; '—' where the value is not a number."""
     if not np.isfinite(value):

@@ -133,7 +133,7 @@ def _trends_text(trends):
 
 def _span(values):
     """Correlations as '+0.41' or '−0.52 to −0.31'."""
-    lo, hi = (f"{v:+.2f}".replace("-", "−") for v in (min(values), max(values)))
+    lo, hi = (fmt.signed(v, 2) for v in (min(values), max(values)))
     return lo if lo == hi else f"{lo} to {hi}"
 
 

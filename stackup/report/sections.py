@@ -150,11 +150,6 @@ def scenarios_section(facts, ranking, scenario_rankings):
     return section("Scenarios", *lines)
 
 
-def _hours_change(value):
-    """A change of life in hours, signed and grouped ('+27', '−1,393')."""
-    return f"{value:+,.0f}".replace("-", "−")
-
-
 def _life_change_line(label, positions, engines, chosen):
     """What a scenario that ran the mechanical chain does to the chosen scheme's lives per position and engine, and
     where any scheme's life at a position rises beyond its 95 % interval (paired on the same engines)."""
@@ -164,13 +159,13 @@ def _life_change_line(label, positions, engines, chosen):
     changes = [v[0] for v in mine.life_change_h]
     rises = [(scheme, bearing, row) for (scheme, bearing), row in positions.iterrows() if row.life_change_h[1] > 0]
     where = (words.LIVES_NONE_RISE if not rises else words.LIVES_RISE.format(where=words.listed(
-        words.LIFE_RISE_PART.format(bearing=bearing, scheme=scheme, change=_hours_change(row.life_change_h[0]),
+        words.LIFE_RISE_PART.format(bearing=bearing, scheme=scheme, change=fmt.signed(row.life_change_h[0]),
                                     film=fmt.fixed(row.h_min_mean_change_um[0], 2, sign=True))
         for scheme, bearing, row in rises)))
     return words.SCENARIO_LIVES.format(scenario=label, pairs=int(mine.pairs.min()), scheme=chosen,
-                                       lo=_hours_change(min(changes)), hi=_hours_change(max(changes)),
+                                       lo=fmt.signed(min(changes)), hi=fmt.signed(max(changes)),
                                        bearing=mine.index[int(np.argmin(changes))],
-                                       engine=_hours_change(engines.loc[chosen, "engine_life_change_h"][0]),
+                                       engine=fmt.signed(engines.loc[chosen, "engine_life_change_h"][0]),
                                        where=where)
 
 
