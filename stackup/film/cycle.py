@@ -121,8 +121,6 @@ class BearingFilms:
     edge_contact_share : numpy.ndarray
         Share of the crank angles at which the film over the width is at its
         limit, :math:`c(1 - \varepsilon_{lim})` (an edge, or the journal, at the wall) [-].
-    tilt : numpy.ndarray (engines, bearings, angles, 2) or None
-        The journal's tilt in the film at each crank angle [rad] (None without tilt).
     viscosity : numpy.ndarray
         Effective oil viscosity of the heat balance [Pa s].
     """
@@ -140,7 +138,6 @@ class BearingFilms:
     heat_status: np.ndarray
     tilt_max: np.ndarray | None = None
     edge_contact_share: np.ndarray | None = None
-    tilt: np.ndarray | None = None
     viscosity: np.ndarray | None = None
 
 
@@ -208,7 +205,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         status = np.where(_steady_valid(film), status, FILM_STATUS.index("collapsed")).astype(np.int8)
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
-                            film.tilt_max, _at_limit_share(film.h_min_edge, clearance), film.tilt, heat.viscosity)
+                            film.tilt_max, _at_limit_share(film.h_min_edge, clearance), heat.viscosity)
     options = {"feed": feed} if method == "reynolds-transient" else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
@@ -216,19 +213,19 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                                         tilt_compliance=tilt_compliance, options=options, **geometry)
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
                         balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
-                        film.tilt_max, _at_limit_share(film.h_min_edge, clearance), film.tilt, balance.viscosity)
+                        film.tilt_max, _at_limit_share(film.h_min_edge, clearance), balance.viscosity)
 
 
 #: The tier that checks the study's film on some of its engines (multi-fidelity: :func:`checked_film`).
 CHECK_METHOD = "elrod-coarse"
 
 
-def checked_film(spec, feed, reactions, crank_angle, films, *, clearance, journal_d, method, check=CHECK_METHOD):
+def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, journal_d, method, check=CHECK_METHOD):
     """The mid-plane film over the cycle of the same bearings by the study's tier and by a more accurate one,
     both on the aligned journal at the viscosity of the bearings' heat balance.
 
-    The bearings of a :func:`bearing_films` result ``films`` (by tier
-    ``method``) run again with ``method`` and with ``check`` (default the
+    The bearings of a :func:`bearing_films` result (by tier ``method``, its
+    heat balance's ``viscosity`` [Pa s]) run again with ``method`` and with ``check`` (default the
     mass-conserving :data:`CHECK_METHOD`, fed by the engine's oil ``feed``),
     without the journal's tilt: the accurate tier takes a tilt only as
     imposed and fails where a tilted edge reaches the wall (an edge the rigid
@@ -240,7 +237,7 @@ def checked_film(spec, feed, reactions, crank_angle, films, *, clearance, journa
     """
     loads = np.moveaxis(np.asarray(reactions, dtype=float), 1, 2)
     geometry = dict(journal_d=np.asarray(journal_d, dtype=float), bearing_width=spec.bearing_width,
-                    clearance=np.asarray(clearance, dtype=float), speed=spec.speed, viscosity=films.viscosity)
+                    clearance=np.asarray(clearance, dtype=float), speed=spec.speed, viscosity=viscosity)
     angle = np.asarray(crank_angle, dtype=float)
 
     def fed(tier):

@@ -11,7 +11,7 @@ mechanical chain's progress.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -364,10 +364,9 @@ def _check_values(engine, films, reactions, crank_angle, *, clearance, journal_d
     if engines == 0:
         return out
     first = slice(0, engines)
-    part = replace(films, viscosity=films.viscosity[first])
-    cheap, accurate = checked_film(engine.crank, engine.oil_feed, reactions[first], crank_angle, part,
-                                   clearance=np.asarray(clearance)[first], journal_d=np.asarray(journal_d)[first],
-                                   method=film_method)
+    cheap, accurate = checked_film(engine.crank, engine.oil_feed, reactions[first], crank_angle,
+                                   viscosity=films.viscosity[first], clearance=np.asarray(clearance)[first],
+                                   journal_d=np.asarray(journal_d)[first], method=film_method)
     h_min, h_mean = films.h_min[first].min(axis=-1), cycle_film(films.h_min[first], statistic="cycle-mean")
     out["h_min_check"][first] = h_min * accurate.min(axis=-1) / cheap.min(axis=-1)
     out["h_min_mean_check"][first] = h_mean * cycle_film(accurate, statistic="cycle-mean") / cycle_film(
