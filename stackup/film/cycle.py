@@ -11,9 +11,10 @@ Film methods a study names (:data:`FILM_METHODS`) are the cycle tiers of
 
 - ``"short"``, ``"finite"``, ``"reynolds"``: quasi-static, each crank angle a
   steady load on that steady tier (no squeeze film);
-- ``"mobility"``, ``"mobility-finite"``, ``"reynolds-transient"``: the dynamic
-  tiers (the reference ``"reynolds-transient"`` fed by the engine's groove or
-  hole; the study's former name ``"transient"`` is a deprecated alias,
+- ``"mobility"``, ``"mobility-finite"``, ``"elrod-coarse"``, ``"reynolds-transient"``:
+  the dynamic tiers (the mass-conserving ``"elrod-coarse"`` and the reference
+  ``"reynolds-transient"`` fed by the engine's groove or hole, :data:`FED`; the
+  study's former name ``"transient"`` is a deprecated alias,
   :func:`stackup.film.orbit.canonical_tier`).
 
 With a dynamic tier the heat balance closes on the orbit's own friction power,
@@ -43,7 +44,7 @@ from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
 from .journal import ECCENTRICITY_LIMIT, Orbit
 from .journal import STATUS as ORBIT_STATUS
-from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
+from .orbit import (ALIASES, DYNAMIC, FED, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
                     cycle_tier_errors, one_cycle, orbit, tier_names, within_one_cycle)
 from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
 from .transient import transient_orbit
@@ -206,7 +207,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
                             film.tilt_max, _at_limit_share(film.h_min_edge, clearance), heat.viscosity)
-    options = {"feed": feed} if method == "reynolds-transient" else {}
+    options = {"feed": feed} if method in FED else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
                                         stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))), tilt=tilt,
@@ -241,18 +242,10 @@ def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, jo
     angle = np.asarray(crank_angle, dtype=float)
 
     def fed(tier):
-        return {"feed": feed} if tier in ("elrod-coarse", "reynolds-transient") else {}
+        return {"feed": feed} if tier in FED else {}
 
     return (orbit(loads, angle, **geometry, method=method, **fed(method)).h_min,
             orbit(loads, angle, **geometry, method=check, **fed(check)).h_min)
-    options = {"feed": feed} if method == "reynolds-transient" else {}
-    balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
-                                        supply_temperature=spec.oil_supply_temperature, feed=feed,
-                                        stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))), tilt=tilt,
-                                        tilt_compliance=tilt_compliance, options=options, **geometry)
-    return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
-                        balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
-                        film.tilt_max, _at_limit_share(film.h_min_edge, clearance))
 
 
 def _at_limit_share(h_min_edge, clearance):

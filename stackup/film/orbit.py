@@ -116,6 +116,9 @@ METHODS = ("short", "finite", "mobility", "mobility-finite", "elrod-coarse", "re
 #: Quasi-static tiers (a steady tier at each angle) and dynamic ones (an orbit integrated over cycles).
 QUASI_STATIC = ("short", "finite", "reynolds")
 DYNAMIC = ("mobility", "mobility-finite", "elrod-coarse", "reynolds-transient")
+#: Tiers that fill their film from the engine's oil feed (``feed``: groove or hole held at the supply pressure);
+#: the others take the film as full wherever its pressure is positive.
+FED = ("elrod-coarse", "reynolds-transient")
 #: Deprecated names of the tiers -> their names (``"quasi-static"`` takes its tier from ``steady_method``).
 ALIASES = {"quasi-static-short": "short", "quasi-static-finite": "finite", "quasi-static-reynolds": "reynolds",
            "mobility-short": "mobility", "transient": "reynolds-transient"}
