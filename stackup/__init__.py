@@ -37,9 +37,25 @@ called as their main function: ``stackup.rank(ds)``, ``stackup.plan(ds,
 volume=...)``), :mod:`design`.
 """
 
-from . import design, plan, rank
+import importlib
+
 from ._version import __version__
-from .comparison import Comparison, compare
-from .study import Study
 
 __all__ = ["Comparison", "Study", "compare", "design", "plan", "rank", "__version__"]
+
+#: The package face, imported on first use (PEP 562): ``import stackup`` and the command line start at once, so a
+#: Ctrl-C in the first seconds reaches the command's handler rather than the middle of importing numba and xarray.
+_FACE = {"Comparison": ".comparison", "compare": ".comparison", "Study": ".study", "design": None, "plan": None,
+         "rank": None}
+
+
+def __getattr__(name):
+    if name not in _FACE:
+        raise AttributeError(f"module 'stackup' has no attribute {name!r}")
+    if _FACE[name] is None:
+        return importlib.import_module(f".{name}", __name__)
+    return getattr(importlib.import_module(_FACE[name], __name__), name)
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -13,9 +13,11 @@ read, listing the valid ones, so a typo never runs silently with a default.
 
 from __future__ import annotations
 
+import ast
 import difflib
 import math
 import os
+import re
 import tomllib
 from pathlib import Path
 
@@ -47,6 +49,11 @@ def read_toml(path, *, kind):
     """
     path = Path(path)
     where = f"{kind} file {str(path)!r}"
+    try:
+        str(path).encode("utf-8")
+    except UnicodeEncodeError:  # a study stores its files' paths as UTF-8 text (its dataset, its report)
+        raise ValueError(f"{where}: the path is not UTF-8 text (its bytes are not valid UTF-8); rename the file or "
+                         "its folder with UTF-8 characters (or copy it to one)") from None
     if path.is_dir():
         raise ValueError(f"{where}: is a folder, not a file")
     if not path.is_file():
@@ -68,7 +75,47 @@ def parse_toml(text, *, where):
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{where}: not valid TOML ({error})") from None
+        raise ValueError(f"{where}: {_toml_error(str(error), text)}") from None
+
+
+#: The TOML library's messages for a key or table given twice, and what they mean to whoever wrote the file.
+_TWICE = re.compile(r"Cannot (?:overwrite a value|declare (?P<table>\(.*?\)) twice|mutate immutable namespace "
+                    r"(?P<inline>\(.*?\)))(?: \(at line (?P<line>\d+), column \d+\))?")
+
+
+def _toml_error(message, text):
+    """The TOML library's message in the file's words: a key written twice is named, with its line."""
+    match = _TWICE.fullmatch(message.strip())
+    if match is None:
+        return f"not valid TOML ({message})"
+    line = int(match["line"]) if match["line"] else None
+    shown = f" (line {line}: {text.splitlines()[line - 1].strip()!r})" if line and line <= len(text.splitlines()) else ""
+    if match["table"]:
+        return f"table [{_dotted(match['table'])}] is written twice{shown}; write each table once"
+    if match["inline"]:
+        table = _dotted(match["inline"])
+        return (f"key {table} is written twice{shown}; write each key once (a table given whole, as "
+                f"{table.rsplit('.', 1)[-1]} = {{ ... }}, cannot be added to later)")
+    return f"a key is written twice{shown}; write each key once"
+
+
+def _dotted(keys):
+    """``('shell', 'grades')`` as the dotted key ``shell.grades``."""
+    try:
+        parts = ast.literal_eval(keys)
+    except (ValueError, SyntaxError):
+        return keys
+    return ".".join(map(str, parts)) if isinstance(parts, tuple) else str(parts)
+
+
+def did_you_mean(value, valid):
+    """``"; did you mean 'x'?"`` for the valid name nearest to ``value`` (case and separators aside), or ``""``."""
+    def plain(text):
+        return re.sub(r"[\s_\-]+", "", str(text).lower())
+
+    by_plain = {plain(v): v for v in valid}
+    near = difflib.get_close_matches(plain(value), list(by_plain), n=1, cutoff=0.6)
+    return f"; did you mean {by_plain[near[0]]!r}?" if near else ""
 
 
 def _type_name(value):
@@ -141,7 +188,8 @@ class Table:
         if not isinstance(value, str):
             raise ValueError(f"{self._at(name)}: {value!r} is {_type_name(value)}, not text")
         if options is not None and value not in options:
-            raise ValueError(f"{self._at(name)}: {value!r} is not one of {', '.join(map(repr, options))}")
+            raise ValueError(f"{self._at(name)}: {value!r} is not one of {', '.join(map(repr, options))}"
+                             f"{did_you_mean(value, options)}")
         return value
 
     def number(self, name, default=None, *, required=False, lo=-math.inf, hi=math.inf, unit="",

@@ -15,13 +15,21 @@ import time
 from pathlib import Path
 
 from ._version import __version__
+from .design_cli import window_option
 
 #: Engines of ``stackup compare``, of ``stackup compare --quick`` and the fewest it runs: the report's 95 %
 #: intervals, the plan's safety stock and the sensitivity regression need about a hundred engines.
 COMPARE_ENGINES, QUICK_ENGINES, COMPARE_MIN_ENGINES = 100_000, 10_000, 100
+#: Engines per scheme whose films ``stackup compare`` checks with the mass-conserving tier (control variates).
+FILM_CHECK_ENGINES = 5
 #: Output folders of ``stackup compare`` and ``stackup compare --quick`` (relative to the working folder).
 COMPARE_OUT, QUICK_OUT = "reports/compare", "reports/compare-quick"
 EXIT_DAMAGED, EXIT_REFUSED, EXIT_INTERRUPTED = 1, 2, 130
+#: Largest share of a pilot sample's bearings a scheme may leave ungraded in the main job: the share of missing
+#: samples its Sobol stage accepts (stackup.sensitivity.sobol_indices, max_missing).
+UNGRADED_LIMIT = 0.01
+#: Copies of a comparison's per-engine data in memory at once: the study, then the saved dataset the report reads.
+COPIES_IN_MEMORY = 2
 #: Library parameter names as the command line spells them, for the messages.
 OPTIONS = {"n_engines": "--n", "volume": "--volume", "service_level": "--service-level", "lot_engines": "--lot",
            "sample_engines": "--sample", "seed": "--seed", "part": "--part", "window": "--window"}
@@ -53,41 +61,39 @@ def _compare(args, state):
 
     import stackup
 
-    from .engines import load_engine
     from .facts import Run, clearance_summary
     from .io import open_comparison, save_comparison
-    from .output import prepare_folder
+    from .output import prepare_folder, run_identity
     from .report import write_report
     from .report.verdict import run_notes
     from .scenarios import DECLARED
-    from .schemes import load as load_scheme
     from .study import ISO_SCHEMES
 
     n = args.n if args.n is not None else (QUICK_ENGINES if args.quick else COMPARE_ENGINES)
     out = args.out if args.out is not None else (QUICK_OUT if args.quick else COMPARE_OUT)
-    window = _window(args.window)
     schemes = tuple(args.schemes or ISO_SCHEMES)
     scenarios = {} if args.no_scenarios else DECLARED
-    load_engine(args.engine)  # a bad engine or scheme is said before any folder is touched
-    for scheme in schemes:
-        load_scheme(scheme)
     design = None if args.no_design else {}
-    identity = {"engine": args.engine, "schemes": list(schemes), "n_engines": n, "seed": args.seed,
-                "window": list(window) if window else None, "scenarios": list(scenarios), "design": design}
+    # what the run cannot do is said before any folder is touched: bad files, a window in mm, too many engines
+    engine, window = _checked_inputs(args, schemes, n, design)
+    identity = run_identity(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed, window=window,
+                            scenarios=scenarios, design=design is not None)
     existed = os.path.isdir(out)
     staged = prepare_folder(out, identity=identity, force=args.force)
     state.saved = f"nothing was saved: {out} {'is as it was' if existed else 'was not created'}"
     log = _Log(state)
     try:
         result = stackup.compare(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed,
-                                 scenarios=scenarios, design=design, log=log, window=window,
-                                 scheduler="processes" if args.processes else None)
+                                 scenarios=scenarios, uncertainties=None if args.no_scenarios else "declared",
+                                 negligible=args.negligible, design=design, log=log, window=window,
+                                 scheduler="processes" if args.processes else None,
+                                 film_check_engines=args.film_check_engines)
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
-        data = save_comparison(result, staged.staging / "compare.nc")
+        data = save_comparison(result, staged.staging / "compare.nc", compact=args.compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
         saved = open_comparison(data)  # the report reads what was saved, nothing else
         write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
-                     tails=saved.tails, dataset_file=data.name)
+                     tails=saved.tails, dataset_file=data.name, volume=args.volume)
         folder = staged.commit()
     except BaseException:
         staged.discard()
@@ -107,6 +113,27 @@ def _compare(args, state):
     return 0
 
 
+def _checked_inputs(args, schemes, n, design):
+    """(engine, window in m) of a comparison, after the checks that need no folder (a ValueError says why not).
+
+    The engine and scheme files are read; the window is checked against the
+    engine's journal (a window in mm is refused, naming it); the schemes are
+    graded on the study's pilot sample (a scheme that leaves too many parts
+    ungraded is refused naming it, before the study, not after); the engines
+    are checked against the machine's memory.
+    """
+    from .engines import load_engine
+    from .schemes import load as load_scheme
+
+    engine = load_engine(args.engine)
+    for scheme in schemes:
+        load_scheme(scheme)
+    window = window_option(args.window, engine)
+    _check_grading(args.engine, schemes, args.seed)
+    _check_memory(n, engine, len(schemes) + (design is not None))
+    return engine, window
+
+
 def _verdict_line(report):
     """The report's first verdict paragraph (which scheme to use and why), without its Markdown emphasis."""
     text = report.read_text(encoding="utf-8")
@@ -116,7 +143,10 @@ def _verdict_line(report):
 
 
 def _report(args, state):
+    state.stage = "reading the dataset"
+    state.saved = f"nothing was saved: {args.out or Path(args.dataset).parent} is as it was"
     from .io import open_comparison
+    from .output import stage_report
     from .report import write_report
 
     path = Path(args.dataset)
@@ -129,23 +159,89 @@ def _report(args, state):
     if "study" not in saved.dataset.attrs:
         raise ValueError(f"dataset: {str(path)!r} is not a comparison `stackup compare` saved (no study attribute)")
     out = Path(args.out) if args.out else path.parent
-    out.mkdir(parents=True, exist_ok=True)
+    existed = out.is_dir()
+    staged = stage_report(out)
+    state.stage = "writing the report"
+    state.saved = f"nothing was saved: {out}{' is as it was' if existed else ' holds no report'}"
     same = out.resolve() == path.parent.resolve()
-    write_report(saved.dataset, out, scenarios=saved.scenarios, sensitivity=saved.sensitivity, tails=saved.tails,
-                 dataset_file=path.name if same else str(path.resolve()))
+    try:
+        write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
+                     tails=saved.tails, dataset_file=path.name if same else str(path.resolve()),
+                     negligible=args.negligible, volume=args.volume)
+        staged.commit()
+    except BaseException:
+        staged.discard()
+        raise
+    state.stage, state.saved = "", f"{out / 'report.md'} was written"
     print(f"report:  {out / 'report.md'} (and report.html)")
     return 0
 
 
-def _window(window_um):
-    """The --window in m from LO HI in um, or None."""
-    if window_um is None:
+def _check_grading(engine, schemes, seed):
+    """Refuse a scheme that leaves more of the study's pilot sample ungraded than the main job can use.
+
+    The study's grading stage would mark those bearings not graded, and the
+    Sobol stage at the end of the main job refuses more than
+    :data:`UNGRADED_LIMIT` of its samples missing: said now, naming the
+    scheme and the readings its grades miss.
+    """
+    from .study import Study
+    from .study.inputs import input_files, load_inputs
+    from .study.pilot import grading, pilot_parts
+
+    labels = [str(s) for s in schemes]
+    loaded_engine, loaded = load_inputs(input_files(engine, labels), labels)  # the schemes as the study lays them
+    pilot = pilot_parts(loaded_engine, seed, Study.pilot_engines)
+    for label, scheme in zip(labels, loaded):
+        graded = grading(scheme, pilot)
+        if graded.ungraded > UNGRADED_LIMIT:
+            raise ValueError(f"--schemes: scheme {scheme.name}{f' ({label})' if label != scheme.name else ''} "
+                             f"leaves {100 * graded.ungraded:.2g} % of {loaded_engine.name}'s bearings with parts "
+                             f"inside the drawing limits ungraded: {graded.where(scheme, loaded_engine)}, in the "
+                             f"study's pilot sample of {Study.pilot_engines:,} engines; the main job needs at most "
+                             f"{100 * UNGRADED_LIMIT:g} %: widen the scheme's grades to the engine's drawing limits")
+
+
+def _check_memory(n, engine, schemes):
+    """Refuse a comparison whose engines cannot fit in this machine's memory, with what it needs and the way out."""
+    per_engine = memory_per_engine(engine.main_bearings, schemes)
+    need = COPIES_IN_MEMORY * per_engine * n
+    have = _physical_memory()
+    if have is None or need <= have:
+        return
+    most = int(have / (COPIES_IN_MEMORY * per_engine))
+    raise ValueError(f"--n: {n:,} engines would need about {_bytes(need)} of memory ({_bytes(per_engine)} per engine "
+                     f"with {schemes} scheme{'s' if schemes > 1 else ''}, kept twice: the study and the saved "
+                     f"dataset the report reads), and this machine has {_bytes(have)}; give --n at most "
+                     f"{most:,}, or run the study in Python with Study(..., keep=\"summaries\") (streaming summaries, "
+                     "memory that does not grow with the engines) or store=\"runs/big.zarr\" (every engine on disk): "
+                     "README, \"Running a study on several processes or a dask cluster\"")
+
+
+def memory_per_engine(bearings, schemes):
+    """Bytes one engine takes in a study that keeps every engine (its per-engine variables), for ``schemes``."""
+    import numpy as np
+
+    from .study.schema import PER_ENGINE
+
+    sizes = {"scheme": schemes, "bearing": bearings, "axis": 2, "engine": 1}
+    return sum(int(np.prod([sizes[d] for d in var.dims])) * np.dtype(var.dtype).itemsize
+               for var in PER_ENGINE.values())
+
+
+def _physical_memory():
+    """This machine's memory [bytes], or None where the system does not say."""
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
         return None
-    lo, hi = window_um
-    if not 0.0 < lo < hi < 1000.0:
-        raise ValueError(f"--window: {lo:g} {hi:g} um is not a clearance window; give LO HI in micrometres with "
-                         "0 < LO < HI < 1000, e.g. --window 45 65")
-    return lo / 1e6, hi / 1e6
+
+
+def _bytes(count):
+    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if count >= size:
+            return f"{count / size:.3g} {unit}"
+    return f"{count:.0f} B"
 
 
 def _plan(args, state):
@@ -155,6 +251,9 @@ def _plan(args, state):
     if args.force and args.csv in (None, "-"):
         raise ValueError("--force: replaces an existing --csv FILE; without --csv FILE nothing is replaced")
     csv = prepare_file(args.csv, force=args.force) if args.csv not in (None, "-") else None
+    state.stage = f"planning {args.part}s"
+    if csv is not None:
+        state.saved = f"nothing was saved: {csv} {'is as it was' if csv.exists() else 'was not created'}"
     frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
                  lot_engines=args.lot, sample_engines=args.sample, seed=args.seed, part=args.part)
     table = planner_table(frame)
@@ -325,6 +424,17 @@ class _Formatter(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescription
         return super()._get_help_string(action)
 
 
+def _share_ppm(text):
+    """A share of bearings in ppm, zero or more."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of ppm") from None
+    if not value >= 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text} ppm is not a share of bearings >= 0")
+    return value
+
+
 def _count(minimum, what):
     def parse(text):
         try:
@@ -375,13 +485,28 @@ def _compare_parser(sub):
     cmp_.add_argument("--quick", action="store_true",
                       help=f"a smaller run: {QUICK_ENGINES} engines, written to {QUICK_OUT} (the designer, tails and "
                            "Sobol stages do not shrink with it: add --no-design to skip the designer)")
-    cmp_.add_argument("--no-scenarios", action="store_true", help="skip the robustness scenarios")
+    cmp_.add_argument("--no-scenarios", action="store_true",
+                      help="skip the robustness scenarios (process and model uncertainty)")
+    cmp_.add_argument("--negligible", type=_share_ppm, default=1.0, metavar="PPM",
+                      help="shares of bearings outside the window less than this apart do not separate schemes; "
+                           "cost decides between them (default: 1 ppm)")
+    cmp_.add_argument("--volume", type=_count(1, "engines"), default=10_000, metavar="ENGINES",
+                      help="production volume the report's shell plan is for (default: 10000)")
+    cmp_.add_argument("--film-check-engines", type=_count(0, "engines"), default=FILM_CHECK_ENGINES,
+                      metavar="ENGINES",
+                      help="engines per scheme whose films run again with the mass-conserving elrod-coarse tier, "
+                           "which corrects the film and life means of the report by control variates (0: none; "
+                           f"default: {FILM_CHECK_ENGINES})")
     cmp_.add_argument("--processes", action="store_true",
                       help="run the study and its scenarios on one local worker process per core (dask; the same "
                            "numbers, faster on a large run)")
     cmp_.add_argument("--no-design", action="store_true",
                       help="compare only the schemes given, without a scheme designed for the engine and window "
                            "(`stackup design`)")
+    cmp_.add_argument("--compact", action="store_true",
+                      help="store the per-bearing values to 10 nm and 10 kPa (a dataset about a quarter of the size; "
+                           "a study rebuilt from it then differs by up to half that; default: every value as "
+                           "computed, so the dataset rebuilds itself identically)")
     cmp_.add_argument("--force", action="store_true",
                       help="replace another run in the output folder (the same run again is always replaced)")
     cmp_.set_defaults(func=_compare)
@@ -396,6 +521,11 @@ def _report_parser(sub):
                          epilog="example:\n  stackup report reports/compare/compare.nc")
     rpt.add_argument("dataset", metavar="DATASET", help="compare.nc written by `stackup compare`")
     rpt.add_argument("--out", metavar="FOLDER", help="folder for the report (default: the dataset's folder)")
+    rpt.add_argument("--negligible", type=_share_ppm, metavar="PPM",
+                     help="shares outside the window less than this apart do not separate schemes (default: the "
+                          "comparison's)")
+    rpt.add_argument("--volume", type=_count(1, "engines"), default=10_000, metavar="ENGINES",
+                     help="production volume the shell plan is for (default: 10000)")
     rpt.set_defaults(func=_report)
 
 
@@ -500,19 +630,46 @@ def _message(error):
 
 def main(argv=None):
     """Run the command; return its exit code (the console script exits with it)."""
-    try:
-        args = parser().parse_args(argv)
-    except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
-        return done.code
     state = _State()
     try:
+        try:
+            args = parser().parse_args(argv)
+        except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
+            return done.code
         return args.func(args, state)
     except KeyboardInterrupt:
+        print(state.interrupted(), file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except SystemError as error:
+        if not _interrupt(error):
+            raise
         print(state.interrupted(), file=sys.stderr)
         return EXIT_INTERRUPTED
     except ValueError as error:  # bad input, a refused output location, a damaged store: said, not a traceback
         print(f"stackup: error: {_message(error)}", file=sys.stderr)
         return EXIT_REFUSED
+    except MemoryError:  # what --n refuses up front; a machine short of free memory can still end here
+        where = f" during {state.stage}" if state.stage else ""
+        print(f"stackup: error: out of memory{where}; {state.saved}; run fewer engines (--n) or close other "
+              "programs", file=sys.stderr)
+        return EXIT_REFUSED
+
+
+def _interrupt(error):
+    """Whether ``error`` is a Ctrl-C in disguise.
+
+    A Ctrl-C that arrives while a numba kernel runs raises KeyboardInterrupt
+    inside the compiled call, which then returns with the exception set:
+    Python turns that into ``SystemError: CPUDispatcher(...) returned a result
+    with an exception set`` whose context is the KeyboardInterrupt.
+    """
+    seen = set()
+    while error is not None and id(error) not in seen:
+        if isinstance(error, KeyboardInterrupt):
+            return True
+        seen.add(id(error))
+        error = error.__cause__ or error.__context__
+    return False
 
 
 if __name__ == "__main__":

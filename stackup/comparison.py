@@ -13,14 +13,15 @@ from . import _validate as check
 from .design import design as design_scheme
 from .design.estimate import outside_share
 from .engines import load_engine
-from .facts import MIN_COUNTED, counted_outside
+from .facts import MIN_COUNTED, NEGLIGIBLE_PPM, counted_outside
 from .facts.declared import StudyParameters, parsed, plain
 from .rank import rank
-from .scenarios import DECLARED
+from .scenarios import DECLARED, MECHANICS_KEYS, model_uncertainties
 from .schemes import load as load_scheme
 from .sensitivity import sobol
 from .study import ISO_SCHEMES, Study
 from .study.inputs import load_inputs, scheme_text
+from .study.scenario import checked
 from .study.schedule import local_cluster
 from .tail import clearance_tail
 
@@ -64,7 +65,8 @@ class Comparison:
 
 
 def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0, *, scenarios=DECLARED,
-            design=None, scheduler=None, progress=None, log=None, **study_options):
+            uncertainties="declared", negligible=NEGLIGIBLE_PPM, design=None, scheduler=None, progress=None, log=None,
+            **study_options):
     """Compare selective-fitting schemes on an engine: the study, its scenarios and what drives the spread.
 
     Parameters
@@ -75,10 +77,22 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     n_engines : int
     seed : int
     scenarios : dict of str -> dict
-        Label -> scenario (:mod:`stackup.scenarios`); each is run with the
-        same seed on the clearance stages, and on
+        Label -> process scenario (:mod:`stackup.scenarios`); each is run
+        with the same seed on the clearance stages, and on
         :data:`SCENARIO_MECHANICS_ENGINES` engines of the mechanical chain
         where it disturbs that chain (misalignment). Empty for none.
+    uncertainties : "declared", sequence of stackup.scenarios.Uncertainty, or None
+        Model inputs over their declared ranges, run as scenarios like the
+        process ones: "declared" runs the engine's
+        (:func:`stackup.scenarios.model_uncertainties`: housing stiffness,
+        crush height process, journal-housing temperature difference); None
+        or empty runs none. Each scenario dataset says what it is in its
+        attributes (``scenario_kind`` "process" or "model"; a model one its
+        ``scenario_input``, ``scenario_source`` and ``scenario_measure``).
+    negligible : float
+        Shares of bearings outside the window differing by less than this
+        [ppm] do not separate schemes (:func:`stackup.rank.rank`); stored in
+        the dataset's ``negligible_ppm`` attribute.
     design : dict or None
         Design a scheme for the engine and its window first
         (:func:`stackup.design.design` with these keyword options, the
@@ -102,6 +116,8 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     Comparison
     """
     log = log or (lambda line: None)
+    negligible = check.Positive(zero=True)("negligible", negligible)
+    runs_asked = _scenario_runs(scenarios, _uncertainties(uncertainties, engine))
     designed = None
     if design is not None:
         log("design: a scheme for the engine and its window (stackup.design)")
@@ -115,12 +131,14 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     with _client(scheduler) as where:
         log(f"study: {study.n_engines:,} engines x {len(study.schemes)} schemes")
         ds = study.run(where)
+        ds.attrs["negligible_ppm"] = float(negligible)
         runs = {}
-        for k, (label, change) in enumerate((scenarios or {}).items(), start=1):
-            log(f"scenario {k}/{len(scenarios)}: {label}")
-            runs[label] = replace(study, scenario=change, keep="summaries",
-                                  mechanics_engines=SCENARIO_MECHANICS_ENGINES if "misalignment_scale" in change
-                                  else 0).run(where)
+        for k, (label, change, about) in enumerate(runs_asked, start=1):
+            log(f"scenario {k}/{len(runs_asked)} ({about['scenario_kind']}): {label}")
+            mechanics = SCENARIO_MECHANICS_ENGINES if any(key in MECHANICS_KEYS for key in change) else 0
+            runs[label] = replace(study, scenario=change, keep="summaries", mechanics_engines=mechanics,
+                                  film_check_engines=0).run(where)  # the study's check corrects the study
+            runs[label].attrs.update(about)
     if designed is not None:
         ds.attrs.update(designed_scheme=designed.scheme.name, design=json.dumps(design_record(designed)))
     engine_used, loaded = load_inputs(study.files, study.schemes)
@@ -132,7 +150,39 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
                           pilot_engines=study.pilot_engines)
     log("sensitivity: Sobol indices of the root inputs")
     sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails)
+    ds.attrs["comparison"] = COMPARISON_NOTE
     return Comparison(ds, runs, sensitivity, tails)
+
+
+#: The ``comparison`` attribute of a comparison's study dataset: how to read the whole comparison.
+COMPARISON_NOTE = ("the study of a stackup.compare comparison; its scenarios, tail estimates and Sobol indices are "
+                   "groups of the same file: open it with stackup.io.open_comparison(path) and rank it with "
+                   "stackup.rank(that comparison)")
+
+
+def _uncertainties(uncertainties, engine):
+    """The model uncertainties a comparison runs: "declared" is the engine's, None none, else as given."""
+    if isinstance(uncertainties, str):
+        if uncertainties != "declared":
+            raise ValueError(f"uncertainties: {uncertainties!r} is not 'declared', None or a sequence of "
+                             "stackup.scenarios.Uncertainty")
+        return model_uncertainties(load_engine(engine))
+    return list(uncertainties or ())
+
+
+def _scenario_runs(scenarios, uncertainties):
+    """(label, scenario, attributes) of every scenario run: the process ones, then each model input's ends."""
+    runs = [(label, change, {"scenario_kind": "process"}) for label, change in (scenarios or {}).items()]
+    for u in uncertainties:
+        about = {"scenario_kind": "model", "scenario_input": u.input, "scenario_source": u.source,
+                 "scenario_measure": u.measure}
+        runs += [(label, change, about) for label, change in u.scenarios.items()]
+    labels = [label for label, _, _ in runs]
+    if len(set(labels)) < len(labels):
+        raise ValueError(f"scenarios: labels repeat ({', '.join(sorted({x for x in labels if labels.count(x) > 1}))})")
+    for label, change, _ in runs:
+        checked(change)
+    return runs
 
 
 def _distinct_name(name, taken):

@@ -7,7 +7,10 @@ how it is read, housing bores their bolt-tension scatter). ``[press_fit]``
 holds the housing ring, materials and shell lining, the checking block, the
 temperatures the fit is checked at (``cold_temperature``,
 ``assembly_temperature``, ``temperature`` for the clearance,
-``hot_temperature``) and the source of the crush height;
+``hot_temperature``), how much hotter the journal runs in service
+(``journal_temperature_excess`` [K] with ``journal_temperature_source``), an
+interval of the housing's outer diameter measured by fitting tests
+(``housing_outer_interval``, optional) and the source of the crush height;
 ``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
 operating-clearance window (absolute, or ``relative_clearance`` C/D of the
 journal) with its source. Built-in engines ship in ``stackup/data/engines``;
@@ -34,9 +37,10 @@ from .crank import BellakhdharLaw
 from .crank.housing import Supports, bulkhead_compliance
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
+from .life import LEVANOV_2015, METHOD1_SCALE
 from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
-from ._files import Table, locations, parse_toml, read_toml, units_of
+from ._files import Table, did_you_mean, locations, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
 
 
@@ -95,19 +99,38 @@ class PressFitSpec:
     hot_temperature: float | None = None  # hottest state checked [degC]; None: the operating temperature
     limits: PressFitLimits = KOPELIOVICH_LIMITS
     crush_source: str = ""
+    #: How much hotter the journal runs than the housing around it in service [K] (the file's
+    #: ``journal_temperature_excess``; 0: journal and housing at ``temperature``), and where that comes from
+    #: (``journal_temperature_source``; empty: not given, an assumption).
+    journal_temperature_excess: float = 0.0
+    journal_temperature_source: str = ""
+    #: Interval of the housing's equivalent outer diameter measured by fitting tests [m]
+    #: (``housing_outer_interval``, e.g. from :func:`stackup.measure.calibrate_housing`; the upper end may be
+    #: ``inf``, a housing as stiff as a rigid ring); None: not measured, ``housing_outer`` is an assumption.
+    housing_outer_interval: tuple | None = None
 
     _FIT = ("housing_outer", "housing_material", "shell_material", "journal_material", "bearing_width",
             "check_bore", "check_stress", "assembly_temperature", "lining_thickness", "lining_material")
     #: Names of the file's keys where they differ from the fit functions' arguments.
     _FILE_KEYS = {"bearing_width": "length"}
 
+    @property
+    def journal_temperature(self):
+        """The journal's temperature in service [degC]: the operating temperature plus its excess."""
+        return self.temperature + self.journal_temperature_excess
+
     def kwargs(self):
-        """Keyword arguments of :func:`stackup.fit.press_fit` at the operating temperature."""
-        return {**{name: getattr(self, name) for name in self._FIT}, "temperature": self.temperature}
+        """Keyword arguments of :func:`stackup.fit.press_fit` at the operating temperature (the journal at its own)."""
+        return {**{name: getattr(self, name) for name in self._FIT}, "temperature": self.temperature,
+                "journal_temperature": self.journal_temperature}
 
     def record(self):
-        """:meth:`kwargs` under the engine file's key names (``length`` for the width), as datasets keep them."""
-        return {self._FILE_KEYS.get(name, name): value for name, value in self.kwargs().items()}
+        """The press-fit data under the engine file's key names (``length`` for the width), as datasets keep them."""
+        fit = {self._FILE_KEYS.get(name, name): value for name, value in self.kwargs().items()
+               if name != "journal_temperature"}
+        interval = None if self.housing_outer_interval is None else list(self.housing_outer_interval)
+        return {**fit, "journal_temperature_excess": self.journal_temperature_excess,
+                "journal_temperature_source": self.journal_temperature_source, "housing_outer_interval": interval}
 
     @property
     def length(self):
@@ -193,8 +216,9 @@ class WearSpec:
     journal_rq: float  # [m]
     shell_rq: float  # [m]
     critical_film: float  # h_lim,cr [m]
-    wear_limit: float  # limiting wear [m]
+    wear_limit: float  # limiting wear [m]: method 2 (Levanov et al. 2015, sec. 4)
     wear_rate: float  # wear speed gamma [m/s]
+    method1_wear_limit: float  # Delta h_lim of method 1 [m]: the scale its results support (stackup.life)
     lining_material: str
     roughness_source: str
     wear_source: str
@@ -203,9 +227,9 @@ class WearSpec:
 #: Used when an engine file has no [wear] table: the paper's diesel (h_lim,cr = 1.9 um split between the surfaces).
 DEFAULT_WEAR = WearSpec(
     journal_rz=0.8e-6, shell_rz=1.1e-6, journal_rq=0.2e-6, shell_rq=0.3e-6, critical_film=1.9e-6, wear_limit=30e-6,
-    wear_rate=1e-13, lining_material="aluminium",
+    wear_rate=1e-13, method1_wear_limit=LEVANOV_2015.method1_wear_limit, lining_material="aluminium",
     roughness_source="default: h_lim,cr = 1.9 um of Levanov et al. 2015 split as journal Rz 0.8 um, shell Rz 1.1 um",
-    wear_source="default: Levanov et al. 2015, sec. 4 (30 um, 1e-13 m/s)")
+    wear_source="default: Levanov et al. 2015, sec. 4 (30 um, 1e-13 m/s); method 1 on 10 um, the scale of its results")
 
 
 @dataclass(frozen=True)
@@ -256,7 +280,7 @@ def engine_path(name_or_path):
     found = engine_locations().get(text)
     if found is None:
         raise ValueError(f"engine: {text!r} is not a built-in engine nor one in STACKUP_ENGINE_PATH "
-                         f"({', '.join(available_engines())}) nor a file")
+                         f"({', '.join(available_engines())}) nor a file{did_you_mean(text, available_engines())}")
     return found
 
 
@@ -407,6 +431,9 @@ def _press_fit(top, bore, *, scale, units):
         hot_temperature=temperature("hot_temperature", None),
         limits=_limits(t),
         crush_source=t.text("crush_height_source", ""),
+        journal_temperature_excess=t.number("journal_temperature_excess", 0.0, lo=-50.0, hi=100.0, unit=" K"),
+        journal_temperature_source=t.text("journal_temperature_source", ""),
+        housing_outer_interval=_housing_outer_interval(t, bore, **length),
     )
     t.close()
     key = f"{t.where}, key press_fit"
@@ -419,6 +446,26 @@ def _press_fit(top, bore, *, scale, units):
         raise ValueError(f"{key}.hot_temperature: {spec.hot_temperature!r} degC is below the operating temperature "
                          f"{spec.temperature!r} degC")
     return spec
+
+
+def _housing_outer_interval(t, bore, *, scale, units):
+    """``[press_fit] housing_outer_interval``: [lower, upper] measured outer diameter [m], upper maybe inf; or None."""
+    value = t.get("housing_outer_interval")
+    if value is None:
+        return None
+    at = t._at("housing_outer_interval")
+    if not isinstance(value, list) or len(value) != 2:
+        raise ValueError(f"{at}: {value!r} is not [lower, upper], the measured interval of housing_outer in {units}")
+    lo = t._length("housing_outer_interval", value[0], scale, units, PLAUSIBLE["ring"], "housing outer diameter")
+    upper = value[1]
+    if isinstance(upper, bool) or not isinstance(upper, (int, float)) or np.isnan(upper):
+        raise ValueError(f"{at}: upper end {upper!r} is not a number (inf: as stiff as a rigid ring)")
+    hi = np.inf if np.isinf(upper) and upper > 0 else t._length("housing_outer_interval", upper, scale, units,
+                                                               PLAUSIBLE["ring"], "housing outer diameter")
+    if lo <= bore.hi or hi <= lo:
+        raise ValueError(f"{at}: [{value[0]!r}, {upper!r}] {units} is not an interval above the housing bore "
+                         f"({bore.hi / scale:g} {units}) with lower < upper")
+    return (lo, hi)
 
 
 def _material(t, name, default="steel"):
@@ -446,10 +493,13 @@ def _wear(top, *, scale, units):
                              f"{critical / scale!r} (Levanov et al. 2015, eq. 3: h_lim,cr > Rz1 + Rz2)")
         critical = given
 
+    rate = t.number("wear_rate", required=True, lo=0.0, hi=1e-3 / scale, lo_open=True) * scale
     spec = WearSpec(journal_rz=rz1, shell_rz=rz2, journal_rq=rq1, shell_rq=rq2, critical_film=critical,
                     wear_limit=t.length("wear_limit", required=True, scale=scale, units=units,
                                         plausible=PLAUSIBLE["wear"], what="limiting wear"),
-                    wear_rate=t.number("wear_rate", required=True, lo=0.0, hi=1e-3 / scale, lo_open=True) * scale,
+                    wear_rate=rate,
+                    method1_wear_limit=t.length("method1_wear_limit", METHOD1_SCALE * rate / scale, scale=scale,
+                                                units=units, plausible=PLAUSIBLE["wear"], what="method-1 limiting wear"),
                     lining_material=_material(t, "lining_material", "aluminium"),
                     roughness_source=t.source("roughness_source"), wear_source=t.source("wear_source"))
     t.close()

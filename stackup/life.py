@@ -6,7 +6,16 @@ Method 1 (Rumb's dependence, eqs. 4-5) from the minimum film thickness:
           \beta_1 = 1 + \left(\frac{\bar h_{min}}{h_{lim,cr}}\right)^{n_I}
 
 with limiting wear :math:`\Delta h_{lim}` [m], wear speed :math:`\gamma` [m/s]
-and :math:`R` in seconds. The film the paper feeds is :math:`\bar h_{min}`, the
+and :math:`R` in seconds. Scale: the paper's method-1 results (its Table 1) are
+reproduced, :math:`\beta_1` to 1e-4 with :math:`n_I = -2` and the life within 0.2 %
+on every row, only with :math:`\Delta h_{lim}/\gamma` = 1.0e8 s
+(:data:`METHOD1_SCALE`); its text's 30 um and 1e-13 m/s give 3e8 s and lives
+2.65-2.85 times the table's. Method 1 is a correlation fitted to a 10,000 h
+bearing (Rumb's dependence, the inverse task of sec. 4): it is used on the scale
+its results support, :data:`LEVANOV_2015`'s ``method1_wear_limit`` (10 um) with
+the text's 1e-13 m/s, and method 2 on the text's 30 um (its Table 2:
+:math:`R_h = \Delta h_{lim}/\gamma` with 30 um on every row, to the rounding of
+:math:`\gamma`). The film the paper feeds is :math:`\bar h_{min}`, the
 average over the loading cycle of the minimum film thickness: the paper lists
 both the minimum and the average minimum film among a bearing's
 characteristics (sec. 2), and its results pair films of 5.3-8.6 um with
@@ -74,7 +83,13 @@ class LevanovParameters:
         (obtained by the inverse task from a 10 000 h resource). -2.0, the
         end of the range that gives the shorter life, is taken.
     wear_limit : float
-        Limiting wear :math:`\\Delta h_{lim}` of the paper's diesel [m] (sec. 4: 30e-6 m).
+        Limiting wear :math:`\\Delta h_{lim}` of the paper's diesel [m] (sec. 4: 30e-6 m), the
+        scale of method 2 (Table 2's lives are 30 um over its wear speeds).
+    method1_wear_limit : float
+        Limiting wear of method 1 [m]: with ``wear_rate`` the scale
+        :math:`\\Delta h_{lim}/\\gamma` = :data:`METHOD1_SCALE` at which the paper's
+        method-1 results (Table 1) are reproduced; the text's 30 um would give
+        three times that.
     wear_rate : float
         Wear speed :math:`\\gamma` [m/s] (sec. 4: 1e-13 m/s, from its ref. [3]).
     critical_film : float
@@ -91,6 +106,7 @@ class LevanovParameters:
 
     n: float = -2.0
     wear_limit: float = 30e-6
+    method1_wear_limit: float = 10e-6
     wear_rate: float = 1e-13
     critical_film: float = 1.9e-6
     k: float = 7e-12
@@ -102,6 +118,11 @@ class LevanovParameters:
 
 #: The one parameter set of Levanov et al. (2015).
 LEVANOV_2015 = LevanovParameters()
+#: Scale :math:`\Delta h_{lim}/\gamma` [s] of method 1 on which the paper's method-1 results (Table 1) are
+#: reproduced (beta_1 to 1e-4 with n_I = -2, lives within 0.2 %); the text's 30 um / 1e-13 m/s give 3e8 s.
+METHOD1_SCALE = LEVANOV_2015.method1_wear_limit / LEVANOV_2015.wear_rate
+#: The scale the text's values give (30 um / 1e-13 m/s) [s], named where a report compares the two.
+TEXT_SCALE = LEVANOV_2015.wear_limit / LEVANOV_2015.wear_rate
 #: Above this share of the cycle in boundary friction the scuffing probability rises sharply.
 ALPHA_SCUFFING = LEVANOV_2015.alpha_scuffing
 #: Statistics of the minimum film over the cycle that :func:`cycle_film` gives.
@@ -192,7 +213,10 @@ def levanov_method1(h_min, *, h_lim_cr, wear_limit, wear_rate, n=LEVANOV_2015.n)
     h_lim_cr : array_like
         Critical film thickness [m] (:func:`critical_film`).
     wear_limit : array_like
-        Limiting wear :math:`\\Delta h_{lim}` [m].
+        Limiting wear :math:`\\Delta h_{lim}` [m] of method 1: with ``wear_rate`` the
+        scale :math:`\\Delta h_{lim}/\\gamma`; the paper's results support
+        :data:`METHOD1_SCALE` (``LEVANOV_2015.method1_wear_limit`` with its
+        ``wear_rate``), not its text's 30 um (see the module notes).
     wear_rate : array_like
         Wear speed :math:`\\gamma` [m/s].
     n : float

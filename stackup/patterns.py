@@ -268,12 +268,12 @@ def adapt(scheme, engine):
 
 
 def _source(reference, engine, how):
-    return (f"{reference.source}; its pattern laid on engine {engine.name!r}'s drawing (stackup.patterns)")
+    return (f"{reference.source}; its pattern laid on the drawing of engine {engine.name!r} (stackup.patterns)")
 
 
 def _notes(reference, engine, how):
     """What :meth:`Scheme.to_toml` writes as comments at the top of the adapted scheme's file."""
-    return (f"ISO 13778:2017 {reference.name} ({reference.title}) laid on engine {engine.name!r}'s drawing by "
+    return (f"ISO 13778:2017 {reference.name} ({reference.title}) laid on the drawing of engine {engine.name!r} by "
             "stackup.patterns:",
             f"housing grades x{how.housing_scale:.4f} and journal grades x{how.journal_scale:.4f} of the standard's "
             "(the engine's tolerance over the standard's 18 um), pairing as the standard's,",

@@ -37,6 +37,7 @@ References
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -52,6 +53,7 @@ from .engines import load_engine
 from .parts import draw_lot
 from .schemes import load as load_scheme
 from .stats import mean_half_width
+from .study.inputs import load_inputs
 from .study.pilot import pilot_parts, shell_plan
 
 #: Service level of the shell stock when none is given: share of lots whose demand for a grade is covered [-].
@@ -171,6 +173,7 @@ def _shell_plan(scheme, engine, parts, *, volume, lot, service_level):
     landing = shells.landing  # share of production read into each grade (the rest is scrap)
     aim = shells.aim if shells.aim is not None else np.full(mean.shape, np.nan)
     made = _shells_made(supply, volume, lot, engine.main_bearings)
+    per_lot = supply.shells_per_lot(lot * engine.main_bearings)
     stock = np.array([lot_demand_quantile(per_engine[:, g], lot, service_level) for g in range(mean.size)])
     frame = pd.DataFrame({
         "grade": list(scheme.shell.labels),
@@ -180,6 +183,7 @@ def _shell_plan(scheme, engine, parts, *, volume, lot, service_level):
         "demand_share": mean / mean.sum(),
         "aim_share": aim,
         "production_share": landing,
+        "ordered_per_lot": per_lot * aim,
         "made": made * landing,
         "demanded": volume * mean,
         "surplus": made * landing - volume * mean,
@@ -187,11 +191,50 @@ def _shell_plan(scheme, engine, parts, *, volume, lot, service_level):
         "safety_stock": stock - lot * mean,
         "order_up_to": stock,
     }).set_index("grade")
-    frame.attrs.update({"supply": supply.mode, "shells_made": made,
-                        "shells_per_lot": supply.shells_per_lot(lot * engine.main_bearings),
+    frame.attrs.update({"supply": supply.mode, "shells_made": made, "shells_per_lot": per_lot,
                         "shell_surplus": supply.surplus, "main_bearings": engine.main_bearings,
-                        "scrap_share": float(1 - landing.sum())})
+                        "scrap_share": float(1 - landing.sum()), "unasked": unasked(scheme, frame)})
     return frame
+
+
+def unasked(scheme, frame):
+    """The shells made in grades no preferred pair asks for, and the allowed pairs that could fit them.
+
+    A wall process aimed at the asked grades (or one process sorted into
+    every grade) puts shells into grades the preferred pairs never take: ISO
+    scheme 2 pairs B+B and allows A+C, so its A and C shells are fitted only
+    where B runs short. Returns plain data for the plan's attributes:
+    ``grades`` (labels), ``shells`` (expected for the volume), ``share`` of
+    the shells made [-], ``alternatives`` (the allowed pairs that use them,
+    as "A+C for B+B"), ``pairs``: bearings those alternatives could fit in
+    place of the preferred pair (at most its demand, with the shells left
+    over in each grade) if fitted before it, and ``used``: the unasked
+    shells those bearings take.
+    """
+    labels = list(frame.index)
+    made, demanded = frame.made.to_numpy(), frame.demanded.to_numpy()
+    idle = [g for g in range(len(labels)) if demanded[g] < 0.5 <= made[g]]
+    if not idle:
+        return {}
+    spare = np.maximum(made - demanded, 0.0)
+    pairs, used, uses = 0, 0, []
+    for (pu, pl), options in scheme.alternatives.items():
+        # bearings of the preferred pair the volume asks for (each takes one shell of each of its grades)
+        wanted = demanded[pu] / 2 if pu == pl else min(demanded[pu], demanded[pl])
+        for u, l in options:
+            if u not in idle and l not in idle:
+                continue
+            uses.append(f"{labels[u]}+{labels[l]} for {labels[pu]}+{labels[pl]}")
+            k = math.floor(max(min(wanted, spare[u] / 2 if u == l else min(spare[u], spare[l])), 0.0))
+            spare[u] -= k
+            spare[l] -= k
+            wanted -= k
+            pairs += k
+            used += k * ((u in idle) + (l in idle))
+    total = float(made.sum())
+    return {"grades": [labels[g] for g in idle], "shells": float(made[idle].sum()),
+            "share": float(made[idle].sum() / total) if total else 0.0, "alternatives": uses, "pairs": int(pairs),
+            "used": int(used)}
 
 
 def _lot(volume, lot_engines, default):
@@ -259,7 +302,10 @@ def _convolve(a, b):
 def _from_dataset(ds, *, volume, service_level, lot_engines):
     """Shell plan per scheme and grade from a study's assembled engines and shell lots."""
     lot, note = _lot(volume, lot_engines, int(ds.attrs["lot_engines"]))
-    rows = []
+    engine, schemes = _stored_inputs(ds)
+    supply, bearings = engine.shell_wall, engine.main_bearings
+    made_for_volume = _shells_made(supply, volume, lot, bearings)
+    rows, scrap, idle = [], {}, {}
     for name in ds.scheme.values:
         d = ds.sel(scheme=name)
         built = np.all(d.status.values == 0, axis=1)
@@ -268,24 +314,37 @@ def _from_dataset(ds, *, volume, service_level, lot_engines):
                              f"at least {MIN_ENGINES}")
         labels = [g for g, has in zip(d.shell_grade.values, d.grade_in_scheme.values) if has]
         made_total = float(d.shells_made.sum() + d.shells_scrapped)
+        scrap[str(name)] = float(d.shells_scrapped) / made_total
+        first = len(rows)
         for g in labels:
             per_engine = (np.sum(d.shell_upper_grade.values[built] == g, axis=1)
                           + np.sum(d.shell_lower_grade.values[built] == g, axis=1))
             mean = per_engine.mean()
             half = mean_half_width(per_engine)
             share = float(d.shells_made.sel(shell_grade=g)) / made_total
-            made = made_total / d.sizes["engine"] * volume * share
+            made = made_for_volume * share
             stock = lot_demand_quantile(per_engine, lot, service_level)
             rows.append({"scheme": str(name), "grade": str(g), "demand_per_1000": 1000 * mean,
                          "demand_per_1000_lo": 1000 * (mean - half), "demand_per_1000_hi": 1000 * (mean + half),
                          "production_share": share, "made": made, "demanded": volume * mean,
                          "surplus": made - volume * mean, "lot_demand_mean": lot * mean,
                          "safety_stock": stock - lot * mean, "order_up_to": stock})
+        idle[str(name)] = unasked(schemes[str(name)], pd.DataFrame(rows[first:]).set_index("grade"))
     frame = pd.DataFrame(rows).set_index(["scheme", "grade"])
     frame.attrs.update({"part": "shell", "volume": volume, "service_level": service_level, "lot_engines": lot,
                         "lot_note": note, "source": "study dataset", "engine": ds.attrs.get("engine", ""),
-                        "engines": int(ds.sizes["engine"])})
+                        "engines": int(ds.sizes["engine"]), "supply": supply.mode, "shells_made": made_for_volume,
+                        "shells_per_lot": supply.shells_per_lot(lot * bearings), "shell_surplus": supply.surplus,
+                        "main_bearings": bearings, "scrap_share": scrap, "unasked": idle})
     return frame
+
+
+def _stored_inputs(ds):
+    """The engine and ``{name: Scheme}`` of a study dataset, read from the texts it stores."""
+    files = json.loads(ds.attrs["input_files"])
+    labels = list(files["schemes"])
+    engine, schemes = load_inputs(files, labels)
+    return engine, {s.name: s for s in schemes}
 
 
 def _graded_parts(scheme, engine, parts, part, volume, n, seed):
@@ -316,74 +375,93 @@ def planner_table(frame):
     """The table a production planner uses, from a :func:`plan` result: whole parts, units in the column names.
 
     Counts a stock must cover (demand, parts needed, stock per lot) are
-    rounded up, the lower bound of an interval down; parts made are
-    apportioned to the grades so that they add up to the parts made. Column
-    names carry the unit ("[shells]", "[bores]", "[journals]", "[%]") and the
-    quantity they are for ("per 1000 engines", "10000 engines", "per lot of
-    1000 engines"), so the table reads the same pasted into a spreadsheet. A
-    row "all grades" adds up the shells (empty where a sum means nothing);
-    graded parts have a row "not gradable".
+    rounded up, the lower bound of an interval down; shells ordered and made
+    are apportioned to the grades so that they add up to the shells ordered
+    per lot and made for the volume. Column names carry the unit
+    ("[shells]", "[bores]", "[journals]", "[%]") and the quantity they are
+    for ("per 1000 engines", "10000 engines", "per lot of 1000 engines"), so
+    the table reads the same pasted into a spreadsheet. Shells have a row
+    "scrapped" (read outside every grade: made, never fitted) and a row "all
+    shells" that adds up every row above (empty where a sum means nothing),
+    so the made column adds up to the shells made the title states; graded
+    parts have a row "not gradable".
+
+    The title says which quantity a buyer orders: the shells per lot
+    (``ordered per lot``, aimed at each grade where shells are made to
+    order), whose sum over the volume is the ``made`` column; the stock per
+    lot is the level each grade must have at the start of a lot, a check on
+    that order rather than a second one.
 
     Returns
     -------
     pandas.DataFrame
         Indexed by grade (scheme and grade for a plan from a study dataset),
         whole numbers as nullable integers, with the lines that say what the
-        table answers in ``attrs["title"]`` (a list of str).
+        table answers in ``attrs["title"]`` (a list of str) and, among them, those
+        that say what the order does not cover in ``attrs["warnings"]``.
     """
     a = frame.attrs
     if a.get("part", "shell") != "shell":
         return _graded_table(frame)
     if isinstance(frame.index, pd.MultiIndex):
-        table = pd.concat({scheme: _shell_table(frame.xs(scheme, level="scheme"), a)
-                           for scheme in frame.index.get_level_values("scheme").unique()}, names=["scheme", "grade"])
+        schemes = list(frame.index.get_level_values("scheme").unique())
+        table = pd.concat({scheme: _shell_table(frame.xs(scheme, level="scheme"), a, a["scrap_share"][scheme])
+                           for scheme in schemes}, names=["scheme", "grade"])
+        totals = {scheme: table.loc[(scheme, "all shells")] for scheme in schemes}
+        idle = {scheme: a["unasked"].get(scheme, {}) for scheme in schemes}  # the schemes of this frame only
     else:
-        table = _shell_table(frame, a)
-    volume, lot, level = a["volume"], a["lot_engines"], a["service_level"]
-    title = [_shell_title(a, frame)]
-    if "shells_made" in a:
-        scrap = (f"{100 * a['scrap_share']:.2g} % of them read outside every grade (scrap)" if a["scrap_share"] > 5e-5
-                 else "practically none read outside every grade")
-        mode = "made to order for each grade" if a["supply"] == "to-order" else "one process sorted into grades"
-        title.append(f"Shells {mode}: {a['shells_made']:,} for the volume (two per bearing and "
-                     f"{100 * a['shell_surplus']:.3g} % more), {scrap}.")
+        table = _shell_table(frame, a, a["scrap_share"])
+        totals, idle = {None: table.loc["all shells"]}, {None: a["unasked"]}
+    title = [_shell_title(a, frame), _order_line(a, table)]
+    title += [_made_line(scheme, total, table.columns, a["volume"]) for scheme, total in totals.items()]
     if a.get("lot_note"):
         title.append(a["lot_note"][0].upper() + a["lot_note"][1:] + ".")
-    title.append(f"Stock per lot: shells of each grade to hold at the start of each lot ({_lots(volume, lot)}) so "
-                 f"that the lot's demand for the grade is covered in {100 * level:.4g} % of lots; the safety stock is "
-                 "the part above the lot's expected demand.")
-    stock = int(frame.order_up_to.sum())
-    if "shells_per_lot" in a and stock > a["shells_per_lot"]:
-        title.append(f"Note: that stock ({stock:,} shells of all grades) is more than the {a['shells_per_lot']:,} "
+    title.append(_stock_line(a))
+    warnings = []
+    stock = int(frame.order_up_to.groupby(level="scheme").sum().max() if isinstance(frame.index, pd.MultiIndex)
+                else frame.order_up_to.sum())
+    lot, level = a["lot_engines"], a["service_level"]
+    if stock > a["shells_per_lot"]:
+        warnings.append(f"Note: that stock ({stock:,} shells of all grades) is more than the {a['shells_per_lot']:,} "
                      f"shells made per lot: the surplus of {100 * a['shell_surplus']:.3g} % does not cover the mix of "
                      f"a lot of {lot:,} engines at {100 * level:.4g} %.")
-    title.append(_estimated_from(a) + "; made, needed and surplus are for the whole volume (a negative surplus is "
-                 "a shortfall).")
-    table.attrs["title"] = title
+    warnings += [_idle_line(scheme, record) for scheme, record in idle.items() if record]
+    parts = ({s: frame.xs(s, level="scheme") for s in totals} if isinstance(frame.index, pd.MultiIndex)
+             else {None: frame})
+    warnings += [line for scheme, rows in parts.items() if (line := _short_line(scheme, rows, a))]
+    table.attrs["title"] = [*title, *warnings, _estimated_from(a) + "."]
+    table.attrs["warnings"] = warnings  # what the order does not cover (a short report keeps these lines whole)
     return table
 
 
-def _shell_table(frame, a):
-    """Planner rows of one scheme's shells, with the row "all grades"."""
+def _shell_table(frame, a, scrap):
+    """Planner rows of one scheme's shells, with the rows "scrapped" and "all shells"."""
     volume, per_lot = a["volume"], f"per lot of {a['lot_engines']} engines"
-    made = _apportion(frame.made.to_numpy())
+    share = frame.production_share.to_numpy()
+    made = _apportion(np.append(frame.made.to_numpy(), a["shells_made"] * scrap) if np.isfinite(scrap) else
+                      frame.made.to_numpy())
     needed = _up(frame.demanded)
     stock = np.rint(frame.order_up_to.to_numpy()).astype(int)
     columns = {
         "demand per 1000 engines [shells]": _up(frame.demand_per_1000),
         "demand per 1000 engines, 95 % low [shells]": _down(frame.demand_per_1000_lo.clip(lower=0)),
         "demand per 1000 engines, 95 % high [shells]": _up(frame.demand_per_1000_hi),
-        "share of shells made [%]": (100 * frame.production_share.to_numpy()).round(2),
-        f"made, {volume} engines [shells]": made,
+        "share of shells made [%]": 100 * share,
+    }
+    if "ordered_per_lot" in frame and frame.ordered_per_lot.notna().all():
+        columns[f"ordered {per_lot}, aimed at the grade [shells]"] = _apportion(frame.ordered_per_lot.to_numpy())
+    columns.update({
+        f"made, {volume} engines [shells]": made[:len(frame)],
         f"needed, {volume} engines [shells]": needed,
-        f"surplus, {volume} engines [shells]": made - needed,
+        f"surplus, {volume} engines [shells]": made[:len(frame)] - needed,
         f"stock {per_lot} [shells]": stock,
         f"safety stock {per_lot} [shells]": stock - _up(frame.lot_demand_mean),
-    }
-    table = pd.DataFrame(columns, index=pd.Index(frame.index, name="grade"))
-    total = table.sum().to_frame("all grades").T
-    total[[c for c in table.columns if "95 %" in c]] = np.nan
-    table = pd.concat([table, total])
+    })
+    table = pd.DataFrame(columns, index=pd.Index(frame.index, name="grade")).astype(float)
+    table.loc["scrapped"] = np.nan
+    table.loc["scrapped", ["share of shells made [%]", f"made, {volume} engines [shells]"]] = [100 * scrap, made[-1]]
+    table.loc["all shells"] = table.sum()
+    table.loc["all shells", [c for c in table.columns if "95 %" in c]] = np.nan
     table.index.name = "grade"
     return _nullable(table)
 
@@ -392,6 +470,66 @@ def _shell_title(a, frame):
     scheme = a["scheme"] if "scheme" in a else ", ".join(frame.index.get_level_values("scheme").unique())
     return (f"How many shells of each grade to make and stock for {a['volume']:,} engines of {a['engine']} "
             f"with scheme {scheme}?")
+
+
+def _order_line(a, table):
+    """Which quantity a buyer orders, and how it is split into grades."""
+    aimed = ("as the column \"ordered per lot\" says" if any(c.startswith("ordered per lot") for c in table.columns)
+             else "so that the sorted shells hold the mix of the planned demand")
+    how = (f"made to order: each grade aimed at {aimed}, the wall process then spilling some into the neighbouring "
+           "grades" if a["supply"] == "to-order" else
+           "made by one wall process and sorted into the grades by the gauge")
+    return (f"To order: {a['shells_per_lot']:,} shells per lot of {a['lot_engines']:,} engines "
+            f"({_lots(a['volume'], a['lot_engines'])}), {a['shells_made']:,} for the volume: two per bearing and "
+            f"{100 * a['shell_surplus']:.3g} % more, {how}. This is the quantity a buyer orders; the other columns "
+            "say what it gives.")
+
+
+def _made_line(scheme, total, columns, volume):
+    """The made, needed and surplus columns added up, in words (one scheme)."""
+    made = int(total[f"made, {volume} engines [shells]"])
+    needed = int(total[f"needed, {volume} engines [shells]"])
+    surplus = int(total[f"surplus, {volume} engines [shells]"])
+    scrap = made - needed - surplus
+    of = f"Scheme {scheme}: of" if scheme is not None else "Of"
+    return (f"{of} the {made:,} shells made for the volume the gauge sorts {made - scrap:,} into the grades "
+            f"(\"made\") and scraps {scrap:,} ({100 * scrap / made:.2g} %, read outside every grade); the volume's "
+            f"preferred pairs need {needed:,} (\"needed\") and {surplus:,} are left over (\"surplus\"; a "
+            "negative one is a shortfall).")
+
+
+def _stock_line(a):
+    lot, level = a["lot_engines"], a["service_level"]
+    return (f"Stock per lot: the shells of each grade a lot of {lot:,} engines must have at its start for its demand "
+            f"for the grade to be covered in {100 * level:.4g} % of lots; what the shells ordered per lot must give "
+            "each grade (a check of the order, not a second order). The safety stock is the part above the lot's "
+            "expected demand.")
+
+
+def _idle_line(scheme, record):
+    """Shells made in grades no preferred pair asks for, and what the scheme's alternatives could do with them."""
+    grades = " and ".join(record["grades"])
+    text = (f"{'Scheme ' + scheme + ': g' if scheme is not None else 'G'}rade{'s' if len(record['grades']) > 1 else ''} "
+            f"{grades}: {record['shells']:,.0f} shells ({100 * record['share']:.2g} % of those made) land where no "
+            "preferred pair asks for them")
+    if not record["alternatives"]:
+        return text + "; no allowed pair uses them, so they are left over (in the surplus)."
+    return (text + f"; the scheme allows {', '.join(record['alternatives'])}, which the assembly fits only where "
+            f"the preferred grade runs short, so they are left over (in the surplus). Fitted first, {record['pairs']:,} "
+            f"such pairs would use {record['used']:,} of them in place of as many shells of the preferred grades.")
+
+
+def _short_line(scheme, rows, a):
+    """The grades whose shells made per lot fall below their stock per lot (the order does not pass the check)."""
+    per_lot = rows.made * a["lot_engines"] / a["volume"]
+    short = [(g, per_lot[g], rows.order_up_to[g]) for g in rows.index if per_lot[g] < rows.order_up_to[g] - 0.5]
+    if not short:
+        return ""
+    listed = ", ".join(f"{g} ({math.floor(m):,} made per lot against a stock of {int(s):,})" for g, m, s in short)
+    return (f"{'Scheme ' + scheme + ': t' if scheme is not None else 'T'}he order falls short of the stock per lot "
+            f"in {listed}: more than {100 * (1 - a['service_level']):.2g} % of lots run short of them unless "
+            "shells are left from earlier lots or an allowed alternative pair fits; aim more of the order at those "
+            "grades to cover them.")
 
 
 def _estimated_from(a):
@@ -403,7 +541,7 @@ def _estimated_from(a):
 def _lots(volume, lot):
     full, rest = divmod(volume, lot)
     lots = f"the volume is {full:,} lot{'s' if full > 1 else ''} of {lot:,} engines"
-    return f"{lots} and one of {rest:,}, which needs no more" if rest else lots
+    return f"{lots} and one of {rest:,}" if rest else lots
 
 
 def _graded_table(frame):
@@ -432,8 +570,12 @@ def _graded_table(frame):
 
 
 def _nullable(table):
-    """Whole-number columns as nullable integers (empty where a value means nothing), shares as floats."""
-    return table.astype({c: "Int64" for c in table.columns if "[%]" not in c})
+    """Whole-number columns as nullable integers (empty where a value means nothing), shares to 0.01 %."""
+    table = table.astype({c: "Int64" for c in table.columns if "[%]" not in c})
+    for c in table.columns:
+        if "[%]" in c:
+            table[c] = table[c].astype(float).round(2)
+    return table
 
 
 def planner_text(table):

@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from ._validate import Finite, OneOf, validated
-from ._files import Table, locations, read_toml
+from ._files import Table, did_you_mean, locations, read_toml
 from .tolerances import quantize
 
 _UNITS = {"mm": 1e-3, "m": 1.0}
@@ -489,10 +489,27 @@ def scheme_path(name_or_path):
     path = Path(text)
     if path.suffix == ".toml" or os.sep in text or path.exists():
         return path
-    found = files().get(text)
+    found = files().get(text) or _named_in_file(text)
     if found is None:
-        raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file")
+        raise ValueError(f"scheme: {text!r} is not a known scheme (available: {', '.join(available())}) nor a file"
+                         f"{did_you_mean(text, available())}")
     return found
+
+
+def _named_in_file(name):
+    """The scheme file whose ``name`` key is ``name`` (the name a study and its report give the scheme), or None.
+
+    A user's file ``my-scheme.toml`` saying ``name = "mine"`` is found as
+    ``"my-scheme"`` and, as the report calls it, ``"mine"``.
+    """
+    for path in files().values():
+        try:
+            data, _ = read_toml(path, kind="scheme")
+        except ValueError:
+            continue
+        if data.get("name") == name:
+            return path
+    return None
 
 
 def load(name_or_path):

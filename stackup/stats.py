@@ -121,7 +121,7 @@ def control_variate_mean(accurate, cheap_shared, cheap_all, *, confidence=0.95):
     [2]_, with variance :math:`\\sigma_Y^2 [(1 - \\rho^2)/n + \\rho^2/N]`: the
     accurate model's mean, unbiased for any bias of the cheap one, at the
     cost of ``n`` accurate runs and the error of about ``n / (1 - ρ²)`` of them.
-    The interval is the normal one; with a shares' indicator (a rare event) it
+    The interval is Student's with ``n - 2`` degrees of freedom (normal for many pairs); with a shares' indicator (a rare event) it
     needs enough events on the subsample.
 
     References
@@ -140,7 +140,7 @@ def control_variate_mean(accurate, cheap_shared, cheap_all, *, confidence=0.95):
     rho2 = min(cov * cov / (var_x * var_y), 1.0) if var_x > 0 and var_y > 0 else 0.0
     estimate = y.mean() + beta * (x_all.mean() - x.mean())
     se = np.sqrt(var_y * ((1 - rho2) / n + rho2 / big_n))
-    z = stats.norm.ppf(0.5 + confidence / 2)
+    z = stats.t.ppf(0.5 + confidence / 2, n - 2)  # Student, the regression's n - 2 degrees of freedom (few pairs)
     return ControlVariateEstimate(float(estimate), float(estimate - z * se), float(estimate + z * se), float(se),
                                   float(x_all.mean()), float(y.mean()), float(np.sqrt(rho2)), n, big_n)
 

@@ -565,7 +565,10 @@ class Dimension:
         return replace(self, process=self.process.shifted(delta))
 
 
-_DISTRIBUTIONS = ("normal", "truncated-normal", "uniform", "mixture", "tool-wear", "skew-normal")
+#: The engine file's name of each process form (``distribution = ...``).
+DISTRIBUTION_NAMES = {Normal: "normal", TruncatedNormal: "truncated-normal", Uniform: "uniform", Mixture: "mixture",
+                      ToolWear: "tool-wear", SkewNormal: "skew-normal"}
+_DISTRIBUTIONS = tuple(DISTRIBUTION_NAMES.values())
 
 
 def _spec_table(field, spec):

@@ -18,6 +18,9 @@ go to ``stackup/data/film_cycle_errors.toml`` (what
     python studies/film_speed_vs_error.py [--workers 2]
 
 Writes reports/film_speed_vs_error.md (long: the transient tier dominates; the report gives its times).
+The ``elrod-coarse`` tier is measured by ``studies/film_speed_vs_error_elrod.py``, which adds its section to
+that report and its entry to the errors file: run it after this study (with the same ``--cache``), which
+rewrites both.
 """
 
 from __future__ import annotations

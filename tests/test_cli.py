@@ -7,6 +7,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +22,12 @@ from stackup.study import Study, open_study
 from stackup.study.damage import DamagedStore
 
 # a small comparison with scenarios (a minute here; the tests that use it stop it at once)
+def _interruptible():
+    """In the child before it starts: Ctrl-C as a terminal delivers it, even where pytest itself runs with SIGINT
+    ignored (a background job of a shell without job control), which Python would otherwise inherit."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 SMALL_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "iso13778-6", "--no-design"]
 # the smallest comparison, with its own design window: about 20 s here
 WINDOW_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "--no-scenarios", "--no-design",
@@ -81,11 +88,11 @@ def test_plan_answers_in_whole_shells_with_units_and_a_csv_for_the_spreadsheet(t
                           "with scheme iso13778-5?")
     assert "covered in 99 % of lots" in out and "the volume is 10 lots of 1,000 engines" in out
     table = pd.read_csv(csv, index_col="grade")
-    assert list(table.index) == ["A", "B", "C", "all grades"]
+    assert list(table.index) == ["A", "B", "C", "scrapped", "all shells"]
     for column in table.columns:  # units and what each count is for, in the name
         assert column.endswith(("[shells]", "[%]")), column
     assert "stock per lot of 1000 engines [shells]" in table.columns
-    grades = table.drop("all grades")
+    grades = table.drop(["scrapped", "all shells"])
     counts = [c for c in table.columns if c.endswith("[shells]")]
     raw = pd.read_csv(csv, index_col="grade", dtype=str)
     assert raw[counts].stack().dropna().str.fullmatch(r"-?\d+").all()  # whole shells, no 9687.9
@@ -93,12 +100,12 @@ def test_plan_answers_in_whole_shells_with_units_and_a_csv_for_the_spreadsheet(t
     frame = plan("iso13778-5", volume=10_000, sample_engines=5000)
     assert (grades["needed, 10000 engines [shells]"] == np.ceil(frame.demanded - 1e-9)).all()
     assert (grades["stock per lot of 1000 engines [shells]"] == frame.order_up_to).all()
-    assert grades["made, 10000 engines [shells]"].sum() == round(frame.made.sum())
+    assert table["made, 10000 engines [shells]"].drop("all shells").sum() == frame.attrs["shells_made"]
     assert (grades["surplus, 10000 engines [shells]"]
             == grades["made, 10000 engines [shells]"] - grades["needed, 10000 engines [shells]"]).all()
     for column in counts:
         if "95 %" not in column:
-            assert table.loc["all grades", column] == grades[column].sum()
+            assert table.loc["all shells", column] == table[column].drop("all shells").sum()
     # the printed table is the CSV's: every grade row carries the same whole numbers
     row_a = next(line for line in out.splitlines() if line.startswith("A "))
     assert row_a.split()[1:] == [f"{v:.2f}" if c.endswith("[%]") else f"{int(v):,}" for c, v in table.loc["A"].items()]
@@ -138,7 +145,7 @@ def test_plan_of_a_volume_smaller_than_a_lot_is_one_lot_and_says_so(tmp_path):
         in result.stdout
     table = pd.read_csv(csv, index_col="grade")
     assert "stock per lot of 7 engines [shells]" in table.columns
-    assert table.loc["all grades", "made, 7 engines [shells]"] == math.ceil(7 * 5 * 2 * 1.1)
+    assert table.loc["all shells", "made, 7 engines [shells]"] == math.ceil(7 * 5 * 2 * 1.1)
     # a lot this small needs more stock than the 10 % surplus makes: said, not hidden
     assert "Note: that stock" in result.stdout
 
@@ -220,6 +227,7 @@ def test_compare_refuses_a_window_that_is_not_one_in_micrometres(tmp_path):
 def test_ctrl_c_ends_a_run_with_one_line_and_leaves_nothing(tmp_path):
     out = tmp_path / "run"
     process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *SMALL_COMPARE, "--out", str(out)],
+                               preexec_fn=_interruptible,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     first = process.stdout.readline()
     assert "study: 100 engines" in first
@@ -299,6 +307,7 @@ def test_the_same_run_again_replaces_it_and_ctrl_c_while_saving_leaves_it_as_it_
     out, _ = small_run
     before = listing(out)
     process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *WINDOW_COMPARE, "--out", str(out)],
+                               preexec_fn=_interruptible,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     for line in process.stdout:
         if "saving the dataset" in line:
@@ -476,3 +485,215 @@ def test_the_quick_start_writes_where_git_tracks_nothing():
     for path in (f"{COMPARE_OUT}/report.md", f"{QUICK_OUT}/film_life.png"):
         assert subprocess.run(["git", "check-ignore", "-q", path], cwd=root).returncode == 0, path
     assert (root / "reports" / "reference" / "compare" / "report.md").is_file()
+
+
+# --- what a new user tripped on (issue 36): each case typed as a user types it -------------------------------
+
+INLINE6 = Path(__file__).parent / "data" / "inline6.toml"
+ISO4 = Path(__file__).parents[1] / "schemes" / "iso13778-4.toml"
+
+
+def _one_line_refusal(result, *parts):
+    """Exit 2, nothing on stdout, one line on stderr holding every part, no traceback."""
+    assert result.returncode == 2, result.stderr
+    assert result.stdout == "" and no_traceback_nor_warning(result)
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("stackup: error: "), result.stderr
+    for part in parts:
+        assert part in result.stderr, (part, result.stderr)
+
+
+def test_a_window_in_millimetres_is_refused_naming_the_likely_mistake(tmp_path):
+    result = stackup("compare", "--window", "0.045", "0.065", "--out", tmp_path / "run")
+    _one_line_refusal(result, "--window: 0.045 0.065 um is no main bearing's clearance",
+                      "these look like millimetres: give --window 45 65 (micrometres)")
+    assert not (tmp_path / "run").exists()
+
+
+def test_more_engines_than_the_machine_holds_are_refused_before_any_folder(tmp_path):
+    result = stackup("compare", "--n", "10000000000", "--out", tmp_path / "run")
+    _one_line_refusal(result, "--n: 10,000,000,000 engines would need about", "give --n at most")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("old, new, key, hint", [
+    ('housing_material = "nodular-cast-iron"', 'housing_material = "nodular-cast-irn"', "press_fit.housing_material",
+     "did you mean 'nodular-cast-iron'?"),
+    ('grade = "SAE-5W-30"', 'grade = "SAE-5W30"', "oil.grade", "did you mean 'SAE-5W-30'?"),
+    ("firing_order = [1, 5, 3, 6, 2, 4]", "firing_order = [1, 5, 3, 6, 2, 2]", "crank.firing_order",
+     "is not a permutation of cylinders 1..6"),
+])
+def test_an_unknown_material_oil_or_firing_order_names_file_key_and_what_is_valid(tmp_path, old, new, key, hint):
+    engine = tmp_path / "my-engine.toml"
+    text = INLINE6.read_text(encoding="utf-8")
+    assert old in text
+    engine.write_text(text.replace(old, new), encoding="utf-8")
+    result = stackup("compare", "--engine", engine, "--out", tmp_path / "run")
+    _one_line_refusal(result, f"engine file '{engine.name}', key {key}: ", hint)
+    assert not (tmp_path / "run").exists()
+
+
+def test_a_key_written_twice_is_named_with_its_line(tmp_path):
+    text = ISO4.read_text(encoding="utf-8")
+    twice = "grades = { A = [50.000, 50.006] }\n"
+    scheme = tmp_path / "twice.toml"
+    scheme.write_text(text.replace("[housing]\n", "[housing]\n" + twice), encoding="utf-8")
+    line = scheme.read_text().splitlines().index("grades = { A = [50.000, 50.006], B = [50.006, 50.012], "
+                                                 "C = [50.012, 50.018] }") + 1
+    result = stackup("compare", "--schemes", scheme, "--out", tmp_path / "run")
+    _one_line_refusal(result, f"scheme file '{scheme.name}': a key is written twice (line {line}: ", "write each key once")
+    assert "immutable namespace" not in result.stderr
+
+
+def test_a_scheme_leaving_parts_ungraded_is_refused_before_the_study_naming_it(tmp_path):
+    text = ISO4.read_text(encoding="utf-8").replace('name = "iso13778-4"', 'name = "narrow-c"')
+    scheme = tmp_path / "narrow.toml"
+    scheme.write_text(text.replace("C = [50.012, 50.018] }", "C = [50.012, 50.013] }", 1), encoding="utf-8")
+    result = stackup("compare", "--n", 100, "--no-design", "--no-scenarios", "--schemes", "iso13778-4", scheme, "--out",
+                     tmp_path / "run", timeout=300)
+    _one_line_refusal(result, f"--schemes: scheme narrow-c ({scheme}) leaves ", "of the housing bores read outside",
+                      "widen the scheme's grades to the engine's drawing limits")
+    assert not (tmp_path / "run").exists()
+
+
+def test_an_engine_path_that_is_not_utf8_is_refused_before_the_study(tmp_path):
+    if sys.platform == "darwin":
+        pytest.skip("macOS file names are UTF-8 by construction")
+    folder = os.fsencode(tmp_path)
+    name = os.path.join(folder, b"motor\xff.toml")
+    with open(name, "wb") as file:
+        file.write(INLINE6.read_bytes())
+    result = subprocess.run([os.fsencode(sys.executable), b"-m", b"stackup.cli", b"compare", b"--engine", name,
+                             b"--out", os.path.join(folder, b"run")], capture_output=True, text=True, timeout=120)
+    _one_line_refusal(result, "the path is not UTF-8 text", "rename the file or its folder with UTF-8 characters")
+    assert not os.path.exists(os.path.join(folder, b"run"))
+
+
+def test_a_user_scheme_is_found_by_its_file_name_and_by_the_name_the_report_gives_it(tmp_path):
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "my-scheme.toml").write_text(ISO4.read_text(encoding="utf-8").replace('name = "iso13778-4"',
+                                                                                   'name = "house-4"'))
+    env = {"STACKUP_SCHEME_PATH": str(mine)}
+    by_file = stackup("plan", "--scheme", "my-scheme", "--volume", 100, "--sample", 100, "--csv", "-", env=env)
+    by_name = stackup("plan", "--scheme", "house-4", "--volume", 100, "--sample", 100, "--csv", "-", env=env)
+    assert by_file.returncode == by_name.returncode == 0, by_name.stderr
+    assert by_file.stdout == by_name.stdout
+    typo = stackup("plan", "--scheme", "my-schme", "--volume", 100, env=env)
+    _one_line_refusal(typo, "scheme: 'my-schme' is not a known scheme", "did you mean 'my-scheme'?")
+
+
+def test_a_run_claims_its_folder_so_a_second_run_at_once_is_refused(tmp_path):
+    from stackup.output import Claim
+
+    out = tmp_path / "run"
+    claim = Claim(out, "--out")  # as a run under way holds it
+    try:
+        result = stackup(*SMALL_COMPARE, "--out", out)
+    finally:
+        claim.release()
+    _one_line_refusal(result, f"--out '{out}' is being written by another stackup run (process {os.getpid()})",
+                      "wait for it to finish, or give another folder")
+    assert not out.exists()
+
+
+def _start(args, **kwargs):
+    return subprocess.Popen([sys.executable, "-m", "stackup.cli", *map(str, args)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_interruptible, **kwargs)
+
+
+def _wait_for(process, text):
+    for line in process.stdout:
+        if text in line:
+            return line
+    raise AssertionError(f"the run ended before {text!r}: {process.stderr.read()}")
+
+
+@pytest.mark.slow
+def test_a_killed_runs_staging_folder_is_removed_by_the_next_run_and_folders_follow_the_umask(tmp_path):
+    out = tmp_path / "run"
+    killed = _start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
+    _wait_for(killed, "study: ")
+    killed.kill()  # kill -9: nothing of the run's own code runs
+    killed.communicate(timeout=60)
+    left = [p.name for p in tmp_path.iterdir() if p.name.startswith(".stackup-partial-")]
+    assert left and not out.exists()
+    assert all((tmp_path / name).stat().st_mode & 0o777 == 0o755 for name in left)  # not 0700: a colleague reads
+    again = _start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
+    _wait_for(again, "study: ")  # the claim is taken and the stale staging folders removed before the study
+    assert not any((tmp_path / name).exists() for name in left)
+    again.send_signal(signal.SIGINT)
+    _, err = again.communicate(timeout=120)
+    assert again.returncode == 130 and err == f"stackup: interrupted during study; nothing was saved: {out} was not created\n"
+    assert [p.name for p in tmp_path.iterdir() if not p.name.startswith(".stackup-claim-")] == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("stage", ["study", "tails", "sensitivity", "saving the dataset", "writing the report"])
+def test_ctrl_c_at_any_stage_exits_130_with_one_line_saying_what_was_kept(tmp_path, stage):
+    out = tmp_path / "run"
+    process = _start([*WINDOW_COMPARE, "--out", out])
+    _wait_for(process, f"] {stage}")
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=300)
+    assert process.returncode == 130, err
+    assert err == f"stackup: interrupted during {stage}; nothing was saved: {out} was not created\n"
+    assert [p.name for p in tmp_path.iterdir() if not p.name.startswith(".stackup-claim-")] == []
+
+
+def test_ctrl_c_inside_a_numba_kernel_is_an_interrupt():
+    """A Ctrl-C raised inside a compiled call reaches Python as a SystemError whose context is the interrupt."""
+    from stackup.cli import _interrupt
+
+    try:
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt:
+            raise SystemError("CPUDispatcher(<function kernel>) returned a result with an exception set")
+    except SystemError as error:
+        assert _interrupt(error)
+    assert not _interrupt(SystemError("a real one"))
+
+
+def _started_after_imports(args):
+    """``stackup ARGS`` in a fresh process that prints "ready" once the package is imported (see the test below)."""
+    code = ("import sys; import stackup.cli as cli; import stackup.comparison, stackup.plan, stackup.report; "
+            "print('ready', flush=True); "
+            f"sys.exit(cli.main({[str(a) for a in args]!r}))")
+    process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               preexec_fn=_interruptible)
+    assert process.stdout.readline() == "ready\n"
+    time.sleep(1)  # into the command
+    return process
+
+
+def test_ctrl_c_while_planning_exits_130_with_one_line(tmp_path):
+    csv = tmp_path / "plan.csv"
+    process = _started_after_imports(["plan", "--scheme", "iso13778-4", "--volume", 10_000, "--sample", 400_000,
+                                      "--csv", csv])
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130
+    assert err == f"stackup: interrupted during planning shells; nothing was saved: {csv} was not created\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.slow
+def test_ctrl_c_while_writing_a_report_again_leaves_the_old_report(small_run):
+    folder, result = small_run
+    assert result.returncode == 0, result.stderr
+    before = listing(folder)
+    process = _started_after_imports(["report", folder / "compare.nc"])
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130
+    assert err in [f"stackup: interrupted during {stage}; nothing was saved: {folder} is as it was\n"
+                   for stage in ("reading the dataset", "writing the report")]
+    assert listing(folder) == before
+
+
+def test_ctrl_c_while_the_command_starts_exits_130_with_one_line(tmp_path):
+    process = _start(["plan", "--scheme", "iso13778-4", "--volume", 100])
+    time.sleep(0.5)  # python is up, the package is being imported
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130 and err.startswith("stackup: interrupted") and err.count("\n") == 1, err

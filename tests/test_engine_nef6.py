@@ -78,7 +78,8 @@ def test_makers_clearance_agrees_with_mahles_rule_for_a_highly_loaded_engine(eng
 def test_window_is_the_makers_clearance_moved_by_the_press_fit(engine):
     """[targets]: the maker's 0.059-0.100 mm plus the engine's offset from nominal to operating clearance."""
     offset = clearance_offset(engine, clearance=0.0795 * MM)
-    assert 10 * UM < offset < 25 * UM  # the housing's swell less the thermal change of an iron housing
+    # the housing's swell less the thermal change of an iron housing, less the journal 10 K above its housing
+    assert 4 * UM < offset < 12 * UM
     np.testing.assert_allclose(engine.clearance_window, np.array([0.059, 0.100]) * MM + offset, atol=0.6 * UM)
     assert "0.059-0.100" in engine.clearance_window_source
 

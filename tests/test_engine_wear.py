@@ -84,3 +84,19 @@ def test_press_fit_length_is_read_as_the_bearing_width(engine_file):
     assert spec.record()["length"] == spec.bearing_width and "bearing_width" not in spec.record()
     with pytest.warns(DeprecationWarning, match=r"PressFitSpec.length is deprecated; use bearing_width"):
         assert spec.length == spec.bearing_width
+
+
+def test_method_1_has_its_own_limiting_wear_on_the_scale_of_the_papers_results(with_tables):
+    """Method 1's Δh_lim/γ is 1e8 s (the paper's results), method 2 keeps the text's 30 µm (Levanov et al. 2015)."""
+    from stackup.life import METHOD1_SCALE
+
+    for name in ("iso-example", "rozhdestvensky-4", "nef-6"):
+        w = load_engine(name).wear
+        assert w.method1_wear_limit / w.wear_rate == pytest.approx(1e8) and w.wear_limit == pytest.approx(30e-6)
+    assert DEFAULT_WEAR.method1_wear_limit / DEFAULT_WEAR.wear_rate == pytest.approx(METHOD1_SCALE)
+    # a file without the key: the paper's scale at the file's own wear speed (2e-13 m/s here)
+    assert load_engine(with_tables(WEAR)).wear.method1_wear_limit == pytest.approx(METHOD1_SCALE * 2e-13)
+    given = load_engine(with_tables(WEAR.replace("wear_rate", "method1_wear_limit = 0.008\nwear_rate")))
+    assert given.wear.method1_wear_limit == pytest.approx(8e-6)
+    with pytest.raises(ValueError, match=r"engine\.toml.*wear\.method1_wear_limit"):
+        load_engine(with_tables(WEAR.replace("wear_rate", "method1_wear_limit = -0.008\nwear_rate")))

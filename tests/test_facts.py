@@ -30,8 +30,11 @@ def test_rank_orders_the_rows_the_facts_hold(study):
 def test_the_film_table_and_the_ranking_give_the_same_film_and_life_numbers(study):
     known, ranking = facts(study), rank(study)
     for scheme, row in film_summary(study).iterrows():
-        assert row.life_median_h == (ranking.life_median_h[scheme], *ranking.life_median_h_ci[scheme])
-        assert row.life_b10_h == (ranking.life_b10_h[scheme], *ranking.life_b10_h_ci[scheme])
+        assert row.engine_life_median_h == (ranking.engine_life_median_h[scheme],
+                                            *ranking.engine_life_median_h_ci[scheme])
+        assert row.engine_life_b10_h == (ranking.engine_life_b10_h[scheme], *ranking.engine_life_b10_h_ci[scheme])
+        assert row.life_below_target_pct == (ranking.life_below_target_pct[scheme],
+                                             *ranking.life_below_target_pct_ci[scheme])
         assert row.alpha_over_20_pct == (ranking.alpha_over_limit_pct[scheme], *ranking.alpha_over_limit_pct_ci[scheme])
         assert known.film.loc[scheme].equals(row)
 
@@ -85,6 +88,51 @@ def test_every_tier_has_a_note_without_measured_figures():
     from stackup.fit import TIER_NOTES as fit_notes
 
     assert set(fit_notes) == set(FIT_METHODS) and set(crank_notes) == set(CRANK_METHODS)
-    assert {"short", "finite", "reynolds", "mobility", "mobility-finite", "reynolds-transient"} == set(film_notes)
+    assert {"short", "finite", "reynolds", "mobility", "mobility-finite", "elrod-coarse",
+            "reynolds-transient"} == set(film_notes)
     for note in (*fit_notes.values(), *crank_notes.values(), *film_notes.values()):
         assert not re.search(r"\d", re.sub(r"\(\d{4}\)", "", note)), note  # a year of a source, no figures
+
+
+def test_lives_are_read_per_position_and_per_engine_never_pooled(study):
+    from stackup.facts import position_risks
+    from stackup.life import ALPHA_SCUFFING
+
+    d = study.sel(scheme="iso13778-3").copy(deep=True)
+    # position 2 scuffs in three engines and lives short in two; position 4 scuffs in one
+    d["alpha"][:3, 1] = ALPHA_SCUFFING + 0.05
+    d["alpha"][0, 3] = ALPHA_SCUFFING + 0.05
+    d["life"][:2, 1] = 0.5 * float(d.life_target)
+    risks = position_risks(d, float(d.life_target) / 3600)
+    engines = d.sizes["mech_engine"]
+    assert [v[0] for v in risks["alpha_over_limit"]] == pytest.approx([0, 3 / engines, 0, 1 / engines, 0])
+    assert [v[0] for v in risks["life_below_target"]] == pytest.approx([0, 2 / engines, 0, 0, 0])
+    lo, hi = risks["alpha_over_limit"][1][1:]
+    assert lo < 3 / engines < hi  # Clopper-Pearson
+    row = stackup.facts.metrics.scheme_metrics(d, (35e-6, 65e-6), float(d.critical_film.max()))
+    assert row["alpha_over_limit_pct"] == pytest.approx(300 / engines) and row["alpha_over_limit_position"] == 2
+    assert row["life_below_target_pct"] == pytest.approx(200 / engines) and row["life_below_target_position"] == 2
+    # the engine's life is its weakest bearing's; nothing pooled over positions is ranked
+    weakest = d.life.values.min(axis=1) / 3600
+    assert row["engine_life_median_h"] == pytest.approx(np.median(weakest))
+    assert "life_median_h" not in row and "life_b10_h" not in row
+
+
+def test_a_scenario_is_compared_engine_by_engine_per_position(study):
+    from stackup.facts import paired_life_changes
+
+    other = study.copy(deep=True)
+    other["life"][:, :, 1] = 0.9 * study.life[:, :, 1]  # bearing 2 lives 10 % shorter in every engine
+    other["life"][:, :, 4] = study.life[:, :, 4] + 3600.0  # bearing 5 an hour longer
+    positions, engines = paired_life_changes(study, other)
+    for scheme in study.scheme.values:
+        s = str(scheme)
+        base = study.life.sel(scheme=scheme).values / 3600
+        assert positions.loc[(s, 2), "life_change_h"][0] == pytest.approx(np.median(-0.1 * base[:, 1]))
+        assert positions.loc[(s, 2), "life_change_h"][2] < 0  # the whole interval below zero
+        assert positions.loc[(s, 1), "life_change_h"] == (0.0, 0.0, 0.0)
+        assert positions.loc[(s, 5), "life_change_h"] == pytest.approx((1.0, 1.0, 1.0))
+        weakest = np.minimum(0.9 * base[:, 1], np.delete(base, 1, axis=1).min(axis=1))
+        assert engines.loc[s, "engine_life_change_h"][0] == pytest.approx(np.median(weakest - base.min(axis=1)))
+    # a scenario that did not run the mechanical chain has no paired lives
+    assert paired_life_changes(study, other.drop_vars(["life"])) == (None, None)

@@ -192,12 +192,17 @@ ENGINE_DEFAULTS = {
     ("press_fit", "shell_material"): "steel", ("press_fit", "journal_material"): "steel",
     ("press_fit", "check_stress"): 100e6, ("press_fit", "assembly_temperature"): 20.0,
     ("press_fit", "temperature"): 20.0, ("press_fit", "crush_height_source"): "",
+    # the journal at the housing's temperature unless the file says how much hotter, and from where
+    ("press_fit", "journal_temperature_excess"): 0.0, ("press_fit", "journal_temperature_source"): "",
+    ("press_fit", "housing_outer_interval"): lambda e, d: e.press_fit.housing_outer_interval is None,
     ("press_fit", "cold_temperature"): lambda e, d: e.press_fit.cold_temperature is None,
     ("press_fit", "hot_temperature"): lambda e, d: e.press_fit.hot_temperature is None,
     ("press_fit", "limits"): lambda e, d: e.press_fit.limits == engines.KOPELIOVICH_LIMITS,
     ("wear",): lambda e, d: e.wear == engines.DEFAULT_WEAR,
     ("wear", "critical_film"): lambda e, d: e.wear.critical_film == e.wear.journal_rz + e.wear.shell_rz,
     ("wear", "lining_material"): "aluminium",
+    # Levanov's method-1 scale (1e8 s, stackup.life.METHOD1_SCALE) at the file's wear speed
+    ("wear", "method1_wear_limit"): lambda e, d: abs(e.wear.method1_wear_limit - 1e8 * e.wear.wear_rate) < 1e-12,
     ("oil_feed",): lambda e, d: e.oil_feed.source.startswith("default:"),
     ("oil_feed", "groove_arc"): [90.0, 270.0], ("oil_feed", "hole_angle"): 180.0,
     ("targets", "operating_clearance"): lambda e, d: e.clearance_window == (0.0, np.inf),

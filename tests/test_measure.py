@@ -283,7 +283,7 @@ def test_the_engine_file_written_from_fits_loads_strictly_and_runs_the_main_job(
     assert engine.housing_bore.shared == pytest.approx(fit.shared, abs=1e-3)
     result = stackup.compare(engine=out, schemes=("iso13778-4",), n_engines=200, design=None, scenarios={},
                              mechanics_engines=10, progress=False)
-    ranking = stackup.rank(result.dataset)
+    ranking = stackup.rank(result)
     assert ranking.loc["iso13778-4", "bearings"] == 1000
 
 

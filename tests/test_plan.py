@@ -128,9 +128,15 @@ def test_plan_from_a_study_dataset_agrees_with_the_process_plan():
     from stackup.plan import planner_table
 
     table = planner_table(from_ds)
-    assert table.loc[("iso13778-5", "all grades"), "needed, 10000 engines [shells]"] == \
-        table.xs("iso13778-5", level="scheme").drop("all grades")["needed, 10000 engines [shells]"].sum()
-    assert "from the 8,000 engines of the study dataset" in " ".join(table.attrs["title"])
+    for scheme in ("iso13778-4", "iso13778-5"):
+        rows = table.xs(scheme, level="scheme")
+        for column in ("needed, 10000 engines [shells]", "made, 10000 engines [shells]"):
+            assert rows.loc["all shells", column] == rows.drop("all shells")[column].sum()
+        # the shells made add up to what the title says, scrap included
+        assert rows.loc["all shells", "made, 10000 engines [shells]"] == from_ds.attrs["shells_made"] == 110_000
+    title = " ".join(table.attrs["title"])
+    assert "from the 8,000 engines of the study dataset" in title
+    assert "Scheme iso13778-4: of the 110,000 shells made for the volume" in title
 
 
 @pytest.mark.parametrize("p, lot", [(0.3, 1), (0.088, 7), (0.5, 50), (0.9, 1000)])
@@ -183,13 +189,19 @@ def test_planner_table_is_whole_parts_that_add_up(plan4):
     from stackup.plan import planner_table
 
     table = planner_table(plan4)
-    grades = table.drop("all grades")
-    made = grades["made, 10000 engines [shells]"]
-    assert made.sum() == round(plan4.made.sum())  # apportioned: the grades add up to the shells made
-    assert (abs(made - plan4.made) < 1).all()
+    grades = table.drop(["scrapped", "all shells"])
+    made = table["made, 10000 engines [shells]"]
+    # apportioned: the grades and the scrap add up to the shells made, which the title states
+    assert made.drop("all shells").sum() == made["all shells"] == plan4.attrs["shells_made"] == 110_000
+    assert (abs(made.drop(["scrapped", "all shells"]) - plan4.made) < 1).all()
+    assert abs(made["scrapped"] - plan4.attrs["scrap_share"] * 110_000) < 1
+    assert f"Of the 110,000 shells made for the volume the gauge sorts {110_000 - made['scrapped']:,} into the grades" \
+        in " ".join(table.attrs["title"])
     assert (grades["needed, 10000 engines [shells]"] >= plan4.demanded - 1e-6).all()  # a whole number stays one
     assert (grades["stock per lot of 1000 engines [shells]"] >= plan4.lot_demand_mean).all()
-    assert table.loc["all grades", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
+    assert table.loc["all shells", "stock per lot of 1000 engines [shells]"] == plan4.order_up_to.sum()
+    ordered = table["ordered per lot of 1000 engines, aimed at the grade [shells]"]
+    assert ordered["all shells"] == ordered.drop("all shells").sum() == plan4.attrs["shells_per_lot"] == 11_000
     assert table.attrs["title"][0].startswith("How many shells of each grade to make and stock for 10,000 engines")
 
 
@@ -207,3 +219,62 @@ def test_old_processes_keyword_still_works_with_a_deprecation_warning():
     assert np.all(covered == 1.0)
     with pytest.raises(TypeError, match="not both"):
         plan("iso13778-5", engine="iso-example", processes="iso-example", volume=10)
+
+
+def test_unasked_shells_are_counted_with_the_alternative_pairs_that_could_fit_them():
+    """Hand-counted: which grades no preferred pair asks for, and how many of their shells the alternatives take."""
+    from stackup.plan import unasked
+    from stackup.schemes import load
+
+    # ISO scheme 2: B+B preferred, A+C allowed; both A and C unasked. 1000 B+B bearings want 2000 B shells.
+    frame = pd.DataFrame({"made": [300.0, 2100.0, 500.0], "demanded": [0.0, 2000.0, 0.0]},
+                         index=pd.Index(["A", "B", "C"], name="grade"))
+    record = unasked(load("iso13778-2"), frame)
+    assert record["grades"] == ["A", "C"] and record["shells"] == 800 and record["share"] == 800 / 2900
+    assert record["alternatives"] == ["A+C for B+B"]
+    assert record["pairs"] == 300 and record["used"] == 600  # A runs out first; each pair takes an A and a C
+    # ISO scheme 6: only D unasked; B+C may take A+D, C+C may take B+D: each such pair takes one D
+    frame = pd.DataFrame({"made": [100.0, 900.0, 1000.0, 50.0], "demanded": [80.0, 800.0, 900.0, 0.0]},
+                         index=pd.Index(list("ABCD"), name="grade"))
+    record = unasked(load("iso13778-6"), frame)
+    assert record["grades"] == ["D"] and record["alternatives"] == ["A+D for B+C", "B+D for C+C"]
+    # A+D: min(bearings wanted 800, spare A 20, spare D 50) = 20; B+D: min(900 / 2, spare B 100, spare D 30) = 30
+    assert record["pairs"] == 50 and record["used"] == 50
+    # nothing unasked: an empty record (no line in the table's title)
+    assert unasked(load("iso13778-2"), pd.DataFrame({"made": [1.0, 10.0, 1.0], "demanded": [1.0, 9.0, 1.0]},
+                                                     index=pd.Index(list("ABC")))) == {}
+
+
+def test_the_title_names_grades_whose_order_falls_short_of_their_stock(plan4):
+    """A grade whose shells made per lot (the made column over the 10 lots) are below its stock per lot is named."""
+    from stackup.plan import planner_table
+
+    table = planner_table(plan4)
+    grades = table.drop(["scrapped", "all shells"])
+    per_lot = grades["made, 10000 engines [shells]"] / 10
+    stock = grades["stock per lot of 1000 engines [shells]"]
+    short = [g for g in grades.index if per_lot[g] < stock[g] - 0.5]
+    line = next((line for line in table.attrs["title"] if line.startswith("The order falls short")), "")
+    assert short and set(short) < set(grades.index)  # the thin edge grades, not the middle ones
+    for g in grades.index:
+        assert (f" {g} (" in line) == (g in short), g
+    frame = plan4.copy()
+    frame.attrs = dict(plan4.attrs)
+    middle = frame.order_up_to.idxmax()
+    frame.loc[middle, "made"] = 10 * frame.loc[middle, "order_up_to"] - 50
+    line = next(line for line in planner_table(frame).attrs["title"] if line.startswith("The order falls short"))
+    assert f" {middle} (" in line and f"against a stock of {int(frame.loc[middle, 'order_up_to']):,})" in line
+
+
+def test_the_table_of_one_scheme_of_a_study_speaks_of_that_scheme_only():
+    """The report plans the scheme it recommends: a frame cut to it carries no other scheme's lines."""
+    from stackup.plan import planner_table
+    from stackup.study import Study
+
+    ds = Study(schemes=["iso13778-2", "iso13778-4"], n_engines=300, seed=2).run()
+    frame = plan(ds, volume=1000)
+    one = frame.loc[["iso13778-4"]]
+    one.attrs = dict(frame.attrs)
+    title = " ".join(planner_table(one).attrs["title"])
+    assert "iso13778-2" not in title.split("?", 1)[1]  # past the heading's question
+    assert "Scheme iso13778-2" in " ".join(planner_table(frame).attrs["title"])  # A and C of scheme 2, unasked

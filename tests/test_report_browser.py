@@ -1,4 +1,5 @@
-"""The HTML report in a real browser (headless Chromium): the verdict on the first screen, every figure decoded."""
+"""The HTML report in a real browser (headless Chromium): the verdict and the decision table in the first 1,000
+pixels at 1,400 px width, every figure decoded."""
 
 import shutil
 import subprocess
@@ -18,6 +19,8 @@ PROBE = """<script>window.addEventListener("load", () => {
   document.body.dataset.images = images.length;
   document.body.dataset.decoded = images.filter(i => i.complete && i.naturalWidth > 100).length;
   document.body.dataset.verdictTop = verdict ? Math.round(verdict.getBoundingClientRect().top) : -1;
+  const table = document.querySelector(".verdict + table");
+  document.body.dataset.tableBottom = table ? Math.round(table.getBoundingClientRect().bottom) : -1;
 });</script>"""
 
 
@@ -26,18 +29,19 @@ def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(tmp
     c = stackup.compare(schemes=("iso13778-3", "iso13778-4"), n_engines=400, seed=2, pilot_engines=3000,
                         mechanics_engines=10, crank_angle_step=12.0, progress=False,
                         scenarios={"bore mean +1σ": {"housing_shift": 1.0}})
-    write_report(c.dataset, tmp_path, scenarios=c.scenarios, sensitivity=c.sensitivity)
+    write_report(c.dataset, tmp_path, scenarios=c.scenarios, sensitivity=c.sensitivity, tails=c.tails)
     page = (tmp_path / "report.html").read_text()
     assert "src=\"data:image/png;base64," in page and "file:" not in page  # self-contained
     probe = tmp_path / "probe.html"
     probe.write_text(page.replace("</body>", PROBE + "</body>"))
-    dom = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={tmp_path / 'profile'}", "--window-size=1280,900",
+    dom = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={tmp_path / 'profile'}", "--window-size=1400,1000",
                           "--virtual-time-budget=10000", "--dump-dom", probe.as_uri()],
                          capture_output=True, text=True, timeout=120, check=True).stdout
     images = int(dom.split('data-images="')[1].split('"')[0])
     decoded = int(dom.split('data-decoded="')[1].split('"')[0])
     top = int(dom.split('data-verdict-top="')[1].split('"')[0])
-    assert images == 4 and decoded == images  # clearance, contributions, film, grades: each decoded
-    assert 0 <= top < 400  # the verdict is on the first screen
-    assert "Use iso13778-" in dom or " tie: " in dom
+    assert images == 5 and decoded == images  # clearance, contributions, film twice, grades: each decoded
+    bottom = int(dom.split('data-table-bottom="')[1].split('"')[0])
+    assert 0 <= top < 400 and 0 < bottom <= 1000  # the verdict and the decision table on the first screen
+    assert "Use " in dom and "Model uncertainty:" in dom
     assert 'id="methods-and-assumptions"' in dom and 'href="#methods-and-assumptions"' in dom  # one click away

@@ -1,5 +1,6 @@
 """Robustness scenarios applied to an engine."""
 
+import numpy as np
 import pytest
 
 from stackup.engines import load_engine
@@ -37,3 +38,90 @@ def test_scenario_round_trips_through_the_dataset_attrs():
 def test_unknown_scenario_key():
     with pytest.raises(ValueError, match=r"scenario: unknown key\(s\) \['bore_shift'\]"):
         apply(load_engine("iso-example"), {"bore_shift": 1.0})
+
+
+def test_a_journal_hotter_than_its_housing_moves_the_operating_clearance_by_its_thermal_growth():
+    # closed form: every bearing's operating clearance falls by d_J * alpha_J * dT; the same parts (same seed)
+    from stackup import materials
+
+    kw = dict(n_engines=400, schemes=("iso13778-4",), mechanics_engines=0, pilot_engines=1000, progress=False)
+    cold = Study(**kw, scenario={"journal_temperature_excess": 0.0}).run()
+    hot = Study(**kw, scenario={"journal_temperature_excess": 20.0}).run()
+    ok = cold.status.values == 0
+    drop = (cold.clearance_operating.values - hot.clearance_operating.values)[ok]
+    expected = cold.journal_d.broadcast_like(cold.status).values[ok] * materials.get("steel").expansion * 20.0
+    np.testing.assert_allclose(drop, expected, rtol=1e-6)
+    assert 10.0e-6 < drop.mean() < 11.0e-6  # "a journal 20 K hotter takes about 11 um off"
+    np.testing.assert_array_equal(cold.housing_swell.values[ok], hot.housing_swell.values[ok])
+
+
+def test_the_built_in_engines_declare_the_journal_temperature_as_an_assumption():
+    from stackup.engines import available_engines
+
+    for name in ("iso-example", "iso-example-aluminium", "rozhdestvensky-4", "nef-6"):
+        spec = load_engine(name).press_fit
+        assert spec.journal_temperature_excess == 10.0 and spec.journal_temperature_source.startswith("assumed")
+        assert spec.kwargs()["journal_temperature"] == spec.temperature + 10.0
+    assert set(available_engines()) >= {"iso-example", "nef-6"}
+
+
+def _engine_copy(tmp_path, extra, name="measured"):
+    """A copy of iso-example with lines added to its [press_fit] table."""
+    text = (load_engine_path("iso-example")).read_text()
+    text = text.replace('name = "iso-example"', f'name = "{name}"')
+    key = extra.split("=")[0].strip()
+    text = "\n".join(line for line in text.splitlines() if not line.startswith(key + " "))  # the file's own, if any
+    text = text.replace("[press_fit]\n", "[press_fit]\n" + extra + "\n", 1)
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text)
+    return path
+
+
+def load_engine_path(name):
+    from stackup.engines import engine_path
+
+    return engine_path(name)
+
+
+def test_the_housing_range_is_assumed_around_the_file_unless_fitting_tests_measured_it(tmp_path):
+    from stackup.scenarios import HOUSING_RATIO_RANGE, housing_stiffness, model_uncertainties
+
+    engine = load_engine("iso-example")
+    assumed = housing_stiffness(engine)
+    ends = [s["housing_outer"] for s in assumed.scenarios.values()]
+    assert ends == pytest.approx([r * 50e-3 for r in HOUSING_RATIO_RANGE])  # 75 and 150 mm
+    assert assumed.assumed and "stackup measure swell" in assumed.measure
+    assert list(assumed.scenarios) == ["housing OD 75 mm", "housing OD 150 mm"]
+    measured = load_engine(_engine_copy(tmp_path, "housing_outer_interval = [84.0, 97.0]"))
+    u = housing_stiffness(measured)
+    assert [s["housing_outer"] for s in u.scenarios.values()] == pytest.approx([84e-3, 97e-3])
+    assert not u.assumed and u.source.startswith("measured")
+    rigid = load_engine(_engine_copy(tmp_path, "housing_outer_interval = [84.0, inf]", name="rigid"))
+    assert list(housing_stiffness(rigid).scenarios.values())[1]["housing_outer"] == pytest.approx(0.5)
+    inputs = [u.input for u in model_uncertainties(engine)]
+    assert inputs == ["housing stiffness (equivalent outer diameter)", "crush height process (mean)",
+                      "journal–housing temperature difference"]
+
+
+@pytest.mark.parametrize("line, message", [
+    ("housing_outer_interval = [40.0, 97.0]", "not an interval above the housing bore"),
+    ("housing_outer_interval = [97.0, 84.0]", "not an interval above the housing bore"),
+    ("housing_outer_interval = 90.0", r"is not \[lower, upper\]"),
+    ("journal_temperature_excess = 500.0", "journal_temperature_excess"),
+])
+def test_bad_press_fit_uncertainty_keys_are_named(tmp_path, line, message):
+    with pytest.raises(ValueError, match=message):
+        load_engine(_engine_copy(tmp_path, line))
+
+
+def test_model_scenarios_change_the_engine_and_are_checked():
+    from stackup.scenarios import kind
+
+    engine = load_engine("iso-example")
+    changed = apply(engine, {"housing_outer": 0.075, "crush_shift": 1.0, "journal_temperature_excess": 20.0})
+    assert changed.press_fit.housing_outer == 0.075 and changed.press_fit.journal_temperature == 120.0
+    crush = engine.shell_wall.crush.process
+    assert changed.shell_wall.crush.process.mean == pytest.approx(crush.mean + crush.sigma)
+    with pytest.raises(ValueError, match="scenario housing_outer: .* not above the housing bore"):
+        apply(engine, {"housing_outer": 0.049})
+    assert kind({"housing_outer": 0.075}) == "model" and kind({"housing_shift": 1.0}) == "process"

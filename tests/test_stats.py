@@ -87,3 +87,14 @@ def test_control_variate_drops_failed_solves_and_refuses_too_few_pairs():
         control_variate_mean(y[:2], x[:2], x)
     with pytest.raises(ValueError, match="same samples"):
         control_variate_mean(y, x[:4], x)
+
+
+def test_control_variate_mean_with_a_handful_of_pairs_still_covers():
+    # a study checks a few engines per scheme and position: Student's interval on n - 2 degrees of freedom holds
+    true = np.exp(0.5 * 0.3**2)
+    hits = 0
+    for seed in range(400):
+        y, x, x_all, _ = _two_models(np.random.default_rng(1000 + seed), 5, 300)
+        e = control_variate_mean(y, x, x_all)
+        hits += e.lower <= true <= e.upper
+    assert hits / 400 >= 0.92

@@ -70,8 +70,9 @@ def test_splitting_states_its_error_on_a_ppm_tail_in_separate_regions_and_draws_
 
 
 def test_splitting_through_the_assembly_chain_agrees_with_plain_mc_and_states_its_error():
-    # about 4500 ppm above 57 um for scheme 3 (three shell pairs: the tail has separate regions)
-    margin, dim = clearance_margin("iso-example", "iso13778-3", threshold=57e-6)
+    # about 5000 ppm above 51.6 um for scheme 3 (three shell pairs: the tail has separate regions; the journal 10 K
+    # above its housing puts the clearances 5.4 um lower than the standard's isothermal ring)
+    margin, dim = clearance_margin("iso-example", "iso13778-3", threshold=51.6e-6)
     mc = tail_share(margin, dim, method="mc", n_bearings=200_000, seed=3)
     runs = [tail_share(margin, dim, n_level=1000, seed=s) for s in range(20)]
     shares = np.array([r.share for r in runs])
@@ -82,8 +83,8 @@ def test_splitting_through_the_assembly_chain_agrees_with_plain_mc_and_states_it
 
 @pytest.mark.slow
 def test_splitting_states_its_error_and_beats_plain_mc_5x_at_100_ppm():
-    # about 100 ppm above 59.8 um for scheme 3; plain MC on the same model as the reference
-    margin, dim = clearance_margin("iso-example", "iso13778-3", threshold=59.8e-6)
+    # about 100 ppm above 54.4 um for scheme 3; plain MC on the same model as the reference
+    margin, dim = clearance_margin("iso-example", "iso13778-3", threshold=54.4e-6)
     mc = tail_share(margin, dim, method="mc", n_bearings=1_000_000, seed=5)
     # 40 seeds: the runs' shares are skewed, and the spread of 20 of them is often well below the real one
     # (seeds 0-19 alone: 0.65 of the spread of 40)
@@ -92,7 +93,7 @@ def test_splitting_states_its_error_and_beats_plain_mc_5x_at_100_ppm():
     spread, stated = shares.std(ddof=1), np.sqrt(np.mean([r.standard_error**2 for r in runs]))
     assert shares.mean() < 1.2e-4
     assert abs(shares.mean() - mc.share) < 3 * np.hypot(spread / np.sqrt(40), mc.standard_error)
-    assert 0.75 < stated / spread < 1.33  # the stated error matches the spread over 40 seeds
+    assert 0.75 < stated / spread < 1.4  # the stated error matches the spread over 40 seeds (itself known to ~11 %)
     mc_bearings = (1 - mc.share) / (mc.share * (spread / shares.mean()) ** 2)
     assert mc_bearings > 5 * np.mean([r.bearings for r in runs])
 
@@ -119,7 +120,7 @@ def test_cross_entropy_warns_where_the_tail_has_several_regions():
 
 
 def test_lower_tail_and_bad_input():
-    low = clearance_tail("iso-example", "iso13778-4", side="lower", threshold=36e-6, seed=1, n_level=1000)
+    low = clearance_tail("iso-example", "iso13778-4", side="lower", threshold=30.6e-6, seed=1, n_level=1000)
     assert 0 < low.share < 1e-3 and low.interval[0] <= low.share <= low.interval[1]
     assert low.effective_bearings >= 1 and low.levels >= 2
     with pytest.raises(ValueError, match="side: 'middle' is not one of 'upper', 'lower'"):
@@ -137,12 +138,13 @@ def test_a_tail_beyond_the_deepest_level_is_zero_below_that_level_s_share():
 
 @pytest.mark.slow
 def test_splitting_states_its_error_at_2_ppm_through_the_assembly_chain():
-    # iso13778-6's lower window edge, about 2 ppm, its tail spread over many cells of the fine matrix; the
+    # iso13778-6 at 29.1 um (the window's lower edge less the 5.4 um of the journal 10 K above its housing): a few
+    # ppm, its tail spread over many cells of the fine matrix; the
     # conditional tier (the shells integrated out) as the reference
     from stackup.design.estimate import outside_share
 
-    ref = outside_share("iso-example", "iso13778-6", window=(34.5e-6, 9.99e-4), samples=10, n_engines=20_000)
-    margin, dim = clearance_margin("iso-example", "iso13778-6", side="lower", threshold=34.5e-6)
+    ref = outside_share("iso-example", "iso13778-6", window=(29.1e-6, 9.99e-4), samples=10, n_engines=20_000)
+    margin, dim = clearance_margin("iso-example", "iso13778-6", side="lower", threshold=29.1e-6)
     runs = [tail_share(margin, dim, seed=s) for s in range(20)]
     shares = np.array([r.share for r in runs])
     spread, stated = shares.std(ddof=1), np.sqrt(np.mean([r.standard_error**2 for r in runs]))

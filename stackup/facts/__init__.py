@@ -27,12 +27,15 @@ from ..plan import plan
 from ..schemes import from_dict
 from ..study.failures import FailureCount
 from ..study.inputs import load_inputs
-from .declared import DesignRecord, FilmErrors, PressFit, Processes, Sources, StudyParameters, Wear, parsed, plain
-from .mechanics import (EdgeContact, FilmOutcomes, HeatBalance, LifeBias, Positions, edge_contact, film_detail,
-                        film_outcomes, heat_balance, life_bias, positions)
-from .metrics import MIN_COUNTED, TAIL_SOURCES, RankingRows, counted_outside, ranking_rows
+from .declared import (DesignRecord, FilmErrors, PressFit, Processes, ScenarioAbout, Sources, StudyParameters, Wear,
+                       parsed, plain)
+from .mechanics import (ClearanceTrends, EdgeContact, FilmOutcomes, HeatBalance, LifeBias, Positions,
+                        clearance_trends, edge_contact, film_detail, film_outcomes, heat_balance, life_bias, positions)
+from .metrics import (MIN_COUNTED, NEGLIGIBLE_PPM, TAIL_SOURCES, RankingRows, counted_outside, part_grades,
+                      ranking_rows)
 from .tables import (UM, bearing_summary, centred, clearance_summary, converged_engines, crank_summary,
-                     film_summary, fit_summary, grade_usage, kept_summaries, separates)
+                     film_summary, fit_summary, grade_usage, kept_summaries, multi_fidelity, paired_life_changes,
+                     position_risks, separates)
 
 #: Production volume [engines] and service level of the shell plan a comparison reports.
 PLAN_VOLUME, PLAN_SERVICE_LEVEL = 10_000, 0.99
@@ -91,6 +94,36 @@ class Run:
     def of(cls, ds):
         return cls(FailureCount.of_dataset(ds).lines(), int(plain(ds, "mechanics_engines_used", 0)),
                    StudyParameters.of(ds).mechanics_engines)
+
+
+@dataclass(frozen=True)
+class Scrap:
+    """What the study could not use, as shares, each the largest over the schemes [-] with that scheme.
+
+    ``blocks``, ``crankshafts``: bearings whose block (a housing bore read
+    outside its drawing limits) or crankshaft (a journal) was scrapped;
+    ``not_graded``: bearings with a part read outside every grade;
+    ``stockouts``: bearings left waiting for a shell; ``shells``: shells
+    made that were scrapped (read outside every grade, or a crush height
+    outside its limits). Each value is a (share, scheme) pair.
+    """
+
+    blocks: tuple
+    crankshafts: tuple
+    not_graded: tuple
+    stockouts: tuple
+    shells: tuple
+
+    @classmethod
+    def of(cls, clearance):
+        """From a :func:`clearance_summary` (counts per status and scheme, shells scrapped in per cent)."""
+        def worst(share):
+            return (float(share.max()), str(share.idxmax())) if len(share) else (0.0, "")
+
+        per_bearing = {reason: worst(clearance[reason] / clearance.bearings)
+                       for reason in ("block_scrapped", "crank_scrapped", "not_graded", "shell_stockout")}
+        return cls(per_bearing["block_scrapped"], per_bearing["crank_scrapped"], per_bearing["not_graded"],
+                   per_bearing["shell_stockout"], worst(clearance.shells_scrapped_pct.fillna(0.0) / 100))
 
 
 @dataclass(frozen=True)
@@ -160,12 +193,14 @@ class Facts:
     run: Run
     ranking: RankingRows         # the study's, with the scenarios' changes
     scenario_rankings: dict      # label -> each scenario's own RankingRows
+    scenario_about: dict         # label -> ScenarioAbout (process or model, and a model range's source)
+    scrap: Scrap
     clearance: pd.DataFrame      # clearance_summary
     fit: pd.DataFrame            # fit_summary
     usage: pd.DataFrame          # grade_usage
     centred: pd.DataFrame        # per scheme: what centring its clearance in the window would give
     reading_resolution: dict     # scheme -> its coarsest gauge read-out [m]
-    plan: pd.DataFrame           # shells per grade (None from summaries)
+    plan: pd.DataFrame           # shells per grade for ``plan.attrs["volume"]`` engines (None from summaries)
     crank: pd.DataFrame          # crank_summary (empty where the crankshaft did not run)
     film: pd.DataFrame           # film_summary (empty where the film did not run)
     bearings: pd.DataFrame       # bearing_summary
@@ -177,6 +212,9 @@ class Facts:
     life_bias: LifeBias
     drivers: dict                # drivers(sensitivity), None without one
     design: Design
+    life_changes: dict           # scenario -> paired_life_changes (scenarios that ran the mechanical chain)
+    trends: ClearanceTrends      # film and life against the operating clearance per position (None: not computed)
+    corrected: pd.DataFrame      # multi_fidelity: film and life means corrected by the check tier (empty: no check)
 
 
 def _centred(ds, window):
@@ -200,7 +238,8 @@ def _film_facts(ds):
                 heat=heat_balance(ds), edge=edge_contact(ds))
 
 
-def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, h_lim_cr=None):
+def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, h_lim_cr=None, negligible=None,
+          volume=PLAN_VOLUME):
     """The :class:`Facts` of a comparison.
 
     Parameters
@@ -211,30 +250,48 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
     scenarios, sensitivity, tails : optional
         As :class:`~stackup.comparison.Comparison` holds them (ignored when
         ``source`` is a comparison).
-    window, h_lim_cr : optional
-        The ranking's design window [m] and critical film [m]
-        (:func:`stackup.rank.rank`); default the engine's.
+    window, h_lim_cr, negligible : optional
+        The ranking's design window [m], critical film [m] and practical
+        threshold of the share outside the window [ppm]
+        (:func:`stackup.rank.rank`); default the engine's and the comparison's.
+    volume : int
+        Engines the shell plan is for.
     """
     if hasattr(source, "dataset"):
         source, scenarios, sensitivity, tails = source.dataset, source.scenarios, source.sensitivity, source.tails
     ds, scenarios = source, scenarios or {}
     about = About.of(ds)
-    ranking = ranking_rows(ds, scenarios=scenarios or None, tails=tails, window=window, h_lim_cr=h_lim_cr)
+    ranking = ranking_rows(ds, scenarios=scenarios or None, tails=tails, window=window, h_lim_cr=h_lim_cr,
+                           negligible=negligible)
+    clearance = clearance_summary(ds)
     return Facts(
         about=about, study=StudyParameters.of(ds), press_fit=PressFit.of(ds), processes=Processes.of(ds),
         wear=Wear.of(ds) if about.mechanics_engines else None, film_errors=FilmErrors.of(ds),
         sources=Sources.of(ds), limits=Limits.of(ds), run=Run.of(ds), ranking=ranking,
-        scenario_rankings={label: ranking_rows(other) for label, other in scenarios.items()},
-        clearance=clearance_summary(ds), fit=fit_summary(ds), usage=grade_usage(ds),
+        scenario_rankings={label: ranking_rows(other, window=window, h_lim_cr=h_lim_cr,
+                                               negligible=ranking.negligible)
+                           for label, other in scenarios.items()},
+        scenario_about={label: ScenarioAbout.of(other) for label, other in scenarios.items()},
+        scrap=Scrap.of(clearance), clearance=clearance, fit=fit_summary(ds), usage=grade_usage(ds),
         centred=_centred(ds, ranking.window),
         reading_resolution={str(s): float(ds.reading_resolution.sel(scheme=s).max()) for s in ds.scheme.values},
-        plan=None if about.summaries else plan(ds, volume=PLAN_VOLUME, service_level=PLAN_SERVICE_LEVEL),
+        plan=None if about.summaries else plan(ds, volume=volume, service_level=PLAN_SERVICE_LEVEL),
         **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
-        design=designed(ds))
+        design=designed(ds), life_changes=_life_changes(ds, scenarios),
+        trends=clearance_trends(ds) if about.mechanics_engines else None, corrected=multi_fidelity(ds))
 
 
-__all__ = ["About", "Design", "EdgeContact", "Facts", "FilmOutcomes", "HeatBalance", "LifeBias", "Limits",
-           "MIN_COUNTED", "PLAN_SERVICE_LEVEL", "PLAN_VOLUME", "Positions", "RankingRows", "Run", "TAIL_SOURCES",
+def _life_changes(ds, scenarios):
+    """Scenario -> :func:`~stackup.facts.tables.paired_life_changes` (per position, per engine), where it ran the
+    mechanical chain."""
+    changes = {label: paired_life_changes(ds, other) for label, other in scenarios.items()}
+    return {label: pair for label, pair in changes.items() if pair[0] is not None}
+
+
+__all__ = ["About", "ClearanceTrends", "Design", "EdgeContact", "Facts", "FilmOutcomes", "HeatBalance", "LifeBias",
+           "Limits",
+           "MIN_COUNTED", "NEGLIGIBLE_PPM", "PLAN_SERVICE_LEVEL", "PLAN_VOLUME", "Positions", "RankingRows", "Run",
+           "ScenarioAbout", "Scrap", "TAIL_SOURCES", "part_grades",
            "UM", "bearing_summary", "centred", "clearance_summary", "converged_engines", "counted_outside",
            "crank_summary", "facts", "film_summary", "fit_summary", "grade_usage", "kept_summaries",
-           "ranking_rows", "separates"]
+           "multi_fidelity", "paired_life_changes", "position_risks", "ranking_rows", "separates"]

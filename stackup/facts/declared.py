@@ -12,6 +12,8 @@ from __future__ import annotations
 import json
 from dataclasses import MISSING, dataclass, fields, replace
 
+from ..scenarios import kind as scenario_kind
+
 
 def _missing(attribute, what):
     return ValueError(f"dataset attribute {attribute!r}: {what} (not a dataset a stackup.Study of this version "
@@ -98,6 +100,9 @@ class PressFit(_Attribute):
     check_stress: float
     assembly_temperature: float
     temperature: float
+    journal_temperature_excess: float = 0.0   # a dataset before the key: journal and housing at one temperature
+    journal_temperature_source: str = ""
+    housing_outer_interval: object = None
 
 
 @dataclass(frozen=True)
@@ -169,6 +174,12 @@ class Wear(_Attribute):
     wear_rate_m_per_s: float
     roughness_source: str
     wear_source: str
+    method1_wear_limit_m: float = None  # absent from datasets written before method 1 had its own scale
+
+    @property
+    def method1_limit_m(self):
+        """Method 1's limiting wear [m] (the method-2 one in datasets that did not distinguish them)."""
+        return self.wear_limit_m if self.method1_wear_limit_m is None else self.method1_wear_limit_m
 
 
 @dataclass(frozen=True)
@@ -216,3 +227,29 @@ class Sources:
 
         return cls(text("engine_source"), text("press_fit_limits_source"), text("crush_height_source"),
                    text("clearance_window_source"), parsed(ds, "scheme_sources"))
+
+
+@dataclass(frozen=True)
+class ScenarioAbout:
+    """What one scenario of a comparison is, from its dataset's attributes (:func:`stackup.compare` writes them).
+
+    ``kind`` is "process" (what a plant would see) or "model" (a model input over its declared range); a model
+    scenario names its ``input``, the range's ``source`` (beginning "assumed" where nobody measured it) and what
+    to ``measure`` to narrow it. A scenario dataset without these attributes is classed by its keys
+    (:func:`stackup.scenarios.kind`).
+    """
+
+    kind: str
+    input: str = ""
+    source: str = ""
+    measure: str = ""
+
+    @classmethod
+    def of(cls, ds):
+        from_keys = scenario_kind(dict(StudyParameters.of(ds).items).get("scenario"))
+        return cls(str(ds.attrs.get("scenario_kind", from_keys)), str(ds.attrs.get("scenario_input", "")),
+                   str(ds.attrs.get("scenario_source", "")), str(ds.attrs.get("scenario_measure", "")))
+
+    @property
+    def assumed(self):
+        return self.source.startswith("assumed")

@@ -13,13 +13,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
+from scipy import stats
 
 from ..film.cycle import NOT_A_NUMBER
 from ..film.orbit import ECCENTRICITY_LIMIT
 from ..life import levanov_method1
 from ..study.schema import flag
 from .declared import FilmErrors, Wear
-from .tables import bearing_summary, converged_engines, crank_summary
+from .tables import bearing_summary, converged_engines, crank_summary, kept_summaries
 
 #: Positions within this share of the range of loads (films) from the heaviest (thinnest) count among them.
 POSITION_SHARE = 0.15
@@ -169,6 +170,41 @@ def positions(ds, bearings=None):
 
 
 @dataclass(frozen=True)
+class ClearanceTrends:
+    """How film and life follow the operating clearance per position: Spearman's rank correlations over every
+    scheme's bearings of the mechanical chain (the schemes give different clearances to the same response)."""
+
+    film: pd.Series              # per position: rank correlation of the cycle-minimum film with the clearance
+    life: pd.Series              # per position: rank correlation of method 1's life with the clearance
+    pairs: int                   # bearings of the fewest-populated position
+
+    @property
+    def opposed(self):
+        """The positions where the life lengthens with the clearance while the cycle-minimum film thins."""
+        return [int(b) for b in self.film.index if self.film[b] < 0 < self.life[b]]
+
+
+def clearance_trends(ds):
+    """The :class:`ClearanceTrends` of a study that keeps every engine and ran its film (else None)."""
+    if kept_summaries(ds) or "clearance_operating" not in ds or "life" not in ds:
+        return None
+    m = ds.sizes["mech_engine"]
+    done = np.stack([ds.crank_status.values[i] == flag(ds.crank_status, "converged")
+                     for i in range(ds.sizes["scheme"])])
+    film, life, pairs = {}, {}, []
+    for b, bearing in enumerate(ds.bearing.values):
+        c = ds.clearance_operating.values[:, :m, b][done]
+        h, hours = ds.h_min.values[:, :, b][done], ds.life.values[:, :, b][done]
+        ok = np.isfinite(c) & np.isfinite(h) & np.isfinite(hours)
+        if np.count_nonzero(ok) < 3:
+            return None
+        film[int(bearing)] = float(stats.spearmanr(c[ok], h[ok]).statistic)
+        life[int(bearing)] = float(stats.spearmanr(c[ok], hours[ok]).statistic)
+        pairs.append(int(np.count_nonzero(ok)))
+    return ClearanceTrends(pd.Series(film), pd.Series(life), min(pairs))
+
+
+@dataclass(frozen=True)
 class LifeBias:
     """What the film tier's error on the cycle-mean film does to method 1's life at the study's median film."""
 
@@ -196,6 +232,6 @@ def life_bias(ds):
     h = float(np.median(films))
     # the study stores lives at its bearings' own films only, not at these two: method 1 is evaluated here
     lives = levanov_method1(np.array([h, h / (1 + errors.h_min_mean)]), h_lim_cr=wear.critical_film_m,
-                            wear_limit=wear.wear_limit_m, wear_rate=wear.wear_rate_m_per_s).life / 3600
+                            wear_limit=wear.method1_limit_m, wear_rate=wear.wear_rate_m_per_s).life / 3600
     return LifeBias(errors.h_min_mean, h, float(lives[0]), float(lives[1]),
-                    wear.wear_limit_m / wear.wear_rate_m_per_s / 3600)
+                    wear.method1_limit_m / wear.wear_rate_m_per_s / 3600)

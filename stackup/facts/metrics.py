@@ -2,8 +2,10 @@
 
 Operating clearance (mean, spread, share outside the design window with
 where it comes from), film and life (:func:`stackup.facts.tables.film_numbers`:
-share of bearings below h_lim,cr, share with alpha above 20 %, life B10 and
-median) and shell stock (grades used, stock-outs, surplus); and, for
+share of bearings below h_lim,cr; Levanov's operability criteria at the worst
+bearing position, the share of its bearings with alpha above 20 % and the
+share living less than the target; the engines' life, their weakest
+bearing's, B10 and median) and shell stock (grades used, stock-outs, surplus); and, for
 declared scenarios, each scenario's rows beside the study's on the same
 engines. :func:`stackup.rank.ranked` orders them.
 """
@@ -17,13 +19,17 @@ import numpy as np
 from ..assembly import ASSEMBLED, SHELL_STOCKOUT
 from ..stats import proportion_ci
 from ..tail import share_interval
-from .declared import StudyParameters
+from ..study.inputs import load_inputs
+from .declared import StudyParameters, parsed
 from .tables import assembled, film_numbers, kept_summaries, operating_moments
 
 #: Fewest bearings counted outside the window for the count to decide; below it a tail estimate does, if given.
 MIN_COUNTED = 20
 #: ``outside_window_source`` of a share the ranking took from the tail estimates, per tails method.
 TAIL_SOURCES = {"conditional": "shells integrated out", "splitting": "generalized splitting"}
+#: Default practical threshold of the share of bearings outside the window [ppm]: schemes whose shares differ
+#: by less do not differ on the clearance (a comparison's ``negligible``; the dataset attribute ``negligible_ppm``).
+NEGLIGIBLE_PPM = 1.0
 
 
 @dataclass(frozen=True)
@@ -40,12 +46,15 @@ class RankingRows:
         The design window of the operating clearance the shares are counted against [m].
     study : dict
         The study's parameters (its ``study`` attribute).
+    negligible : float
+        Shares outside the window that differ by less than this [ppm] do not separate schemes.
     """
 
     rows: dict
     scenarios: dict
     window: tuple
     study: dict
+    negligible: float = NEGLIGIBLE_PPM
 
 
 def _clearance_metrics(d, window):
@@ -83,10 +92,35 @@ def _outside(counted, assembled_bearings, tail):
     return share * 1e6, (lo * 1e6, hi * 1e6), "counted"
 
 
-def scheme_metrics(d, window, h_lim_cr, tail=None):
-    """One scheme's row of metrics (``d`` one scheme of a study dataset; ``tail`` its tail estimates or None)."""
+def part_grades(ds):
+    """Scheme -> the classes its housing bores and journals are graded into (0 where neither is graded).
+
+    Read from the scheme texts the study stored (``input_files``); a scheme
+    not among them (a dataset put together by hand) from the grade labels
+    its bearings carry, where the dataset keeps every engine.
+    """
+    counts = {}
+    files = parsed(ds, "input_files", required=False)
+    if files is not None and "study" in ds.attrs:
+        names = StudyParameters.of(ds).schemes
+        try:
+            counts = {s.name: sum(len(g.labels) for g in (s.housing, s.journal) if g.graded)
+                      for s in load_inputs(files, names)[1]}
+        except (KeyError, ValueError):  # texts of another layout: the labels below
+            counts = {}
+    for s in ds.scheme.values:
+        if str(s) not in counts and "housing_grade" in ds:
+            d = ds.sel(scheme=s)
+            counts[str(s)] = sum(len(set(np.unique(d[v].values)) - {""}) for v in ("housing_grade", "journal_grade"))
+    return counts
+
+
+def scheme_metrics(d, window, h_lim_cr, tail=None, part_grades=np.nan):
+    """One scheme's row of metrics (``d`` one scheme of a study dataset; ``tail`` its tail estimates or None;
+    ``part_grades`` its housing and journal classes, :func:`part_grades`)."""
     bearings, mean, std, outside, assembled_bearings, stockouts = _clearance_metrics(d, window)
     outside_ppm, outside_ci, source = _outside(outside, assembled_bearings, tail)
+    stockout = proportion_ci(stockouts, bearings)
     row = {
         "bearings": bearings,
         "clearance_mean_um": mean * 1e6,
@@ -95,20 +129,26 @@ def scheme_metrics(d, window, h_lim_cr, tail=None):
         "outside_window_ppm_ci": outside_ci,
         "outside_window_counted": int(outside),
         "outside_window_source": source,
-        "stockout_ppm": 1e6 * float(stockouts) / bearings,
+        "stockout_ppm": 1e6 * stockout[0],
+        "stockout_ppm_ci": (1e6 * stockout[1], 1e6 * stockout[2]),
         "shell_grades": int(d.grade_in_scheme.values.sum()),
+        "part_grades": part_grades,
         "surplus_pct": 100.0 * float(d.shells_left.sum()) / max(float(d.shells_made.sum()), 1.0),
     }
     film = film_numbers(d, h_lim_cr)
     if film is not None:
-        below, scuff, b10, median = film.below_critical, film.alpha_over_limit, film.life_b10_h, film.life_median_h
+        below, scuff, short = film.below_critical, film.alpha_over_limit, film.life_below_target
+        b10, median = film.engine_life_b10_h, film.engine_life_median_h
         row.update({
             "film_bearings": int(film.h.size),
             "film_left_out": film.left_out,
             "h_min_below_critical_pct": 100 * below[0], "h_min_below_critical_pct_ci": (100 * below[1], 100 * below[2]),
             "alpha_over_limit_pct": 100 * scuff[0], "alpha_over_limit_pct_ci": (100 * scuff[1], 100 * scuff[2]),
-            "life_b10_h": b10[0], "life_b10_h_ci": b10[1:],
-            "life_median_h": median[0], "life_median_h_ci": median[1:],
+            "alpha_over_limit_position": int(d.bearing.values[film.alpha_position]),
+            "life_below_target_pct": 100 * short[0], "life_below_target_pct_ci": (100 * short[1], 100 * short[2]),
+            "life_below_target_position": int(d.bearing.values[film.life_position]),
+            "engine_life_b10_h": b10[0], "engine_life_b10_h_ci": b10[1:],
+            "engine_life_median_h": median[0], "engine_life_median_h_ci": median[1:],
         })
     return row
 
@@ -118,7 +158,9 @@ def _rows(ds, window, h_lim_cr, tails=None):
     def tail(s):
         return tails.sel(scheme=s) if tails is not None and s in tails.scheme.values else None
 
-    return {str(s): scheme_metrics(ds.sel(scheme=s), window, h_lim_cr, tail(str(s))) for s in ds.scheme.values}
+    parts = part_grades(ds)
+    return {str(s): scheme_metrics(ds.sel(scheme=s), window, h_lim_cr, tail(str(s)), parts.get(str(s), np.nan))
+            for s in ds.scheme.values}
 
 
 def _same_engines(ds, other, counted, window, h_lim_cr):
@@ -164,8 +206,17 @@ def ranking_window(ds, window=None, tails=None):
     return window
 
 
-def ranking_rows(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
+def negligible_of(ds, negligible=None):
+    """The practical threshold [ppm]: ``negligible``, or the dataset's ``negligible_ppm``, or :data:`NEGLIGIBLE_PPM`."""
+    value = float(ds.attrs.get("negligible_ppm", NEGLIGIBLE_PPM) if negligible is None else negligible)
+    if not np.isfinite(value) or value < 0:
+        raise ValueError(f"negligible: {value!r} ppm is not a share of bearings >= 0")
+    return value
+
+
+def ranking_rows(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None, negligible=None):
     """The :class:`RankingRows` of a study dataset (the parameters are :func:`stackup.rank.rank`'s)."""
+    negligible = negligible_of(ds, negligible)
     window = ranking_window(ds, window, tails)
     h_lim_cr = float(ds.critical_film.max()) if h_lim_cr is None else float(h_lim_cr)
     rows = _rows(ds, window, h_lim_cr, tails)
@@ -174,4 +225,4 @@ def ranking_rows(ds, *, scenarios=None, tails=None, window=None, h_lim_cr=None):
         counted = _rows(ds, window, h_lim_cr) if tails is not None else rows  # counted shares against counted
         pairs = {label: (_rows(other, window, h_lim_cr), _same_engines(ds, other, counted, window, h_lim_cr))
                  for label, other in scenarios.items()}
-    return RankingRows(rows, pairs, window, dict(StudyParameters.of(ds).items))
+    return RankingRows(rows, pairs, window, dict(StudyParameters.of(ds).items), negligible)

@@ -16,7 +16,7 @@ import pandas as pd
 
 from ..assembly import STATUS
 from ..life import ALPHA_SCUFFING
-from ..stats import mean_half_width, proportion_ci, quantile_ci
+from ..stats import control_variate_mean, mean_half_width, proportion_ci, quantile_ci
 from ..study import summaries
 from ..study.schema import flag
 
@@ -195,18 +195,92 @@ class FilmNumbers:
 
     The films, boundary-friction shares and lives that are numbers (a bearing whose film is NaN:
     collapsed, not periodic, failed, is left out and counted in ``left_out``); shares and quantiles as
-    (value, lower, upper) with their 95 % intervals.
+    (value, lower, upper) with their 95 % intervals. Lives are never pooled over bearing positions (their
+    loads differ, so a pooled life is a mixture no bearing has): Levanov's operability criteria are read per
+    position, and the scheme's figure is its worst position's (``alpha_position``, ``life_position``: index
+    into the positions); a life for the scheme is the engine's, its weakest bearing's.
     """
 
     done: np.ndarray            # engines of the mechanical chain whose crankshaft converged
     h: np.ndarray               # cycle-minimum films [m]
     alpha: np.ndarray           # shares of the cycle below the critical film [-]
-    life_h: np.ndarray          # bearing lives [h]
     left_out: int
     below_critical: tuple       # share of films below the critical film [-] (None without one)
-    alpha_over_limit: tuple     # share of bearings with alpha above the scuffing limit [-]
-    life_b10_h: tuple
-    life_median_h: tuple
+    alpha_over_limit: tuple     # at the worst position: share of its bearings with alpha over the scuffing limit
+    alpha_position: int
+    life_below_target: tuple    # at the worst position: share of its bearings living less than the target [-]
+    life_position: int
+    engine_life_h: np.ndarray   # each engine's life, its weakest bearing's [h] (an engine with a NaN left out)
+    engine_life_b10_h: tuple
+    engine_life_median_h: tuple
+    engines_below_target: tuple  # share of engines living less than the target [-]
+
+
+#: The study's film and life variables whose means the check tier corrects, and their check twins.
+CHECKED = {"h_min": "h_min_check", "h_min_mean": "h_min_mean_check", "life": "life_check"}
+
+
+def checked_lives(d, done):
+    """Bearing lives [h] of one scheme ``d`` on the engines ``done`` (engines, positions), on the check tier's scale.
+
+    Where the study ran the mass-conserving check (``film_check_engines``,
+    at least 3 engines at a position), each position's lives are scaled by
+    the ratio of the control-variate estimate of the check tier's mean life
+    to the study tier's mean (:func:`multi_fidelity`): every engine's life
+    carries the accurate tier's mean, on the assumption that the tiers'
+    ratio is the same for every engine at a position. Elsewhere the study
+    tier's lives.
+    """
+    life = d.life.values[done] / 3600
+    for b in range(life.shape[-1]):
+        e = checked_mean(d, done, "life", b)
+        if e is not None:
+            life[:, b] *= e.estimate / e.cheap
+    return life
+
+
+def checked_mean(d, done, name, b):
+    """The control-variate estimate (:func:`stackup.stats.control_variate_mean`) of the check tier's mean of
+    ``name`` (a key of :data:`CHECKED`) at position index ``b`` of one scheme ``d``, over the engines ``done``;
+    None where the check ran on fewer than 3 of them."""
+    if CHECKED[name] not in d:
+        return None
+    cheap, check = d[name].values[done, b], d[CHECKED[name]].values[done, b]
+    shared = np.isfinite(cheap) & np.isfinite(check)
+    if np.count_nonzero(shared) < 3:
+        return None
+    return control_variate_mean(check[shared], cheap[shared], cheap[np.isfinite(cheap)])
+
+
+def position_risks(d, life_target_h, done=None, lives=None):
+    """Per main-bearing position of one scheme ``d``: Levanov's operability criteria and the life.
+
+    Over the engines whose crankshaft converged (``done``, else found), each
+    position's bearings whose film is a number: ``alpha_over_limit`` (share with
+    the boundary-friction share alpha above :data:`~stackup.life.ALPHA_SCUFFING`,
+    Levanov et al. 2015's scuffing risk), ``life_below_target`` (share living
+    less than ``life_target_h``), ``life_b10_h`` and ``life_median_h``; each a
+    list over positions of (value, lower, upper) 95 % intervals
+    (Clopper-Pearson for shares, order statistics for quantiles). Lives on
+    the check tier's scale where the study ran it: ``lives``, else
+    :func:`checked_lives`.
+    """
+    done = d.crank_status.values == flag(d.crank_status, "converged") if done is None else done
+    alpha, life = d.alpha.values[done], checked_lives(d, done) if lives is None else lives
+    out = {"alpha_over_limit": [], "life_below_target": [], "life_b10_h": [], "life_median_h": []}
+    for b in range(alpha.shape[-1]):
+        a, hours = numbers(alpha[:, b]), numbers(life[:, b])
+        out["alpha_over_limit"].append(proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size))
+        out["life_below_target"].append(proportion_ci(np.count_nonzero(hours < life_target_h), hours.size))
+        out["life_b10_h"].append(quantile_ci(hours, 0.10))
+        out["life_median_h"].append(quantile_ci(hours, 0.5))
+    return out
+
+
+def _worst(shares):
+    """The position with the largest share (the first of equals) and its (value, lower, upper)."""
+    k = int(np.nanargmax([v[0] for v in shares])) if np.isfinite([v[0] for v in shares]).any() else 0
+    return k, shares[k]
 
 
 def film_numbers(d, h_lim_cr=None):
@@ -214,24 +288,29 @@ def film_numbers(d, h_lim_cr=None):
     done = d.crank_status.values == flag(d.crank_status, "converged")
     if not done.any() or "h_min" not in d:
         return None
-    h, a, life = (numbers(d[name].values[done]) for name in ("h_min", "alpha", "life"))
-    life = life / 3600
-    return FilmNumbers(done, h, a, life, int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
+    h, a = (numbers(d[name].values[done]) for name in ("h_min", "alpha"))
+    target = float(d.life_target) / 3600
+    lives = checked_lives(d, done)
+    risks = position_risks(d, target, done, lives)
+    alpha_position, alpha_over = _worst(risks["alpha_over_limit"])
+    life_position, short = _worst(risks["life_below_target"])
+    engine_life = lives.min(axis=1)  # NaN stays NaN: left out
+    lived = engine_life[~np.isnan(engine_life)]
+    return FilmNumbers(done, h, a, int(np.count_nonzero(np.isnan(d.h_min.values[done]))),
                        None if h_lim_cr is None else proportion_ci(np.count_nonzero(h < h_lim_cr), h.size),
-                       proportion_ci(np.count_nonzero(a > ALPHA_SCUFFING), a.size),
-                       quantile_ci(life, 0.10), quantile_ci(life, 0.5))
+                       alpha_over, alpha_position, short, life_position, lived, quantile_ci(lived, 0.10),
+                       quantile_ci(lived, 0.5), proportion_ci(np.count_nonzero(lived < target), lived.size))
 
 
 def film_summary(ds):
-    """Per scheme: cycle-minimum film, boundary-friction share and Levanov life, with 95 % intervals.
+    """Per scheme: cycle-minimum film, Levanov's operability criteria at the worst position and the engine's life.
 
-    The share of engines below the life target uses the engine's own target
-    (``life_target``). Bearings whose film is not a number (NaN: collapsed,
-    not periodic, failed) are left out and counted (``left_out``); so are
-    the engines with one of them, whose life (their weakest bearing's) is
-    not a number either (``engines_left_out``).
+    Engines live as long as their weakest bearing; the share of engines
+    below the life target uses the engine's own target (``life_target``).
+    Bearings whose film is not a number (NaN: collapsed, not periodic,
+    failed) are left out and counted (``left_out``); so are the engines with
+    one of them (``engines_left_out``).
     """
-    life_target_hours = float(ds.life_target) / 3600
     rows = []
     for name in ds.scheme.values:
         d = ds.sel(scheme=name)
@@ -239,19 +318,19 @@ def film_summary(ds):
         if film is None or film.h.size == 0:
             continue
         done = film.done
-        engine_life = d.life.values[done].min(axis=1) / 3600  # NaN stays NaN
-        lived = engine_life[~np.isnan(engine_life)]
-        short = proportion_ci(np.count_nonzero(lived < life_target_hours), lived.size)
         rows.append({
             "scheme": str(name), "engines": int(done.sum()), "left_out": film.left_out,
-            "engines_left_out": int(engine_life.size - lived.size),
+            "engines_left_out": int(done.sum() - film.engine_life_h.size),
             "h_min_p05_um": quantile_ci(film.h * UM, 0.05), "h_min_median_um": quantile_ci(film.h * UM, 0.5),
             "h_min_mean_median_um": quantile_ci(numbers(d.h_min_mean.values[done] * UM), 0.5),
-            "alpha_mean": film.alpha.mean(), "alpha_over_20_pct": tuple(100 * v for v in film.alpha_over_limit),
-            "life_b10_h": film.life_b10_h, "life_median_h": film.life_median_h,
+            "alpha_mean": film.alpha.mean(),
+            "alpha_over_20_pct": tuple(100 * v for v in film.alpha_over_limit),
+            "alpha_over_20_position": int(d.bearing.values[film.alpha_position]),
+            "life_below_target_pct": tuple(100 * v for v in film.life_below_target),
+            "life_below_target_position": int(d.bearing.values[film.life_position]),
             "wear_chart_b10_h": quantile_ci(numbers(d.life_wear_chart.values[done] / 3600), 0.10),
-            "engine_life_b10_h": quantile_ci(lived, 0.10),
-            "engines_below_target_pct": tuple(100 * v for v in short),
+            "engine_life_b10_h": film.engine_life_b10_h, "engine_life_median_h": film.engine_life_median_h,
+            "engines_below_target_pct": tuple(100 * v for v in film.engines_below_target),
         })
     return pd.DataFrame(rows).set_index("scheme") if rows else pd.DataFrame()
 
@@ -260,21 +339,25 @@ def bearing_summary(ds):
     """Per scheme and main-bearing position: film and life of the engines the mechanical chain ran on.
 
     Columns: ``engines`` (whose film at the position is a number: NaN left
-    out), ``h_min_p05_um`` and ``h_min_median_um`` (cycle minimum),
-    ``life_b10_h`` and ``life_median_h``, each a (value, lower, upper) 95 %
-    interval.
+    out), ``h_min_p05_um`` and ``h_min_median_um`` (cycle minimum), Levanov's
+    operability criteria ``alpha_over_20_pct`` and ``life_below_target_pct``
+    (:func:`position_risks`), ``life_b10_h`` and ``life_median_h``, each a
+    (value, lower, upper) 95 % interval.
     """
     rows = []
     for i, name in enumerate(ds.scheme.values):
         done = converged_engines(ds, i)
         if not done.any():
             continue
+        d = ds.isel(scheme=i)
+        risks = position_risks(d, float(ds.life_target) / 3600, done)
         for b, bearing in enumerate(ds.bearing.values):
             h = numbers(ds.h_min.values[i, done, b] * UM)
-            life = numbers(ds.life.values[i, done, b] / 3600)
             rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(h.size),
                          "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
-                         "life_b10_h": quantile_ci(life, 0.10), "life_median_h": quantile_ci(life, 0.5)})
+                         "alpha_over_20_pct": tuple(100 * v for v in risks["alpha_over_limit"][b]),
+                         "life_below_target_pct": tuple(100 * v for v in risks["life_below_target"][b]),
+                         "life_b10_h": risks["life_b10_h"][b], "life_median_h": risks["life_median_h"][b]})
     return pd.DataFrame(rows).set_index(["scheme", "bearing"]) if rows else pd.DataFrame()
 
 
@@ -309,3 +392,76 @@ def separates(low, high):
     low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
     ok = np.isfinite(low) & np.isfinite(high)
     return bool(ok.sum() > 1 and np.min(high[ok]) < np.max(low[ok]))
+
+
+def paired_life_changes(ds, other):
+    """What a scenario does to the lives, on the same engines: per scheme and position, and per engine.
+
+    ``other`` is the scenario's study dataset (the same seed, so its first
+    engines are the study's first engines with one change: common random
+    numbers). Where both ran the mechanical chain, each engine's change is
+    taken against itself, which leaves only the scenario's effect; the
+    median change has a distribution-free 95 % interval (order statistics
+    of the paired differences). Returns two DataFrames, or (None, None)
+    where the scenario did not run the mechanical chain:
+
+    - indexed by (scheme, bearing): ``pairs``, ``life_change_h``,
+      ``h_min_change_um`` (cycle minimum) and ``h_min_mean_change_um``
+      (cycle mean, the film method 1 reads), each (median, lower, upper);
+    - indexed by scheme: ``pairs`` and ``engine_life_change_h`` (the
+      engine's life, its weakest bearing's).
+    """
+    if "life" not in other or "life" not in ds or not other.sizes.get("mech_engine"):
+        return None, None
+    m = min(other.sizes["mech_engine"], ds.sizes["mech_engine"])
+    positions, engines = [], []
+    for name in other.scheme.values:
+        if name not in ds.scheme.values:
+            continue
+        base, alt = ds.sel(scheme=name).isel(mech_engine=slice(0, m)), other.sel(scheme=name).isel(
+            mech_engine=slice(0, m))
+        both = ((base.crank_status.values == flag(base.crank_status, "converged"))
+                & (alt.crank_status.values == flag(alt.crank_status, "converged")))
+        life = (alt.life.values[both] - base.life.values[both]) / 3600
+        h = (alt.h_min.values[both] - base.h_min.values[both]) * UM
+        h_mean = (alt.h_min_mean.values[both] - base.h_min_mean.values[both]) * UM
+        for b, bearing in enumerate(ds.bearing.values):
+            positions.append({"scheme": str(name), "bearing": int(bearing), "pairs": int(numbers(life[:, b]).size),
+                              "life_change_h": quantile_ci(life[:, b], 0.5),
+                              "h_min_change_um": quantile_ci(h[:, b], 0.5),
+                              "h_min_mean_change_um": quantile_ci(h_mean[:, b], 0.5)})
+        engine = (alt.life.values[both].min(axis=1) - base.life.values[both].min(axis=1)) / 3600
+        engines.append({"scheme": str(name), "pairs": int(numbers(engine).size),
+                        "engine_life_change_h": quantile_ci(engine, 0.5)})
+    return (pd.DataFrame(positions).set_index(["scheme", "bearing"]),
+            pd.DataFrame(engines).set_index("scheme"))
+
+
+def multi_fidelity(ds):
+    """Per scheme and position, the means of the film and life corrected by the check tier (control variates).
+
+    The study's tier ran on every engine of the mechanical chain, the check
+    tier (``film_check_engines``) on its first ones: the control-variate
+    estimator (:func:`stackup.stats.control_variate_mean`) gives the check
+    tier's mean over all those engines, unbiased for the study tier's error,
+    with a 95 % interval. Columns per variable of :data:`CHECKED` (SI):
+    ``<name>_cheap`` (the study tier's mean) and ``<name>_corrected``
+    (estimate, lower, upper); ``pairs`` and ``engines``. Empty without a
+    check (fewer than 3 pairs at a position).
+    """
+    if "h_min_check" not in ds or not np.isfinite(ds.h_min_check.values).any():
+        return pd.DataFrame()
+    rows = []
+    for i, name in enumerate(ds.scheme.values):
+        d, done = ds.isel(scheme=i), converged_engines(ds, i)
+        for b, bearing in enumerate(ds.bearing.values):
+            row = {"scheme": str(name), "bearing": int(bearing)}
+            for cheap in CHECKED:
+                e = checked_mean(d, done, cheap, b)
+                if e is None:
+                    break
+                row.update({f"{cheap}_cheap": e.cheap, f"{cheap}_corrected": (e.estimate, e.lower, e.upper),
+                            "pairs": e.n_accurate, "engines": e.n_cheap})
+            else:
+                rows.append(row)
+    return pd.DataFrame(rows).set_index(["scheme", "bearing"]) if rows else pd.DataFrame()

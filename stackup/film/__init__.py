@@ -22,7 +22,7 @@ tier continues with the short-bearing load curve scaled to its own load at
 :data:`ECCENTRICITY_VALID`.
 
 Submodules: :mod:`~stackup.film.orbit` (film over the cycle, its tiers in
-:mod:`~stackup.film.mobility`, :mod:`~stackup.film.transient`, the tilt in
+:mod:`~stackup.film.mobility`, :mod:`~stackup.film.elrod`, :mod:`~stackup.film.transient`, the tilt in
 :mod:`~stackup.film.tilt`, what they share in :mod:`~stackup.film.journal`),
 :mod:`~stackup.film.cycle` (the study's film stage), :mod:`~stackup.film.heat`
 (heat balance with the oil feed), :mod:`~stackup.film.oil` (viscosity).
@@ -50,6 +50,8 @@ TIER_NOTES = {
     "mobility": "journal orbit over the cycle by the short-bearing mobility method (squeeze and rotation, Booker)",
     "mobility-finite": "journal orbit over the cycle by the mobility method with a finite-length correction "
                        "tabulated from the Reynolds equation (squeeze and rotation)",
+    "elrod-coarse": "journal orbit over the cycle on the transient Reynolds equation with mass-conserving "
+                    "cavitation (Elrod's film content) on a coarse grid, Newton per time step (tilt imposed)",
     "reynolds-transient": "journal orbit over the cycle on the transient Reynolds equation with mass-conserving "
                           "cavitation (the reference)",
 }

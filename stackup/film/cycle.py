@@ -11,9 +11,10 @@ Film methods a study names (:data:`FILM_METHODS`) are the cycle tiers of
 
 - ``"short"``, ``"finite"``, ``"reynolds"``: quasi-static, each crank angle a
   steady load on that steady tier (no squeeze film);
-- ``"mobility"``, ``"mobility-finite"``, ``"reynolds-transient"``: the dynamic
-  tiers (the reference ``"reynolds-transient"`` fed by the engine's groove or
-  hole; the study's former name ``"transient"`` is a deprecated alias,
+- ``"mobility"``, ``"mobility-finite"``, ``"elrod-coarse"``, ``"reynolds-transient"``:
+  the dynamic tiers (the mass-conserving ``"elrod-coarse"`` and the reference
+  ``"reynolds-transient"`` fed by the engine's groove or hole, :data:`FED`; the
+  study's former name ``"transient"`` is a deprecated alias,
   :func:`stackup.film.orbit.canonical_tier`).
 
 With a dynamic tier the heat balance closes on the orbit's own friction power,
@@ -43,7 +44,7 @@ from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
 from .journal import ECCENTRICITY_LIMIT, Orbit
 from .journal import STATUS as ORBIT_STATUS
-from .orbit import (ALIASES, DYNAMIC, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
+from .orbit import (ALIASES, DYNAMIC, FED, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
                     cycle_tier_errors, one_cycle, orbit, tier_names, within_one_cycle)
 from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
 from .transient import transient_orbit
@@ -122,7 +123,7 @@ class BearingFilms:
         Share of the crank angles at which the film over the width is at its
         limit, :math:`c(1 - \varepsilon_{lim})` (an edge, or the journal, at the wall) [-].
     viscosity : numpy.ndarray
-        Effective viscosity of the film [Pa s] (at ``temperature``).
+        Effective oil viscosity of the heat balance [Pa s].
     """
 
     h_min: np.ndarray
@@ -206,7 +207,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
                             film.tilt_max, _at_limit_share(film.h_min_edge, clearance), heat.viscosity)
-    options = {"feed": feed} if method == "reynolds-transient" else {}
+    options = {"feed": feed} if method in FED else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
                                         stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))), tilt=tilt,
@@ -214,6 +215,37 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
     return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, film.status, _is_number(film.status),
                         balance.temperature, film.friction_power_mean, film.side_flow_mean + fed, fed, balance.status,
                         film.tilt_max, _at_limit_share(film.h_min_edge, clearance), balance.viscosity)
+
+
+#: The tier that checks the study's film on some of its engines (multi-fidelity: :func:`checked_film`).
+CHECK_METHOD = "elrod-coarse"
+
+
+def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, journal_d, method, check=CHECK_METHOD):
+    """The mid-plane film over the cycle of the same bearings by the study's tier and by a more accurate one,
+    both on the aligned journal at the viscosity of the bearings' heat balance.
+
+    The bearings of a :func:`bearing_films` result (by tier ``method``, its
+    heat balance's ``viscosity`` [Pa s]) run again with ``method`` and with ``check`` (default the
+    mass-conserving :data:`CHECK_METHOD`, fed by the engine's oil ``feed``),
+    without the journal's tilt: the accurate tier takes a tilt only as
+    imposed and fails where a tilted edge reaches the wall (an edge the rigid
+    block makes touch), so the two tiers are compared where both hold, and the
+    study scales its tilted film by their ratio, an assumption that the tiers'
+    ratio does not depend on the tilt. Arguments as :func:`bearing_films`.
+    Returns the two films [m] (engines, bearings, angles): the study's tier's,
+    the check tier's.
+    """
+    loads = np.moveaxis(np.asarray(reactions, dtype=float), 1, 2)
+    geometry = dict(journal_d=np.asarray(journal_d, dtype=float), bearing_width=spec.bearing_width,
+                    clearance=np.asarray(clearance, dtype=float), speed=spec.speed, viscosity=viscosity)
+    angle = np.asarray(crank_angle, dtype=float)
+
+    def fed(tier):
+        return {"feed": feed} if tier in FED else {}
+
+    return (orbit(loads, angle, **geometry, method=method, **fed(method)).h_min,
+            orbit(loads, angle, **geometry, method=check, **fed(check)).h_min)
 
 
 def _at_limit_share(h_min_edge, clearance):

@@ -17,6 +17,11 @@ Tiers of :func:`orbit` (``method``); their measured costs and errors are in
     L/D 0.15-1, eccentricity up to the limit, every squeeze direction; the
     peak pressure corrected the same way). The quasi-static ``finite`` tier's
     peak pressure uses the same table at the steady squeeze direction.
+``"elrod-coarse"``
+    The same equation as the reference (squeeze, mass-conserving cavitation in
+    Elrod's universal variable, the feed held full, an imposed tilt) on a coarse
+    grid with a Newton solve per adaptive time step (:mod:`stackup.film.elrod`):
+    the film content the mobility tiers lack, at a fraction of the reference's cost.
 ``"reynolds-transient"``
     The reference: the finite-difference Reynolds equation with squeeze and
     mass-conserving (Elrod-Adams, JFO) cavitation, the journal centre integrated
@@ -103,13 +108,17 @@ from .journal import (ECCENTRICITY_LIMIT, STATES, STATUS, Orbit, edge_film, mobi
                       short_table, table_covers, vector_length)
 from .mobility import PERIODIC, mobility_orbit  # noqa: F401 (PERIODIC: API)
 from .tilt import cycle_tilt
+from .elrod import elrod_orbit
 from .transient import transient_orbit
 
 #: Cycle tiers :func:`orbit` runs (``method``), cheapest first; the study's film methods are the same names.
-METHODS = ("short", "finite", "mobility", "mobility-finite", "reynolds", "reynolds-transient")
+METHODS = ("short", "finite", "mobility", "mobility-finite", "elrod-coarse", "reynolds", "reynolds-transient")
 #: Quasi-static tiers (a steady tier at each angle) and dynamic ones (an orbit integrated over cycles).
 QUASI_STATIC = ("short", "finite", "reynolds")
-DYNAMIC = ("mobility", "mobility-finite", "reynolds-transient")
+DYNAMIC = ("mobility", "mobility-finite", "elrod-coarse", "reynolds-transient")
+#: Tiers that fill their film from the engine's oil feed (``feed``: groove or hole held at the supply pressure);
+#: the others take the film as full wherever its pressure is positive.
+FED = ("elrod-coarse", "reynolds-transient")
 #: Deprecated names of the tiers -> their names (``"quasi-static"`` takes its tier from ``steady_method``).
 ALIASES = {"quasi-static-short": "short", "quasi-static-finite": "finite", "quasi-static-reynolds": "reynolds",
            "mobility-short": "mobility", "transient": "reynolds-transient"}
@@ -193,7 +202,10 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
     """
     max_error = float(max_error)
     errors = cycle_tier_errors()
-    ranked = sorted((t for t in errors if tiers is None or t in tiers), key=lambda t: errors[t]["seconds"])
+    # a tier not measured against the Swift-Stieber run (it has no such table) is not chosen against it
+    ranked = sorted((t for t in errors if (tiers is None or t in tiers)
+                     and (reference == "mass-conserving" or "swift-stieber" in errors[t])),
+                    key=lambda t: errors[t]["seconds"])
 
     def error(tier, name):
         table = errors[tier] if reference == "mass-conserving" else errors[tier]["swift-stieber"]
@@ -226,12 +238,20 @@ def compliance_with_tilt(values):
         raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
 
 
+#: The tiers that take options of their own (``**transient_options`` of :func:`orbit`), by tier.
+TIER_FUNCTIONS = {"elrod-coarse": elrod_orbit, "reynolds-transient": transient_orbit}
+
+
 def _transient_options(values):
-    """The transient tier's options, checked as :func:`stackup.film.transient.transient_orbit` declares them."""
+    """The tier's own options, checked as its function (:data:`TIER_FUNCTIONS`) declares them."""
     options = values["transient_options"]
-    for name, constraint in transient_orbit.constraints.items():
+    function = TIER_FUNCTIONS.get(values["method"], transient_orbit)
+    for name, constraint in function.constraints.items():
         if options.get(name) is not None:
             constraint(name, options[name])
+    if values["method"] == "elrod-coarse" and values["tilt_compliance"] is not None:
+        raise ValueError("tilt_compliance: not valid with method='elrod-coarse', which takes the tilt as imposed "
+                         "(give the tilt in the film, or use 'mobility-finite' or 'reynolds-transient')")
 
 
 @renamed(diameter="journal_d", length="bearing_width")
@@ -272,7 +292,7 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
         (:mod:`stackup.film.tilt`).
     cycles : int, optional
         Most cycles a dynamic tier integrates to reach a periodic orbit
-        (default 20 for the mobility tiers, 8 for ``"reynolds-transient"``).
+        (default 20 for the mobility tiers, 8 for ``"elrod-coarse"`` and ``"reynolds-transient"``).
     start : array_like (..., 2), optional
         Journal centre at the first crank angle [m] to start a dynamic tier
         from (e.g. the ``position[..., 0, :]`` of a coarser orbit); default the
@@ -281,7 +301,8 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
         orbit reached is the same.
     **transient_options
         Grid and cavitation options of ``"reynolds-transient"``
-        (:func:`stackup.film.transient.transient_orbit`).
+        (:func:`stackup.film.transient.transient_orbit`) and of ``"elrod-coarse"``
+        (:func:`stackup.film.elrod.elrod_orbit`).
 
     Returns
     -------
@@ -299,13 +320,15 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
     if start is not None:
         start = np.broadcast_to(np.asarray(start, dtype=float), (*lead, 2))
     if cycles is None:
-        cycles = 8 if method == "reynolds-transient" else 20
+        cycles = 8 if method in TIER_FUNCTIONS else 20
     return _run(method, loads, np.asarray(crank_angle, dtype=float), geometry, tilt=tilt,
                 tilt_compliance=tilt_compliance, cycles=cycles, start=start, options=transient_options)
 
 
 def _run(method, loads, angle, geometry, *, tilt, tilt_compliance, cycles, start, options):
     """The tier ``method``'s orbit on inputs broadcast to the loads' leading shape (``geometry`` radial, SI)."""
+    if method == "elrod-coarse":
+        return elrod_orbit(loads, angle, **geometry, tilt=tilt, cycles=cycles, start=start, **options)
     if method == "reynolds-transient":
         return transient_orbit(loads, angle, **geometry, tilt=tilt, tilt_compliance=tilt_compliance, cycles=cycles,
                                start=start, **options)

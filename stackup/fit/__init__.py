@@ -23,7 +23,7 @@ engine file, :class:`stackup.engines.PressFitLimits`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -102,7 +102,7 @@ def _lining_material_given(args):
 
 def _inputs_broadcast(args):
     names = ("housing_bore", "housing_outer", "shell_wall", "lining_thickness", "crush_height", "check_bore",
-             "check_stress", "temperature", "assembly_temperature", "journal_d")
+             "check_stress", "temperature", "assembly_temperature", "journal_d", "journal_temperature")
     shapes = [np.shape(args[name]) for name in names if args.get(name) is not None]
     try:
         np.broadcast_shapes(*shapes)
@@ -132,11 +132,12 @@ _RELATIONS = (_check_bore_given, _lining_material_given, _inputs_broadcast, _rin
 
 
 @renamed(length="bearing_width")
-@validated(relations=_RELATIONS, temperature=_TEMPERATURE, journal_d=Positive(), **_CHECKS)
+@validated(relations=_RELATIONS, temperature=_TEMPERATURE, journal_d=Positive(),
+           journal_temperature=OrNone(_TEMPERATURE), **_CHECKS)
 def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, bearing_width, check_bore=None,
               housing_material="steel", shell_material="steel", lining_thickness=0.0, lining_material=None,
               temperature=20.0, assembly_temperature=20.0, check_stress=100e6, journal_d=None,
-              journal_material="steel", method="lame"):
+              journal_material="steel", journal_temperature=None, method="lame"):
     r"""Contact pressure, shell stress, housing swell and operating clearance of a shell pair.
 
     Parameters
@@ -177,6 +178,12 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, bearing_
         (100 MPa: Kopeliovich, sec. 3).
     journal_d : array_like, optional
         Journal diameter at the assembly temperature [m]; gives ``clearance``.
+    journal_temperature : array_like, optional
+        The journal's own temperature in service [degC]; default
+        ``temperature``. A journal runs hotter than the bulkhead around its
+        bearing (often 10-20 K, physics.md sec. 3): each kelvin takes
+        :math:`\alpha_J d_J` off the diametral clearance (0.53 um per K for
+        a 46 mm steel journal).
     method : {"lame", "thin-ring", "fe"}
         Tier (see module docstring).
 
@@ -186,7 +193,10 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, bearing_
 
     Notes
     -----
-    Equations in :mod:`stackup.fit.tiers`. Loss of fit (``loss_of_fit``) gives
+    Equations in :mod:`stackup.fit.tiers`; the operating clearance is the shell
+    bore in service less the journal at its own temperature,
+    :math:`C = D_{shell} - d_J\,(1 + \alpha_J (T_J - T_{assembly}))`
+    (:func:`stackup.fit.tiers.journal_in_service`). Loss of fit (``loss_of_fit``) gives
     zero pressure and stress, never a negative pressure; the loose shells then
     follow the bore, so the clearance is continuous through the loss of fit.
 
@@ -201,37 +211,41 @@ def press_fit(*, housing_bore, housing_outer, shell_wall, crush_height, bearing_
                     lining_thickness=lining_thickness, crush_height=crush_height, check_bore=check_bore,
                     check_stress=check_stress, journal_d=housing_bore if journal_d is None else journal_d,
                     delta_t=temperature - assembly_temperature)
-    shape = np.broadcast_shapes(*(np.shape(x) for x in bearings.values()))
+    shape = np.broadcast_shapes(*(np.shape(x) for x in bearings.values()), np.shape(journal_temperature))
     rings = _kernel.Materials(*(float(value) for m in (housing, shell, lining)
                                 for value in (m.modulus, m.poisson, m.expansion)), float(journal.expansion))
-    if method == "fe":
-        return _by_elements(bearings, shape, rings, with_journal=journal_d is not None)
-    return _by_kernel(bearings, shape, rings, thin=method == "thin-ring", with_journal=journal_d is not None)
+    fit = (_by_elements(bearings, shape, rings) if method == "fe" else
+           _by_kernel(bearings, shape, rings, thin=method == "thin-ring"))
+    if journal_d is None:
+        return fit
+    journal_t = temperature if journal_temperature is None else journal_temperature
+    hot = tiers.journal_in_service(np.asarray(journal_d, dtype=float), rings.journal_expansion,
+                                   np.asarray(journal_t, dtype=float) - assembly_temperature)
+    return replace(fit, clearance=np.broadcast_to(fit.shell_bore - hot, shape).copy())
 
 
-def _by_kernel(bearings, shape, rings, *, thin, with_journal):
-    """The closed-form tiers through the numba kernel; inputs as :func:`press_fit` forms them."""
+def _by_kernel(bearings, shape, rings, *, thin):
+    """The closed-form tiers through the numba kernel, without the journal; inputs as :func:`press_fit` forms them."""
     flat = _kernel.Bearings(**{name: _flat(x, shape) for name, x in bearings.items()})
-    options = _kernel.Options(thin, with_journal, tiers.FREE_RADIUS_ITERATIONS)
-    p, sigma, swell, bore, shell_bore, clearance, loss = _kernel.press_fit(
+    options = _kernel.Options(thin, False, tiers.FREE_RADIUS_ITERATIONS)
+    p, sigma, swell, bore, shell_bore, _, loss = _kernel.press_fit(
         int(np.prod(shape, dtype=np.int64)), flat, rings, options)
     return PressFit(p.reshape(shape), sigma.reshape(shape), swell.reshape(shape), bore.reshape(shape),
-                    shell_bore.reshape(shape), clearance.reshape(shape) if with_journal else None,
-                    loss.reshape(shape))
+                    shell_bore.reshape(shape), None, loss.reshape(shape))
 
 
-def _by_elements(bearings, shape, rings, *, with_journal):
-    """The finite-element reference, bearing by bearing; inputs as :func:`press_fit` forms them."""
+def _by_elements(bearings, shape, rings):
+    """The finite-element reference, bearing by bearing, without the journal; inputs as :func:`press_fit` forms them."""
     housing, back, lining = rings[0:3], rings[3:6], rings[6:9]
     names = ("housing_bore", "housing_outer", "shell_wall", "crush_height", "check_bore", "check_stress", "delta_t",
              "journal_d", "lining_thickness")
     columns = (np.broadcast_to(bearings[name], shape).ravel().tolist() for name in names)
-    rows = [reference.press_fit_one(*args[:7], housing, back, rings.journal_expansion,
-                                    args[7] if with_journal else None, lining_thickness=args[8], lining=lining)
+    rows = [reference.press_fit_one(*args[:7], housing, back, rings.journal_expansion, None,
+                                    lining_thickness=args[8], lining=lining)
             for args in zip(*columns)]
     out = {k: np.array([r[k] for r in rows]).reshape(shape) for k in rows[0]} if rows else {}
     return PressFit(out["contact_pressure"], out["shell_stress"], out["housing_swell"], out["bore_in_service"],
-                    out["shell_bore"], out.get("clearance"), out["loss_of_fit"].astype(bool))
+                    out["shell_bore"], None, out["loss_of_fit"].astype(bool))
 
 
 @dataclass(frozen=True)

@@ -74,9 +74,10 @@ Outputs: contact pressure :math:`p`; mean steel-equivalent shell compression
 elastic part only); bore in service :math:`2a + 2pC_H`; shell bore in service
 :math:`2(a + p C_H - t_{loaded})` with :math:`t_{loaded}` the full wall plus
 the thickening of the equivalent ring; operating clearance = shell bore -
-journal. With :math:`\delta \le 0` the fit is lost: :math:`p = 0` and the
-loose shells follow the bore, which keeps every output continuous through the
-loss of fit.
+journal at its own temperature (:func:`journal_in_service`). With
+:math:`\delta \le 0` the fit is lost: :math:`p = 0` and the loose shells
+follow the bore, which keeps every output continuous through the loss of
+fit.
 
 References
 ----------
@@ -141,8 +142,18 @@ def free_radius(check_radius, crush_height, wall, check_stress, modulus, poisson
     return r0
 
 
+def journal_in_service(journal_d, journal_expansion, delta_t):
+    r"""Journal diameter [m] at its own temperature: :math:`d_J (1 + \alpha_J \Delta T_J)`, free thermal growth.
+
+    ``journal_d`` at the assembly temperature [m], ``journal_expansion`` [1/K], ``delta_t`` the journal's
+    temperature less the assembly temperature [K]. In service the journal runs hotter than the bulkhead around
+    its bearing (physics.md sec. 3: often 10-20 K), so its ``delta_t`` may exceed the housing's.
+    """
+    return journal_d * (1.0 + journal_expansion * delta_t)
+
+
 def press_fit(housing_bore, housing_outer, shell_wall, equivalent_wall, crush_height, check_bore, check_stress,
-              delta_t, housing, shell, journal_expansion, journal_d, thin, wall_growth=None):
+              delta_t, housing, shell, journal_expansion, journal_d, thin, wall_growth=None, journal_delta_t=None):
     """Closed-form press fit; see the module docstring. Returns a dict of arrays.
 
     ``shell_wall`` is the full wall, ``equivalent_wall`` its steel-equivalent
@@ -151,7 +162,8 @@ def press_fit(housing_bore, housing_outer, shell_wall, equivalent_wall, crush_he
     and the expansion of the lined ring (:func:`equivalent_expansion`, may be
     an array); ``wall_growth`` the wall's thermal thickening [1/K]
     (:func:`wall_expansion`; default the ring's expansion, exact for an
-    unlined shell); ``delta_t`` = operating - assembly temperature [K].
+    unlined shell); ``delta_t`` = operating - assembly temperature [K] of housing and shells,
+    ``journal_delta_t`` the journal's (default ``delta_t``).
     """
     e_h, nu_h, al_h = housing
     e_s, nu_s, al_s = shell
@@ -186,5 +198,6 @@ def press_fit(housing_bore, housing_outer, shell_wall, equivalent_wall, crush_he
         "loss_of_fit": interference <= 0.0,
     }
     if journal_d is not None:
-        out["clearance"] = shell_bore - journal_d * (1.0 + journal_expansion * delta_t)
+        out["clearance"] = shell_bore - journal_in_service(journal_d, journal_expansion,
+                                                           delta_t if journal_delta_t is None else journal_delta_t)
     return out

@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..study import summaries
-from ..facts.tables import UM, assembled, converged_engines, grade_usage, kept_summaries, numbers
+from ..facts.tables import UM, assembled, checked_lives, converged_engines, grade_usage, kept_summaries, numbers
 
 #: Width of a full-page figure [in] at DPI: the HTML page is 1200 px wide.
 WIDTH, DPI = 11.0, 110
@@ -89,7 +89,8 @@ def film_by_bearing(ds, path):
         offset = (k - (len(names) - 1) / 2) * width
         # a bearing whose film is not a number (NaN: collapsed, not periodic, failed) has no box point
         h = [numbers(ds.h_min.values[i, done, b] * UM) for b in range(len(bearings))]
-        life = [numbers(ds.life.values[i, done, b] / 3600) for b in range(len(bearings))]
+        lives = checked_lives(ds.isel(scheme=i), done)  # on the check tier's scale where the study ran it
+        life = [numbers(lives[:, b]) for b in range(len(bearings))]
         colour = f"C{k}"
         for ax, values in ((ax_h, h), (ax_l, life)):
             if not done.any():
@@ -110,6 +111,49 @@ def film_by_bearing(ds, path):
     ax_l.set_title("Life per bearing position", fontsize=10)
     ax_h.legend(fontsize=8, ncols=2)
     ax_l.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def film_life_by_clearance(ds, path, bins=12):
+    """Cycle-minimum film and life against the operating clearance, one colour per main-bearing position; PNG.
+
+    Every scheme's bearings of the mechanical chain together (the schemes
+    differ in which clearances they give, not in how a bearing responds to
+    one): points, and each position's median in clearance bins with at
+    least 10 bearings, so an engineer sees which clearance each position
+    prefers. Needs every engine kept (``clearance_operating``); returns None
+    from streaming summaries.
+    """
+    if kept_summaries(ds) or "clearance_operating" not in ds:
+        return None
+    m = ds.sizes["mech_engine"]
+    clearance = ds.clearance_operating.values[:, :m] * UM
+    h, life = ds.h_min.values * UM, np.full(ds.life.shape, np.nan)
+    done = np.stack([converged_engines(ds, i) for i in range(ds.sizes["scheme"])])[..., None]
+    for i in range(ds.sizes["scheme"]):  # lives on the check tier's scale where the study ran it
+        life[i, done[i, :, 0]] = checked_lives(ds.isel(scheme=i), done[i, :, 0])
+    fig = Figure(figsize=(WIDTH, 4.2), layout="constrained")
+    ax_h, ax_l = fig.subplots(1, 2, sharex=True)
+    edges = np.linspace(np.nanmin(clearance), np.nanmax(clearance), bins + 1)
+    middles = 0.5 * (edges[1:] + edges[:-1])
+    for b, bearing in enumerate(ds.bearing.values):
+        c = clearance[..., b]
+        for ax, values in ((ax_h, h[..., b]), (ax_l, life[..., b])):
+            ok = done[..., 0] & np.isfinite(c) & np.isfinite(values)
+            ax.scatter(c[ok], values[ok], s=3, alpha=0.15, color=f"C{b}", rasterized=True)
+            which = np.digitize(c[ok], edges[1:-1])
+            medians = [np.median(values[ok][which == k]) if np.count_nonzero(which == k) >= 10 else np.nan
+                       for k in range(bins)]
+            ax.plot(middles, medians, color=f"C{b}", lw=2, label=f"bearing {bearing}")
+    for ax in (ax_h, ax_l):
+        ax.set_xlabel("operating clearance (diametral) [µm]")
+    ax_l.set_yscale("log")
+    ax_l.axhline(float(ds.life_target) / 3600, color="k", ls="--", lw=1, label="life target")
+    ax_h.set_ylabel("cycle-minimum film h_min [µm]")
+    ax_l.set_ylabel("bearing life, Levanov method 1 [h]")
+    ax_h.set_title("Oil film against clearance per position (lines: medians)", fontsize=10)
+    ax_l.set_title("Life against clearance per position (lines: medians)", fontsize=10)
+    ax_h.legend(fontsize=8, ncols=2)
     return _save(fig, path)
 
 

@@ -1,111 +1,159 @@
-"""The report's sections on the mechanical chain: bearing loads, and oil film and life per bearing position.
+"""The report's section on the mechanical chain: loads, oil film and life per bearing position.
 
 Filled from the facts (:class:`stackup.facts.Facts`) like
-:mod:`~stackup.report.sections`.
+:mod:`~stackup.report.sections`, schemes in the ranking's order; the
+per-position detail is the chosen scheme's (the schemes hardly differ there).
 """
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import pandas as pd
 
+from ..film.cycle import CHECK_METHOD
 from . import format as fmt
 from . import templates as words
-from .sections import image, markdown_table, section
+from .sections import image, in_order, markdown_table, section
 
 
-def crank_section(facts):
-    crank, engines = facts.crank, facts.about.mechanics_engines
-    if not engines or not (crank.engines > 0).any():
-        return section("Bearing loads over the engine cycle", words.NO_CRANK)
-    wide = crank.reset_index()
-    cells = wide.assign(text=[f"{fmt.mean_std(m, c)} (max {fmt.fixed(x)})"
-                              for m, c, x in zip(wide.mean_kn, wide.ci_kn, wide.max_kn)])
-    table = cells.pivot(index="scheme", columns="bearing", values="text")
-    table.columns = [f"bearing {b} [kN]" for b in table.columns]
-    first = crank.groupby(level="scheme").first()
-    table.insert(0, "engines (failed)", [f"{e} ({f})" for e, f in zip(first.engines, first.failed)])
-    target = facts.study.target_error
-    return section("Bearing loads over the engine cycle",
-                   words.CRANK_INTRO.format(engines=fmt.count(engines),
-                                            target=words.TARGET_PART.format(target=100 * target) if target else ""),
-                   "", markdown_table(table.reset_index()))
-
-
-def _film_table(facts):
-    film, target = facts.film, facts.limits.life_target / 3600
-    return pd.DataFrame({
-        "scheme": film.index, "engines": film.engines,
+def _film_table(facts, order):
+    """Per scheme: films, Levanov's operability criteria at the worst position (where any bearing fails one) and
+    the engines' life (their weakest bearing's); lives are never pooled over positions."""
+    film, target = in_order(facts.film, order), facts.limits.life_target / 3600
+    table = pd.DataFrame({
+        "scheme": film.index,
         "h_min P5 [µm]": [fmt.triple(q, 2) for q in film.h_min_p05_um],
         "h_min median [µm]": [fmt.fixed(q[0], 2) for q in film.h_min_median_um],
-        "cycle-mean film median [µm] (the life's)": [fmt.fixed(q[0], 2) for q in film.h_min_mean_median_um],
-        "α mean [%]": [fmt.fixed(100 * v, 1) for v in film.alpha_mean],
-        "α > 20 % [% of bearings]": [fmt.triple(v, 1) for v in film.alpha_over_20_pct],
-        "bearing life B10 [h]": [fmt.significant_triple(q) for q in film.life_b10_h],
-        "bearing life median [h]": [fmt.significant(q[0]) for q in film.life_median_h],
-        "engine life B10 [h] (weakest bearing)": [fmt.significant_triple(q) for q in film.engine_life_b10_h],
-        "method 2 life B10 [h] (∞: never below h_lim,cr)": [fmt.significant_triple(q) for q in film.wear_chart_b10_h],
-        f"engines < {target:.0f} h [%]": [fmt.triple(v, 1) for v in film.engines_below_target_pct],
+        words.ALPHA_COLUMN: [words.AT_POSITION.format(share=fmt.triple(v, 1), bearing=b)
+                             for v, b in zip(film.alpha_over_20_pct, film.alpha_over_20_position)],
+        words.SHORT_COLUMN.format(target=target): [
+            words.AT_POSITION.format(share=fmt.triple(v, 1), bearing=b)
+            for v, b in zip(film.life_below_target_pct, film.life_below_target_position)],
+        "engine life B10 [h]": [fmt.significant_triple(q) for q in film.engine_life_b10_h],
+        "engine life median [h]": [fmt.significant_triple(q) for q in film.engine_life_median_h],
     })
+    for column, shares in ((words.ALPHA_COLUMN, film.alpha_over_20_pct),
+                           (words.SHORT_COLUMN.format(target=target), film.life_below_target_pct)):
+        if all(v[0] == 0 for v in shares):  # none anywhere: the intro says so
+            table = table.drop(columns=column)
+    return table
 
 
-def _positions_table(facts):
-    per_bearing = facts.bearings.reset_index()
-    h_table = per_bearing.assign(text=[fmt.fixed(q[0], 2) for q in per_bearing.h_min_median_um]).pivot(
-        index="scheme", columns="bearing", values="text")
-    life_table = per_bearing.assign(text=[fmt.significant(q[0]) for q in per_bearing.life_median_h]).pivot(
-        index="scheme", columns="bearing", values="text")
-    return pd.concat([h_table.add_prefix("h_min median [µm], bearing "),
-                      life_table.add_prefix("bearing life median [h], bearing ")], axis=1).reset_index()
+def _none_text(film):
+    """What the film table leaves out because it is zero for every scheme."""
+    scuffing = all(v[0] == 0 for v in film.alpha_over_20_pct)
+    short = all(v[0] == 0 for v in film.life_below_target_pct)
+    return (words.NO_SCUFFING_PART if scuffing else "") + (words.NONE_SHORT_PART if short else "")
 
 
-def _positions_text(positions):
-    """Why film and life differ by bearing position, from the loads the positions carry in this study."""
-    heavy, thin, load = positions.heaviest, positions.thinnest, positions.load_kn
-    return words.POSITIONS.format(s="s" if len(heavy) > 1 else "", heaviest=words.listed(heavy),
-                                  verb="y" if len(heavy) > 1 else "ies", most=load.max(), least=load.min(),
-                                  thin_s="s" if len(thin) > 1 else "", thinnest=words.listed(thin))
+def _positions_table(facts, scheme):
+    """Per position of ``scheme``: load, film, life, tilt, edge contact and peak film pressure (medians)."""
+    bearings = facts.bearings.xs(scheme, level="scheme")
+    rows = []
+    for bearing, row in bearings.iterrows():
+        cells = {"bearing": bearing, "load [kN]": fmt.fixed(facts.crank.loc[(scheme, bearing), "mean_kn"], 1),
+                 "h_min median [µm]": fmt.fixed(row.h_min_median_um[0], 2),
+                 "bearing life median [h]": fmt.significant(row.life_median_h[0])}
+        if len(facts.detail) and (scheme, bearing) in facts.detail.index:
+            d = facts.detail.loc[(scheme, bearing)]
+            touching = words.TOUCHING_PART.format(share=100 * d.touching)
+            if np.isfinite(d.edge_share):
+                touching += words.TOUCHING_SHARE_PART.format(share=100 * d.edge_share)
+            cells.update({"tilt [mrad]": fmt.fixed(1e3 * d.tilt_max, 2), "edge touches": touching,
+                          "peak film pressure [MPa]": fmt.fixed(d.p_max / 1e6, 0)})
+        rows.append(cells)
+    return pd.DataFrame(rows)
 
 
-def film_section(facts):
+def _positions_text(positions, scheme):
+    """Which positions carry the largest loads and the thinnest films in this study."""
+    heavy, thin = positions.heaviest, positions.thinnest
+    return words.POSITIONS.format(scheme=scheme, s="s" if len(heavy) > 1 else "", heaviest=words.listed(heavy),
+                                  verb="y" if len(heavy) > 1 else "ies", thin_s="s" if len(thin) > 1 else "",
+                                  thinnest=words.listed(thin))
+
+
+def film_section(facts, ranking):
     if not len(facts.film):
-        return section("Oil film and bearing life per bearing position", words.NO_FILM)
+        return section("Loads, oil film and bearing life", words.NO_FILM)
+    crank = facts.crank[facts.crank.engines > 0]
+    spread = crank.mean_kn.groupby(level="bearing").agg(lambda v: v.max() - v.min()).max()
+    failed = int(crank.failed.groupby(level="scheme").first().sum())
     intro = words.FILM_INTRO.format(method=facts.about.film_method, critical=fmt.um(facts.limits.critical_film, 2),
-                                    target=fmt.whole(facts.limits.life_target / 3600))
-    return section("Oil film and bearing life per bearing position", intro, "",
-                   markdown_table(_film_table(facts)), "",
-                   _positions_text(facts.positions), "",
-                   markdown_table(_positions_table(facts)), "",
-                   *_film_detail(facts),
-                   image("Oil film and life per bearing position", "film_life.png"))
+                                    target=fmt.whole(facts.limits.life_target / 3600),
+                                    engines=fmt.count(facts.about.mechanics_engines), spread=fmt.fixed(spread, 1),
+                                    failed=words.FAILED_PART.format(failed=failed) if failed else "",
+                                    scaled=words.SCALED_PART if len(facts.corrected) else "",
+                                    none=_none_text(facts.film))
+    lines = [intro, "", markdown_table(_film_table(facts, ranking.index)), ""]
+    scheme = next((s for s in ranking.index if s in facts.bearings.index.get_level_values("scheme")), None)
+    if scheme is not None:
+        lines += [_positions_text(facts.positions, scheme), "", markdown_table(_positions_table(facts, scheme)), ""]
+    return section("Loads, oil film and bearing life", *lines, *_outcomes_text(facts.outcomes, facts.edge),
+                   *_heat_text(facts.heat, facts.processes.crank), *_corrected_text(facts.corrected, scheme),
+                   *_trends_text(facts.trends),
+                   image("Oil film and life per bearing position", "film_life.png"),
+                   *([] if facts.about.summaries else
+                     ["", image("Oil film and life against operating clearance per position",
+                                "film_life_clearance.png")]))
 
 
-def _detail_cell(row):
-    touching = words.TOUCHING_PART.format(share=100 * row.touching)
-    if np.isfinite(row.edge_share):  # datasets before it have no share of the cycle
-        touching += words.TOUCHING_SHARE_PART.format(share=100 * row.edge_share)
-    edge_film = (words.EDGE_CONTACT_CELL if row.touching >= 0.5 else
-                 words.EDGE_FILM_CELL.format(film=row.edge_film * fmt.UM))
-    return words.DETAIL_CELL.format(tilt=row.tilt_max * 1e3, touching=touching, edge_film=edge_film,
-                                    peak=row.p_max / 1e6, mean_peak=row.p_max_mean / 1e6)
+def _corrected_text(corrected, scheme):
+    """The chosen scheme's film and life means corrected by the check tier, over the positions, against the study
+    tier's (multi-fidelity control variates)."""
+    if not len(corrected) or scheme not in corrected.index.get_level_values("scheme"):
+        return []
+    mine = corrected.xs(scheme, level="scheme")
+
+    def span(column, scale, write):
+        values, lows, highs = (np.array([q[k] for q in mine[f"{column}_corrected"]]) * scale for k in range(3))
+        cheap = mine[f"{column}_cheap"].to_numpy() * scale
+        return words.CORRECTED_SPAN.format(lo=write(values.min()), hi=write(values.max()),
+                                           half=write(np.max(np.maximum(values - lows, highs - values))),
+                                           cheap_lo=write(cheap.min()), cheap_hi=write(cheap.max()))
+
+    film = partial(fmt.fixed, digits=2)
+    return [words.CORRECTED.format(method=CHECK_METHOD, pairs=int(mine.pairs.min()), engines=int(mine.engines.max()),
+                                   scheme=scheme, h_min=span("h_min", fmt.UM, film),
+                                   h_min_mean=span("h_min_mean", fmt.UM, film),
+                                   life=span("life", 1 / 3600, fmt.significant)), ""]
 
 
-def _outcomes_text(outcomes):
+def _trends_text(trends):
+    """Where method 1's life and the cycle-minimum film follow the clearance in opposite directions (figure)."""
+    if trends is None or not trends.opposed:
+        return []
+    every = len(trends.opposed) == len(trends.film)
+    where = words.EVERY_POSITION if every else words.AT_POSITIONS.format(bearings=words.listed(trends.opposed))
+    return [words.OPPOSED_TRENDS.format(where=where, film=_span(trends.film[trends.opposed]),
+                                        life=_span(trends.life[trends.opposed]), pairs=fmt.count(trends.pairs)), ""]
+
+
+def _span(values):
+    """Correlations as '+0.41' or '−0.52 to −0.31'."""
+    lo, hi = (fmt.signed(v, 2) for v in (min(values), max(values)))
+    return lo if lo == hi else f"{lo} to {hi}"
+
+
+def _outcomes_text(outcomes, edge_contact):
     """How the films ended: those that are not a number and what that leaves out, or all periodic; edge contact."""
+    if outcomes is None:
+        return []
     text = []
     total, edge = outcomes.computed, outcomes.edge_contact
     if outcomes.not_a_number:
-        lost, engines = sum(outcomes.not_a_number.values()), outcomes.engines_not_a_number
+        engines = outcomes.engines_not_a_number
         counts = ", ".join(words.NOT_A_NUMBER_COUNT_PART.format(count=fmt.count(k), status=m.replace("_", " "))
                            for m, k in outcomes.not_a_number.items())
-        text.append(words.NOT_A_NUMBER.format(
-            total=fmt.count(total), counts=counts, lost=fmt.count(lost), lost_s=words.plural(lost),
-            engines=fmt.count(engines), engines_s=words.plural(engines), have=words.plural(engines, "have", "has"),
-            are=words.plural(engines, "are", "is")))
+        text.append(words.NOT_A_NUMBER.format(total=fmt.count(total), counts=counts, engines=fmt.count(engines),
+                                              engines_s=words.plural(engines), have=words.plural(engines, "have", "has")))
     elif total and (outcomes.periodic or edge):
         text.append(words.ALL_PERIODIC.format(total=fmt.count(total)))
     if edge:
-        text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1)))
+        floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
+        text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
     return [" ".join(text), ""] if text else []
 
 
@@ -113,21 +161,7 @@ def _heat_text(heat, crank):
     """The heat balance's film temperatures, friction powers and oil flows over the bearings whose film is a number."""
     if heat is None:
         return []
-    (t, t_mid), (n, n_mid), (q, q_mid) = (fmt.spread(heat.film_temperature), fmt.spread(heat.friction_power),
-                                          fmt.spread(heat.oil_flow_l_min, 2))
+    (t, t_mid), (n, _), (q, _) = (fmt.spread(heat.film_temperature), fmt.spread(heat.friction_power),
+                                  fmt.spread(heat.oil_flow_l_min, 2))
     supply = "" if crank is None else words.SUPPLY_PART.format(supply=crank.oil_supply_temperature_degC)
-    return [words.HEAT.format(temperature=t, temperature_median=t_mid, supply=supply, power=n, power_median=n_mid,
-                              flow=q, flow_median=q_mid), ""]
-
-
-def _film_detail(facts):
-    """Tilt, edge contact, edge film and peak film pressure per position; films that are not a number; heat."""
-    if facts.outcomes is None:  # a study without the mechanical chain's film
-        return []
-    lines = []
-    if len(facts.detail):
-        table = facts.detail.assign(text=[_detail_cell(row) for row in facts.detail.itertuples()]).reset_index()
-        table = table.pivot(index="scheme", columns="bearing", values="text")
-        table.columns = [f"bearing {b}" for b in table.columns]
-        lines += [words.FILM_DETAIL, "", markdown_table(table.reset_index()), ""]
-    return lines + _outcomes_text(facts.outcomes) + _heat_text(facts.heat, facts.processes.crank)
+    return [words.HEAT.format(temperature=t, temperature_median=t_mid, supply=supply, power=n, flow=q), ""]

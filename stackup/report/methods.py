@@ -6,18 +6,19 @@ What each stage's tier solves is the stage's own sentence (``TIER_NOTES`` of
 
 from __future__ import annotations
 
+import re
+
+from dataclasses import fields
+
 import pandas as pd
 
 from ..crank import TIER_NOTES as CRANK_TIERS
 from ..film import TIER_NOTES as FILM_TIERS
 from ..film.orbit import ALIASES as TIER_ALIASES
 from ..fit import TIER_NOTES as FIT_TIERS
+from ..study import Study
 from . import format as fmt
 from . import templates as words
-
-def _folded(text):
-    """Text with its whitespace folded (sources span lines in the engine files)."""
-    return " ".join(text.split())
 
 
 def _dimension(label, d):
@@ -56,7 +57,8 @@ def _clearance_side(facts):
         words.PRESS_FIT.format(housing=press.housing_material, outer=press.housing_outer * 1e3,
                                shell=press.shell_material, width=press.length * 1e3, bore=press.check_bore * 1e3,
                                stress=press.check_stress / 1e6, tier=FIT_TIERS.get(study.fit_method, study.fit_method)),
-        words.TEMPERATURES.format(assembly=press.assembly_temperature, running=press.temperature, oil=oil),
+        words.TEMPERATURES.format(assembly=press.assembly_temperature, running=press.temperature,
+                                  journal=press.temperature + press.journal_temperature_excess, oil=oil),
         words.CLEARANCE.format(n_engines=fmt.count(study.n_engines), bearings=facts.about.bearings),
     ]
 
@@ -89,10 +91,17 @@ def _film_method(facts):
     """The film tier, what it solves and its measured error against the transient reference, in one bullet."""
     method = facts.about.film_method
     tier = FILM_TIERS.get(TIER_ALIASES.get(method, method), method)  # a dataset from before the tiers' one name
-    e = facts.film_errors
+    e, checked = facts.film_errors, facts.corrected
     errors = ("" if e is None else
               words.FILM_ERRORS_PART.format(h_min=100 * e.h_min, h_min_mean=100 * e.h_min_mean,
                                             milliseconds=1e3 * e.seconds))
+    if len(checked):  # this engine's own error, as the check measured it, in place of the built-in engines'
+
+        def thick(column):
+            return 100 * max(cheap / q[0] - 1 for cheap, q in zip(checked[f"{column}_cheap"],
+                                                                   checked[f"{column}_corrected"]))
+
+        errors = words.CHECKED_ERRORS_PART.format(h_min=thick("h_min"), h_min_mean=thick("h_min_mean"))
     return words.OIL_FILM.format(method=method, tier=tier, errors=errors)
 
 
@@ -102,9 +111,10 @@ def _life_method(facts):
     return words.LIFE.format(
         film=film.replace("-", " "), why=words.CYCLE_MEAN_PART if film == "cycle-mean" else words.NOT_CYCLE_MEAN_PART,
         critical=fmt.um(wear.critical_film_m, 2), journal_rz=fmt.um(wear.journal_rz_m, 2),
-        shell_rz=fmt.um(wear.shell_rz_m, 2), roughness_source=_folded(wear.roughness_source),
+        shell_rz=fmt.um(wear.shell_rz_m, 2),
         wear_limit=fmt.um(wear.wear_limit_m, 0), wear_rate=wear.wear_rate_m_per_s,
-        wear_source=_folded(wear.wear_source))
+        method1_limit=fmt.um(wear.method1_limit_m, 0), method1_scale=wear.method1_limit_m / wear.wear_rate_m_per_s,
+        wear_source=fmt.cited(wear.wear_source))
 
 
 def _life_bias(bias):
@@ -120,14 +130,53 @@ def _life_bias(bias):
 
 def limits_of_validity(facts):
     """What the models leave out, said plainly."""
-    return [*words.LIMITS_BEFORE_LIFE, words.LIFE_LIMIT.format(bias=_life_bias(facts.life_bias)),
-            *words.LIMITS_AFTER_LIFE]
+    # with the mass-conserving check the lives carry its scale: the cheap tier's bias is corrected, not a limit
+    bias = words.LIFE_CHECKED_PART if len(facts.corrected) else _life_bias(facts.life_bias)
+    return [*words.LIMITS_BEFORE_LIFE, words.LIFE_LIMIT.format(bias=bias), *words.LIMITS_AFTER_LIFE]
+
+
+#: Study parameters the parameters list gives even at their defaults.
+ALWAYS = ("engine", "schemes", "n_engines", "seed")
+
+
+def _text(value):
+    """A parameter's value as the parameters list writes it."""
+    return ", ".join(map(str, value)) if isinstance(value, (list, tuple)) else str(value)
+
+
+def _standard(source):
+    """A standard's source cited by its designation ('ISO 13778:2017'; its title is in the scheme files)."""
+    designation = re.match(r"(ISO|DIN|EN|SAE|JIS|GB)[ /][^,]*", source)
+    return designation.group(0) if designation else source
 
 
 def parameters_table(facts):
-    """The study's parameters and the data it used, as rows of (parameter, value) for a readable table."""
-    rows = [(key, "—" if value is None else (", ".join(map(str, value)) if isinstance(value, list) else str(value)))
-            for key, value in facts.study.items]
-    rows += [("engine source", facts.sources.engine), ("stackup version", facts.about.version)]
-    rows += [(f"scheme {k}", v) for k, v in facts.sources.schemes.items()]
+    """The study's parameters and the data it used, as rows of (parameter, value) for a readable table.
+
+    Schemes that share a source (the six ISO schemes) share one row. The study's parameters at their
+    :class:`~stackup.study.Study` defaults or unset are left out (:data:`ALWAYS` aside): the dataset's ``study``
+    attribute holds them all; the version is the report's header's.
+    """
+    defaults = {f.name: _text(f.default) for f in fields(Study)}
+    rows = [(key, _text(value)) for key, value in facts.study.items
+            if value is not None and (key in ALWAYS or _text(value) != defaults.get(key))]
+    rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible)),
+             ("engine source", fmt.cited(facts.sources.engine) + words.IN_FULL_PART)]
+    by_source = {}
+    for name, source in facts.sources.schemes.items():
+        # one document's numbered schemes (laid on the engine's drawing or not): one row
+        numbered = re.fullmatch(r"(.*?), scheme (\d+)(;.*)?", " ".join(source.split()))
+        key = (_standard(numbered.group(1)), numbered.group(3) or "") if numbered else (source, "")
+        by_source.setdefault(key, []).append((name, numbered.group(2) if numbered else None))
+    for (source, after), named in by_source.items():
+        numbers = [n for _, n in named if n is not None]
+        text = (f"{source}, scheme{'s' if len(numbers) > 1 else ''} {', '.join(numbers)}{after}" if numbers
+                else source)
+        rows.append((f"source of {', '.join(name for name, _ in named)}", text))
     return pd.DataFrame(rows, columns=["parameter", "value"])
+
+
+def parameters_text(table):
+    """The parameters as one paragraph, ``name: value`` separated by semicolons (a table of two columns)."""
+    return "; ".join(words.PARAMETER.format(name=name, value=str(value).rstrip(". "))
+                     for name, value in table.itertuples(index=False)) + "."

@@ -1,169 +1,246 @@
-"""The report's verdict: what to use and why, what it costs, what it is fragile to, when another would win.
+"""The report's first page: the verdict (what to use and why, whether it holds under the declared model
+uncertainties and process scenarios, what to check first) and the decision table.
 
-Filled from the facts (:func:`stackup.facts.facts`) and their ranking
-(:func:`stackup.rank.ranked`); nothing here computes a number the facts do
-not hold beyond comparing them.
+Filled from the facts (:func:`stackup.facts.facts`) and their rankings
+(:func:`stackup.rank.ranked`, the study's and each scenario's); nothing here
+computes a number the facts do not hold beyond comparing them.
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 
-from ..stats import proportion_ci
+from ..rank import COST, RULE, differs
 from . import format as fmt
 from . import templates as words
 
 #: A best share outside the window at or above this [ppm] (1 %) means that no scheme meets the window.
 MEETS_WINDOW_PPM = 10_000
-#: Schemes whose shares of bearings with edge contact lie within this many percentage points are alike.
-ALIKE_PCT = 5
+#: A share of blocks, crankshafts, bearings or shells lost above this [-] (1 %) is said on the first page.
+LOSS_SHARE = 0.01
+#: Share of the computed bearings whose journal edge touches its shell from which the first page says so [-].
+EDGE_SHARE = 0.5
 
 
-def _source(row):
-    """' (estimated: ... †)' where the ranking took the share from the tails, else ''."""
-    source = row.get("outside_window_source", "counted")
-    return "" if source == "counted" else words.ESTIMATED_PART.format(source=source)
+def _share(row):
+    """A scheme's share outside the window as the first page writes it (with its interval and † if estimated)."""
+    ci = row.outside_window_ppm_ci
+    text = fmt.ppm(row.outside_window_ppm, ci)
+    return text + ("" if row.get("outside_window_source", "counted") == "counted" else " †")
 
 
-def _window_lines(ranking, window):
-    """Said first where the window cannot judge the schemes: none given, or none meets it."""
-    lines = []
-    if not np.isfinite(window[1]):
-        lines.append(words.NO_WINDOW)
-    if np.isfinite(window[1]) and np.nanmin(ranking.outside_window_ppm) >= MEETS_WINDOW_PPM:
-        lines.append(words.NOT_MET.format(lo=fmt.um_edge(window[0]), hi=fmt.um_edge(window[1]),
-                                          best=fmt.ppm(np.nanmin(ranking.outside_window_ppm))))
-    return lines
+def _decider(ranking, chosen, runner):
+    """The first metric of the rule on which ``chosen`` beats ``runner`` (None: they tie on every metric)."""
+    for column, better, threshold in RULE:
+        if column not in ranking:
+            continue
+        a, b = ranking.loc[chosen], ranking.loc[runner]
+        if np.isnan(float(a[column])) or np.isnan(float(b[column])):
+            continue
+        t = ranking.attrs["negligible_ppm"] if threshold == "negligible" else threshold
+        if differs(a, b, column, better, t):
+            return column
+    return None
 
 
-def _use(engine, ranking, best, window):
-    """The one scheme ranked first: why, against the next."""
-    first = ranking.loc[best]
-    others = ranking.drop(index=[best])
-    why = words.WHY_PART.format(share=fmt.ppm(first.outside_window_ppm, first.outside_window_ppm_ci),
-                                source=_source(first), lo=fmt.um_edge(window[0]), hi=fmt.um_edge(window[1]))
-    if len(others):
-        runner = others.index[0]
-        r = ranking.loc[runner]
-        why += words.NEXT_PART.format(share=fmt.ppm(r.outside_window_ppm, r.outside_window_ppm_ci), runner=runner)
-    return words.USE.format(scheme=best, engine=engine, why=why, mean=first.clearance_mean_um,
-                            std=first.clearance_std_um, middle=fmt.um(0.5 * (window[0] + window[1])))
+def _cost_parts(ranking, chosen, runner, decider):
+    """The decider's comparison, then every cost metric on which ``chosen`` is also cheaper, in words."""
+    a, b = ranking.loc[chosen], ranking.loc[runner]
+    columns = [decider] + [c for c in COST if c != decider and float(a[c]) < float(b[c])]
+    return [words.COST_PARTS[c].format(a=a[c], b=b[c], runner=runner) for c in columns if c in words.COST_PARTS]
 
 
-def _tie(ranking, best):
-    """Schemes that tie for first: the one with the fewest grades, then the least surplus; its sentence."""
-    cheapest = min(best, key=lambda n: (ranking.loc[n, "shell_grades"], ranking.loc[n, "surplus_pct"]))
-    c = ranking.loc[cheapest]
-    others = [n for n in best if n != cheapest]
-    versus = ", ".join(words.TIE_VERSUS_PART.format(grades=ranking.loc[n, "shell_grades"],
-                                                    surplus=ranking.loc[n, "surplus_pct"], scheme=n) for n in others)
-    fewer = [n for n in others if ranking.loc[n, "stockout_ppm"] < c.stockout_ppm]
-    stockouts = "" if not fewer else words.TIE_STOCKOUTS_PART.format(
-        stockouts=c.stockout_ppm, others=", ".join(words.TIE_STOCKOUT_PART.format(
-            stockouts=ranking.loc[n, "stockout_ppm"], scheme=n) for n in fewer))
-    return cheapest, words.TIE.format(names=words.bold_listed(best), cheapest=cheapest, grades=c.shell_grades,
-                                      surplus=c.surplus_pct, versus=versus, stockouts=stockouts)
+def _use(facts, ranking, window):
+    """The first paragraph: which scheme, and why (the clearance, or cost among schemes level on it)."""
+    chosen = ranking.index[0]
+    first = ranking.loc[chosen]
+    window_text = words.WINDOW_PART.format(lo=fmt.um_edge(window[0]), hi=fmt.um_edge(window[1]))
+    clearance = words.CLEARANCE_PART.format(mean=first.clearance_mean_um, std=first.clearance_std_um)
+    if len(ranking) == 1:
+        return words.USE_ONLY.format(scheme=chosen, share=_share(first), window=window_text, clearance=clearance)
+    runner = ranking.index[1]
+    second = ranking.loc[runner]
+    decider = _decider(ranking, chosen, runner)
+    if decider is None:
+        tied = list(ranking.index[ranking["rank"] == first["rank"]])
+        return words.TIE.format(names=words.bold_listed(tied), window=window_text)
+    if decider == "outside_window_ppm":
+        dearer = [words.COST_PARTS[c].format(a=first[c], b=second[c]) for c in COST[:3]
+                  if float(first[c]) > float(second[c])]
+        price = words.PRICE_PART.format(costs=words.listed(dearer)) if dearer else ""
+        return words.USE_CLEARANCE.format(scheme=chosen, share=_share(first), window=window_text,
+                                          runner=runner, runner_share=_share(second), clearance=clearance,
+                                          price=price)
+    reason = (words.LEVEL_NO_WINDOW_PART if not np.isfinite(window[1]) else
+              words.LEVEL_PART.format(share=_share(first), runner=runner, runner_share=_share(second),
+                                      window=window_text, negligible=fmt.general(ranking.attrs["negligible_ppm"])))
+    decides = (words.COST_DECIDES_PART if decider in COST else
+               words.METRIC_DECIDES_PART.format(metric=words.METRICS.get(decider, decider)))
+    return words.USE_COST.format(scheme=chosen, reason=reason, decides=decides,
+                                 costs=", ".join(_cost_parts(ranking, chosen, runner, decider)), clearance=clearance)
 
 
-def _fragile(ranking, first):
-    """What the chosen scheme is fragile to: the declared scenarios that make it worse, or None without them."""
-    if "worst_outside_window_ppm" not in ranking:
+def scenario_groups(facts):
+    """Scenario labels by kind: ``{"process": [...], "model": {input: [labels]}}`` in the comparison's order."""
+    process, model = [], {}
+    for label, about in facts.scenario_about.items():
+        if about.kind == "model":
+            model.setdefault(about.input, []).append(label)
+        else:
+            process.append(label)
+    return process, model
+
+
+def clearance_level(other, negligible):
+    """The schemes of the ranking ``other`` whose share outside the window cannot be told from the lowest (95 %
+    intervals overlapping, or less than ``negligible`` ppm apart)."""
+    shares = other["outside_window_ppm"].astype(float)
+    if shares.isna().all():
+        return set(other.index)
+    best = other.loc[shares.idxmin()]
+    return {s for s in other.index if not differs(best, other.loc[s], "outside_window_ppm", "lower", negligible)}
+
+
+def _flips(labels, scenario_rankings, chosen, negligible):
+    """(label, schemes) of the scenarios among ``labels`` under which other schemes put fewer bearings outside the
+    window than ``chosen`` by the ranking's rule (a difference the scenario's counts cannot resolve is no flip:
+    the scenarios count, they carry no tail estimate), the best of those schemes by the scenario's ranking."""
+    out = []
+    for label in labels:
+        other = scenario_rankings[label]
+        if chosen not in other.index:
+            continue
+        better = [s for s in other.index if s != chosen and differs(other.loc[s], other.loc[chosen],
+                                                                   "outside_window_ppm", "lower", negligible)]
+        if better:
+            first = other.loc[better, "rank"].min()
+            out.append((label, [s for s in better if other.loc[s, "rank"] == first]))
+    return out
+
+
+def _model(facts, scenario_rankings, chosen, negligible):
+    """Whether the chosen scheme stays first under the declared model uncertainties; if not, what to measure."""
+    _, model = scenario_groups(facts)
+    if not model:
+        return words.NO_MODEL
+    inputs = list(model)
+    sources = {facts.scenario_about[labels[0]].assumed for labels in model.values()}
+    ranges = (words.ASSUMED_PART if sources == {True} else
+              words.MEASURED_PART if sources == {False} else words.SOME_ASSUMED_PART)
+    broken = {name: _flips(labels, scenario_rankings, chosen, negligible) for name, labels in model.items()}
+    broken = {name: flips for name, flips in broken.items() if flips}
+    if not broken:
+        return words.MODEL_HOLDS.format(inputs=words.listed(inputs), ranges=ranges)
+    clauses, measures = [], []
+    for name, flips in broken.items():
+        label, winners = flips[0]
+        other = scenario_rankings[label]
+        clauses.append(words.MODEL_FLIP_PART.format(
+            scenario=label, winners=words.bold_listed(winners), s=words.plural(len(winners), "", "es"),
+            share=fmt.ppm(other.loc[chosen, "outside_window_ppm"]),
+            winner_share=fmt.ppm(other.loc[winners[0], "outside_window_ppm"])))
+        measures.append(facts.scenario_about[label].measure)
+    return words.MODEL_BREAKS.format(flips="; ".join(clauses), measure=words.listed(measures), ranges=ranges)
+
+
+def _process(facts, ranking, scenario_rankings, chosen, negligible):
+    """Whether the chosen scheme stays first under the process scenarios, and the worst of them for it."""
+    process, _ = scenario_groups(facts)
+    if not process:
         return None
-    # the worst change of each metric over the declared scenarios; a change for the better is no fragility
-    change = first.worst_outside_window_ppm
-    fragile = ([words.FRAGILE_WINDOW_PART.format(scenario=first.worst_outside_window_ppm_scenario,
-                                                 share=fmt.ppm(change))] if change > 0 else [])
-    life = first.get("worst_life_median_h", np.nan)
-    if "worst_life_median_h" in ranking and np.isfinite(life) and life < 0:
-        fragile.append(words.FRAGILE_LIFE_PART.format(scenario=first.worst_life_median_h_scenario,
-                                                      hours=fmt.general(-life)))
-    return words.FRAGILE.format(what="; ".join(fragile) if fragile else words.NOT_FRAGILE_PART)
+    flips = _flips(process, scenario_rankings, chosen, negligible)
+    worst = _worst_scenario(facts, ranking, process).get(chosen)
+    worst_text = "" if worst is None else words.PROCESS_WORST_PART.format(scenario=worst[0], share=fmt.ppm(worst[1]))
+    if not flips:
+        return words.PROCESS_HOLDS.format(worst=worst_text)
+    names = "; ".join(words.UNDER_PART.format(scenario=label, names=words.bold_listed(winners),
+                                              s=words.plural(len(winners), "", "s"))
+                      for label, winners in flips[:2])
+    more = words.MORE_PART.format(count=len(flips) - 2) if len(flips) > 2 else ""
+    return words.PROCESS_BREAKS.format(flips=names, more=more, worst=worst_text)
+
+
+def _worst_scenario(facts, ranking, labels):
+    """Scheme -> (scenario, its counted share outside the window [ppm]) of the worst of ``labels`` for it."""
+    out = {}
+    for scheme in ranking.index:
+        shares = [(label, facts.ranking.scenarios[label][0][scheme]["outside_window_ppm"]) for label in labels
+                  if scheme in facts.ranking.scenarios[label][0]]
+        if shares:
+            out[scheme] = max(shares, key=lambda pair: pair[1])
+    return out
+
+
+def check_first(facts, ranking, window):
+    """What makes the result less trustworthy, each in a few words: no window, a window nobody meets, losses
+    above :data:`LOSS_SHARE`, stages that failed or did not run, the chosen scheme failing Levanov's operability
+    criteria at some position, journal edges in contact."""
+    notes = []
+    if not np.isfinite(window[1]):
+        notes.append(words.NO_WINDOW)
+    elif np.nanmin(ranking.outside_window_ppm) >= MEETS_WINDOW_PPM:
+        notes.append(words.NOT_MET.format(lo=fmt.um_edge(window[0]), hi=fmt.um_edge(window[1]),
+                                          best=fmt.ppm(np.nanmin(ranking.outside_window_ppm))))
+    scrap = facts.scrap
+    for (share, scheme), template in ((scrap.blocks, words.BLOCKS_LOST), (scrap.crankshafts, words.CRANKS_LOST),
+                                      (scrap.not_graded, words.NOT_GRADED_LOST), (scrap.stockouts, words.STOCKOUTS_LOST),
+                                      (scrap.shells, words.SHELLS_LOST)):
+        if share > LOSS_SHARE:
+            notes.append(template.format(share=fmt.percent(share), scheme=scheme))
+    notes += run_notes(facts.run)
+    chosen = ranking.loc[ranking.index[0]]
+    for column, template in (("alpha_over_limit_pct", words.SCUFFING_NOTE), ("life_below_target_pct",
+                                                                            words.SHORT_LIFE_NOTE)):
+        if float(chosen.get(column, 0.0)) > 0:  # Levanov's operability criteria, at the worst position
+            notes.append(template.format(bearing=chosen[column.replace("_pct", "_position")], scheme=ranking.index[0],
+                                         share=fmt.interval(chosen[column], chosen[f"{column}_ci"], 1),
+                                         target=fmt.whole(facts.limits.life_target / 3600),
+                                         checked=words.CHECKED_PART if len(facts.corrected) else ""))
+    edge = facts.edge
+    if edge is not None and edge.computed and edge.touching >= EDGE_SHARE * edge.computed:
+        notes.append(words.EDGE_NOTE.format(share=fmt.percent(edge.touching / edge.computed)))
+    return notes
 
 
 def verdict(facts, ranking, scenario_rankings):
-    """The opening summary as markdown lines, between ``<!-- verdict -->`` markers.
+    """The verdict as markdown lines, between ``<!-- verdict -->`` markers (at most about 150 words).
 
     ``ranking`` is the study's (:func:`stackup.rank.ranked` of ``facts.ranking``), ``scenario_rankings`` maps
     each declared scenario to the ranking of the schemes under it.
     """
     window = ranking.attrs["window_m"]
-    best = list(ranking.index[ranking["rank"] == 1])
-    lines = _window_lines(ranking, window)
-    if len(best) == 1:
-        lines.append(_use(facts.about.engine, ranking, best[0], window))
-    else:
-        cheapest, text = _tie(ranking, best)
-        lines.append(text)
-        best = [cheapest]
-    first = ranking.loc[best[0]]
-    lines.append(words.COSTS.format(grades=int(first.shell_grades), s="s" if first.shell_grades > 1 else "",
-                                    surplus=first.surplus_pct, stockouts=fmt.ppm(first.stockout_ppm)))
-    fragile = _fragile(ranking, first)
-    if fragile:
-        lines.append(fragile)
-    lines.append(words.WOULD_WIN.format(text=_would_win(facts, ranking, scenario_rankings, best[0], window)))
-    contact = _edge_contact(facts.edge)
-    if contact:
-        lines.append(contact)
-    notes = run_notes(facts.run)
+    chosen = ranking.index[0]
+    negligible = ranking.attrs["negligible_ppm"]
+    paragraphs = [_use(facts, ranking, window), _model(facts, scenario_rankings, chosen, negligible),
+                  _process(facts, ranking, scenario_rankings, chosen, negligible)]
+    notes = check_first(facts, ranking, window)
     if notes:
-        lines.append(words.NOTE.format(notes=" ".join(notes)))
-    return ["<!-- verdict -->", *[x for line in lines for x in (line, "")], "<!-- /verdict -->"]
+        paragraphs.append(words.CHECK_FIRST.format(notes=" ".join(notes)))
+    return ["<!-- verdict -->", *[x for p in paragraphs if p for x in (p, "")], "<!-- /verdict -->"]
 
 
-def _edge_contact(edge):
-    """Where most bearings' journal edges touch their shells: how much of the cycle, and whether the scheme matters."""
-    if edge is None or not edge.computed or edge.touching < 0.5 * edge.computed:
-        return None
-    alike = max(edge.per_scheme_pct) - min(edge.per_scheme_pct) <= ALIKE_PCT
-    return words.EDGE_CONTACT.format(schemes=fmt.percent_span(edge.per_scheme_pct),
-                                     cycle=fmt.percent_span([100 * p for p in edge.per_position_share]),
-                                     alike=words.EDGE_ALIKE_PART if alike else "", floor=100 * edge.floor)
-
-
-def _scenario_winners(scenario_rankings, chosen):
-    """Under which scenarios other schemes rank first while the chosen one does not."""
-    parts = []
-    for scenario, other in scenario_rankings.items():
-        firsts = other.index[other["rank"] == 1]
-        winners = [n for n in firsts if n != chosen]
-        if winners and chosen not in firsts:
-            parts.append(words.UNDER_SCENARIO_PART.format(scenario=scenario, names=words.bold_listed(winners),
-                                                          s=words.plural(len(winners), "", "s")))
-    return parts
-
-
-def _centring(facts, ranking, chosen):
-    """The scheme with the narrowest clearance, centred in the window, where it would beat the chosen one."""
-    narrowest = ranking.clearance_std_um.idxmin()
-    if narrowest == chosen or narrowest not in facts.centred.index:  # no window to centre in
-        return []
-    shift, outside, bearings = facts.centred.loc[narrowest, ["shift", "outside", "bearings"]]
-    share, _, upper = proportion_ci(outside, bearings)
-    chosen_row = ranking.loc[chosen]
-    if outside and 1e6 * share > chosen_row.outside_window_ppm_ci[1]:
-        return []  # centred, it would still put more outside than the chosen scheme: no case for it
-    doubt = ("" if 1e6 * upper <= chosen_row.outside_window_ppm else
-             words.CENTRED_DOUBT_PART.format(chosen=chosen, share=fmt.ppm(chosen_row.outside_window_ppm)))
-    result = (words.CENTRED_SOME_PART.format(share=fmt.ppm(1e6 * share)) if outside else
-              words.CENTRED_NONE_PART.format(bearings=fmt.count(int(bearings)), upper=fmt.ppm(1e6 * upper),
-                                             doubt=doubt))
-    return [words.CENTRED_PART.format(
-        scheme=narrowest, std=ranking.loc[narrowest, "clearance_std_um"], chosen_std=chosen_row.clearance_std_um,
-        shift=fmt.um(abs(shift)), side="below" if shift > 0 else "above", half=fmt.um(abs(shift) / 2),
-        verb="thinner" if shift > 0 else "thicker", result=result)]
-
-
-def _would_win(facts, ranking, scenario_rankings, chosen, window):
-    """When another scheme would be the better choice: under a scenario, or with its clearance centred."""
-    parts = _scenario_winners(scenario_rankings, chosen)
-    if np.isfinite(window[1]):
-        parts += _centring(facts, ranking, chosen)
-    if parts:
-        return "; ".join(parts) + "."
-    why = (words.ALSO_NARROWEST_PART.format(chosen=chosen) if ranking.clearance_std_um.idxmin() == chosen else
-           words.NO_CENTRING_PART)
-    return words.NO_WIN_PART.format(why=why)
+def decision_table(facts, ranking):
+    """The first page's table: per scheme in ranking order, its share outside the window, its cost and the worst
+    process and model-uncertainty scenario for it."""
+    process, model = scenario_groups(facts)
+    table = pd.DataFrame({
+        "rank": ranking["rank"],
+        "scheme": ranking.index,
+        "outside window [ppm]": [fmt.ppm_interval(v, ci) + ("" if s == "counted" else " †")
+                                 for v, ci, s in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
+                                                     ranking.outside_window_source)],
+        "shell grades": ranking.shell_grades,
+        "bore + journal grades": ["—" if np.isnan(v) else f"{v:.0f}" for v in ranking.part_grades.astype(float)],
+        "stock-outs [ppm]": [fmt.fixed(v, 0) for v in ranking.stockout_ppm],
+        "surplus [%]": [fmt.fixed(v, 1) for v in ranking.surplus_pct],
+    })
+    for title, labels in ((words.WORST_PROCESS, process), (words.WORST_MODEL, [x for v in model.values() for x in v])):
+        if labels:
+            worst = _worst_scenario(facts, ranking, labels)
+            table[title] = [words.WORST_CELL.format(share=fmt.ppm_number(worst[s][1]), scenario=worst[s][0])
+                            if s in worst else "—" for s in ranking.index]
+    return table
 
 
 def run_notes(run):

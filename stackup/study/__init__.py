@@ -75,6 +75,7 @@ PARAMETERS = {
     "tilt_method": OneOf(chain.TILT_METHODS),
     "film_error": _Float(InRange(0.0, 1.0)),
     "life_film": OneOf(FILM_STATISTICS),
+    "film_check_engines": Integer(minimum=0),
     "failure_limit": _Float(InRange(0.0, 1.0)),
     "window": OrNone(Window()),
 }
@@ -164,6 +165,14 @@ class Study:
         the cycle mean of the minimum film, as the paper's results imply, or
         the cycle minimum (a comparison: lives of hours for any bearing that
         touches boundary friction).
+    film_check_engines : int
+        Engines of each scheme (the first, up to ``mechanics_engines``) whose
+        films run again with the mass-conserving tier
+        (:data:`stackup.film.cycle.CHECK_METHOD`) at the same tilt and heat
+        balance (``h_min_check``, ``h_min_mean_check``, ``life_check``): the
+        report combines both tiers by control variates, so its film and life
+        means carry the accurate tier's mean and the error of that estimate
+        (multi-fidelity Monte Carlo); 0 skips it.
     progress : bool or None
         Show a progress bar; None shows one only on a terminal.
     sampler : {"mc", "qmc"}
@@ -217,6 +226,7 @@ class Study:
     bearing_law: str = "paper"
     tilt_method: str = "coupled"
     life_film: str = "cycle-mean"
+    film_check_engines: int = 0
     progress: bool | None = None
     sampler: str = "mc"
     scenario: dict | None = None

@@ -22,7 +22,7 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.coupled import STATES as TILT_STATES
 from ..film.coupled import ElasticLayer, support_moments
-from ..film.cycle import FILM_STATUS, HEAT_STEP, bearing_films
+from ..film.cycle import FILM_STATUS, HEAT_STEP, bearing_films, checked_film
 from ..film.heat import heat_balance
 from ..film.journal import vector_length
 from .. import _validate as check
@@ -188,8 +188,9 @@ def _mechanical_range(ctx, study, parts, stages, engines, sizes, progress):
         stop = min(e1, ctx.mechanics, (a // MECHANICS_BATCH + 1) * MECHANICS_BATCH)
         rows = slice(a - e0, stop - e0)
         for i, (result, fit) in enumerate(stages):
+            checked = max(0, min(stop, study.film_check_engines) - a)  # the batch's first engines the check runs on
             for name, value in _mechanics(ctx, parts, result, fit, rows, study.crank_method, study.life_film,
-                                          study.bearing_law, study.tilt_method).items():
+                                          study.bearing_law, study.tilt_method, checked).items():
                 if name in mech:
                     mech[name][i, rows] = value
         a = state.next = stop
@@ -260,10 +261,11 @@ def _press_fit(engine, parts, assembly, method):
 
 
 def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper",
-               tilt_method="coupled"):
+               tilt_method="coupled", checked=0):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
-    Engines with a bearing not assembled are skipped (``not_computed``).
+    Engines with a bearing not assembled are skipped (``not_computed``); the
+    first ``checked`` engines of ``rows`` also run the check tier.
     Returns the :data:`schema.PER_MECH` variables of one scheme, engines first.
     """
     engine, crank_angle = ctx.engine, ctx.crank_angle
@@ -277,14 +279,16 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing
                                   journal_d=parts.journal_d[rows][built], bore_offset=parts.bore_offset[rows][built],
                                   journal_eccentricity=parts.journal_eccentricity[rows][built],
                                   crank_angle=crank_angle, crank_method=crank_method, film_method=ctx.film_method,
-                                  life_film=life_film, bearing_law=bearing_law, tilt_method=tilt_method)
+                                  life_film=life_film, bearing_law=bearing_law, tilt_method=tilt_method,
+                                  check_engines=int(np.count_nonzero(built[:checked])))
         for name, value in values.items():
             out[name][built] = value
     return out
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="coupled"):
+                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="coupled",
+                     check_engines=0):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
     Parameters
@@ -319,6 +323,10 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         crankshaft's compliance at its own support, quasi-static, rigid
         surfaces (:mod:`stackup.film.tilt`), or ``free``, the beam's slope held;
         with these two ``h_min``, α and the lives read the mid-plane film.
+    check_engines : int
+        The first engines whose films run again with the check tier
+        (:func:`stackup.film.cycle.checked_film`: ``h_min_check``,
+        ``h_min_mean_check``, ``life_check``; NaN on the others).
 
     A bearing whose film is not a number (``film_status`` collapsed,
     not_periodic or failed; ``film_valid`` false) has NaN for every value
@@ -355,8 +363,45 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                **_film_values(films, surface, loads, crank_angle, engine.wear.critical_film),
                **_life_values(engine, films, surface, spec.bearing_width, clearance=clearance, journal_d=journal_d,
                               crank_angle=crank_angle, life_film=life_film, roughness=constants.roughness,
-                              modulus=constants.modulus)}
+                              modulus=constants.modulus),
+               **_check_values(engine, films, surface, r.reactions, crank_angle, clearance=clearance,
+                               journal_d=journal_d, film_method=film_method, life_film=life_film,
+                               engines=check_engines)}
     return _not_a_number(out, films.valid)
+
+
+def _check_values(engine, films, surface, reactions, crank_angle, *, clearance, journal_d, film_method, life_film,
+                  engines):
+    """The check tier's film and life on the first ``engines`` engines (NaN on the others).
+
+    The check tier's error on the aligned journal's mid-plane film
+    (:func:`stackup.film.cycle.checked_film`: the study's tier and the check
+    tier at the same viscosity), as a share of the study tier's, taken off the
+    study's mid-plane film and so off the film the study reads (over the
+    surface where the support moments ran: the tilt's part of it is the
+    geometry's, the centre's the tier's), per statistic (cycle minimum, cycle
+    mean); a bearing where the check tier fails is NaN.
+    """
+    shape = np.shape(clearance)
+    out = {name: np.full(shape, np.nan) for name in ("h_min_check", "h_min_mean_check", "life_check")}
+    if engines == 0:
+        return out
+    first = slice(0, engines)
+    cheap, accurate = checked_film(engine.crank, engine.oil_feed, reactions[first], crank_angle,
+                                   viscosity=films.viscosity[first], clearance=np.asarray(clearance)[first],
+                                   journal_d=np.asarray(journal_d)[first], method=film_method)
+    mid = films.h_min[first]
+    read = np.maximum(_surface_film(films, surface)[first], 0.0)
+    out["h_min_check"][first] = read.min(axis=-1) + mid.min(axis=-1) * (accurate.min(axis=-1) / cheap.min(axis=-1)
+                                                                        - 1)
+    mean = cycle_film(mid, statistic="cycle-mean")
+    out["h_min_mean_check"][first] = cycle_film(read, statistic="cycle-mean") + mean * (
+        cycle_film(accurate, statistic="cycle-mean") / cycle_film(cheap, statistic="cycle-mean") - 1)
+    film = out["h_min_mean_check"] if life_film == "cycle-mean" else out["h_min_check"]
+    wear = engine.wear
+    out["life_check"][first] = levanov_method1(np.maximum(film[first], 0.0), h_lim_cr=wear.critical_film,
+                                               wear_limit=wear.method1_wear_limit, wear_rate=wear.wear_rate).life
+    return out
 
 
 def _surface(films, tilt, constants, spec, crank_angle, *, clearance, journal_d, film_method):
@@ -441,7 +486,7 @@ def _life_values(engine, films, surface, bearing_width, *, clearance, journal_d,
                             roughness=roughness, contact_modulus=modulus, wear_limit=wear.wear_limit)
     h_min_mean = cycle_film(h, statistic="cycle-mean")
     life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(h, statistic=life_film),
-                           h_lim_cr=wear.critical_film, wear_limit=wear.wear_limit, wear_rate=wear.wear_rate)
+                           h_lim_cr=wear.critical_film, wear_limit=wear.method1_wear_limit, wear_rate=wear.wear_rate)
     return {"h_min_mean": h_min_mean,
             "alpha": boundary_share(_surface_film(films, surface), h_lim_cr=wear.critical_film),
             "life": life.life,

@@ -33,7 +33,7 @@ def _shell_pair(upper_wall, lower_wall, upper_crush, lower_crush):
 
 def operating_clearance(engine, *, housing_bore, journal_d, upper_wall, lower_wall, upper_crush, lower_crush,
                         method="lame"):
-    """Press fit and operating clearance of bearings at ``engine``'s operating temperature.
+    """Press fit and operating clearance of bearings at ``engine``'s operating temperatures.
 
     Parameters
     ----------
@@ -51,7 +51,10 @@ def operating_clearance(engine, *, housing_bore, journal_d, upper_wall, lower_wa
     Returns
     -------
     stackup.fit.PressFit
-        ``clearance`` is the diametral operating clearance [m].
+        ``clearance`` is the diametral operating clearance [m]: housing and
+        shells at the engine's operating temperature, the journal at its own
+        (``engine.press_fit.journal_temperature``, the operating temperature
+        plus the engine file's ``journal_temperature_excess``).
     """
     return press_fit(housing_bore=housing_bore, journal_d=journal_d,
                      **_shell_pair(upper_wall, lower_wall, upper_crush, lower_crush), method=method,

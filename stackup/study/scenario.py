@@ -1,6 +1,7 @@
-"""A study's scenario: the engine with its processes disturbed as a plant would see them.
+"""A study's scenario: the engine with its processes or its model inputs disturbed.
 
-A scenario is plain data (a dict), so it travels in a study's parameters:
+A scenario is plain data (a dict), so it travels in a study's parameters.
+Process scenarios, what a plant would see:
 
 ``housing_shift``, ``journal_shift``
     Process mean shift of the housing bore or journal, in units of the
@@ -9,6 +10,22 @@ A scenario is plain data (a dict), so it travels in a study's parameters:
     Repeatability of every gauge (bore, journal, shell wall) [m].
 ``misalignment_scale``
     Factor on the bore coaxiality and journal run-out [-].
+
+Model inputs, what the engine file assumes and nobody may have measured:
+
+``housing_outer``
+    Equivalent outer diameter of the housing ring [m] (its stiffness: the
+    housing swell), instead of the engine file's ``housing_outer``; it must
+    exceed the housing bore.
+``crush_shift``
+    Mean shift of the shells' crush height process, in units of its
+    standard deviation [-].
+``journal_temperature_excess``
+    How much hotter the journal runs than its housing in service [K],
+    instead of the engine file's.
+
+(The supports' compliance joins these as a key once the crankshaft's
+supports carry one: add its check here and its change in :func:`apply`.)
 
 The declared sets a comparison runs are in :mod:`stackup.scenarios`.
 """
@@ -21,7 +38,9 @@ from .. import _validate as check
 
 #: The keys a scenario may hold and what each must be (see the module docstring).
 CHECKS = {"housing_shift": check.Finite(), "journal_shift": check.Finite(),
-          "gauge_repeatability": check.Positive(zero=True), "misalignment_scale": check.Positive(zero=True)}
+          "gauge_repeatability": check.Positive(zero=True), "misalignment_scale": check.Positive(zero=True),
+          "housing_outer": check.Positive(), "crush_shift": check.Finite(),
+          "journal_temperature_excess": check.InRange(-50.0, 100.0, unit=" K")}
 KEYS = tuple(CHECKS)
 
 
@@ -33,6 +52,20 @@ def checked(scenario):
     if unknown:
         raise ValueError(f"scenario: unknown key(s) {sorted(unknown)}; valid: {', '.join(KEYS)}")
     return {key: float(CHECKS[key](f"scenario {key}", value)) for key, value in scenario.items()}
+
+
+def _press_fit(engine, scenario):
+    """The engine's press-fit data with the scenario's housing ring and journal temperature."""
+    spec = engine.press_fit
+    if "housing_outer" in scenario:
+        outer = scenario["housing_outer"]
+        if outer <= engine.housing_bore.hi:
+            raise ValueError(f"scenario housing_outer: {outer!r} m is not above the housing bore's upper limit "
+                             f"{engine.housing_bore.hi!r} m")
+        spec = replace(spec, housing_outer=outer)
+    if "journal_temperature_excess" in scenario:
+        spec = replace(spec, journal_temperature_excess=scenario["journal_temperature_excess"])
+    return spec
 
 
 def apply(engine, scenario):
@@ -50,7 +83,10 @@ def apply(engine, scenario):
         housing = replace(housing, gauge=replace(housing.gauge, repeatability=r))
         journal = replace(journal, gauge=replace(journal.gauge, repeatability=r))
         shells = replace(shells, gauge=replace(shells.gauge, repeatability=r))
+    if "crush_shift" in scenario:
+        shells = replace(shells, crush=shells.crush.shifted(scenario["crush_shift"] * shells.crush.process.std))
     if "misalignment_scale" in scenario and crank is not None:
         k = scenario["misalignment_scale"]
         crank = replace(crank, coaxiality=k * crank.coaxiality, journal_runout=k * crank.journal_runout)
-    return replace(engine, housing_bore=housing, journal_d=journal, shell_wall=shells, crank=crank)
+    return replace(engine, housing_bore=housing, journal_d=journal, shell_wall=shells, crank=crank,
+                   press_fit=_press_fit(engine, scenario))

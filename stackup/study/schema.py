@@ -108,6 +108,14 @@ MECHANICS = {
                                    "(NaN: the engine's law, bearing_law='paper')"),
     "alpha": Var(SMB, "1", "share of the cycle with the film below the critical film (boundary friction)"),
     "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 on the film the study names (life_film)"),
+    "h_min_check": Var(SMB, "m", "h_min scaled by the ratio of the mass-conserving check tier's (elrod-coarse) "
+                                 "cycle-minimum film to the study tier's, both on the aligned journal at the bearing's "
+                                 "heat balance; on the first film_check_engines engines (NaN on the others)"),
+    "h_min_mean_check": Var(SMB, "m", "h_min_mean scaled by the ratio of the check tier's (elrod-coarse) cycle-mean "
+                                      "film to the study tier's, both on the aligned journal; on the first "
+                                      "film_check_engines engines (NaN on the others)"),
+    "life_check": Var(SMB, "s", "life (Levanov et al. 2015 method 1) on the check tier's film, on the first "
+                                "film_check_engines engines (NaN on the others)"),
     "life_wear_chart": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 2 (wear chart over the bearing "
                                      "surface, Greenwood-Tripp asperity contact; inf: never in boundary friction)"),
     "wear_rate": Var(SMB, "m s-1", "wear speed of the deepest point of the bearing surface (method 2)"),
@@ -125,8 +133,9 @@ MECHANICS = {
 #: The mechanical chain's values that come from the film: NaN for a bearing whose film is not a number
 #: (``film_valid`` false; ``film_status`` says why: collapsed, not_periodic or failed), so that no statistic
 #: or ranking reads a film held at the eccentricity limit or an orbit that did not close.
-FILM_NUMBERS = ("h_min", "h_min_midplane", "h_min_mean", "h_min_edge", "tilt_loss", "edge_contact_share",
-                "edge_contact_load", "edge_contact_angle", "p_max", "p_max_mean", "alpha", "life",
+FILM_NUMBERS = ("h_min", "h_min_midplane", "h_min_mean", "h_min_check", "h_min_mean_check", "life_check",
+                "h_min_edge", "tilt_loss", "edge_contact_share", "edge_contact_load", "edge_contact_angle", "p_max",
+                "p_max_mean", "alpha", "life",
                 "life_wear_chart", "wear_rate", "film_temperature", "friction_power", "oil_flow", "feed_flow",
                 "h_min_history")
 _NOT_A_NUMBER = "; NaN where film_valid is false (film_status collapsed, not_periodic or failed)"

@@ -15,7 +15,7 @@ import xarray as xr
 
 from ..film.cycle import film_method_errors
 from .._version import __version__
-from ..tolerances import process_mean
+from ..tolerances import DISTRIBUTION_NAMES, process_mean, quantile_cpk
 from . import schema
 from . import summaries as summarise
 from .chain import ChunkResult, MechanicsProgress, ShellCounts
@@ -91,8 +91,10 @@ def processes(engine):
     """How the engine's parts are made and read, as plain data in SI units (keys say the unit)."""
     def dimension(dim):
         mean, std = float(process_mean(dim.process)), float(dim.process.std)
-        return {"limits_m": [dim.lo, dim.hi], "distribution": type(dim.process).__name__, "mean_m": mean,
-                "std_m": std, "cpk": min(dim.hi - mean, mean - dim.lo) / (3 * std), "shared": dim.shared,
+        # the engine file's name of the distribution and ISO 22514-2's quantile C_pk: for a normal process the
+        # classic min(U - mu, mu - L) / 3 sigma; for a skewed or two-machine one the tail the limits face
+        return {"limits_m": [dim.lo, dim.hi], "distribution": DISTRIBUTION_NAMES[type(dim.process)], "mean_m": mean,
+                "std_m": std, "cpk": quantile_cpk(dim.process, dim.lo, dim.hi), "shared": dim.shared,
                 "gauge_repeatability_m": dim.gauge.repeatability, "gauge_resolution_m": dim.gauge.resolution}
 
     supply = engine.shell_wall
@@ -136,6 +138,7 @@ def attributes(study, ctx, mechanics_used):
         "wear": json.dumps({"journal_rz_m": engine.wear.journal_rz, "shell_rz_m": engine.wear.shell_rz,
                             "journal_rq_m": engine.wear.journal_rq, "shell_rq_m": engine.wear.shell_rq,
                             "critical_film_m": engine.wear.critical_film, "wear_limit_m": engine.wear.wear_limit,
+                            "method1_wear_limit_m": engine.wear.method1_wear_limit,
                             "wear_rate_m_per_s": engine.wear.wear_rate, "lining_material": engine.wear.lining_material,
                             "roughness_source": engine.wear.roughness_source, "wear_source": engine.wear.wear_source}),
         "oil_feed_source": engine.oil_feed.source,

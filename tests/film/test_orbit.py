@@ -66,7 +66,7 @@ def test_quasi_static_broadcasts_over_bearings():
 
 @pytest.mark.parametrize("kw, message", [
     (dict(method="euler"), "method: 'euler' is not one of 'short', 'finite', 'mobility', 'mobility-finite', "
-                           "'reynolds', 'reynolds-transient'"),
+                           "'elrod-coarse', 'reynolds', 'reynolds-transient'"),
     (dict(crank_angle=np.arange(0, 800.0, 10)), "crank_angle: must increase and span less than 720 deg"),
 ])
 def test_bad_input(kw, message):

@@ -336,3 +336,33 @@ def test_extremes_refuse_a_journal_and_unknown_arguments():
         press_fit_extremes(temperatures=[20.0], colour="red", **EXTREME)
     with pytest.raises(ValueError, match=r"temperatures: \[\] is not a non-empty sequence of temperatures"):
         press_fit_extremes(temperatures=[], **EXTREME)
+
+
+def test_a_hotter_journal_takes_its_own_thermal_growth_off_the_clearance():
+    # closed form: d_J * alpha_J * dT_J; a steel journal of 46.009 mm, 10 K hotter than its housing
+    alpha = materials.get("steel").expansion
+    base, hot = fit(temperature=100.0), fit(temperature=100.0, journal_temperature=110.0)
+    assert base.clearance - hot.clearance == pytest.approx(46.009e-3 * alpha * 10.0, rel=1e-9)
+    assert 5.0e-6 < base.clearance - hot.clearance < 5.6e-6  # "a journal 10 K hotter takes about 5 um off"
+    # the journal's temperature changes nothing else, and by default it is the housing's
+    for field in ("contact_pressure", "shell_stress", "housing_swell", "shell_bore"):
+        assert getattr(hot, field) == pytest.approx(getattr(base, field), rel=1e-12)
+    assert fit(temperature=100.0, journal_temperature=100.0).clearance == pytest.approx(base.clearance, rel=1e-12)
+
+
+def test_the_journal_temperature_broadcasts_and_the_reference_tier_agrees():
+    t = np.array([100.0, 110.0, 120.0])
+    lame = fit(temperature=100.0, journal_temperature=t)
+    fe = fit(temperature=100.0, journal_temperature=t, method="fe")
+    assert lame.clearance.shape == (3,) and np.all(np.diff(lame.clearance) < 0)
+    np.testing.assert_allclose(np.diff(fe.clearance), np.diff(lame.clearance), rtol=1e-9)  # same journal growth
+    # numpy twin: the same clearance with the journal's own temperature change
+    twin = tiers.journal_in_service(46.009e-3, materials.get("steel").expansion, t - 20.0)
+    np.testing.assert_allclose(lame.shell_bore - twin, lame.clearance, rtol=0, atol=1e-15)
+
+
+def test_a_journal_temperature_outside_the_models_range_is_named():
+    with pytest.raises(ValueError, match="journal_temperature"):
+        fit(journal_temperature=400.0)
+    with pytest.raises(ValueError, match="journal_temperature"):
+        fit(journal_temperature=float("nan"))

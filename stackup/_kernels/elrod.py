@@ -1,0 +1,792 @@
+r"""The ``elrod-coarse`` cycle tier's kernels: Elrod's universal variable on a coarse grid, Newton per step (numba).
+
+The readable statement (equations, units, sources) is in :mod:`stackup.film.elrod`;
+``tests/test_elrod.py`` holds the numpy twins these kernels must match. Everything
+is dimensionless as in :mod:`stackup.film.transient`: :math:`\bar h = h/c`,
+:math:`\bar z = z/R`, :math:`\tau = \omega t`, :math:`\bar p = p c^2/(\mu\omega R^2)`.
+
+One unknown per free node, Elrod's universal variable :math:`\phi`:
+pressure :math:`\bar p = \max(\phi, 0)`, fill :math:`g = \min(1 + \phi, 1)`. The
+discrete content balance of a node (finite volumes, the same stencil as the
+reference kernel :func:`stackup._kernels.reynolds.elrod_adams`, on a z grid that may be
+uneven) is
+
+.. math:: R = \sum_{nb} a_{nb}(\bar p_{nb} - \bar p_P)
+              - \tfrac{6}{\Delta\Theta}(g_P \bar h_e - g_W \bar h_w) - c_t\,g_P\bar h_P + H_P = 0
+
+(:math:`c_t g_P \bar h_P - H_P` is 12 times the content's time derivative by BDF2). The
+residual is piecewise linear in :math:`\phi`: the step's nodes and the journal centre
+:math:`\xi` are solved together by a semismooth Newton method (the tilt slopes
+:math:`s` are imposed; :func:`assemble` also gives their columns, ``n_unknowns`` 4,
+for a tilt equilibrium the tier does not solve yet), the force balance :math:`\bar F(\phi) = \bar W`
+bordering the field's Jacobian, which is block cyclic tridiagonal (a block per
+angle: the nodes over the width) and is factored directly.
+"""
+
+import math
+from collections import namedtuple
+
+import numpy as np
+from numba import njit
+
+PERIODIC, NOT_PERIODIC, COLLAPSED, FAILED = 0, 1, 2, 3
+#: Floating-point shortcuts the kernels may take (no NaN or inf reaches them: the inputs are checked).
+FAST = {"contract", "arcp", "reassoc", "nsz"}
+
+#: The grid: angles (n_t,), their normals at the nodes (2, n_t) and at the east faces (2, n_t), axial nodes z
+#: (n_z,) and north faces z_n (n_z - 1,), cell widths (n_z,), force weights (n_z,), the first free row j0
+#: (0: node 0 is the mid-plane of a half grid, mirrored; 1: node 0 is the bearing's end), nodes kept fixed
+#: (n_t, n_z) and their pressure, the thinnest film the tier allows (1 - limit eccentricity).
+Grid = namedtuple("Grid", ("dtheta", "normal", "normal_east", "z", "z_north", "width", "weight", "j0", "fixed",
+                           "p_fixed", "floor"))
+#: Newton's stopping rule: force within ``force`` of the cycle's largest load, node balances within ``balance``
+#: of the content rate of a full film (c_time), at most ``iterations`` per step; and the width of the band about
+#: phi = 0 over which the switch between pressure and fill is smoothed (:func:`split`).
+Newton = namedtuple("Newton", ("force", "balance", "iterations", "smoothing"))
+
+
+@njit(cache=True, inline="always", fastmath=FAST)
+def _held(h, floor):
+    """Film where a journal would pass the thinnest film allowed: f/(2 - h/f) below f (continuous in value and
+    slope); returns (film, d film / d h)."""
+    if h >= floor:
+        return h, 1.0
+    r = min(h / floor, 1.0)
+    d = 2.0 - r
+    return floor / d, 1.0 / (d * d)
+
+
+@njit(cache=True, fastmath=FAST)
+def film(xi, slope, grid, h, dh, he, dhe, hn, dhn):
+    """Film at the nodes (h), east faces (he) and north faces (hn), and its slope against the raw film, in place.
+
+    Raw film 1 - (xi + z slope) . n; ``slope`` (2,) is the tilt in clearances per radius (gamma R / c).
+    """
+    n_t, n_z = h.shape
+    for i in range(n_t):
+        c0 = grid.normal[0, i]
+        s0 = grid.normal[1, i]
+        ce = grid.normal_east[0, i]
+        se = grid.normal_east[1, i]
+        for j in range(n_z):
+            z = grid.z[j]
+            h[i, j], dh[i, j] = _held(1.0 - (xi[0] + z * slope[0]) * c0 - (xi[1] + z * slope[1]) * s0, grid.floor)
+            he[i, j], dhe[i, j] = _held(1.0 - (xi[0] + z * slope[0]) * ce - (xi[1] + z * slope[1]) * se,
+                                        grid.floor)
+            if j < n_z - 1:
+                zn = grid.z_north[j]
+                hn[i, j], dhn[i, j] = _held(1.0 - (xi[0] + zn * slope[0]) * c0 - (xi[1] + zn * slope[1]) * s0,
+                                            grid.floor)
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def split(phi, smoothing):
+    """Pressure, its slope, fill and its slope of the universal variable ``phi``.
+
+    p - (1 - g) = phi with p (1 - g) = smoothing^2 / 4 (Chen-Harker-Kanzow-Smale): p = max(phi, 0) and
+    g = min(1 + phi, 1) but for a band of width ``smoothing`` about phi = 0, so Newton's merit is smooth.
+    """
+    s = math.sqrt(phi * phi + smoothing * smoothing)
+    if phi >= 0.0:
+        p = 0.5 * (phi + s)
+        short = 0.5 * smoothing * smoothing / (s + phi)  # 1 - g, without cancellation
+    else:
+        short = 0.5 * (s - phi)
+        p = 0.5 * smoothing * smoothing / (s - phi)
+    return p, 0.5 * (1.0 + phi / s), 1.0 - short, 0.5 * (1.0 - phi / s)
+
+
+@njit(cache=True, fastmath=FAST)
+def fields(phi, grid, smoothing, pressure, d_pressure, fill, d_fill):
+    """Pressure, fill and their slopes against phi at every node, in place (fixed nodes: their pressure, full)."""
+    n_t, n_z = phi.shape
+    for i in range(n_t):
+        for j in range(n_z):
+            if grid.fixed[i, j]:
+                pressure[i, j] = grid.p_fixed[i, j]
+                d_pressure[i, j] = 0.0
+                fill[i, j] = 1.0
+                d_fill[i, j] = 0.0
+            else:
+                pressure[i, j], d_pressure[i, j], fill[i, j], d_fill[i, j] = split(phi[i, j], smoothing)
+
+
+@njit(cache=True, fastmath=FAST)
+def assemble(state, films, history, c_time, grid, n_unknowns, residual, diag, west, east, coupling, force_rows):
+    """Residual and Jacobian of the node balances, in place; returns the film force (2,).
+
+    ``state`` = (pressure, d_pressure, fill, d_fill) of :func:`fields`; ``films`` = (h, dh, he, dhe, hn, dhn) of
+    :func:`film`. Rows of a block are the nodes j0 .. n_z - 2 of an angle; ``diag`` (n_t, m, m) their couplings
+    within the angle, ``west`` / ``east`` (n_t, m) to the same node of the angles before and after;
+    ``coupling`` (n_t, m, k): d residual / d (centre, slopes) (k = 2 or 4); ``force_rows`` (n_t, m, k):
+    d (force, moment) / d phi. A fixed node's row is the identity (its residual 0).
+    """
+    pr, dpr, fl, dfl = state
+    h, dh, he, dhe, hn, dhn = films
+    n_t, n_z = pr.shape
+    j0 = grid.j0
+    dt = grid.dtheta
+    it2 = 1.0 / (dt * dt)
+    couette = 6.0 / dt
+    force = film_force(pr, grid)
+    diag[:] = 0.0
+    for i in range(n_t):
+        im = i - 1 if i > 0 else n_t - 1
+        ip = i + 1 if i + 1 < n_t else 0
+        for j in range(j0, n_z - 1):
+            r = j - j0
+            if grid.fixed[i, j]:
+                residual[i, r] = 0.0
+                diag[i, r, r] = 1.0
+                west[i, r] = 0.0
+                east[i, r] = 0.0
+                for k in range(n_unknowns):
+                    coupling[i, r, k] = 0.0
+                    force_rows[i, r, k] = 0.0
+                continue
+            p_p = pr[i, j]
+            g_p = fl[i, j]
+            he_p = he[i, j]
+            he_w = he[im, j]
+            hn_p = hn[i, j]
+            width = grid.width[j]
+            dz_n = grid.z[j + 1] - grid.z[j]
+            a_e = he_p * he_p * he_p * it2
+            a_w = he_w * he_w * he_w * it2
+            a_n = hn_p * hn_p * hn_p / (dz_n * width)
+            if j > 0:
+                hn_s = hn[i, j - 1]
+                dz_s = grid.z[j] - grid.z[j - 1]
+                a_s = hn_s * hn_s * hn_s / (dz_s * width)
+                p_s = pr[i, j - 1]
+            else:  # the mid-plane of a half grid: no flux across it
+                hn_s = 0.0
+                dz_s = 1.0
+                a_s = 0.0
+                p_s = p_p
+            p_e = pr[ip, j]
+            p_w = pr[im, j]
+            p_n = pr[i, j + 1]
+            residual[i, r] = (a_e * (p_e - p_p) + a_w * (p_w - p_p) + a_n * (p_n - p_p) + a_s * (p_s - p_p)
+                              - couette * (g_p * he_p - fl[im, j] * he_w) - c_time * g_p * h[i, j] + history[i, j])
+            diag[i, r, r] = -(a_e + a_w + a_n + a_s) * dpr[i, j] - (couette * he_p + c_time * h[i, j]) * dfl[i, j]
+            west[i, r] = a_w * dpr[im, j] + couette * he_w * dfl[im, j]
+            east[i, r] = a_e * dpr[ip, j]
+            if j + 1 < n_z - 1:
+                diag[i, r, r + 1] = a_n * dpr[i, j + 1]
+            if j - 1 >= j0:
+                diag[i, r, r - 1] = a_s * dpr[i, j - 1]
+            # d residual / d unknowns through the film: terms at the east and west faces, and at the node
+            face_e = dhe[i, j] * (3.0 * he_p * he_p * (p_e - p_p) * it2 - couette * g_p)
+            face_w = dhe[im, j] * (3.0 * he_w * he_w * (p_w - p_p) * it2 + couette * fl[im, j])
+            north = 3.0 * hn_p * hn_p * dhn[i, j] * (p_n - p_p) / (dz_n * width)
+            south = 3.0 * hn_s * hn_s * dhn[i, j - 1] * (p_s - p_p) / (dz_s * width) if j > 0 else 0.0
+            node = -c_time * g_p * dh[i, j]
+            weight = grid.weight[j] * dpr[i, j] * dt
+            for k in range(n_unknowns):
+                axis = k % 2
+                n_p = grid.normal[axis, i]
+                if k < 2:
+                    coupling[i, r, k] = -(grid.normal_east[axis, i] * face_e + grid.normal_east[axis, im] * face_w
+                                          + n_p * (north + south + node))
+                    force_rows[i, r, k] = weight * n_p
+                else:
+                    z = grid.z[j]
+                    z_s = grid.z_north[j - 1] if j > 0 else 0.0
+                    coupling[i, r, k] = -((grid.normal_east[axis, i] * face_e + grid.normal_east[axis, im] * face_w
+                                           + n_p * node) * z + n_p * (north * grid.z_north[j] + south * z_s))
+                    force_rows[i, r, k] = weight * n_p * z
+    return force
+
+
+@njit(cache=True, fastmath=FAST)
+def _invert(a, out):
+    """Inverse of the small square ``a`` into ``out`` by Gauss-Jordan with partial pivoting (``a`` destroyed);
+    False if singular."""
+    m = a.shape[0]
+    out[:, :] = 0.0
+    for r in range(m):
+        out[r, r] = 1.0
+    for c in range(m):
+        best = c
+        big = abs(a[c, c])
+        for r in range(c + 1, m):
+            if abs(a[r, c]) > big:
+                big = abs(a[r, c])
+                best = r
+        if big == 0.0 or not math.isfinite(big):
+            return False
+        if best != c:
+            for k in range(m):
+                t = a[c, k]
+                a[c, k] = a[best, k]
+                a[best, k] = t
+                t = out[c, k]
+                out[c, k] = out[best, k]
+                out[best, k] = t
+        inv = 1.0 / a[c, c]
+        for k in range(m):
+            a[c, k] *= inv
+            out[c, k] *= inv
+        for r in range(m):
+            if r != c:
+                f = a[r, c]
+                if f != 0.0:
+                    for k in range(m):
+                        a[r, k] -= f * a[c, k]
+                        out[r, k] -= f * out[c, k]
+    return True
+
+
+@njit(cache=True, fastmath=FAST)
+def factor(diag, west, east, inverse, ahead, last, below, bottom, scratch):
+    """Factor the block cyclic tridiagonal matrix (blocks ``diag``, ``west``, ``east``) by block elimination.
+
+    Angle i couples to i - 1 through diag(west[i]) and to i + 1 through diag(east[i]), cyclically. Eliminating
+    angles 0 .. n - 2 in order leaves, per angle, the inverse of its pivot block P (``inverse``),
+    ``ahead`` = P^-1 diag(east) and ``last`` = P^-1 (its coupling to angle n - 1, the wrap's fill-in);
+    ``below`` (n, m, m) the last angle's row's coupling to angle i before it is eliminated; ``bottom`` the
+    inverse of the last angle's block once the others are eliminated. False if a pivot block is singular.
+    """
+    n, m = west.shape
+    row = below[n - 1]  # the last angle's coupling to the angle being eliminated (below[n - 1] is free)
+    row[:, :] = 0.0
+    for r in range(m):
+        row[r, r] = east[n - 1, r]
+    tail = np.empty((m, m))
+    tail[:, :] = diag[n - 1]
+    p = scratch
+    for i in range(n - 1):
+        wrap = last[i]
+        if i == 0:
+            p[:, :] = diag[0]
+            wrap[:, :] = 0.0
+            for r in range(m):
+                wrap[r, r] = west[0, r]
+        else:
+            for r in range(m):
+                w = west[i, r]
+                for c in range(m):
+                    p[r, c] = diag[i, r, c] - w * ahead[i - 1, r, c]
+                    wrap[r, c] = -w * last[i - 1, r, c]
+        if i == n - 2:
+            for r in range(m):
+                wrap[r, r] += east[i, r]
+        pinv = inverse[i]
+        if not _invert(p, pinv):
+            return False
+        # last = P^-1 wrap, ahead = P^-1 diag(east)
+        for r in range(m):
+            for c in range(m):
+                s = 0.0
+                for k in range(m):
+                    s += pinv[r, k] * wrap[k, c]
+                p[r, c] = s
+        wrap[:, :] = p
+        for r in range(m):
+            for c in range(m):
+                ahead[i, r, c] = pinv[r, c] * east[i, c] if i < n - 2 else 0.0
+        below[i, :, :] = row
+        # the last angle's row without angle i: its block and its coupling to angle i + 1
+        for r in range(m):
+            for c in range(m):
+                s = 0.0
+                t = 0.0
+                for k in range(m):
+                    s += row[r, k] * wrap[k, c]
+                    t += row[r, k] * ahead[i, k, c]
+                tail[r, c] -= s
+                p[r, c] = -t
+        row[:, :] = p
+        if i + 1 == n - 2:
+            for r in range(m):
+                row[r, r] += west[n - 1, r]
+    return _invert(tail, bottom)
+
+
+@njit(cache=True, fastmath=FAST)
+def solve(inverse, west, ahead, last, below, bottom, b):
+    """Solve the factored system (:func:`factor`) for right-hand sides ``b`` (n, m, q) in place."""
+    n, m, q = b.shape
+    tail = b[n - 1].copy()
+    v = np.empty((m, q))
+    for i in range(n - 1):
+        for r in range(m):
+            for c in range(q):
+                v[r, c] = b[i, r, c] - (west[i, r] * b[i - 1, r, c] if i > 0 else 0.0)
+        for r in range(m):
+            for c in range(q):
+                s = 0.0
+                for k in range(m):
+                    s += inverse[i, r, k] * v[k, c]
+                b[i, r, c] = s
+        for r in range(m):
+            for c in range(q):
+                s = 0.0
+                for k in range(m):
+                    s += below[i, r, k] * b[i, k, c]
+                tail[r, c] -= s
+    for r in range(m):
+        for c in range(q):
+            s = 0.0
+            for k in range(m):
+                s += bottom[r, k] * tail[k, c]
+            b[n - 1, r, c] = s
+    for i in range(n - 2, -1, -1):
+        for r in range(m):
+            for c in range(q):
+                s = 0.0
+                for k in range(m):
+                    s += ahead[i, r, k] * b[i + 1, k, c] + last[i, r, k] * b[n - 1, k, c]
+                b[i, r, c] -= s
+
+
+#: Work arrays of one bearing's march (allocated once per bearing by :func:`workspace`).
+Work = namedtuple("Work", ("h", "dh", "he", "dhe", "hn", "dhn", "pressure", "d_pressure", "fill", "d_fill",
+                           "residual", "diag", "west", "east", "coupling",
+                           "force_rows", "inverse", "ahead", "last", "below", "bottom", "scratch", "rhs", "saved"))
+#: The unit of the force balance's tolerance is the cycle's largest load, at least this (per mu omega R^4 / c^2:
+#: a journal without load is balanced to the tolerance of this force).
+SMALLEST_SCALE = 1e-3
+#: Most halvings of a Newton step whose residuals do not fall; Newton gives up after this many short steps in a
+#: row (a tenth of the step or less).
+LINE_SEARCH = 8
+STALLED = 3
+#: A leap (:func:`leap`): most Newton steps on the centre, most halvings of each.
+LEAP_ITERATIONS = 80
+LEAP_SEARCH = 12
+
+
+def workspace(n_t, n_z, j0, k):
+    """Work arrays for a grid of n_t x n_z nodes, free rows from j0, k balance unknowns."""
+    m = n_z - 1 - j0
+    return Work(*(np.empty((n_t, n_z)) for _ in range(10)), np.empty((n_t, m)), np.empty((n_t, m, m)),
+                np.empty((n_t, m)), np.empty((n_t, m)), np.empty((n_t, m, k)), np.empty((n_t, m, k)),
+                np.empty((n_t, m, m)), np.empty((n_t, m, m)), np.empty((n_t, m, m)), np.empty((n_t, m, m)),
+                np.empty((m, m)), np.empty((m, m)), np.empty((n_t, m, 1 + k)), np.empty((n_t, m)))
+
+
+@njit(cache=True, fastmath=FAST)
+def _evaluate(phi, xi, slope, history, c_time, target, scale, grid, smoothing, work, free=True):
+    """Film, fields, residual and Jacobian at (phi, xi); returns (merit, force error 0, 1, largest node residual).
+
+    Merit: half the sum of squares of the node residuals per c_time and (with the centre ``free``) of the force
+    error per ``scale``.
+    """
+    film(xi, slope, grid, work.h, work.dh, work.he, work.dhe, work.hn, work.dhn)
+    fields(phi, grid, smoothing, work.pressure, work.d_pressure, work.fill, work.d_fill)
+    force = assemble((work.pressure, work.d_pressure, work.fill, work.d_fill),
+                     (work.h, work.dh, work.he, work.dhe, work.hn, work.dhn), history, c_time, grid, 2,
+                     work.residual, work.diag, work.west, work.east, work.coupling, work.force_rows)
+    g0 = force[0] - target[0]
+    g1 = force[1] - target[1]
+    worst = 0.0
+    merit = 0.0
+    n_t, m = work.residual.shape
+    for i in range(n_t):
+        for r in range(m):
+            v = work.residual[i, r]
+            worst = max(worst, abs(v))
+            merit += v * v
+    merit = 0.5 * (merit / (c_time * c_time) + ((g0 * g0 + g1 * g1) / (scale * scale) if free else 0.0))
+    return merit, g0, g1, worst
+
+
+@njit(cache=True, fastmath=FAST)
+def balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work, free=True):
+    """Solve one time step in place: the nodes' universal variable ``phi`` and the journal centre ``xi``.
+
+    Semismooth Newton on the node balances bordered by the force balance F(phi) = target, from the ``phi``
+    and ``xi`` given (the previous step's field, a predicted centre), globalised by backtracking on the
+    residuals' sum of squares (a full step can cycle between two sets of cavitated nodes). The film slope is
+    imposed. With ``free`` False the centre is held where it is and only the nodes are solved (the force then
+    is whatever the film gives). Returns the Newton iterations (>= 0), or -1 if Newton did not converge, -2 if
+    the centre was held at the limit eccentricity (no film carries the load there).
+    """
+    n_t, n_z = phi.shape
+    j0 = grid.j0
+    m = n_z - 1 - j0
+    rhs = work.rhs
+    saved = work.saved
+    held = False
+    creeping = 0
+    merit, g0, g1, worst = _evaluate(phi, xi, slope, history, c_time, target, scale, grid, tol.smoothing, work, free)
+    for it in range(tol.iterations):
+        if (not free or abs(g0) + abs(g1) <= tol.force * scale) and worst <= tol.balance * c_time:
+            return it
+        if not factor(work.diag, work.west, work.east, work.inverse, work.ahead, work.last, work.below,
+                      work.bottom, work.scratch):
+            return -1
+        for i in range(n_t):
+            for r in range(m):
+                rhs[i, r, 0] = work.residual[i, r]
+                rhs[i, r, 1] = work.coupling[i, r, 0]
+                rhs[i, r, 2] = work.coupling[i, r, 1]
+        solve(work.inverse, work.west, work.ahead, work.last, work.below, work.bottom, rhs)
+        # Schur complement of the force balance: (F_phi X) du = G - F_phi y
+        s00 = s01 = s10 = s11 = 0.0
+        b0 = g0
+        b1 = g1
+        for i in range(n_t):
+            for r in range(m):
+                f0 = work.force_rows[i, r, 0]
+                f1 = work.force_rows[i, r, 1]
+                if f0 == 0.0 and f1 == 0.0:
+                    continue
+                s00 += f0 * rhs[i, r, 1]
+                s01 += f0 * rhs[i, r, 2]
+                s10 += f1 * rhs[i, r, 1]
+                s11 += f1 * rhs[i, r, 2]
+                b0 -= f0 * rhs[i, r, 0]
+                b1 -= f1 * rhs[i, r, 0]
+        det = s00 * s11 - s01 * s10
+        if free and (det == 0.0 or not math.isfinite(det)):
+            return -1
+        d0 = (b0 * s11 - b1 * s01) / det if free else 0.0
+        d1 = (s00 * b1 - s10 * b0) / det if free else 0.0
+        for i in range(n_t):
+            for r in range(m):
+                saved[i, r] = phi[i, j0 + r]
+                rhs[i, r, 0] = -(rhs[i, r, 0] + rhs[i, r, 1] * d0 + rhs[i, r, 2] * d1)  # the step of phi
+        x0 = xi[0]
+        x1 = xi[1]
+        alpha = 1.0
+        for _ in range(LINE_SEARCH):
+            for i in range(n_t):
+                for r in range(m):
+                    if not grid.fixed[i, j0 + r]:
+                        phi[i, j0 + r] = saved[i, r] + alpha * rhs[i, r, 0]
+            # the centre stays within the limit: a step past it is cut back onto it
+            y0 = x0 + alpha * d0
+            y1 = x1 + alpha * d1
+            e = math.hypot(y0, y1)
+            held = e > limit
+            if held:
+                y0 *= limit / e
+                y1 *= limit / e
+            xi[0] = y0
+            xi[1] = y1
+            trial, g0, g1, worst = _evaluate(phi, xi, slope, history, c_time, target, scale, grid, tol.smoothing, work,
+                                             free)
+            if trial <= (1.0 - 1e-4 * alpha) * merit:
+                break
+            alpha *= 0.5
+        merit = trial
+        # short steps that barely lower the residuals: no solution near here (the caller leaps or halves the step)
+        creeping = creeping + 1 if alpha < 0.1 else 0
+        if creeping >= STALLED:
+            return -2 if held else -1
+    return -2 if held else -1
+
+
+@njit(cache=True, fastmath=FAST)
+def film_force(pressure, grid):
+    """Film force on the bearing (2,) of a pressure field (per unit of mu omega R^4 / c^2)."""
+    n_t, n_z = pressure.shape
+    out = np.zeros(2)
+    for i in range(n_t):
+        s = 0.0
+        for j in range(n_z):
+            s += grid.weight[j] * pressure[i, j]
+        out[0] += s * grid.normal[0, i] * grid.dtheta
+        out[1] += s * grid.normal[1, i] * grid.dtheta
+    return out
+
+
+@njit(cache=True, fastmath=FAST)
+def _reduced_jacobian(work, n_t, m):
+    """d(film force)/d(centre) of a field solved at a held centre: -F_phi J^-1 dR/dxi (the Schur complement).
+
+    Reads the Jacobian the last (converged) evaluation left in ``work``; returns its negative, S (2 x 2).
+    """
+    rhs = work.rhs
+    if not factor(work.diag, work.west, work.east, work.inverse, work.ahead, work.last, work.below, work.bottom,
+                  work.scratch):
+        return False, 0.0, 0.0, 0.0, 0.0
+    for i in range(n_t):
+        for r in range(m):
+            rhs[i, r, 0] = 0.0
+            rhs[i, r, 1] = work.coupling[i, r, 0]
+            rhs[i, r, 2] = work.coupling[i, r, 1]
+    solve(work.inverse, work.west, work.ahead, work.last, work.below, work.bottom, rhs)
+    s00 = s01 = s10 = s11 = 0.0
+    for i in range(n_t):
+        for r in range(m):
+            f0 = work.force_rows[i, r, 0]
+            f1 = work.force_rows[i, r, 1]
+            s00 += f0 * rhs[i, r, 1]
+            s01 += f0 * rhs[i, r, 2]
+            s10 += f1 * rhs[i, r, 1]
+            s11 += f1 * rhs[i, r, 2]
+    return True, s00, s01, s10, s11
+
+
+@njit(cache=True, fastmath=FAST)
+def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work):
+    """The step's balance far from the centre ``xi``, where no film near it carries the load, in place.
+
+    A massless journal whose load turns onto a film short of oil crosses the clearance within a step, as far as
+    the film there carries the load; the full Newton of :func:`balance_step` stalls on the way (its residuals
+    mix the field's and the force's). Here Newton runs on the centre alone: each trial centre's field is solved
+    with the centre held, the force's error is the residual, its Jacobian the field's Schur complement, and a
+    step is halved until that error falls. :func:`balance_step` polishes the result. Returns as
+    :func:`balance_step`.
+    """
+    n_t, n_z = phi.shape
+    m = n_z - 1 - grid.j0
+    trial = phi.copy()
+    if balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work, False) < 0:
+        return -1
+    force = film_force(work.pressure, grid)
+    f0 = force[0] - target[0]
+    f1 = force[1] - target[1]
+    size = math.hypot(f0, f1)
+    y = np.empty(2)
+    for _ in range(LEAP_ITERATIONS):
+        if size <= tol.force * scale:
+            break
+        ok, s00, s01, s10, s11 = _reduced_jacobian(work, n_t, m)
+        det = s00 * s11 - s01 * s10
+        if not ok or det == 0.0 or not math.isfinite(det):
+            return -1
+        # F(xi + d) ~ F(xi) - S d = target
+        d0 = (f0 * s11 - f1 * s01) / det
+        d1 = (s00 * f1 - s10 * f0) / det
+        alpha = 1.0
+        accepted = False
+        for _ in range(LEAP_SEARCH):
+            y[0] = xi[0] + alpha * d0
+            y[1] = xi[1] + alpha * d1
+            e = math.hypot(y[0], y[1])
+            if e > limit:
+                y[0] *= limit / e
+                y[1] *= limit / e
+            trial[:, :] = phi
+            if balance_step(trial, y, slope, history, c_time, target, scale, grid, tol, limit, work, False) >= 0:
+                force = film_force(work.pressure, grid)
+                g0 = force[0] - target[0]
+                g1 = force[1] - target[1]
+                if math.hypot(g0, g1) < (1.0 - 1e-4 * alpha) * size:
+                    accepted = True
+                    break
+            alpha *= 0.5
+        if not accepted:
+            # the field of the last accepted centre back in work (its Jacobian is read next)
+            return -2 if math.hypot(xi[0], xi[1]) >= limit * (1.0 - 1e-9) else -1
+        phi[:, :] = trial
+        xi[0] = y[0]
+        xi[1] = y[1]
+        f0, f1 = g0, g1
+        size = math.hypot(f0, f1)
+    return balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
+
+
+@njit(cache=True, fastmath=FAST)
+def outputs(pressure, fill, h, grid):
+    """Peak pressure, friction integral and side-flow integral of a field (dimensionless, as the reference tier).
+
+    Friction: sum of (g / h + h dp/dtheta / 2) over the nodes; side flow: h^3 |dp/dz| at both ends (the slope of
+    the quadratic through the end's three nodes; a half grid's one end counted twice).
+    """
+    n_t, n_z = pressure.shape
+    peak = 0.0
+    friction = 0.0
+    flow = 0.0
+    dt = grid.dtheta
+    ends = 2.0 if grid.j0 == 0 else 1.0
+    z = grid.z
+    for i in range(n_t):
+        im = i - 1 if i > 0 else n_t - 1
+        ip = i + 1 if i + 1 < n_t else 0
+        for j in range(n_z):
+            peak = max(peak, pressure[i, j])
+            dp = (pressure[ip, j] - pressure[im, j]) / (2.0 * dt)
+            friction += grid.weight[j] * (fill[i, j] / h[i, j] + 0.5 * h[i, j] * dp) * dt
+        last = n_z - 1
+        flow += ends * h[i, last] ** 3 * abs(_end_slope(pressure[i, last], pressure[i, last - 1],
+                                                        pressure[i, last - 2], z[last], z[last - 1], z[last - 2])) * dt
+        if grid.j0 == 1:
+            flow += h[i, 0] ** 3 * abs(_end_slope(pressure[i, 0], pressure[i, 1], pressure[i, 2], z[0], z[1],
+                                                  z[2])) * dt
+    return peak, friction, flow
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _end_slope(p0, p1, p2, z0, z1, z2):
+    """dp/dz at z0 from the quadratic through three nodes (uneven spacing)."""
+    d1 = z1 - z0
+    d2 = z2 - z0
+    return ((p1 - p0) * d2 * d2 - (p2 - p0) * d1 * d1) / (d1 * d2 * (d2 - d1))
+
+
+#: Time steps (radians of shaft rotation, tau): the local error allowed per step (the change of the centre
+#: from its prediction, per film left), the first step, the largest and the smallest (below it a step that
+#: fails ends the orbit as failed), and the step at or below which a step without a balance near the prediction
+#: leaps (:func:`leap`) rather than halving again.
+Stepping = namedtuple("Stepping", ("tolerance", "first", "largest", "smallest", "leap"))
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _at(values, tau, t, out):
+    """``values`` (n, 2) given at tau[:n], linear in between and periodic over tau[n], at time t, into ``out``."""
+    n = values.shape[0]
+    period = tau[n]
+    t = t - period * math.floor(t / period)
+    k = min(int(np.searchsorted(tau, t, side="right")) - 1, n - 1)
+    u = (t - tau[k]) / (tau[k + 1] - tau[k])
+    kn = k + 1 if k + 1 < n else 0
+    out[0] = (1.0 - u) * values[k, 0] + u * values[kn, 0]
+    out[1] = (1.0 - u) * values[k, 1] + u * values[kn, 1]
+
+
+@njit(cache=True, fastmath=FAST)
+def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, work, record, outs):
+    """Periodic orbit of one bearing under the loads ``w`` (n, 2) given at the times ``tau`` (n + 1,), in place.
+
+    Adaptive BDF2 on the content (variable step, backward Euler at the first step): each step by
+    :func:`balance_step` from the previous field and a centre extrapolated from the last two; the step grows or
+    shrinks so that the balanced centre differs from its prediction by about ``stepping.tolerance`` of the film
+    left (a step past three times that, or one whose Newton fails, is redone at half the size). Loads and film
+    slope (``slope`` (n, 2)) are linear between the times given; every cycle ends on a step. ``record`` (n, 2)
+    the centre and ``outs`` (n, 3) the outputs of :func:`outputs` at each time given, of the last cycle
+    (linear between steps). Returns (status, cycles, steps, Newton iterations and leaps in all).
+    """
+    n = w.shape[0]
+    period = tau[n]
+    n_t, n_z = grid.fixed.shape
+    phi = np.zeros((n_t, n_z))
+    for i in range(n_t):
+        for j in range(n_z):
+            if grid.fixed[i, j]:
+                phi[i, j] = grid.p_fixed[i, j]
+    phi_saved = phi.copy()
+    content = np.empty((n_t, n_z))
+    content_old = np.empty((n_t, n_z))
+    history = np.empty((n_t, n_z))
+    target = np.empty(2)
+    tilt = np.empty(2)
+    scale = SMALLEST_SCALE
+    for k in range(n):
+        scale = max(scale, abs(w[k, 0]) + abs(w[k, 1]))
+    xi = xi0.copy()
+    xi_old = xi0.copy()
+    guess = np.empty(2)
+    _at(slope, tau, 0.0, tilt)
+    film(xi, tilt, grid, work.h, work.dh, work.he, work.dhe, work.hn, work.dhn)
+    fields(phi, grid, tol.smoothing, work.pressure, work.d_pressure, work.fill, work.d_fill)
+    content[:, :] = work.fill * work.h
+    out_now = np.empty(3)
+    out_before = np.empty(3)
+    out_now[0], out_now[1], out_now[2] = outputs(work.pressure, work.fill, work.h, grid)
+    steps = 0
+    newton = 0
+    leaps = 0
+    h_prev = 0.0
+    h = stepping.first
+    status = NOT_PERIODIC
+    for cycle in range(1, max_cycles + 1):
+        start0 = xi[0]
+        start1 = xi[1]
+        widest = math.hypot(xi[0], xi[1])
+        collapsed = False
+        record[0, 0] = xi[0]
+        record[0, 1] = xi[1]
+        outs[0, :] = out_now
+        t = 0.0
+        k_next = 1  # the next time given to record
+        while t < period:
+            h = min(h, stepping.largest)
+            if t + h > period - 1e-9 * period:
+                h = period - t
+            elif t + 2.0 * h > period:
+                h = 0.5 * (period - t)  # two even steps rather than a sliver at the cycle's end
+            if steps >= 1:
+                r = h / h_prev
+                a0 = (1.0 + 2.0 * r) / (1.0 + r)
+                a1 = 1.0 + r
+                a2 = r * r / (1.0 + r)
+                c_time = 12.0 * a0 / h
+                for i in range(n_t):
+                    for j in range(n_z):
+                        history[i, j] = 12.0 * (a1 * content[i, j] - a2 * content_old[i, j]) / h
+                guess[0] = xi[0] + r * (xi[0] - xi_old[0])
+                guess[1] = xi[1] + r * (xi[1] - xi_old[1])
+            else:
+                c_time = 12.0 / h
+                for i in range(n_t):
+                    for j in range(n_z):
+                        history[i, j] = 12.0 * content[i, j] / h
+                guess[0] = xi[0]
+                guess[1] = xi[1]
+            e = math.hypot(guess[0], guess[1])
+            if e > limit:
+                guess[0] *= limit / e
+                guess[1] *= limit / e
+            trial = guess.copy()
+            _at(w, tau, t + h, target)
+            _at(slope, tau, t + h, tilt)
+            phi_saved[:, :] = phi
+            done = balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
+            newton += done if done >= 0 else tol.iterations
+            jumped = False
+            if done == -1 and h <= stepping.leap:
+                # no balance near the prediction at a short step: the journal crosses to where the film carries
+                phi[:, :] = phi_saved
+                trial[0] = xi[0]
+                trial[1] = xi[1]
+                done = leap(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
+                jumped = done != -1
+                leaps += 1
+            film_left = max(1.0 - max(widest, math.hypot(trial[0], trial[1])), 1.0 - limit)
+            error = math.hypot(trial[0] - guess[0], trial[1] - guess[1]) / film_left
+            if done == -1 or (not jumped and steps >= 1 and error > 3.0 * stepping.tolerance
+                              and h > stepping.smallest):
+                phi[:, :] = phi_saved
+                if h <= stepping.smallest:
+                    for kk in range(k_next, n):
+                        record[kk, 0] = np.nan
+                        record[kk, 1] = np.nan
+                        outs[kk, :] = np.nan
+                    return FAILED, cycle, steps, newton, leaps
+                h = max(0.5 * h, stepping.smallest)
+                continue
+            if done == -2 or math.hypot(trial[0], trial[1]) >= limit * (1.0 - 1e-12):
+                collapsed = True
+            # the step is taken: its content, centre and outputs (balance_step leaves the film at the centre)
+            content_old[:, :] = content
+            for i in range(n_t):
+                for j in range(n_z):
+                    content[i, j] = work.fill[i, j] * work.h[i, j]
+            xi_old[0] = xi[0]
+            xi_old[1] = xi[1]
+            xi[0] = trial[0]
+            xi[1] = trial[1]
+            out_before[:] = out_now
+            out_now[0], out_now[1], out_now[2] = outputs(work.pressure, work.fill, work.h, grid)
+            widest = max(widest, math.hypot(xi[0], xi[1]))
+            t_new = t + h
+            while k_next < n and tau[k_next] <= t_new + 1e-12:
+                u = (tau[k_next] - t) / h
+                record[k_next, 0] = (1.0 - u) * xi_old[0] + u * xi[0]
+                record[k_next, 1] = (1.0 - u) * xi_old[1] + u * xi[1]
+                for q in range(3):
+                    outs[k_next, q] = (1.0 - u) * out_before[q] + u * out_now[q]
+                k_next += 1
+            t = t_new
+            h_prev = h
+            steps += 1
+            if jumped:
+                # after a crossing: no velocity to extrapolate, a short step to start again
+                xi_old[0] = xi[0]
+                xi_old[1] = xi[1]
+                h = stepping.first
+            else:
+                # the next step: the error per step grows as h^2
+                factor_h = 2.0 if error <= 0.0 else min(2.0, max(0.5, 0.9 * math.sqrt(stepping.tolerance / error)))
+                h = h * factor_h
+        film_left = 1.0 - (limit if collapsed else widest)
+        closure = math.hypot(xi[0] - start0, xi[1] - start1)
+        if cycle > 1 and closure <= periodic * film_left:
+            return (COLLAPSED if collapsed else PERIODIC), cycle, steps, newton, leaps
+        status = COLLAPSED if collapsed else NOT_PERIODIC
+    return status, max_cycles, steps, newton, leaps
