@@ -41,7 +41,7 @@ MECHANICS_BATCH = 25
 #: The journal's tilt in the film: the support moments of every bearing balanced with the crankshaft and the block
 #: over the cycle (:mod:`stackup.film.coupled`), each bearing's tilt balanced against the film's moment alone
 #: (:mod:`stackup.film.tilt`, a rigid block), or the beam's slope held (upper bound).
-TILT_METHODS = ("coupled", "equilibrium", "free")
+TILT_METHODS = ("equilibrium", "coupled", "free")
 
 
 @dataclass
@@ -261,7 +261,7 @@ def _press_fit(engine, parts, assembly, method):
 
 
 def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing_law="paper",
-               tilt_method="coupled", checked=0):
+               tilt_method="equilibrium", checked=0):
     """Bearing loads, film and life over the cycle of the engines ``rows`` (a slice) of a chunk.
 
     Engines with a bearing not assembled are skipped (``not_computed``); the
@@ -287,7 +287,7 @@ def _mechanics(ctx, parts, assembly, fit, rows, crank_method, life_film, bearing
 
 
 def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccentricity, crank_angle, crank_method,
-                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="coupled",
+                     film_method, life_film="cycle-mean", bearing_law="paper", tilt_method="equilibrium",
                      check_engines=0):
     """Crankshaft, oil film and life of assembled engines: the :data:`schema.PER_MECH` variables, engines first.
 
@@ -311,7 +311,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         With ``crank_method="bearing-law"``: the engine's law (the paper's
         constants, J scaled with each clearance) or J and dx fitted per engine
         and bearing to the steady film (:func:`fitted_law`).
-    tilt_method : {"coupled", "equilibrium", "free"}
+    tilt_method : {"equilibrium", "coupled", "free"}
         The journal's tilt in the film (:data:`TILT_METHODS`): ``coupled``, the
         support moments of all bearings balanced with the crankshaft (its
         rotational compliance between the supports) and the block (each
