@@ -699,7 +699,8 @@ def _supports(top, *, scale, units, bearings, block, ring):
     if thermal is not None and np.any(np.abs(thermal) > 500.0):
         raise ValueError(f"{t.where}, key {t.key('thermal_offset_um')}: {float(np.abs(thermal).max()):g} um is not a "
                          "plausible offset of a bore by the block's heat (0 to 500 um)")
-    out = Supports(linear * 1e-9, angular, None if thermal is None else thermal * 1e-6, t.source("source"),
+    # [um/kN] -> [m/N] by a division: 1 / (c / 1e9) gives back the stiffness a file's digits came from
+    out = Supports(linear / 1e9, angular, None if thermal is None else thermal * 1e-6, t.source("source"),
                    t.source("thermal_source") if thermal is not None else "")
     t.close()
     return out

@@ -146,9 +146,10 @@ width = 160.0                                 # between the crankcase's side wal
 
 
 @pytest.mark.parametrize("change, message", [
-    ({"linear_compliance_um_per_kN = [1.020408, 0.581395]": "linear_compliance_um_per_kN = [-1.0, 0.581395]"},
+    ({"linear_compliance_um_per_kN = [1.0204081632653061, 0.5813953488372093]":
+      "linear_compliance_um_per_kN = [-1.0, 0.581395]"},
      r"engine file 'engine.toml', key supports.linear_compliance_um_per_kN: -1 is not valid; a compliance must be > 0"),
-    ({"linear_compliance_um_per_kN = [1.020408, 0.581395]": ""},
+    ({"linear_compliance_um_per_kN = [1.0204081632653061, 0.5813953488372093]": ""},
      r"engine file 'engine.toml', key supports.linear_compliance_um_per_kN: missing"),
     ({_WEB: "angular_compliance_urad_per_Nm = [-2.0, 0.4]\n"},
      r"engine file 'engine.toml', key supports.angular_compliance_urad_per_Nm: -2 is not valid; a compliance must be "
