@@ -230,9 +230,11 @@ def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, jo
     mass-conserving :data:`CHECK_METHOD`, fed by the engine's oil ``feed``),
     without the journal's tilt: the accurate tier takes a tilt only as
     imposed and fails where a tilted edge reaches the wall (an edge the rigid
-    block makes touch), so the two tiers are compared where both hold, and the
-    study scales its tilted film by their ratio, an assumption that the tiers'
-    ratio does not depend on the tilt. Arguments as :func:`bearing_films`.
+    block makes touch), so the two tiers are compared where both hold; the
+    study takes the check's error, a share of its own mid-plane film, off the
+    film it reads (:func:`stackup.study.chain.mechanical_chain`), an assumption
+    that the tiers' ratio does not depend on the tilt. Arguments as
+    :func:`bearing_films`.
     Returns the two films [m] (engines, bearings, angles): the study's tier's,
     the check tier's.
     """

@@ -118,7 +118,7 @@ def axial_moments(s):
                      np.where(small, series[2], closed[2])])
 
 
-def short_film(position, squeeze, edge_offset, *, lines=4096):
+def short_film(position, squeeze, edge_offset, *, tilt_squeeze=None, lines=4096):
     r"""Force and moment of the short-bearing film under a tilted journal, dimensionless (the readable reference).
 
     Parameters
@@ -129,8 +129,10 @@ def short_film(position, squeeze, edge_offset, *, lines=4096):
         Squeeze velocity in the mid-plane :math:`\bar{\mathbf v} = \mathbf v_s/(c\omega)`.
     edge_offset : array_like (..., 2)
         :math:`\mathbf e = \boldsymbol\gamma L/(2c)` (the journal centre at the ends is
-        :math:`\boldsymbol\xi \pm \mathbf e`);
-        the tilt squeeze is :math:`\bar{\mathbf u} = -\tfrac12\mathbf k\times\mathbf e` (tilt held).
+        :math:`\boldsymbol\xi \pm \mathbf e`).
+    tilt_squeeze : array_like (..., 2), optional
+        :math:`\bar{\mathbf u} = \dot{\mathbf e}/\omega - \tfrac12\mathbf k\times\mathbf e`; default
+        :math:`-\tfrac12\mathbf k\times\mathbf e` (the tilt held).
     lines : int
         Lines of the midpoint rule around the bearing.
 
@@ -155,7 +157,10 @@ def short_film(position, squeeze, edge_offset, *, lines=4096):
     h0 = 1 - (xi * n).sum(-1)
     g = (e * n).sum(-1)
     a = (v * n).sum(-1)
-    b = 0.5 * (e[..., 1] * n[..., 0] - e[..., 0] * n[..., 1])
+    if tilt_squeeze is None:
+        b = 0.5 * (e[..., 1] * n[..., 0] - e[..., 0] * n[..., 1])
+    else:
+        b = (np.asarray(tilt_squeeze, dtype=float)[..., None, :] * n).sum(-1)
     k = axial_moments(g / h0) / h0**3
     c = (a * k[1] + 0.5 * b * k[2]) / k[0]
     p0 = a * k[2] + 0.5 * b * k[3] - c * k[1]

@@ -108,12 +108,12 @@ MECHANICS = {
                                    "(NaN: the engine's law, bearing_law='paper')"),
     "alpha": Var(SMB, "1", "share of the cycle with the film below the critical film (boundary friction)"),
     "life": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 1 on the film the study names (life_film)"),
-    "h_min_check": Var(SMB, "m", "h_min scaled by the ratio of the mass-conserving check tier's (elrod-coarse) "
-                                 "cycle-minimum film to the study tier's, both on the aligned journal at the bearing's "
-                                 "heat balance; on the first film_check_engines engines (NaN on the others)"),
-    "h_min_mean_check": Var(SMB, "m", "h_min_mean scaled by the ratio of the check tier's (elrod-coarse) cycle-mean "
-                                      "film to the study tier's, both on the aligned journal; on the first "
-                                      "film_check_engines engines (NaN on the others)"),
+    "h_min_check": Var(SMB, "m", "h_min corrected by the mass-conserving check tier (elrod-coarse): the study "
+                                 "tier's cycle-minimum mid-plane film times the two tiers' ratio less one (both on "
+                                 "the aligned journal at the bearing's heat balance) added to it; on the first "
+                                 "film_check_engines engines (NaN on the others)"),
+    "h_min_mean_check": Var(SMB, "m", "h_min_mean corrected as h_min_check, by the tiers' ratio of cycle-mean "
+                                      "films; on the first film_check_engines engines (NaN on the others)"),
     "life_check": Var(SMB, "s", "life (Levanov et al. 2015 method 1) on the check tier's film, on the first "
                                 "film_check_engines engines (NaN on the others)"),
     "life_wear_chart": Var(SMB, "s", "bearing resource, Levanov et al. 2015 method 2 (wear chart over the bearing "

@@ -9,31 +9,11 @@ from stackup._kernels import tilt as tilt_kernel
 from stackup._validate import trusted
 from stackup.contact import layer_contact
 from stackup.film.coupled import ElasticLayer, _contact_rule, support_moments
-from stackup.film.tilt import axial_moments, quadrature, short_film
+from stackup.film.tilt import quadrature, short_film
 
 QUADRATURE = quadrature()
 SIGMA, MODULUS, STIFFNESS = 0.32e-6, 6e10, 1.1e14
 LAYER = ElasticLayer(STIFFNESS, SIGMA, MODULUS)
-
-
-def short_film_twin(xi, v, e, u, lines=8192):
-    """Numpy twin of the short film with any tilt squeeze u (the line's source a + b zeta, b = u . n)."""
-    xi, v, e, u = (np.asarray(a, dtype=float)[None, :] for a in (xi, v, e, u))
-    theta = 2 * np.pi * (np.arange(lines) + 0.5) / lines
-    n = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
-    h0 = 1 - (xi * n).sum(-1)
-    g = (e * n).sum(-1)
-    a = (v * n).sum(-1)
-    b = (u * n).sum(-1)
-    k = axial_moments(g / h0) / h0**3
-    c = (a * k[1] + 0.5 * b * k[2]) / k[0]
-    p0 = a * k[2] + 0.5 * b * k[3] - c * k[1]
-    p1 = -0.5 * (c * (k[2] - k[0]) - a * (k[3] - k[1]) - 0.5 * b * (k[4] - k[2]))
-    on = p0 > 0
-    step = 2 * np.pi / lines
-    force = 1.5 * (n * np.where(on, p0, 0.0)[:, None]).sum(0) * step
-    moment = 0.75 * (n * np.where(on, p1, 0.0)[:, None]).sum(0) * step
-    return force, moment
 
 
 @pytest.mark.parametrize("xi, v, e, u", [
@@ -43,7 +23,7 @@ def short_film_twin(xi, v, e, u, lines=8192):
 ])
 def test_squeeze_moment_equals_its_numpy_twin_with_a_tilt_squeeze(xi, v, e, u):
     out = tilt_kernel.squeeze_moment(*xi, *v, *e, *u, QUADRATURE)
-    force, moment = short_film_twin(xi, v, e, u)
+    force, moment = short_film(xi, v, e, tilt_squeeze=u, lines=8192)
     np.testing.assert_allclose(out[:2], force, rtol=2e-3, atol=2e-3 * np.abs(force).max())
     np.testing.assert_allclose(out[2:], moment, rtol=5e-3, atol=5e-3 * np.abs(moment).max())
 
@@ -54,7 +34,7 @@ def test_tilt_held_is_the_tilt_squeeze_of_the_film_moment():
     np.testing.assert_array_equal(tilt_kernel.film_moment(*xi, *v, *e, QUADRATURE),
                                   tilt_kernel.squeeze_moment(*xi, *v, *e, *held, QUADRATURE))
     _, twin = short_film(xi, v, e)
-    _, mine = short_film_twin(xi, v, e, held, lines=4096)
+    _, mine = short_film(xi, v, e, tilt_squeeze=held, lines=4096)
     np.testing.assert_allclose(mine, twin, rtol=1e-10)
 
 
