@@ -476,3 +476,27 @@ def test_doubled_misalignment_lengthens_no_life_at_any_position(comparison, tmp_
                         sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
     assert "**Lives under misalignment ×2** (12 engines, each against itself)" in text
     assert "no scheme's life rises at any position beyond its 95 % interval" in text
+
+
+def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_the_critical_film(tmp_path):
+    # tilt_method coupled: which positions, over how much of the cycle, how thin, at what load and crank angle,
+    # read from the dataset; α and the lives read that film (with the mid-plane film they ignore the contact)
+    from stackup.facts.mechanics import edge_contact
+    from stackup.film.cycle import FILM_STATUS
+    from stackup.study import Study
+
+    ds = Study(engine="rozhdestvensky-4", schemes=("iso13778-1",), n_engines=300, mechanics_engines=4,
+               pilot_engines=1000, crank_angle_step=4.0, tilt_method="coupled", progress=False).run()
+    edge = edge_contact(ds)
+    assert edge.surface and edge.critical == pytest.approx(1.9e-6)
+    text = write_report(ds, tmp_path).read_text()
+    touching = ds.film_status.values == FILM_STATUS.index("edge_contact")
+    if edge.touching:
+        b = int(edge.per_position.index[0])
+        on = touching[..., b - 1]
+        film = float(np.median(ds.h_min.values[..., b - 1][on]))
+        assert f"bearing {b} in " in text and f"thinnest {1e6 * film:.2f} µm" in text
+        assert "α and the lives read it" in text and "do not count" not in text
+    else:
+        assert "runs below h_lim,cr" not in text
+    assert "Minimum film over the bearing surface" in text

@@ -278,7 +278,15 @@ def step(g, k, guess, before, dtau, quasi, corrections, target, layer, quadratur
         if not (np.isfinite(jac).all() and np.isfinite(r).all()):
             return z, False, evaluations  # a film force not a number: no Newton step (the caller's fallbacks)
         scale = march.tolerance * max(abs(_thinnest(g, k, z)), FILM_FLOOR)
-        delta = np.linalg.solve(jac, -r.reshape(UNKNOWNS * b_n)).reshape(b_n, UNKNOWNS)
+        solved = True
+        try:
+            delta = np.linalg.solve(jac, -r.reshape(UNKNOWNS * b_n)).reshape(b_n, UNKNOWNS)
+        except Exception:  # noqa: BLE001 (numba catches no narrower class)
+            solved = False
+        if not solved:
+            # a singular Newton matrix (a bearing whose film neither moves nor turns with its unknowns): no Newton
+            # step; the caller's fallbacks (the last state, sub-steps) or the failed state
+            return z, False, evaluations
         size = np.abs(delta).max()
         merit = (r * r).sum()
         t = 1.0

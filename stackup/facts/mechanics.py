@@ -33,13 +33,22 @@ def _computed(ds):
 
 @dataclass(frozen=True)
 class EdgeContact:
-    """Bearings whose journal edge touches its shell (``edge_contact``) among those whose film is a number."""
+    """Bearings whose journal edge touches its shell (``edge_contact``) among those whose film is a number.
+
+    With the mid-plane film (``tilt_method`` equilibrium or free) an edge touches where the tilted journal's
+    edge reaches the wall (its film held at the floor); with the film over the bearing surface (``coupled``)
+    where that film falls below h_lim,cr at an edge.
+    """
 
     computed: int                # bearing-cycles with a film that is a number
     touching: int                # of them, with the edge at the wall somewhere in the cycle
     per_scheme_pct: list         # share touching per scheme [%] (schemes with a computed film)
     per_position_share: list     # median share of the cycle at the wall per position, over those touching [-]
     floor: float                 # the film held at the wall, as a share of the radial clearance [-]
+    surface: bool = False        # the film over the bearing surface ran (support moments, elastic layer)
+    critical: float = np.nan     # h_lim,cr [m]
+    per_position: pd.DataFrame = None  # touching bearings per position (surface only): their share [%], median
+                                       # share of the cycle [-], thinnest film [m], load [N] and crank angle [deg]
 
 
 def edge_contact(ds):
@@ -52,7 +61,22 @@ def edge_contact(ds):
     per_position = [float(np.nanmedian(share[..., b][touching[..., b]])) for b in range(share.shape[-1])
                     if touching[..., b].any()]
     per_scheme = [100 * touching[i].sum() / ran[i].sum() for i in range(len(ds.scheme)) if ran[i].any()]
-    return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT)
+    surface = "tilt_status" in ds and bool(np.any(ds.tilt_status.values != flag(ds.tilt_status, "not_computed")))
+    if not surface:
+        return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT)
+    rows = {}
+    for b, bearing in enumerate(ds.bearing.values):
+        on, there = touching[..., b], ran[..., b]
+        if not on.any():
+            continue
+        rows[int(bearing)] = {"touching_pct": 100 * on.sum() / there.sum(),
+                              "cycle_share": float(np.median(share[..., b][on])),
+                              "film": float(np.median(ds.h_min.values[..., b][on])),
+                              "load": float(np.nanmedian(ds.edge_contact_load.values[..., b][on])),
+                              "angle": float(np.nanmedian(ds.edge_contact_angle.values[..., b][on]))}
+    return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
+                       surface=True, critical=Wear.of(ds).critical_film_m,
+                       per_position=pd.DataFrame.from_dict(rows, orient="index"))
 
 
 @dataclass(frozen=True)

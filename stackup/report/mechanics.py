@@ -81,7 +81,9 @@ def film_section(facts, ranking):
     crank = facts.crank[facts.crank.engines > 0]
     spread = crank.mean_kn.groupby(level="bearing").agg(lambda v: v.max() - v.min()).max()
     failed = int(crank.failed.groupby(level="scheme").first().sum())
-    intro = words.FILM_INTRO.format(method=facts.about.film_method, critical=fmt.um(facts.limits.critical_film, 2),
+    surface = facts.edge is not None and facts.edge.surface
+    intro = words.FILM_INTRO.format(where=words.SURFACE_PART if surface else "", method=facts.about.film_method,
+                                    critical=fmt.um(facts.limits.critical_film, 2),
                                     target=fmt.whole(facts.limits.life_target / 3600),
                                     engines=fmt.count(facts.about.mechanics_engines), spread=fmt.fixed(spread, 1),
                                     failed=words.FAILED_PART.format(failed=failed) if failed else "",
@@ -151,10 +153,22 @@ def _outcomes_text(outcomes, edge_contact):
                                               engines_s=words.plural(engines), have=words.plural(engines, "have", "has")))
     elif total and (outcomes.periodic or edge):
         text.append(words.ALL_PERIODIC.format(total=fmt.count(total)))
-    if edge:
+    if edge and edge_contact is not None and edge_contact.surface:
+        text.append(words.EDGE_SURFACE.format(edge=fmt.count(edge), share=100 * edge / max(total, 1),
+                                              critical=fmt.fixed(1e6 * edge_contact.critical, 2),
+                                              positions="; ".join(_edge_positions(edge_contact.per_position))))
+    elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
         text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
     return [" ".join(text), ""] if text else []
+
+
+def _edge_positions(rows):
+    """Per position with an edge below h_lim,cr: how many bearings, over how much of the cycle, how thin, where."""
+    return [words.EDGE_POSITION_PART.format(bearing=b, touching=fmt.percent(r.touching_pct / 100),
+                                            cycle=fmt.percent(r.cycle_share), film=fmt.fixed(1e6 * r.film, 2),
+                                            load=fmt.fixed(r.load / 1e3, 1), angle=fmt.whole(r.angle))
+            for b, r in rows.iterrows()]
 
 
 def _heat_text(heat, crank):

@@ -83,6 +83,8 @@ NOT_GRADED_LOST = "{share} of {scheme}'s bearings have a part read outside every
 STOCKOUTS_LOST = "{share} of {scheme}'s bearings wait for a shell (stock-outs)."
 SHELLS_LOST = "{scheme} scraps {share} of its shells."
 EDGE_NOTE = "Journal edges touch their shells in {share} of the bearings; the lives ignore that contact."
+EDGE_SURFACE_NOTE = ("Journal edges run below h_lim,cr in {share} of the bearings (support moments balanced, film "
+                     "over the surface); α and the lives read that film.")
 FAILURES_NOTE = "Stages failed on some engines (left out of the statistics): {lines}."
 NO_MECHANICS_NOTE = "The crankshaft, film and life stages did not run ({reason}): the ranking uses the clearance only."
 NONE_ASKED_PART = "the study asked for none, `mechanics_engines=0`"
@@ -184,11 +186,13 @@ NOT_GIVEN_JOURNAL = "not given in the engine file (journal and housing at one te
 
 # --- loads, film and life -------------------------------------------------------------------------------------
 NO_FILM = "The film and life stages did not run (see the verdict)."
-FILM_INTRO = ("Minimum film over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α: the "
+FILM_INTRO = ("Minimum film{where} over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α: the "
               "share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); lives by Levanov et al. "
               "(2015) method 1, per position, an engine's its weakest bearing's (target {target} h){scaled}. Mean "
               "cycle-maximum loads differ between schemes by at most {spread} kN at any position{failed}.{none}")
 SCALED_PART = ", on the scale of the mass-conserving check (below)"
+SURFACE_PART = (" over the bearing surface (the journal's tilt turned back by the support moments of crankshaft and "
+                "block, an elastic layer under the film; tilt_method coupled)")
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
 CORRECTED = ("Checked by `{method}` on {pairs} engines per scheme (control variates on {engines}), {scheme}'s "
              "means per position: cycle-minimum film {h_min} µm, cycle-mean film {h_min_mean} µm, life {life} h.")
@@ -214,6 +218,12 @@ ALL_PERIODIC = "Every one of the {total} bearing-cycles reached a periodic orbit
 EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reaches the wall at some crank angle, "
                "where the film is held at a floor of {floor:.1f} % of the radial clearance (no elastic edge, no "
                "EHD): boundary contact that α and the lives, read at the mid-plane, do not count.")
+EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
+                "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
+                "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
+                "planes); α and the lives read it.")
+EDGE_POSITION_PART = ("bearing {bearing} in {touching} of its bearings, over {cycle} of the cycle, thinnest {film} µm, "
+                      "at up to {load} kN near {angle}° crank")
 HEAT = ("The heat balance puts the films at {temperature} °C (5-95 %; median {temperature_median} °C{supply}), "
         "{power} W of friction per bearing and {flow} L/min of oil.")
 SUPPLY_PART = ", oil supplied at {supply:.0f} °C"
