@@ -49,6 +49,7 @@ class EdgeContact:
     critical: float = np.nan     # h_lim,cr [m]
     per_position: pd.DataFrame = None  # touching bearings per position (surface only): their share [%], median
                                        # share of the cycle [-], thinnest film [m], load [N] and crank angle [deg]
+    periodic: float = np.nan     # share of the bearing-cycles whose support moments repeated within the march
 
 
 def edge_contact(ds):
@@ -76,7 +77,8 @@ def edge_contact(ds):
                               "angle": float(np.nanmedian(ds.edge_contact_angle.values[..., b][on]))}
     return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
                        surface=True, critical=Wear.of(ds).critical_film_m,
-                       per_position=pd.DataFrame.from_dict(rows, orient="index"))
+                       per_position=pd.DataFrame.from_dict(rows, orient="index"),
+                       periodic=float(np.mean(ds.tilt_status.values[ran] == flag(ds.tilt_status, "periodic"))))
 
 
 @dataclass(frozen=True)

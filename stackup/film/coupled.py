@@ -93,7 +93,7 @@ METHODS = ("short", "finite")
 #: Crank angles between the solved ones (a 720-angle cycle; the same crank angle on other grids).
 STRIDE = 8
 #: Most cycles of the march, Newton tolerance and periodicity tolerance (shares of the thinnest film).
-CYCLES = 4
+CYCLES = 8
 TOLERANCE = 1e-2
 PERIODIC = 2e-2
 #: Most Newton iterations per solved angle.

@@ -156,7 +156,8 @@ def _outcomes_text(outcomes, edge_contact):
     if edge and edge_contact is not None and edge_contact.surface:
         text.append(words.EDGE_SURFACE.format(edge=fmt.count(edge), share=100 * edge / max(total, 1),
                                               critical=fmt.fixed(1e6 * edge_contact.critical, 2),
-                                              positions="; ".join(_edge_positions(edge_contact.per_position))))
+                                              positions="; ".join(_edge_positions(edge_contact.per_position)),
+                                              periodic=fmt.percent(edge_contact.periodic)))
     elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
         text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))

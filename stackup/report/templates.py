@@ -221,7 +221,8 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
                 "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
-                "planes); α and the lives read it.")
+                "planes); α and the lives read it. The support moments repeated from cycle to cycle in {periodic} of the "
+                "bearings (`tilt_status`; the others are taken at the march's last cycle).")
 EDGE_POSITION_PART = ("bearing {bearing} in {touching} of its bearings, over {cycle} of the cycle, thinnest {film} µm, "
                       "at up to {load} kN near {angle}° crank")
 HEAT = ("The heat balance puts the films at {temperature} °C (5-95 %; median {temperature_median} °C{supply}), "
