@@ -77,7 +77,7 @@ def _compare(args, state):
     # what the run cannot do is said before any folder is touched: bad files, a window in mm, too many engines
     engine, window = _checked_inputs(args, schemes, n, design)
     identity = run_identity(engine=args.engine, schemes=schemes, n_engines=n, seed=args.seed, window=window,
-                            scenarios=scenarios, design=design is not None)
+                            scenarios=scenarios, design=design is not None, tilt_method=args.tilt_method)
     existed = os.path.isdir(out)
     staged = prepare_folder(out, identity=identity, force=args.force)
     state.saved = f"nothing was saved: {out} {'is as it was' if existed else 'was not created'}"
@@ -87,7 +87,7 @@ def _compare(args, state):
                                  scenarios=scenarios, uncertainties=None if args.no_scenarios else "declared",
                                  negligible=args.negligible, design=design, log=log, window=window,
                                  scheduler="processes" if args.processes else None,
-                                 film_check_engines=args.film_check_engines)
+                                 film_check_engines=args.film_check_engines, tilt_method=args.tilt_method)
         log(f"saving the dataset: {os.path.join(out, 'compare.nc')}")
         data = save_comparison(result, staged.staging / "compare.nc", compact=args.compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")
@@ -497,6 +497,12 @@ def _compare_parser(sub):
                       help="engines per scheme whose films run again with the mass-conserving elrod-coarse tier, "
                            "which corrects the film and life means of the report by control variates (0: none; "
                            f"default: {FILM_CHECK_ENGINES})")
+    cmp_.add_argument("--tilt-method", choices=("equilibrium", "coupled", "free"), default="equilibrium",
+                      help="the journal's tilt in its bearing: balanced at each bearing against the crankshaft "
+                           "(default); 'coupled', the support moments of all bearings balanced with the crankshaft "
+                           "and the block over the cycle, the film, alpha and lives read over the whole bearing "
+                           "surface (several times the chain's cost: reports/bench_chain.md, reports/coupled_supports.md); 'free', "
+                           "the crankshaft's slope held")
     cmp_.add_argument("--processes", action="store_true",
                       help="run the study and its scenarios on one local worker process per core (dask; the same "
                            "numbers, faster on a large run)")

@@ -37,7 +37,7 @@ DATASET = "compare.nc"
 #: Files a comparison writes (globs), replaced together when a run replaces another.
 RUN_FILES = (DATASET, "report.md", "report.html", "*.png")
 #: Study parameters that tell two comparisons apart.
-IDENTITY = ("engine", "schemes", "n_engines", "seed", "window")
+IDENTITY = ("engine", "schemes", "n_engines", "seed", "window", "tilt_method")
 _STAGING = ".stackup-partial-"
 _CLAIM = ".stackup-claim-"
 
@@ -339,15 +339,16 @@ def saved_run(folder):
     except (OSError, KeyError, AttributeError, ValueError, RuntimeError):
         return None
     identity = {k: study.get(k) for k in IDENTITY}
+    identity["tilt_method"] = identity["tilt_method"] or "equilibrium"  # a study saved before the key
     identity["schemes"] = [s for s in identity["schemes"] or [] if s != designed]  # the run designed it
     return _normalised({**identity, "scenarios": scenarios, "design": designed is not None})
 
 
-def run_identity(*, engine, schemes, n_engines, seed, window, scenarios, design):
+def run_identity(*, engine, schemes, n_engines, seed, window, scenarios, design, tilt_method="equilibrium"):
     """A comparison's identity as :func:`saved_run` reads it back (``window`` in m or None, ``design`` a bool)."""
     return _normalised({"engine": engine, "schemes": list(schemes), "n_engines": n_engines, "seed": seed,
-                        "window": list(window) if window else None, "scenarios": list(scenarios),
-                        "design": bool(design)})
+                        "window": list(window) if window else None, "tilt_method": tilt_method,
+                        "scenarios": list(scenarios), "design": bool(design)})
 
 
 def _normalised(identity):
@@ -364,6 +365,8 @@ def describe(identity):
             f"{'s' if len(schemes) != 1 else ''}, seed {identity.get('seed')}")
     if window:
         text += f", window {window[0] * 1e6:g}-{window[1] * 1e6:g} um"
+    if identity.get("tilt_method") not in (None, "equilibrium"):
+        text += f", tilt {identity['tilt_method']}"
     if identity.get("design"):
         text += ", a designed scheme"
     return text + (f", {len(identity['scenarios'])} scenarios" if identity.get("scenarios") else ", no scenarios")

@@ -258,6 +258,23 @@ def test_compare_refuses_to_replace_another_run_without_force(tmp_path):
 
 
 
+def test_a_run_with_another_tilt_method_is_another_run(tmp_path):
+    from stackup.output import run_identity, saved_run
+
+    _fake_run(tmp_path / "run", tilt_method="coupled")
+    saved = saved_run(tmp_path / "run")
+    same = dict(engine="iso-example", schemes=["iso13778-4"], n_engines=5000, seed=1, window=None, scenarios=[],
+                design=False)
+    assert saved == run_identity(**same, tilt_method="coupled") != run_identity(**same)
+    before = listing(tmp_path)
+    result = stackup(*SMALL_COMPARE, "--out", tmp_path / "run")
+    assert result.returncode == 2 and "seed 1, tilt coupled, no scenarios" in result.stderr
+    assert listing(tmp_path) == before
+    # a run saved before the key is an equilibrium one
+    _fake_run(tmp_path / "older")
+    assert saved_run(tmp_path / "older")["tilt_method"] == "equilibrium"
+
+
 def test_the_terminal_verdict_is_the_reports_first_verdict_line(tmp_path):
     from stackup.cli import _verdict_line
 
