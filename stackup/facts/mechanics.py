@@ -48,7 +48,9 @@ class EdgeContact:
     surface: bool = False        # the film over the bearing surface ran (support moments, elastic layer)
     critical: float = np.nan     # h_lim,cr [m]
     per_position: pd.DataFrame = None  # touching bearings per position (surface only): their share [%], median
-                                       # share of the cycle [-], thinnest film [m], load [N] and crank angle [deg]
+                                       # share of the cycle [-] and its 5-95 % over all the position's bearings
+                                       # (the spread the tolerances and clearances give), thinnest film [m],
+                                       # load [N] and crank angle [deg]
     periodic: float = np.nan     # share of the bearing-cycles whose support moments repeated within the march
 
 
@@ -70,8 +72,10 @@ def edge_contact(ds):
         on, there = touching[..., b], ran[..., b]
         if not on.any():
             continue
+        lo, hi = np.percentile(share[..., b][there], [5, 95])
         rows[int(bearing)] = {"touching_pct": 100 * on.sum() / there.sum(),
                               "cycle_share": float(np.median(share[..., b][on])),
+                              "cycle_lo": float(lo), "cycle_hi": float(hi),
                               "film": float(np.median(ds.h_min.values[..., b][on])),
                               "load": float(np.nanmedian(ds.edge_contact_load.values[..., b][on])),
                               "angle": float(np.nanmedian(ds.edge_contact_angle.values[..., b][on]))}

@@ -167,7 +167,8 @@ def _outcomes_text(outcomes, edge_contact):
 def _edge_positions(rows):
     """Per position with an edge below h_lim,cr: how many bearings, over how much of the cycle, how thin, where."""
     return [words.EDGE_POSITION_PART.format(bearing=b, touching=fmt.percent(r.touching_pct / 100),
-                                            cycle=fmt.percent(r.cycle_share), film=fmt.fixed(1e6 * r.film, 2),
+                                            cycle=fmt.percent(r.cycle_share), lo=fmt.percent(r.cycle_lo),
+                                            hi=fmt.percent(r.cycle_hi), film=fmt.fixed(1e6 * r.film, 2),
                                             load=fmt.fixed(r.load / 1e3, 1), angle=fmt.whole(r.angle))
             for b, r in rows.iterrows()]
 
