@@ -468,7 +468,11 @@ def _housing_outer_interval(t, bore, *, scale, units):
     return (lo, hi)
 
 
-def _material(t, name, default="steel"):
+#: The material of a part whose file names none (press fit, crankshaft, and the block the supports derive from).
+DEFAULT_MATERIAL = "steel"
+
+
+def _material(t, name, default=DEFAULT_MATERIAL):
     """The name of a known material (:mod:`stackup.materials`) at key ``name`` of table ``t``."""
     return t.text(name, default, options=tuple(materials.available()))
 
@@ -680,7 +684,7 @@ def _supports(top, *, scale, units, bearings, block, ring):
                          "bulkhead's web ([supports.bulkhead]: thickness, height, width) it is derived from, one of "
                          "them")
     if bulkhead is not None:
-        material = materials.get(block or "grey-cast-iron")
+        material = materials.get(block or DEFAULT_MATERIAL)  # press_fit.housing_material's own default
         plausible = dict(scale=scale, units=units, plausible=PLAUSIBLE["ring"])
         thickness = bulkhead.lengths("thickness", count=bearings, required=True, **plausible, what="bulkhead thickness")
         height = bulkhead.length("height", required=True, **plausible, what="bulkhead height")
