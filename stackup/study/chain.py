@@ -391,7 +391,7 @@ def _check_values(engine, films, surface, reactions, crank_angle, *, clearance, 
                                    viscosity=films.viscosity[first], clearance=np.asarray(clearance)[first],
                                    journal_d=np.asarray(journal_d)[first], method=film_method)
     mid = films.h_min[first]
-    read = np.maximum(_surface_film(films, surface)[first], 0.0)
+    read = _life_film(films, surface)[first]
     out["h_min_check"][first] = read.min(axis=-1) + mid.min(axis=-1) * (accurate.min(axis=-1) / cheap.min(axis=-1)
                                                                         - 1)
     mean = cycle_film(mid, statistic="cycle-mean")
@@ -420,9 +420,14 @@ def _surface(films, tilt, constants, spec, crank_angle, *, clearance, journal_d,
 
 
 def _surface_film(films, surface):
-    """The film the lives read over the cycle (engines, bearings, angles) [m]: over the surface where the support
+    """The study's film over the cycle (engines, bearings, angles) [m]: over the surface where the support
     moments ran, else the mid-plane's."""
     return films.h_min if surface is None else surface.film
+
+
+def _life_film(films, surface):
+    """The film Levanov's methods read over the cycle [m]: :func:`_surface_film`, a negative one no film (0)."""
+    return np.maximum(_surface_film(films, surface), 0.0)
 
 
 def _edge_contact(films, surface, loads, crank_angle, critical):
@@ -479,7 +484,7 @@ def _life_values(engine, films, surface, bearing_width, *, clearance, journal_d,
     moments ran (``surface``)."""
     wear = engine.wear
     c = np.asarray(clearance) / 2
-    h = np.maximum(_surface_film(films, surface), 0.0)  # Levanov's films: a negative one is no film
+    h = _life_film(films, surface)
     chart = levanov_method2(_wear_positions(films, surface, bearing_width, c), radial_clearance=c,
                             crank_angle=crank_angle, speed=engine.crank.speed,
                             journal_radius=np.asarray(journal_d) / 2, h_lim_cr=wear.critical_film,
