@@ -52,6 +52,8 @@ class EdgeContact:
                                        # (the spread the tolerances and clearances give), thinnest film [m],
                                        # load [N] and crank angle [deg]
     periodic: float = np.nan     # share of the bearing-cycles whose support moments repeated within the march
+    unresolved: tuple = (np.nan, np.nan)  # median and 95 % over the engines of the share of the march's solved
+                                          # angles whose balance was not resolved to the tolerance
 
 
 def edge_contact(ds):
@@ -82,7 +84,17 @@ def edge_contact(ds):
     return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
                        surface=True, critical=Wear.of(ds).critical_film_m,
                        per_position=pd.DataFrame.from_dict(rows, orient="index"),
-                       periodic=float(np.mean(ds.tilt_status.values[ran] == flag(ds.tilt_status, "periodic"))))
+                       periodic=float(np.mean(ds.tilt_status.values[ran] == flag(ds.tilt_status, "periodic"))),
+                       unresolved=_unresolved(ds, ran))
+
+
+def _unresolved(ds, ran):
+    """Median and 95 % of ``tilt_unresolved`` over the bearing-cycles that ran (NaN for a study before it)."""
+    if "tilt_unresolved" not in ds:
+        return (np.nan, np.nan)
+    values = ds.tilt_unresolved.values[ran]
+    values = values[np.isfinite(values)]
+    return tuple(float(v) for v in np.percentile(values, [50, 95])) if values.size else (np.nan, np.nan)
 
 
 @dataclass(frozen=True)

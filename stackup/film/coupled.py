@@ -174,6 +174,10 @@ class SupportMoments:
         whose orbit is not a number at some bearing (its bearings are one system).
     evaluations : numpy.ndarray (engines, bearings)
         Sweeps of every bearing's film moment (the cost).
+    unresolved : numpy.ndarray (engines, bearings)
+        Share of the last cycle's solved crank angles whose Newton ended on short steps without its full step on a
+        fresh matrix within the tolerance (the force and turn-back balance not resolved there; the same for every
+        bearing of an engine); NaN where the march did not run.
     """
 
     tilt: np.ndarray
@@ -181,6 +185,7 @@ class SupportMoments:
     film: np.ndarray
     state: np.ndarray
     evaluations: np.ndarray
+    unresolved: np.ndarray
 
 
 def squeeze_velocity(position, crank_angle, speed):
@@ -287,6 +292,7 @@ def support_moments(position, free_tilt, crank_angle, *, compliance, journal_rad
     film = np.full((n_e, n_b, n), np.nan)
     state = np.full((n_e, n_b), STATES.index("failed"), np.int8)
     evaluations = np.zeros((n_e, n_b), np.int64)
+    unresolved = np.full((n_e, n_b), np.nan)
     # an engine with a film that is not a number (an orbit that failed, a collapsed film: NaN centres) cannot be
     # balanced, its bearings being one system: its tilt is the free one, its film NaN, its state failed
     ok = np.isfinite(xi).all(axis=(1, 2, 3)) & np.isfinite(vbar).all(axis=(1, 2, 3)) & np.isfinite(kbar).all(
@@ -294,11 +300,12 @@ def support_moments(position, free_tilt, crank_angle, *, compliance, journal_rad
     tilt[~ok] = free[~ok]
     if ok.any():
         run = _kernel.Engines(*(np.ascontiguousarray(a[ok]) for a in engines))
-        parts = [np.empty((int(ok.sum()), *a.shape[1:]), a.dtype) for a in (tilt, shift, film, state, evaluations)]
+        parts = [np.empty((int(ok.sum()), *a.shape[1:]), a.dtype) for a in (tilt, shift, film, state, evaluations,
+                                                                                unresolved)]
         _kernel.march_engines(run, Correction(tables, ld_nodes, stretched, finite), layer.table(), quadrature(),
                               _contact_rule(), march, *parts)
-        for whole, part in zip((tilt, shift, film, state, evaluations), parts):
+        for whole, part in zip((tilt, shift, film, state, evaluations, unresolved), parts):
             whole[ok] = part
     cc = c[..., None, None]
     return SupportMoments(tilt * (2 * c / l)[..., None, None], x + shift * cc, film * c[..., None], state,
-                          evaluations)
+                          evaluations, unresolved)

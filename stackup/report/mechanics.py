@@ -158,6 +158,9 @@ def _outcomes_text(outcomes, edge_contact):
                                               critical=fmt.fixed(1e6 * edge_contact.critical, 2),
                                               positions="; ".join(_edge_positions(edge_contact.per_position)),
                                               periodic=fmt.percent(edge_contact.periodic)))
+        median, high = edge_contact.unresolved
+        if np.isfinite(median) and high > 0:
+            text[-1] += words.EDGE_UNRESOLVED.format(median=fmt.percent(median), high=fmt.percent(high))
     elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
         text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))

@@ -223,6 +223,10 @@ EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its t
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
                 "planes); α and the lives read it. The support moments repeated from cycle to cycle in {periodic} of the "
                 "bearings (`tilt_status`; the others are taken at the march's last cycle).")
+EDGE_UNRESOLVED = (" At {median} of the march's solved crank angles (median over the engines; {high} at the 95th "
+                   "percentile; `tilt_unresolved`) the force and turn-back balance was not resolved: Newton's full "
+                   "step stayed longer than its tolerance where the film's moment stops growing with the tilt, and the "
+                   "last iterate is taken.")
 EDGE_POSITION_PART = ("bearing {bearing} in {touching} of its bearings, over {cycle} of the cycle ({lo}–{hi} over the "
                       "engines, 5–95 %), thinnest {film} µm, at up to {load} kN near {angle}° crank")
 HEAT = ("The heat balance puts the films at {temperature} °C (5-95 %; median {temperature_median} °C{supply}), "

@@ -450,9 +450,10 @@ def _film_values(films, surface, loads, crank_angle, critical):
     edge = films.h_min_edge if surface is None else surface.film
     share, load, angle = _edge_contact(films, surface, loads, crank_angle, critical)
     tilt_status = np.full(films.h_min.shape[:-1], len(TILT_STATES), np.int8)
+    unresolved = np.full(films.h_min.shape[:-1], np.nan)
     status = films.status
     if surface is not None:
-        tilt_status = surface.state
+        tilt_status, unresolved = surface.state, surface.unresolved
         # a periodic orbit with an edge in asperity contact somewhere in the cycle
         status = np.where((status == FILM_STATUS.index("periodic")) & (share > 0), FILM_STATUS.index("edge_contact"),
                           status).astype(np.int8)
@@ -465,6 +466,7 @@ def _film_values(films, surface, loads, crank_angle, critical):
             "edge_contact_load": load,
             "edge_contact_angle": angle,
             "tilt_status": tilt_status,
+            "tilt_unresolved": unresolved,
             "p_max": films.p_max.max(axis=-1),
             "p_max_mean": films.p_max.mean(axis=-1),
             "film_status": status,

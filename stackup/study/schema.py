@@ -99,6 +99,9 @@ MECHANICS = {
                                              "in contact (NaN: none)"),
     "tilt_status": Var(SMB, "1", "status of the support moments over the cycle (tilt_method coupled)",
                        TILT_STATUS_FLAGS, "i1", len(TILT_STATUS)),
+    "tilt_unresolved": Var(SMB, "1", "share of the support moments' solved crank angles, last cycle, whose force and "
+                                     "turn-back balance was not resolved to the tolerance (tilt_method coupled; NaN "
+                                     "otherwise)"),
     "p_max": Var(SMB, "Pa", "peak oil film pressure over the engine cycle (Rozhdestvensky et al.'s p_max)"),
     "p_max_mean": Var(SMB, "Pa", "cycle mean of the peak oil film pressure (Rozhdestvensky et al.'s p*_max)"),
     "film_status": Var(SMB, "1", "status of the bearing's film over the cycle (dynamic tiers: whether the journal "
