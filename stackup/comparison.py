@@ -85,7 +85,10 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
         Model inputs over their declared ranges, run as scenarios like the
         process ones: "declared" runs the engine's
         (:func:`stackup.scenarios.model_uncertainties`: housing stiffness,
-        crush height process, journal-housing temperature difference); None
+        crush height process, journal-housing temperature difference, and
+        where the engine file assumes them the crankshaft's bending stiffness
+        and, with ``tilt_method="coupled"``, the supports' angular
+        compliance); None
         or empty runs none. Each scenario dataset says what it is in its
         attributes (``scenario_kind`` "process" or "model"; a model one its
         ``scenario_input``, ``scenario_source`` and ``scenario_measure``).
@@ -117,7 +120,8 @@ def compare(engine="iso-example", schemes=ISO_SCHEMES, n_engines=100_000, seed=0
     """
     log = log or (lambda line: None)
     negligible = check.Positive(zero=True)("negligible", negligible)
-    runs_asked = _scenario_runs(scenarios, _uncertainties(uncertainties, engine))
+    runs_asked = _scenario_runs(scenarios, _uncertainties(uncertainties, engine,
+                                                         study_options.get("tilt_method", "equilibrium")))
     designed = None
     if design is not None:
         log("design: a scheme for the engine and its window (stackup.design)")
@@ -160,13 +164,14 @@ COMPARISON_NOTE = ("the study of a stackup.compare comparison; its scenarios, ta
                    "stackup.rank(that comparison)")
 
 
-def _uncertainties(uncertainties, engine):
-    """The model uncertainties a comparison runs: "declared" is the engine's, None none, else as given."""
+def _uncertainties(uncertainties, engine, tilt_method):
+    """The model uncertainties a comparison runs: "declared" is the engine's (for a study with ``tilt_method``),
+    None none, else as given."""
     if isinstance(uncertainties, str):
         if uncertainties != "declared":
             raise ValueError(f"uncertainties: {uncertainties!r} is not 'declared', None or a sequence of "
                              "stackup.scenarios.Uncertainty")
-        return model_uncertainties(load_engine(engine))
+        return model_uncertainties(load_engine(engine), tilt_method)
     return list(uncertainties or ())
 
 

@@ -173,6 +173,9 @@ class CrankSpec:
     oil: str = "SAE-5W-30"  # stackup.film.oil grade
     oil_supply_temperature: float = 90.0  # [degC]
     supports: Supports | None = None  # the block's compliance at each main bearing; None: rigid against tilt
+    #: where the section inertias come from (``section_inertia_source``; empty: not given, an assumption)
+    section_inertia_source: str = ""
+    crank_modulus: float = 2.1e11  # Young's modulus of the crankshaft [Pa] (``crank_material``'s)
 
     def pin_loads(self, crank_angle):
         """Crank-pin loads (angles, cylinders, 2) [N] at crank angles [deg]."""
@@ -630,6 +633,7 @@ def _crank(top, *, scale, units, bearings, extra):
         journal_runout=t.length("journal_runout", 0.0, **length, plausible=PLAUSIBLE["misalignment"],
                                 what="journal run-out"),
         clearance_ratio=1.0, law_parameters={}, pressure_trace=_pressure_trace(t, extra),
+        section_inertia_source=t.text("section_inertia_source", ""), crank_modulus=modulus,
     )
     t.close()
     ratio, params = _bearing_law(top, **length)
@@ -705,7 +709,7 @@ def _supports(top, *, scale, units, bearings, block, ring):
                          "plausible offset of a bore by the block's heat (0 to 500 um)")
     # [um/kN] -> [m/N] by a division: 1 / (c / 1e9) gives back the stiffness a file's digits came from
     out = Supports(linear / 1e9, angular, None if thermal is None else thermal * 1e-6, t.source("source"),
-                   t.source("thermal_source") if thermal is not None else "")
+                   t.source("thermal_source") if thermal is not None else "", angular_derived=bulkhead is not None)
     t.close()
     return out
 

@@ -10,13 +10,17 @@ kinds:
   the declared range of each model input the engine file assumes and a
   verdict may rest on, each range with its source or marked as assumed, and
   what to measure to narrow it: the housing's stiffness (its equivalent outer
-  diameter, hence the housing swell), the shells' crush height process, and
-  how much hotter the journal runs than its bulkhead.
+  diameter, hence the housing swell), the shells' crush height process, how
+  much hotter the journal runs than its bulkhead, and, where the engine file
+  assumes them, the crankshaft's bending stiffness and (with the support
+  moments balanced) the supports' angular compliance.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+import numpy as np
 
 from .study.scenario import KEYS, apply
 
@@ -30,10 +34,11 @@ DECLARED = {
     "gauge repeatability 2 µm": {"gauge_repeatability": 2e-6},
     "misalignment ×2": {"misalignment_scale": 2.0},
 }
-#: Scenario keys that change a model input rather than a process (the supports' compliance joins them).
-MODEL_KEYS = ("housing_outer", "crush_shift", "journal_temperature_excess")
+#: Scenario keys that change a model input rather than a process.
+MODEL_KEYS = ("housing_outer", "crush_shift", "journal_temperature_excess", "crank_stiffness_scale",
+              "support_angular_scale")
 #: Scenario keys that disturb the crankshaft, film and life stages (a comparison runs them on some engines).
-MECHANICS_KEYS = ("misalignment_scale",)
+MECHANICS_KEYS = ("misalignment_scale", "crank_stiffness_scale", "support_angular_scale")
 
 #: Assumed range of the housing's equivalent outer diameter over its bore's lower limit [-] where no fitting
 #: test measured it. A bolted bulkhead and cap are no ring, so its equivalent ring is an assumption
@@ -47,6 +52,14 @@ RIGID_RATIO = 10.0
 JOURNAL_EXCESS_RANGE = (0.0, 20.0)
 #: Assumed shift of the crush height process mean [standard deviations], as the parts' process scenarios.
 CRUSH_SHIFT = 1.0
+#: Lower end of an assumed crankshaft's section inertias, a factor on the engine file's [-]: throw inertias taken
+#: from another engine's identification (Bellakhdhar et al. 2013, Table 2, scaled) may be off by a factor of two,
+#: as the bulkhead model's; the upper end is the plain journal's section (no throw bends less than a straight
+#: shaft of its journal).
+CRANK_STIFFNESS_LOW = 0.5
+#: Factor either way on an angular support compliance derived from a bulkhead web
+#: (:func:`stackup.crank.housing.bulkhead_compliance`'s stated uncertainty).
+BULKHEAD_FACTOR = 2.0
 
 
 @dataclass(frozen=True)
@@ -129,16 +142,69 @@ def journal_temperature(engine):
                        "journal and bulkhead temperatures in a running engine")
 
 
-#: The model inputs a comparison declares, each a function of the engine giving its :class:`Uncertainty`.
-#: The supports' compliance joins them once the crankshaft's supports carry one (its key in MODEL_KEYS and
-#: MECHANICS_KEYS, its change in :func:`stackup.study.scenario.apply`).
-MODEL_INPUTS = (housing_stiffness, crush_height, journal_temperature)
+def _journal_d(engine):
+    """The main journal's mean diameter [m]."""
+    return 0.5 * (engine.journal_d.lo + engine.journal_d.hi)
 
 
-def model_uncertainties(engine):
-    """The declared model-uncertainty scenarios of an engine (an :class:`~stackup.engines.Engine`): a list of
-    :class:`Uncertainty`, one per input of :data:`MODEL_INPUTS`."""
-    return [declared(engine) for declared in MODEL_INPUTS]
+def crank_stiffness(engine):
+    r"""The :class:`Uncertainty` of the crankshaft's section inertias where the engine file assumes them
+    (``section_inertia_source`` empty or beginning "assumed"), else None: from :data:`CRANK_STIFFNESS_LOW` times
+    the file's up to the plain journal's :math:`\pi D^4/64` for the stiffest throw."""
+    spec = engine.crank
+    if spec is None:
+        return None
+    source = " ".join(spec.section_inertia_source.split())
+    if source and not source.lower().startswith("assumed"):
+        return None
+    d = _journal_d(engine)
+    high = float(f"{spec.crank_modulus * np.pi * d**4 / 64 / spec.ei.max():.2g}")  # as its label says it
+    low = CRANK_STIFFNESS_LOW
+    given = source.removeprefix("assumed").lstrip(":; ") or "the engine file gives no source"
+    return Uncertainty("crankshaft bending stiffness (section inertias)",
+                       {f"crank inertia ×{low:g}": {"crank_stiffness_scale": low},
+                        f"crank inertia ×{high:.2g} (plain journal)": {"crank_stiffness_scale": high}},
+                       f"assumed: {given}; run from ×{low:g} (throws identified on another engine and scaled may "
+                       f"be off by a factor of two) to the plain {1e3 * d:.0f} mm journal's section (no throw bends "
+                       "less than a straight shaft of its journal; Rozhdestvensky et al.'s coaxial films need about "
+                       "that, reports/coupled_supports.md)",
+                       "the crankshaft's bending compliance (a finite-element model of the crankshaft, or a bending "
+                       "test of the crankshaft on its end journals)")
+
+
+def support_compliance(engine, tilt_method="equilibrium"):
+    """The :class:`Uncertainty` of the supports' angular compliance where it is derived from a bulkhead web
+    (:func:`stackup.crank.housing.bulkhead_compliance`) and the study balances the support moments
+    (``tilt_method`` "coupled", the only one that reads it), else None: :data:`BULKHEAD_FACTOR` either way."""
+    supports = engine.crank.supports if engine.crank is not None else None
+    if supports is None or not supports.angular_derived or tilt_method != "coupled":
+        return None
+    k = BULKHEAD_FACTOR
+    return Uncertainty("supports' angular compliance (bulkhead)",
+                       {f"support tilt compliance ×{1 / k:g}": {"support_angular_scale": 1 / k},
+                        f"support tilt compliance ×{k:g}": {"support_angular_scale": k}},
+                       f"assumed: derived from the engine file's bulkhead web by stackup.crank.housing."
+                       f"bulkhead_compliance, a factor of {k:g} either way (its error against a finite-element "
+                       "model of a bulkhead is not measured)",
+                       "the bulkheads' tilt compliance (a finite-element model of the block, or a bearing cap "
+                       "loaded by a couple on a mandrel)")
+
+
+#: The model inputs a comparison declares, each a function of the engine (and the study's tilt method) giving its
+#: :class:`Uncertainty`, or None where the engine file sources the input or the study does not read it.
+MODEL_INPUTS = (housing_stiffness, crush_height, journal_temperature, crank_stiffness, support_compliance)
+
+
+def model_uncertainties(engine, tilt_method="equilibrium"):
+    """The declared model-uncertainty scenarios of an engine (an :class:`~stackup.engines.Engine`) for a study
+    with ``tilt_method``: a list of :class:`Uncertainty`, one per input of :data:`MODEL_INPUTS` that declares
+    one."""
+    out = []
+    for declared in MODEL_INPUTS:
+        u = declared(engine, tilt_method) if declared is support_compliance else declared(engine)
+        if u is not None:
+            out.append(u)
+    return out
 
 
 def kind(scenario):
@@ -147,4 +213,5 @@ def kind(scenario):
 
 
 __all__ = ["DECLARED", "KEYS", "MECHANICS_KEYS", "MODEL_INPUTS", "MODEL_KEYS", "Uncertainty", "apply",
-           "crush_height", "housing_stiffness", "journal_temperature", "kind", "model_uncertainties"]
+           "crank_stiffness", "crush_height", "housing_stiffness", "journal_temperature", "kind",
+           "model_uncertainties", "support_compliance"]

@@ -49,6 +49,9 @@ class Supports:
     source : str
         Where the compliances come from.
     thermal_source : str
+    angular_derived : bool
+        The angular compliance is :func:`bulkhead_compliance`'s, from a web the engine file describes (its
+        stated error, a factor of two either way, a declared model uncertainty), not given as a number.
     """
 
     linear: np.ndarray
@@ -56,6 +59,7 @@ class Supports:
     thermal_offset: np.ndarray | None = None
     source: str = ""
     thermal_source: str = ""
+    angular_derived: bool = False
 
     @property
     def law_stiffness(self):

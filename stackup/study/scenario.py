@@ -23,9 +23,11 @@ Model inputs, what the engine file assumes and nobody may have measured:
 ``journal_temperature_excess``
     How much hotter the journal runs than its housing in service [K],
     instead of the engine file's.
-
-(The supports' compliance joins these as a key once the crankshaft's
-supports carry one: add its check here and its change in :func:`apply`.)
+``crank_stiffness_scale``
+    Factor on the crankshaft's section inertias (its bending stiffness) [-].
+``support_angular_scale``
+    Factor on the supports' angular compliance [-] (read where the support
+    moments are balanced, ``tilt_method`` "coupled").
 
 The declared sets a comparison runs are in :mod:`stackup.scenarios`.
 """
@@ -40,7 +42,8 @@ from .. import _validate as check
 CHECKS = {"housing_shift": check.Finite(), "journal_shift": check.Finite(),
           "gauge_repeatability": check.Positive(zero=True), "misalignment_scale": check.Positive(zero=True),
           "housing_outer": check.Positive(), "crush_shift": check.Finite(),
-          "journal_temperature_excess": check.InRange(-50.0, 100.0, unit=" K")}
+          "journal_temperature_excess": check.InRange(-50.0, 100.0, unit=" K"),
+          "crank_stiffness_scale": check.InRange(0.01, 100.0), "support_angular_scale": check.Positive(zero=True)}
 KEYS = tuple(CHECKS)
 
 
@@ -88,5 +91,10 @@ def apply(engine, scenario):
     if "misalignment_scale" in scenario and crank is not None:
         k = scenario["misalignment_scale"]
         crank = replace(crank, coaxiality=k * crank.coaxiality, journal_runout=k * crank.journal_runout)
+    if "crank_stiffness_scale" in scenario and crank is not None:
+        crank = replace(crank, ei=crank.ei * scenario["crank_stiffness_scale"])
+    if "support_angular_scale" in scenario and crank is not None and crank.supports is not None:
+        supports = crank.supports
+        crank = replace(crank, supports=replace(supports, angular=supports.angular * scenario["support_angular_scale"]))
     return replace(engine, housing_bore=housing, journal_d=journal, shell_wall=shells, crank=crank,
                    press_fit=_press_fit(engine, scenario))
