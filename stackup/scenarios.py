@@ -172,7 +172,7 @@ def crank_stiffness(engine):
                        "test of the crankshaft on its end journals)")
 
 
-def support_compliance(engine, tilt_method="equilibrium"):
+def support_tilt_compliance(engine, tilt_method="equilibrium"):
     """The :class:`Uncertainty` of the supports' angular compliance where it is derived from a bulkhead web
     (:func:`stackup.crank.housing.bulkhead_compliance`) and the study balances the support moments
     (``tilt_method`` "coupled", the only one that reads it), else None: :data:`BULKHEAD_FACTOR` either way."""
@@ -192,7 +192,7 @@ def support_compliance(engine, tilt_method="equilibrium"):
 
 #: The model inputs a comparison declares, each a function of the engine (and the study's tilt method) giving its
 #: :class:`Uncertainty`, or None where the engine file sources the input or the study does not read it.
-MODEL_INPUTS = (housing_stiffness, crush_height, journal_temperature, crank_stiffness, support_compliance)
+MODEL_INPUTS = (housing_stiffness, crush_height, journal_temperature, crank_stiffness, support_tilt_compliance)
 
 
 def model_uncertainties(engine, tilt_method="equilibrium"):
@@ -201,7 +201,7 @@ def model_uncertainties(engine, tilt_method="equilibrium"):
     one."""
     out = []
     for declared in MODEL_INPUTS:
-        u = declared(engine, tilt_method) if declared is support_compliance else declared(engine)
+        u = declared(engine, tilt_method) if declared is support_tilt_compliance else declared(engine)
         if u is not None:
             out.append(u)
     return out
@@ -214,4 +214,4 @@ def kind(scenario):
 
 __all__ = ["DECLARED", "KEYS", "MECHANICS_KEYS", "MODEL_INPUTS", "MODEL_KEYS", "Uncertainty", "apply",
            "crank_stiffness", "crush_height", "housing_stiffness", "journal_temperature", "kind",
-           "model_uncertainties", "support_compliance"]
+           "model_uncertainties", "support_tilt_compliance"]
