@@ -213,6 +213,8 @@ ENGINE_DEFAULTS = {
     ("targets", "clearance_source"): "", ("targets", "life_hours"): 1000.0,
     ("crank", "counterweight_share"): 0.0, ("crank", "compression_ratio"): 16.0, ("crank", "peak_pressure"): 13e6,
     ("crank", "crank_material"): "steel", ("crank", "coaxiality"): 0.0, ("crank", "journal_runout"): 0.0,
+    # no source for the section inertias: assumed (a declared model uncertainty of the comparison)
+    ("crank", "section_inertia_source"): "",
     ("bearing_law", "dx"): 0.00965, ("bearing_law", "k_lv"): 0.98e9, ("bearing_law", "k_hv"): 1.72e9,
     ("bearing_law", "theta0"): 97.0, ("bearing_law", "dtheta"): 15.0, ("bearing_law", "clearance_ratio"): 37.0 / 30.0,
     ("oil", "grade"): "SAE-5W-30", ("oil", "supply_temperature"): 90.0,
