@@ -4,6 +4,7 @@ import json
 import subprocess
 import sys
 import tomllib
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -500,3 +501,23 @@ def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_th
     else:
         assert "runs below h_lim,cr" not in text
     assert "Minimum film over the bearing surface" in text
+
+
+def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_change_the_edge_contact(tmp_path):
+    # the doubled-misalignment scenario on the same engines (common random numbers): each engine's share of the
+    # cycle below h_lim,cr against itself, per position, for the first-ranked scheme; and the unresolved share
+    from stackup.facts import facts
+    from stackup.study import Study
+
+    study = Study(engine="rozhdestvensky-4", schemes=("iso13778-1",), n_engines=300, mechanics_engines=6,
+                  pilot_engines=1000, crank_angle_step=4.0, tilt_method="coupled", progress=False)
+    ds = study.run()
+    doubled = replace(study, scenario={"misalignment_scale": 2.0}).run()
+    positions, _ = facts(ds, scenarios={"misalignment ×2": doubled}).life_changes["misalignment ×2"]
+    changes = np.array([v[0] for v in positions.edge_share_change_pts])
+    direct = np.median(100 * (doubled.edge_contact_share.values[0] - ds.edge_contact_share.values[0]), axis=0)
+    np.testing.assert_allclose(changes, direct)
+    text = write_report(ds, tmp_path, scenarios={"misalignment ×2": doubled}).read_text()
+    assert ("The tolerances: with the drawing's coaxiality and run-out ×2 (misalignment ×2; 6 engines, each against "
+            "itself) iso13778-1's share of the cycle below h_lim,cr changes by") in text
+    assert "`tilt_unresolved`" in text or not np.nanmax(ds.tilt_unresolved.values) > 0

@@ -215,6 +215,8 @@ class Facts:
     life_changes: dict           # scenario -> paired_life_changes (scenarios that ran the mechanical chain)
     trends: ClearanceTrends      # film and life against the operating clearance per position (None: not computed)
     corrected: pd.DataFrame      # multi_fidelity: film and life means corrected by the check tier (empty: no check)
+    misalignment: tuple = None   # (label, factor) of the first scenario that scales the drawing's misalignment
+                                 # and ran the mechanical chain (its paired changes in life_changes), or None
 
 
 def _centred(ds, window):
@@ -277,8 +279,18 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
         reading_resolution={str(s): float(ds.reading_resolution.sel(scheme=s).max()) for s in ds.scheme.values},
         plan=None if about.summaries else plan(ds, volume=volume, service_level=PLAN_SERVICE_LEVEL),
         **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
-        design=designed(ds), life_changes=_life_changes(ds, scenarios),
-        trends=clearance_trends(ds) if about.mechanics_engines else None, corrected=multi_fidelity(ds))
+        design=designed(ds), life_changes=(changes := _life_changes(ds, scenarios)),
+        trends=clearance_trends(ds) if about.mechanics_engines else None, corrected=multi_fidelity(ds),
+        misalignment=_misalignment(scenarios, changes))
+
+
+def _misalignment(scenarios, changes):
+    """(label, factor) of the first scenario in ``changes`` whose only key scales the misalignment, or None."""
+    for label in changes:
+        scenario = dict(StudyParameters.of(scenarios[label]).items).get("scenario") or {}
+        if set(scenario) == {"misalignment_scale"}:
+            return label, float(scenario["misalignment_scale"])
+    return None
 
 
 def _life_changes(ds, scenarios):

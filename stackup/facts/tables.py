@@ -406,8 +406,10 @@ def paired_life_changes(ds, other):
     where the scenario did not run the mechanical chain:
 
     - indexed by (scheme, bearing): ``pairs``, ``life_change_h``,
-      ``h_min_change_um`` (cycle minimum) and ``h_min_mean_change_um``
-      (cycle mean, the film method 1 reads), each (median, lower, upper);
+      ``h_min_change_um`` (cycle minimum), ``h_min_mean_change_um``
+      (cycle mean, the film method 1 reads) and ``edge_share_change_pts``
+      (the share of the cycle with an edge in contact, percentage points;
+      NaN for a study before it), each (median, lower, upper);
     - indexed by scheme: ``pairs`` and ``engine_life_change_h`` (the
       engine's life, its weakest bearing's).
     """
@@ -425,11 +427,14 @@ def paired_life_changes(ds, other):
         life = (alt.life.values[both] - base.life.values[both]) / 3600
         h = (alt.h_min.values[both] - base.h_min.values[both]) * UM
         h_mean = (alt.h_min_mean.values[both] - base.h_min_mean.values[both]) * UM
+        edge = (100 * (alt.edge_contact_share.values[both] - base.edge_contact_share.values[both])
+                if "edge_contact_share" in alt and "edge_contact_share" in base else np.full(h.shape, np.nan))
         for b, bearing in enumerate(ds.bearing.values):
             positions.append({"scheme": str(name), "bearing": int(bearing), "pairs": int(numbers(life[:, b]).size),
                               "life_change_h": quantile_ci(life[:, b], 0.5),
                               "h_min_change_um": quantile_ci(h[:, b], 0.5),
-                              "h_min_mean_change_um": quantile_ci(h_mean[:, b], 0.5)})
+                              "h_min_mean_change_um": quantile_ci(h_mean[:, b], 0.5),
+                              "edge_share_change_pts": quantile_ci(edge[:, b], 0.5)})
         engine = (alt.life.values[both].min(axis=1) - base.life.values[both].min(axis=1)) / 3600
         engines.append({"scheme": str(name), "pairs": int(numbers(engine).size),
                         "engine_life_change_h": quantile_ci(engine, 0.5)})

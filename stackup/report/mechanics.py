@@ -93,7 +93,8 @@ def film_section(facts, ranking):
     scheme = next((s for s in ranking.index if s in facts.bearings.index.get_level_values("scheme")), None)
     if scheme is not None:
         lines += [_positions_text(facts.positions, scheme), "", markdown_table(_positions_table(facts, scheme)), ""]
-    return section("Loads, oil film and bearing life", *lines, *_outcomes_text(facts.outcomes, facts.edge),
+    return section("Loads, oil film and bearing life", *lines,
+                   *_outcomes_text(facts.outcomes, facts.edge, _tolerance_text(facts, ranking.index)),
                    *_heat_text(facts.heat, facts.processes.crank), *_corrected_text(facts.corrected, scheme),
                    *_trends_text(facts.trends),
                    image("Oil film and life per bearing position", "film_life.png"),
@@ -139,7 +140,31 @@ def _span(values):
     return lo if lo == hi else f"{lo} to {hi}"
 
 
-def _outcomes_text(outcomes, edge_contact):
+def _tolerance_text(facts, order):
+    """Whether the tolerances change the edge contact: the first-ranked scheme's paired change of the share of the
+    cycle below h_lim,cr under the scenario that scales the misalignment ('' without one, or without the data)."""
+    if facts.misalignment is None or facts.edge is None or not facts.edge.surface:
+        return ""
+    label, factor = facts.misalignment
+    positions, _ = facts.life_changes[label]
+    scheme = next((s for s in order if s in positions.index.get_level_values("scheme")), None)
+    if scheme is None:
+        return ""
+    mine = positions.xs(scheme, level="scheme")
+    changes = [v[0] for v in mine.edge_share_change_pts]
+    if not np.all(np.isfinite(changes)):
+        return ""
+    beyond = [int(b) for b, v in mine.edge_share_change_pts.items() if v[1] > 0 or v[2] < 0]
+    lo, hi = (fmt.signed(v, 1) for v in (min(changes), max(changes)))
+    return words.EDGE_TOLERANCE.format(
+        factor=f"{factor:g}", label=label, pairs=int(mine.pairs.min()), scheme=scheme,
+        changes=f"{lo} points" if lo == hi else f"{lo} to {hi} points", first=int(mine.index.min()),
+        last=int(mine.index.max()),
+        beyond=(words.EDGE_TOLERANCE_BEYOND.format(s=words.plural(len(beyond)), bearings=words.listed(beyond))
+                if beyond else words.EDGE_TOLERANCE_WITHIN))
+
+
+def _outcomes_text(outcomes, edge_contact, tolerance=""):
     """How the films ended: those that are not a number and what that leaves out, or all periodic; edge contact."""
     if outcomes is None:
         return []
@@ -158,6 +183,7 @@ def _outcomes_text(outcomes, edge_contact):
                                               critical=fmt.fixed(1e6 * edge_contact.critical, 2),
                                               positions="; ".join(_edge_positions(edge_contact.per_position)),
                                               periodic=fmt.percent(edge_contact.periodic)))
+        text[-1] += tolerance
         median, high = edge_contact.unresolved
         if np.isfinite(median) and high > 0:
             text[-1] += words.EDGE_UNRESOLVED.format(median=fmt.percent(median), high=fmt.percent(high))
