@@ -160,7 +160,8 @@ def crank_stiffness(engine):
     d = _journal_d(engine)
     high = float(f"{spec.crank_modulus * np.pi * d**4 / 64 / spec.ei.max():.2g}")  # as its label says it
     low = CRANK_STIFFNESS_LOW
-    given = source.removeprefix("assumed").lstrip(":; ") or "the engine file gives no source"
+    given = source[len("assumed"):].lstrip(":; ") if source.lower().startswith("assumed") else source
+    given = given or "the engine file gives no source"
     return Uncertainty("crankshaft bending stiffness (section inertias)",
                        {f"crank inertia ×{low:g}": {"crank_stiffness_scale": low},
                         f"crank inertia ×{high:.2g} (plain journal)": {"crank_stiffness_scale": high}},

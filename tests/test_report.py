@@ -521,3 +521,32 @@ def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_c
     assert ("The tolerances: with the drawing's coaxiality and run-out ×2 (misalignment ×2; 6 engines, each against "
             "itself) iso13778-1's share of the cycle below h_lim,cr changes by") in text
     assert "`tilt_unresolved`" in text or not np.nanmax(ds.tilt_unresolved.values) > 0
+
+
+def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_without_edge_contact():
+    # no "−0.0 points" and "does not change" where every median is zero; the sentence (and the march's unresolved
+    # share) also where no edge touches in the study itself: the doubled misalignment may make some
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from stackup.facts.mechanics import EdgeContact, FilmOutcomes
+    from stackup.report.mechanics import _outcomes_text, _tolerance_text
+
+    def facts_with(changes):
+        index = pd.MultiIndex.from_tuples([("s", b) for b in (1, 2, 3)], names=["scheme", "bearing"])
+        positions = pd.DataFrame({"pairs": [12] * 3, "edge_share_change_pts": [(c, c - 1, c + 1) for c in changes]},
+                                 index=index)
+        edge = EdgeContact(300, 0, [0.0], [], 0.005, surface=True, critical=1.9e-6, per_position=pd.DataFrame(),
+                           periodic=1.0, unresolved=(0.1, 0.2))
+        return SimpleNamespace(misalignment=("misalignment ×2", 2.0), edge=edge,
+                               life_changes={"misalignment ×2": (positions, None)})
+
+    none = _tolerance_text(facts_with([0.0, -0.04, 0.03]), ["s"])
+    assert "share of the cycle below h_lim,cr does not change (median per position, bearings 1–3)" in none
+    assert "−0.0" not in none and "at every position its 95 % interval includes zero" in none
+    some = _tolerance_text(facts_with([-0.4, 2.04, 0.0]), ["s"])
+    assert "changes by −0.4 to +2.0 points" in some
+    facts = facts_with([1.0, 2.0, 3.0])
+    text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 300, 0), facts.edge, _tolerance_text(facts, ["s"])))
+    assert "The tolerances: with the drawing's coaxiality and run-out ×2" in text and "`tilt_unresolved`" in text

@@ -60,9 +60,12 @@ RESIDUAL = 10.0
 HALVINGS = 8
 UPHILL = 3
 #: A Newton step's outcome: no root, the root within the tolerance, and a step shorter than the tolerance whose
-#: full Newton step on a matrix differenced where it ends stayed longer than the tolerance RETESTS times (the
-#: balance not resolved; near the wall, where the film's moment stops growing with the tilt, Newton's matrix is
-#: nearly singular in the turn-back rows and the iterates wander by about a hundredth of the clearance).
+#: full Newton step on a matrix differenced where it ends stayed longer than the tolerance after RETESTS such
+#: short steps in all (the balance not resolved; near the wall, where the film's moment stops growing with the
+#: tilt, Newton's matrix is nearly singular in the turn-back rows and the iterates wander by about a hundredth of
+#: the clearance). A step that fails after a short one fails: the caller's fallbacks (from the last state, in
+#: sub-steps) resolve more of those than keeping the short step's point does (it broke the mirror symmetry of
+#: the heavy diesel's bearings 2 and 4 by 0.08 um).
 FAILED_STEP, RESOLVED, UNRESOLVED = 0, 1, 2
 RETESTS = 2
 

@@ -151,15 +151,16 @@ def _tolerance_text(facts, order):
     if scheme is None:
         return ""
     mine = positions.xs(scheme, level="scheme")
-    changes = [v[0] for v in mine.edge_share_change_pts]
+    changes = np.round([v[0] for v in mine.edge_share_change_pts], 1) + 0.0  # + 0.0: no "−0.0"
     if not np.all(np.isfinite(changes)):
         return ""
     beyond = [int(b) for b, v in mine.edge_share_change_pts.items() if v[1] > 0 or v[2] < 0]
-    lo, hi = (fmt.signed(v, 1) for v in (min(changes), max(changes)))
+    lo, hi = (fmt.signed(v, 1) for v in (changes.min(), changes.max()))
+    spread = (words.EDGE_TOLERANCE_NONE if not np.any(changes) else f"changes by {lo} points" if lo == hi else
+              f"changes by {lo} to {hi} points")
     return words.EDGE_TOLERANCE.format(
-        factor=f"{factor:g}", label=label, pairs=int(mine.pairs.min()), scheme=scheme,
-        changes=f"{lo} points" if lo == hi else f"{lo} to {hi} points", first=int(mine.index.min()),
-        last=int(mine.index.max()),
+        factor=f"{factor:g}", label=label, pairs=int(mine.pairs.min()), scheme=scheme, changes=spread,
+        first=int(mine.index.min()), last=int(mine.index.max()),
         beyond=(words.EDGE_TOLERANCE_BEYOND.format(s=words.plural(len(beyond)), bearings=words.listed(beyond))
                 if beyond else words.EDGE_TOLERANCE_WITHIN))
 
@@ -183,13 +184,17 @@ def _outcomes_text(outcomes, edge_contact, tolerance=""):
                                               critical=fmt.fixed(1e6 * edge_contact.critical, 2),
                                               positions="; ".join(_edge_positions(edge_contact.per_position)),
                                               periodic=fmt.percent(edge_contact.periodic)))
-        text[-1] += tolerance
-        median, high = edge_contact.unresolved
-        if np.isfinite(median) and high > 0:
-            text[-1] += words.EDGE_UNRESOLVED.format(median=fmt.percent(median), high=fmt.percent(high))
     elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
         text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
+    if edge_contact is not None and edge_contact.surface:
+        # also where no edge touches in the study: the tolerances may make some, and the march's convergence is
+        # the march's, not the contact's
+        median, high = edge_contact.unresolved
+        unresolved = (words.EDGE_UNRESOLVED.format(median=fmt.percent(median), high=fmt.percent(high))
+                      if np.isfinite(median) and high > 0 else "")
+        if (tolerance + unresolved).strip():
+            text.append((tolerance + unresolved).strip())
     return [" ".join(text), ""] if text else []
 
 

@@ -223,9 +223,10 @@ EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its t
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
                 "planes); α and the lives read it. The support moments repeated from cycle to cycle in {periodic} of the "
                 "bearings (`tilt_status`; the others are taken at the march's last cycle).")
-EDGE_TOLERANCE = (" The tolerances: with the drawing's coaxiality and run-out ×{factor} ({label}; {pairs} engines, each "
-                  "against itself) {scheme}'s share of the cycle below h_lim,cr changes by {changes} (median per "
+EDGE_TOLERANCE = ("The tolerances: with the drawing's coaxiality and run-out ×{factor} ({label}; {pairs} engines, each "
+                  "against itself) {scheme}'s share of the cycle below h_lim,cr {changes} (median per "
                   "position, bearings {first}–{last}){beyond}.")
+EDGE_TOLERANCE_NONE = "does not change"
 EDGE_TOLERANCE_BEYOND = "; the change is clear of zero (95 % interval) at bearing{s} {bearings}"
 EDGE_TOLERANCE_WITHIN = "; at every position its 95 % interval includes zero"
 EDGE_UNRESOLVED = (" At {median} of the march's solved crank angles (median over the engines; {high} at the 95th "
