@@ -285,12 +285,31 @@ def _log_peak_slopes(eps, ca, sa, cp, sp):
 def peak_factor(eps, alpha, phi0):
     """Largest cos(phi - alpha) / (1 - eps cos phi)^3 over the squeezed arc, and where (line-of-centres frame).
 
-    Halley's method on the derivative of its logarithm from ``phi0`` (the last
-    angle's peak): its three derivatives share one cosine and sine of phi, and
-    it converges cubically, so a step below PEAK_STEP_DONE leaves phi within
-    about 1e-12 and the factor (flat at its peak) within rounding; the step is
-    taken without evaluating again (:func:`_turned`). A scan of the arc and
-    bisection where the iteration does not settle. Returns (factor, phi).
+    The factor can have two peaks on the arc (eps near 1 with the squeeze turned away from the thinnest film:
+    one near alpha, one towards phi = 0), and a search started on one stays there: :func:`_peak_from` from
+    ``phi0`` (the last angle's peak) and from the arc's point nearest the thinnest film, the larger kept.
+    Returns (factor, phi).
+    """
+    factor, phi = _peak_from(eps, alpha, phi0)
+    # the arc's point nearest phi = 0, kept an eighth of pi inside its ends (where the factor's logarithm falls
+    # to minus infinity and a search does not start well)
+    towards = min(max(_wrap(-alpha), -3.0 * math.pi / 8.0), 3.0 * math.pi / 8.0)
+    other, where = _peak_from(eps, alpha, alpha + towards)
+    if other > factor * (1.0 + 1e-12):
+        return other, where
+    return factor, phi
+
+
+@njit(cache=True)
+def _peak_from(eps, alpha, phi0):
+    """The peak of :func:`peak_factor`'s factor that a search from ``phi0`` reaches.
+
+    Halley's method on the derivative of its logarithm: its three derivatives
+    share one cosine and sine of phi, and it converges cubically, so a step
+    below PEAK_STEP_DONE leaves phi within about 1e-12 and the factor (flat at
+    its peak) within rounding; the step is taken without evaluating again
+    (:func:`_turned`). A scan of the arc and bisection where the iteration does
+    not settle. Returns (factor, phi).
     """
     lo = alpha - HALF_PI
     hi = alpha + HALF_PI
