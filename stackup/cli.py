@@ -14,6 +14,7 @@ import sys
 import time
 from pathlib import Path
 
+from ._interrupt import held_during_imports
 from ._version import __version__
 from .design_cli import window_option
 
@@ -638,11 +639,12 @@ def main(argv=None):
     """Run the command; return its exit code (the console script exits with it)."""
     state = _State()
     try:
-        try:
-            args = parser().parse_args(argv)
-        except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
-            return done.code
-        return args.func(args, state)
+        with held_during_imports():
+            try:
+                args = parser().parse_args(argv)
+            except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
+                return done.code
+            return args.func(args, state)
     except KeyboardInterrupt:
         print(state.interrupted(), file=sys.stderr)
         return EXIT_INTERRUPTED
