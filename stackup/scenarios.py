@@ -86,14 +86,14 @@ class Uncertainty:
     @property
     def assumed(self):
         """The range is an assumption, not a measurement."""
-        return self.source.startswith("assumed")
+        return self.source.lower().startswith("assumed")
 
 
 def _mm(value):
     return f"{value * 1e3:.0f} mm"
 
 
-def housing_stiffness(engine):
+def housing_stiffness(engine, tilt_method="equilibrium"):
     """The :class:`Uncertainty` of the housing's equivalent outer diameter: measured interval, else assumed range."""
     spec, bore = engine.press_fit, engine.housing_bore.lo
     measure = "the housing swell (fitting tests, `stackup measure swell`)"
@@ -114,7 +114,7 @@ def housing_stiffness(engine):
                        source, measure)
 
 
-def crush_height(engine):
+def crush_height(engine, tilt_method="equilibrium"):
     """The :class:`Uncertainty` of the shells' crush height process: its mean shifted by :data:`CRUSH_SHIFT` σ."""
     k = CRUSH_SHIFT
     return Uncertainty("crush height process (mean)",
@@ -130,7 +130,7 @@ def _hotter(kelvin):
     return f"journal {abs(kelvin):g} K {'hotter' if kelvin > 0 else 'cooler'}"
 
 
-def journal_temperature(engine):
+def journal_temperature(engine, tilt_method="equilibrium"):
     """The :class:`Uncertainty` of the journal's temperature above its housing: :data:`JOURNAL_EXCESS_RANGE`."""
     nominal = engine.press_fit.journal_temperature_excess
     lo, hi = min(JOURNAL_EXCESS_RANGE[0], nominal), max(JOURNAL_EXCESS_RANGE[1], nominal)
@@ -147,7 +147,7 @@ def _journal_d(engine):
     return 0.5 * (engine.journal_d.lo + engine.journal_d.hi)
 
 
-def crank_stiffness(engine):
+def crank_stiffness(engine, tilt_method="equilibrium"):
     r"""The :class:`Uncertainty` of the crankshaft's section inertias where the engine file assumes them
     (``section_inertia_source`` empty or beginning "assumed"), else None: from :data:`CRANK_STIFFNESS_LOW` times
     the file's up to the plain journal's :math:`\pi D^4/64` for the stiffest throw."""
@@ -191,8 +191,9 @@ def support_tilt_compliance(engine, tilt_method="equilibrium"):
                        "loaded by a couple on a mandrel)")
 
 
-#: The model inputs a comparison declares, each a function of the engine (and the study's tilt method) giving its
-#: :class:`Uncertainty`, or None where the engine file sources the input or the study does not read it.
+#: The model inputs a comparison declares, each called as ``f(engine, tilt_method)`` (the study's tilt method:
+#: whether the study reads the input) and giving its :class:`Uncertainty`, or None where the engine file sources
+#: the input or the study does not read it.
 MODEL_INPUTS = (housing_stiffness, crush_height, journal_temperature, crank_stiffness, support_tilt_compliance)
 
 
@@ -202,7 +203,7 @@ def model_uncertainties(engine, tilt_method="equilibrium"):
     one."""
     out = []
     for declared in MODEL_INPUTS:
-        u = declared(engine, tilt_method) if declared is support_tilt_compliance else declared(engine)
+        u = declared(engine, tilt_method)
         if u is not None:
             out.append(u)
     return out

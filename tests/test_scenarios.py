@@ -143,6 +143,11 @@ def test_an_assumed_crankshaft_stiffness_is_declared_and_a_sourced_one_is_not(tm
     path = tmp_path / "unsourced.toml"
     path.write_text(text.replace('name = "iso-example"', 'name = "unsourced"'))
     assert crank_stiffness(load_engine(path)).assumed
+    # a source the user wrote "Assumed: ..." is assumed as well (and its word not repeated)
+    path.write_text(text.replace('name = "iso-example"', 'name = "capital"').replace(
+        "# section_inertia_source = \"", "section_inertia_source = \"Assumed: "))
+    u = crank_stiffness(load_engine(path))
+    assert u.assumed and not u.source.lower().startswith("assumed: assumed")
 
 
 def test_the_supports_tilt_compliance_is_declared_where_the_support_moments_read_it():

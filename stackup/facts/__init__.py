@@ -287,7 +287,7 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
 def _misalignment(scenarios, changes):
     """(label, factor) of the first scenario in ``changes`` whose only key scales the misalignment, or None."""
     for label in changes:
-        scenario = dict(StudyParameters.of(scenarios[label]).items).get("scenario") or {}
+        scenario = StudyParameters.of(scenarios[label]).scenario
         if set(scenario) == {"misalignment_scale"}:
             return label, float(scenario["misalignment_scale"])
     return None

@@ -86,6 +86,11 @@ class StudyParameters:
         record = _record(cls, "study", data)
         return replace(record, items=tuple(data.items()), life_film=data.get("life_film") or "cycle-mean")
 
+    @property
+    def scenario(self):
+        """The scenario the study ran (:mod:`stackup.study.scenario`), {} for the study itself."""
+        return dict(self.items).get("scenario") or {}
+
 
 @dataclass(frozen=True)
 class PressFit(_Attribute):
@@ -246,7 +251,7 @@ class ScenarioAbout:
 
     @classmethod
     def of(cls, ds):
-        from_keys = scenario_kind(dict(StudyParameters.of(ds).items).get("scenario"))
+        from_keys = scenario_kind(StudyParameters.of(ds).scenario)
         return cls(str(ds.attrs.get("scenario_kind", from_keys)), str(ds.attrs.get("scenario_input", "")),
                    str(ds.attrs.get("scenario_source", "")), str(ds.attrs.get("scenario_measure", "")))
 
