@@ -8,6 +8,8 @@ import pytest
 
 from stackup._interrupt import held_during_imports
 
+SENDS_ITSELF_CTRL_C = "import os, signal, time\nos.kill(os.getpid(), signal.SIGINT)\ntime.sleep(0.05)\nfinished = True\n"
+
 
 @pytest.fixture
 def ctrl_c_raises():
@@ -24,20 +26,18 @@ def _module(tmp_path, monkeypatch, body):
     return name
 
 
-def test_a_ctrl_c_during_an_import_is_raised_after_the_import_finishes(tmp_path, monkeypatch, ctrl_c_raises):
-    name = _module(tmp_path, monkeypatch, "import os, signal, time\nos.kill(os.getpid(), signal.SIGINT)\n"
-                   "time.sleep(0.05)\nfinished = True\n")
+def test_a_ctrl_c_during_an_import_is_raised_where_the_import_returns(tmp_path, monkeypatch, ctrl_c_raises):
+    name = _module(tmp_path, monkeypatch, SENDS_ITSELF_CTRL_C)
+    reached = False
     with pytest.raises(KeyboardInterrupt), held_during_imports():
         importlib.import_module(name)
-        while True:  # the held-back interrupt arrives within a few of the handler's rechecks
-            time.sleep(0.001)
-    assert sys.modules[name].finished
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+        reached = True
+    assert sys.modules[name].finished and not reached
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler and sys.getprofile() is None
 
 
 def test_without_it_the_same_ctrl_c_breaks_the_import(tmp_path, monkeypatch, ctrl_c_raises):
-    name = _module(tmp_path, monkeypatch, "import os, signal, time\nos.kill(os.getpid(), signal.SIGINT)\n"
-                   "time.sleep(0.05)\nfinished = True\n")
+    name = _module(tmp_path, monkeypatch, SENDS_ITSELF_CTRL_C)
     with pytest.raises(KeyboardInterrupt):
         importlib.import_module(name)
     assert name not in sys.modules
@@ -47,7 +47,27 @@ def test_outside_an_import_ctrl_c_is_raised_at_once(ctrl_c_raises):
     with pytest.raises(KeyboardInterrupt), held_during_imports():
         os.kill(os.getpid(), signal.SIGINT)
         time.sleep(5)
-    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+    assert sys.getprofile() is None
+
+
+def test_a_block_entered_during_an_import_does_not_hold_its_own_ctrl_c(tmp_path, monkeypatch, ctrl_c_raises):
+    # a study script run by import (or a command called from a module's top level): the import around the block
+    # is not the block's, and a Ctrl-C in the block's own code is raised at once
+    name = _module(tmp_path, monkeypatch, "import os, signal, time\nfrom stackup._interrupt import held_during_imports\n"
+                   "raised_at_once = False\ntry:\n    with held_during_imports():\n"
+                   "        os.kill(os.getpid(), signal.SIGINT)\n        time.sleep(5)\n"
+                   "except KeyboardInterrupt:\n    raised_at_once = True\n")
+    started = time.monotonic()
+    module = importlib.import_module(name)
+    assert module.raised_at_once and time.monotonic() - started < 4
+
+
+def test_a_held_ctrl_c_is_not_lost_when_the_block_ends_by_an_error(tmp_path, monkeypatch, ctrl_c_raises):
+    name = _module(tmp_path, monkeypatch, "import os, signal\nos.kill(os.getpid(), signal.SIGINT)\n"
+                   "raise RuntimeError('the import fails')\n")
+    with pytest.raises(KeyboardInterrupt), held_during_imports():
+        importlib.import_module(name)
+    assert sys.getprofile() is None and signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
 def test_where_ctrl_c_is_ignored_it_stays_ignored():
@@ -57,3 +77,15 @@ def test_where_ctrl_c_is_ignored_it_stays_ignored():
             assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+def test_no_other_signal_or_timer_is_touched(ctrl_c_raises):
+    alarm = signal.signal(signal.SIGALRM, signal.SIG_IGN)
+    signal.setitimer(signal.ITIMER_REAL, 30.0)
+    try:
+        with held_during_imports():
+            pass
+        assert signal.getsignal(signal.SIGALRM) is signal.SIG_IGN and signal.getitimer(signal.ITIMER_REAL)[0] > 20
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, alarm)

@@ -150,6 +150,15 @@ def test_an_assumed_crankshaft_stiffness_is_declared_and_a_sourced_one_is_not(tm
     assert u.assumed and not u.source.lower().startswith("assumed: assumed")
 
 
+def test_a_source_is_assumed_however_its_first_word_is_written():
+    from stackup.facts.declared import ScenarioAbout
+    from stackup.scenarios import Uncertainty
+
+    for source, assumed in (("Assumed: a guess", True), ("assumed: a guess", True), ("measured: fitting tests", False)):
+        assert Uncertainty("x", {}, source, "y").assumed is assumed
+        assert ScenarioAbout("model", "x", source, "y").assumed is assumed
+
+
 def test_the_supports_tilt_compliance_is_declared_where_the_support_moments_read_it():
     from stackup.scenarios import model_uncertainties
 

@@ -257,4 +257,5 @@ class ScenarioAbout:
 
     @property
     def assumed(self):
-        return self.source.startswith("assumed")
+        """The range is an assumption (as :attr:`stackup.scenarios.Uncertainty.assumed` reads its source)."""
+        return self.source.lower().startswith("assumed")
