@@ -86,7 +86,13 @@ class Uncertainty:
     @property
     def assumed(self):
         """The range is an assumption, not a measurement."""
-        return self.source.lower().startswith("assumed")
+        return is_assumed(self.source)
+
+
+def is_assumed(source):
+    """Whether a source (an engine file's or a declared range's) says it is an assumption: it begins with
+    "assumed", in any case."""
+    return source.lower().startswith("assumed")
 
 
 def _mm(value):
@@ -155,12 +161,12 @@ def crank_stiffness(engine, tilt_method="equilibrium"):
     if spec is None:
         return None
     source = " ".join(spec.section_inertia_source.split())
-    if source and not source.lower().startswith("assumed"):
+    if source and not is_assumed(source):
         return None
     d = _journal_d(engine)
     high = float(f"{spec.crank_modulus * np.pi * d**4 / 64 / spec.ei.max():.2g}")  # as its label says it
     low = CRANK_STIFFNESS_LOW
-    given = source[len("assumed"):].lstrip(":; ") if source.lower().startswith("assumed") else source
+    given = source[len("assumed"):].lstrip(":; ") if is_assumed(source) else source
     given = given or "the engine file gives no source"
     return Uncertainty("crankshaft bending stiffness (section inertias)",
                        {f"crank inertia ×{low:g}": {"crank_stiffness_scale": low},
@@ -215,5 +221,5 @@ def kind(scenario):
 
 
 __all__ = ["DECLARED", "KEYS", "MECHANICS_KEYS", "MODEL_INPUTS", "MODEL_KEYS", "Uncertainty", "apply",
-           "crank_stiffness", "crush_height", "housing_stiffness", "journal_temperature", "kind",
+           "crank_stiffness", "crush_height", "housing_stiffness", "is_assumed", "journal_temperature", "kind",
            "model_uncertainties", "support_tilt_compliance"]

@@ -141,7 +141,7 @@ def section(cases, bearings, out, seconds, reference, ref_seconds, cached=False)
         "against the target). Against the same reference `mobility-finite` "
         f"is off by {100 * abs(worst_of(out['mobility-finite'], reference, 'h_min')):.1f} % and "
         f"{100 * abs(worst_of(out['mobility-finite'], reference, 'h_min_mean')):.1f} %. "
-        + groove_note(bearings, out, reference, default, snapped, ref_seconds),
+        + groove_note(cases, bearings, out, reference, default, snapped, ref_seconds),
         "",
         "| grid | time per bearing-cycle [ms] | ratio to mobility-finite | cycle-min h_min: worst | "
         "cycle-mean h_min: worst | sup p_max: worst | p*_max: worst | N*: worst | status |",
@@ -193,7 +193,7 @@ def converged_note(bearings, out, reference, default):
             "engine's own groove.")
 
 
-def groove_note(bearings, out, reference, default, snapped, ref_seconds):
+def groove_note(cases, bearings, out, reference, default, snapped, ref_seconds):
     """What the largest cycle-minimum gap is made of: the reference's groove on its axial grid."""
     e = relative(out[default]["h_min"], reference["h_min"])
     k = int(np.argmax(np.abs(e)))
@@ -209,15 +209,14 @@ def groove_note(bearings, out, reference, default, snapped, ref_seconds):
             f"({'; '.join(f'{n} {bb + 1}: {100 * v:+.1f} %' for (n, bb), v in zip(bearings, s))}), and the "
             "reference's error table above, which refined its grid at a bearing whose thinnest film is away from "
             f"the groove, does not show it (a reference with nodes on the groove's edges needs "
-            f"{edge_nodes(bearings)}, against the {REFERENCE_N_Z} whose run took {ref_seconds / 60:.1f} min per "
+            f"{edge_nodes(cases)}, against the {REFERENCE_N_Z} whose run took {ref_seconds / 60:.1f} min per "
             "bearing-cycle here; not run). " + converged_note(bearings, out, reference, default))
 
 
-def edge_nodes(bearings):
+def edge_nodes(cases):
     """Axial nodes, evenly spaced, that put one on each edge of each engine's groove (the fewest)."""
     counts = []
-    for name in dict.fromkeys(n for n, _ in bearings):
-        case = engine_case(name)
+    for name, case in cases.items():
         # nodes at -L/2 + k L / N; an edge at +-w/2 with w/L = p/q (lowest terms) needs N (1 + p/q) / 2 whole
         ratio = case.feed.groove_width / case.length
         share = Fraction(ratio).limit_denominator(1000)

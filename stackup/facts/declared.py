@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 from dataclasses import MISSING, dataclass, fields, replace
 
+from ..scenarios import is_assumed
 from ..scenarios import kind as scenario_kind
 
 
@@ -258,4 +259,4 @@ class ScenarioAbout:
     @property
     def assumed(self):
         """The range is an assumption (as :attr:`stackup.scenarios.Uncertainty.assumed` reads its source)."""
-        return self.source.lower().startswith("assumed")
+        return is_assumed(self.source)
