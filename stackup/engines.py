@@ -34,7 +34,8 @@ from pathlib import Path
 from . import _validate as check
 from . import materials
 from .crank import BellakhdharLaw
-from .crank.housing import Supports, bulkhead_compliance
+from .crank.housing import Supports, bulkhead_compliance, ring_tilt_compliance
+from .crank.law import stiffness as law_stiffness
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
 from .life import LEVANOV_2015, METHOD1_SCALE
@@ -646,6 +647,7 @@ def _crank(top, *, scale, units, bearings, extra):
                              "[supports] table's linear_compliance_um_per_kN (one description of the housing); "
                              f"remove bearing_law.{given[0]}")
         params = {**params, **supports.law_stiffness}
+        supports = replace(supports, ring=_ring(params, spec.bearing_width))
     oil = top.table("oil")
     grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
     supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
@@ -712,6 +714,15 @@ def _supports(top, *, scale, units, bearings, block, ring):
                    t.source("thermal_source") if thermal is not None else "", angular_derived=bulkhead is not None)
     t.close()
     return out
+
+
+def _ring(law, bearing_width):
+    """The bores' own angular compliance (N+1, 2) [rad/(N m)] from the bearing law's deformation stiffness: in the
+    cylinders' plane the law's towards the cap (0 deg), across it the law's at 90 deg
+    (:func:`stackup.crank.housing.ring_tilt_compliance`)."""
+    planes = [law_stiffness(angle, law["k_lv"], law["k_hv"], law["theta0"], law["dtheta"])[0]
+              for angle in (0.0, 0.5 * np.pi)]
+    return ring_tilt_compliance(stiffness=np.stack(planes, axis=-1), bearing_width=bearing_width)
 
 
 def _kinematics(t, *, scale, units):

@@ -180,19 +180,28 @@ def crank_stiffness(engine, tilt_method="equilibrium"):
 
 
 def support_tilt_compliance(engine, tilt_method="equilibrium"):
-    """The :class:`Uncertainty` of the supports' angular compliance where it is derived from a bulkhead web
-    (:func:`stackup.crank.housing.bulkhead_compliance`) and the study balances the support moments
-    (``tilt_method`` "coupled", the only one that reads it), else None: :data:`BULKHEAD_FACTOR` either way."""
+    """The :class:`Uncertainty` of the supports' angular compliance where any of it is derived, from a bulkhead
+    web (:func:`stackup.crank.housing.bulkhead_compliance`) or, for the bore ring's own turn, from the bearing
+    law's plane-strain deformation stiffness (:func:`stackup.crank.housing.ring_tilt_compliance`), and the study
+    balances the support moments (``tilt_method`` "coupled", the only one that reads it), else None:
+    :data:`BULKHEAD_FACTOR` either way."""
     supports = engine.crank.supports if engine.crank is not None else None
-    if supports is None or not supports.angular_derived or tilt_method != "coupled":
+    if supports is None or tilt_method != "coupled":
         return None
+    ring = supports.ring is not None and bool(np.any(supports.ring))
+    if not (supports.angular_derived or ring):
+        return None
+    derived = [*(["the bulkhead web's (stackup.crank.housing.bulkhead_compliance)"] if supports.angular_derived
+                 else []),
+               *(["the bore ring's own turn, the bearing law's deformation stiffness taken slice by slice across "
+                  "the width (stackup.crank.housing.ring_tilt_compliance, an upper end: a cap twisted as a body "
+                  "turns about a quarter as much)"] if ring else [])]
     k = BULKHEAD_FACTOR
-    return Uncertainty("supports' angular compliance (bulkhead)",
+    return Uncertainty("supports' angular compliance (bulkhead and bore ring)",
                        {f"support tilt compliance ×{1 / k:g}": {"support_angular_scale": 1 / k},
                         f"support tilt compliance ×{k:g}": {"support_angular_scale": k}},
-                       f"assumed: derived from the engine file's bulkhead web by stackup.crank.housing."
-                       f"bulkhead_compliance, a factor of {k:g} either way (its error against a finite-element "
-                       "model of a bulkhead is not measured)",
+                       f"assumed: derived, {' and '.join(derived)}, a factor of {k:g} either way (its error "
+                       "against a finite-element model of a bulkhead and cap is not measured)",
                        "the bulkheads' tilt compliance (a finite-element model of the block, or a bearing cap "
                        "loaded by a couple on a mandrel)")
 

@@ -1,5 +1,7 @@
 """Robustness scenarios applied to an engine."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -163,10 +165,19 @@ def test_the_supports_tilt_compliance_is_declared_where_the_support_moments_read
     from stackup.scenarios import model_uncertainties
 
     engine = load_engine("iso-example")
-    assert "supports' angular compliance (bulkhead)" not in [u.input for u in model_uncertainties(engine)]
+    name = "supports' angular compliance (bulkhead and bore ring)"
+    assert name not in [u.input for u in model_uncertainties(engine)]
     u = model_uncertainties(engine, "coupled")[-1]
-    assert u.input == "supports' angular compliance (bulkhead)" and u.assumed
+    assert u.input == name and u.assumed
+    assert "bulkhead_compliance" in u.source and "ring_tilt_compliance" in u.source
     assert [s["support_angular_scale"] for s in u.scenarios.values()] == [0.5, 2.0]
+    # an angular compliance given as numbers still has the ring's own turn derived: still declared
+    given = replace(engine.crank.supports, angular_derived=False)
+    u = model_uncertainties(replace(engine, crank=replace(engine.crank, supports=given)), "coupled")[-1]
+    assert u.input == name and "bulkhead_compliance" not in u.source and "ring_tilt_compliance" in u.source
+    rigid_ring = replace(given, ring=None)
+    assert name not in [u.input for u in model_uncertainties(
+        replace(engine, crank=replace(engine.crank, supports=rigid_ring)), "coupled")]
 
 
 def test_stiffness_scenarios_change_the_crankshaft_and_its_supports():
@@ -174,6 +185,7 @@ def test_stiffness_scenarios_change_the_crankshaft_and_its_supports():
     changed = apply(engine, {"crank_stiffness_scale": 2.0, "support_angular_scale": 0.5})
     np.testing.assert_allclose(changed.crank.ei, 2.0 * engine.crank.ei)
     np.testing.assert_allclose(changed.crank.supports.angular, 0.5 * engine.crank.supports.angular)
+    np.testing.assert_allclose(changed.crank.supports.ring, 0.5 * engine.crank.supports.ring)
     np.testing.assert_array_equal(changed.crank.supports.linear, engine.crank.supports.linear)
     for bad in ({"crank_stiffness_scale": -1.0}, {"support_angular_scale": -0.5}):
         with pytest.raises(ValueError, match="scenario (crank_stiffness|support_angular)_scale"):

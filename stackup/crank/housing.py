@@ -9,7 +9,11 @@ through its angular compliance, in series with the film's (Rozhdestvensky et al.
 
 Where no finite-element or measured compliance is at hand,
 :func:`bulkhead_compliance` derives the angular one from the bulkhead's web
-as a plate strip (its assumptions there).
+as a plate strip (its assumptions there). The bore's own surface turns too:
+the deformation stiffness that moves the journal's centre in the bearing law
+comes from a plane-strain model of a slice of the bearing, so a load that
+varies across the width deforms each slice by its share
+(:func:`ring_tilt_compliance`, in series with the web's).
 
 References
 ----------
@@ -23,7 +27,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -52,6 +56,10 @@ class Supports:
     angular_derived : bool
         The angular compliance is :func:`bulkhead_compliance`'s, from a web the engine file describes (its
         stated error, a factor of two either way, a declared model uncertainty), not given as a number.
+    ring : numpy.ndarray (N+1, 2) or None
+        Angular compliance of the bore's surface against its ring [rad/(N m)], per component of the slope as
+        ``angular``: the deformation under the linear compliance taken slice by slice across the width
+        (:func:`ring_tilt_compliance`); None where not derived (the ring rigid).
     """
 
     linear: np.ndarray
@@ -60,6 +68,7 @@ class Supports:
     source: str = ""
     thermal_source: str = ""
     angular_derived: bool = False
+    ring: np.ndarray | None = None
 
     @property
     def law_stiffness(self):
@@ -67,9 +76,78 @@ class Supports:
         return {"k_lv": 1.0 / self.linear[:, 0], "k_hv": 1.0 / self.linear[:, 1]}
 
     @property
+    def tilt_compliance(self):
+        """The bore's turn per moment of the film [rad/(N m)] (N+1, 2): the bulkhead's (``angular``) in series
+        with the ring's own (``ring``)."""
+        return self.angular if self.ring is None else self.angular + self.ring
+
+    def scaled(self, factor):
+        """These supports with the angular compliance, the bulkhead's and the ring's, times ``factor``."""
+        return replace(self, angular=self.angular * factor, ring=None if self.ring is None else self.ring * factor)
+
+    @property
     def rigid(self):
         """The block is rigid against tilt (every angular compliance 0)."""
-        return not np.any(self.angular)
+        return not np.any(self.tilt_compliance)
+
+
+@validated(stiffness=Positive(), bearing_width=Positive())
+def ring_tilt_compliance(*, stiffness, bearing_width):
+    r"""Angular compliance of a bore's surface from the bearing's deformation stiffness across its width [rad/(N m)].
+
+    Parameters
+    ----------
+    stiffness : array_like (..., 2)
+        The bearing's deformation stiffness :math:`K_d` [N/m] for a load in each plane of the slope's
+        components: in the cylinders' plane (0), the load towards the cap (the law's :math:`k_{lv}`); across it
+        (1), the law's at 90 deg.
+    bearing_width : float
+        :math:`B` [m].
+
+    Returns
+    -------
+    numpy.ndarray (..., 2)
+        :math:`12 / (K_d B^2)`.
+
+    Notes
+    -----
+    Bellakhdhar et al. identify :math:`K_d` on a plane-strain finite-element
+    model of a slice of the bearing (liners, cap, the housing's half and the
+    journal, 22 mm thick): every slice :math:`dz` of the width deforms under its
+    own load, stiffness :math:`K_d\,dz/B`, as a Winkler foundation along the
+    journal. A film moment :math:`M` across the width, carried as a load
+    :math:`q(z) = 12 M z / B^3` on :math:`-B/2 \le z \le B/2`, then turns the
+    bore's surface by
+
+    .. math:: \varphi = \frac{q(z)\,B/K_d}{z} = \frac{12\,M}{K_d\,B^2},
+
+    in series with the bulkhead's turn of the ring as a body
+    (:func:`bulkhead_compliance`). The same load moves the journal's centre by
+    :math:`F/K_d` in the bearing law, so one stiffness describes the housing in
+    both stages.
+
+    Assumptions: the slices do not hold each other (plane strain), so this is
+    the upper end of the ring's compliance: in three dimensions the cap and
+    ring carry part of the moment in torsion and out-of-plane bending. For a
+    cap of square section (side :math:`B`, span :math:`L` between its bolts,
+    both ends held) whose bending gives :math:`K_d`
+    (:math:`F L^3/(192 E I)`), the couple twisting it instead
+    (:math:`\varphi = TL/(4GK)`, :math:`K = 0.141 B^4`) turns it by
+    :math:`2.4 (E/G) (B/L)^2` of the slices' turn: about a quarter at
+    :math:`L = 5B`. The declared uncertainty on the supports' angular
+    compliance, a factor of two either way
+    (:func:`stackup.scenarios.support_tilt_compliance`), takes this term with
+    the web's.
+
+    References
+    ----------
+    .. [1] Bellakhdhar, B., Dogui, A., Ligier, J.-L., C. R. Mecanique 341 (2013) 743-754, sec. 4.1 (plane
+       strain, CPE4R elements, 22 mm thick).
+    .. [2] Young, W. C., Budynas, R. G., Sadegh, A. M., Roark's Formulas for Stress and Strain, 8th ed., 2012,
+       Table 8.1 case 1d (a beam held at both ends, load at mid-span), Table 10.7 case 4 (torsion of a square
+       section).
+    """
+    return 12.0 / (np.asarray(stiffness, dtype=float) * float(bearing_width) ** 2)
 
 
 @validated(thickness=Positive(), height=Positive(), width=Positive(), ring_height=Positive(), modulus=Positive(),
@@ -136,12 +214,14 @@ def bulkhead_compliance(*, thickness, height, width, ring_height, modulus, poiss
     return np.stack([vertical, transverse], axis=-1)
 
 
-@validated(linear=Positive(), angular=Positive(zero=True), thermal_offset=OrNone(Finite()))
-def supports(*, linear, angular, thermal_offset=None, source="", thermal_source=""):
+@validated(linear=Positive(), angular=Positive(zero=True), thermal_offset=OrNone(Finite()),
+           ring=OrNone(Positive(zero=True)))
+def supports(*, linear, angular, thermal_offset=None, source="", thermal_source="", ring=None):
     """A :class:`Supports` from compliances per bearing (N+1, 2) or one row for all, checked.
 
     ``linear`` [m/N] > 0 (a rigid support is a very small compliance), ``angular`` [rad/(N m)] >= 0 (0: the
-    block rigid against tilt), ``thermal_offset`` [m] (N+1, 2) or None.
+    block rigid against tilt), ``thermal_offset`` [m] (N+1, 2) or None, ``ring`` [rad/(N m)] >= 0 (the bore's
+    own turn, :func:`ring_tilt_compliance`) or None.
     """
     lin = np.atleast_2d(np.asarray(linear, dtype=float))
     ang = np.atleast_2d(np.asarray(angular, dtype=float))
@@ -152,5 +232,8 @@ def supports(*, linear, angular, thermal_offset=None, source="", thermal_source=
     offset = None if thermal_offset is None else np.asarray(thermal_offset, dtype=float)
     if offset is not None and offset.shape != (n, 2):
         raise ValueError(f"thermal_offset: shape {offset.shape} is not valid; give ({n}, 2)")
+    own = None if ring is None else np.atleast_2d(np.asarray(ring, dtype=float))
+    if own is not None and (own.shape[-1] != 2 or own.shape[0] not in (1, n)):
+        raise ValueError(f"ring: shape {own.shape} is not valid; give (bearings, 2) or (1, 2)")
     return Supports(np.broadcast_to(lin, (n, 2)).copy(), np.broadcast_to(ang, (n, 2)).copy(), offset, source,
-                    thermal_source)
+                    thermal_source, ring=None if own is None else np.broadcast_to(own, (n, 2)).copy())

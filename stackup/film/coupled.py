@@ -25,7 +25,8 @@ with :math:`\boldsymbol\gamma_j` the journal's tilt against its bore,
 rotational compliance between its supports, deflections held
 (:func:`stackup.crank.support_compliance` with ``coupled=True``: a moment at one
 support turns the others) and :math:`K^\varphi_s` the support's angular compliance
-(the bore turns with the bulkhead, :class:`stackup.crank.housing.Supports`). The
+(the bore turns with the bulkhead and by its ring's own deformation across the
+width, :attr:`stackup.crank.housing.Supports.tilt_compliance`). The
 film's moment :math:`\mathbf M = \iint p\,z\,\mathbf n\,dA` is the short-bearing film's
 (:mod:`stackup.film.tilt`, finite-corrected in the ``finite`` method) with the tilt's
 own squeeze, :math:`\mathbf u_s = \dot{\boldsymbol\gamma} - \tfrac\omega2\mathbf k\times\boldsymbol\gamma`,

@@ -315,7 +315,8 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         The journal's tilt in the film (:data:`TILT_METHODS`): ``coupled``, the
         support moments of all bearings balanced with the crankshaft (its
         rotational compliance between the supports) and the block (each
-        support's angular compliance, ``engine.crank.supports``) over the cycle,
+        support's angular compliance, the bulkhead's and the bore ring's,
+        ``engine.crank.supports.tilt_compliance``) over the cycle,
         with the tilt's squeeze and the elastic layer under the film
         (:mod:`stackup.film.coupled`): ``h_min``, α and the lives then read the
         film over the whole bearing surface, ``h_min_midplane`` the mid-plane's;
@@ -588,7 +589,7 @@ def _engine_constants(engine):
     coupled = support_compliance(spans=spec.spans, EI=spec.ei, coupled=True)
     if spec.supports is not None:
         for c in range(2):
-            coupled[c] += np.diag(spec.supports.angular[:, c])
+            coupled[c] += np.diag(spec.supports.tilt_compliance[:, c])
     for array in (compliance, coupled):
         array.setflags(write=False)
     roughness = float(composite_roughness(wear.journal_rq, wear.shell_rq))

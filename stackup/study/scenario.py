@@ -26,8 +26,9 @@ Model inputs, what the engine file assumes and nobody may have measured:
 ``crank_stiffness_scale``
     Factor on the crankshaft's section inertias (its bending stiffness) [-].
 ``support_angular_scale``
-    Factor on the supports' angular compliance [-] (read where the support
-    moments are balanced, ``tilt_method`` "coupled").
+    Factor on the supports' angular compliance [-], the bulkhead's and the
+    bore ring's own (:meth:`stackup.crank.housing.Supports.scaled`; read where
+    the support moments are balanced, ``tilt_method`` "coupled").
 
 The declared sets a comparison runs are in :mod:`stackup.scenarios`.
 """
@@ -94,7 +95,6 @@ def apply(engine, scenario):
     if "crank_stiffness_scale" in scenario and crank is not None:
         crank = replace(crank, ei=crank.ei * scenario["crank_stiffness_scale"])
     if "support_angular_scale" in scenario and crank is not None and crank.supports is not None:
-        supports = crank.supports
-        crank = replace(crank, supports=replace(supports, angular=supports.angular * scenario["support_angular_scale"]))
+        crank = replace(crank, supports=crank.supports.scaled(scenario["support_angular_scale"]))
     return replace(engine, housing_bore=housing, journal_d=journal, shell_wall=shells, crank=crank,
                    press_fit=_press_fit(engine, scenario))

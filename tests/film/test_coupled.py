@@ -203,17 +203,15 @@ def test_an_engine_with_an_orbit_not_a_number_is_failed_and_the_others_run():
 
 
 def test_mirror_bearings_of_a_symmetric_engine_get_the_same_film():
-    """The heavy diesel coaxial with a compliant block (x5): bearings 2 and 4, and 1 and 5, mirror each other, and so
-    must their films over the surface. A step that stopped short of the balance without saying so gave 0.68 against
-    1.06 um here; the march's convergence test (the full Newton step on a fresh matrix) holds them together."""
-    from dataclasses import replace
-
+    """The heavy diesel coaxial with its block (the bulkhead web and the bore ring's own turn, about 5 times the web
+    alone): bearings 2 and 4, and 1 and 5, mirror each other, and so must their films over the surface. A step that
+    stopped short of the balance without saying so gave 0.68 against 1.06 um here (the web x5, as compliant); the
+    march's convergence test (the full Newton step on a fresh matrix) holds them together."""
     from stackup.engines import load_engine
     from stackup.study.chain import mechanical_chain
 
     engine = load_engine("rozhdestvensky-4")
-    supports = replace(engine.crank.supports, angular=engine.crank.supports.angular * 5.0)
-    engine = replace(engine, crank=replace(engine.crank, supports=supports))
+    assert engine.crank.supports.ring is not None
     n = engine.main_bearings
     zero = np.zeros((1, n, 2))
     clearance = np.full((1, n), 103e-6)
