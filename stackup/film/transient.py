@@ -351,7 +351,7 @@ class _March:
         if self.coupled:
             x, self.h, self.jac, self.held = _tilted_balance(self.residual, predicted, e + (free[kn] - free[k]),
                                                              self.jac, self.held, limit, tolerance, self.film, self.p,
-                                                             self.kappa, free[kn], previous=xi)
+                                                             self.kappa, free[kn])
         else:
             x, self.h, self.jac = _force_balance(self.residual, predicted, self.jac, limit, tolerance)
         return x
@@ -413,7 +413,7 @@ def _wall_normal(centre, edge):
     return -minus / np.hypot(*minus)
 
 
-def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p, kappa, free, previous=None):
+def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p, kappa, free):
     """Centre and edge offset of a step, the tilt free or held with an edge on the limit.
 
     Free: force and moment balance. Held (the film cannot hold the journal):
@@ -422,26 +422,12 @@ def _tilted_balance(residual, centre, edge, jac, held, limit, tolerance, film, p
     Free first unless the last step was held; a free solution with an edge
     past the limit, or one that fails, is solved held; a held one whose film
     pushes the edge back inside (that imbalance along the outward normal > 0)
-    is solved free. A free solve that fails from the predicted centre is
-    tried again from ``previous``, the last step's centre (2,), before the
-    tilt is held: where the load rises fast from
-    nothing the prediction can start the balance where it does not converge,
-    and the held solve then finds a journal centred in its bore with an edge
-    on the wall (iso-example's bearing 3 turned to 2.05 mrad against a free
-    slope of 0.83 there). Returns (x (4,), film, Jacobian, held).
+    is solved free. Returns (x (4,), film, Jacobian, held).
     """
     start = np.concatenate([centre, _edges_inside(centre, edge, limit)])
-    starts = [start] if previous is None else [start, np.concatenate([previous, _edges_inside(previous, edge,
-                                                                                              limit)])]
 
     def free_solve(j):
-        for i, x0 in enumerate(starts):
-            try:
-                x, h, j = _force_balance(residual, x0, j if i == 0 else None, limit, tolerance)
-                break
-            except (RuntimeError, np.linalg.LinAlgError):
-                if i == len(starts) - 1:
-                    raise
+        x, h, j = _force_balance(residual, start, j, limit, tolerance)
         reach = max(np.hypot(*(x[:2] + x[2:])), np.hypot(*(x[:2] - x[2:])))
         return (x, h, j), reach <= limit * (1 + 1e-9)
 
