@@ -94,3 +94,15 @@ def test_bulkhead_rejects_a_zero_thickness():
 def test_ring_tilt_compliance_rejects_bad_input(kwargs, message):
     with pytest.raises(ValueError, match=message):
         ring_tilt_compliance(**kwargs)
+
+
+def test_the_coupled_chain_turns_each_bore_by_its_bulkhead_and_its_ring():
+    from stackup.crank import support_compliance
+    from stackup.study.chain import _engine_constants
+
+    e = load_engine("iso-example")
+    coupled = _engine_constants(e).coupled
+    crank = support_compliance(spans=e.crank.spans, EI=e.crank.ei, coupled=True)
+    for plane in range(2):
+        np.testing.assert_allclose(coupled[plane] - crank[plane], np.diag(e.crank.supports.tilt_compliance[:, plane]),
+                                   rtol=1e-12, atol=1e-18)
