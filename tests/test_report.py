@@ -550,3 +550,9 @@ def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_withou
     facts = facts_with([1.0, 2.0, 3.0])
     text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 300, 0), facts.edge, _tolerance_text(facts, ["s"])))
     assert "The tolerances: with the drawing's coaxiality and run-out ×2" in text and "`tilt_unresolved`" in text
+
+
+def test_where_edges_reach_the_wall_the_report_names_the_method_that_counts_them(report_text):
+    # the mid-plane film's α and lives leave the edge contact out: the report says which method counts it
+    paragraph = next(line for line in report_text.splitlines() if "do not count" in line)
+    assert "`--tilt-method coupled`" in paragraph and "over the bearing surface" in paragraph

@@ -217,7 +217,9 @@ NOT_A_NUMBER_COUNT_PART = "{count} {status}"
 ALL_PERIODIC = "Every one of the {total} bearing-cycles reached a periodic orbit."
 EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reaches the wall at some crank angle, "
                "where the film is held at a floor of {floor:.1f} % of the radial clearance (no elastic edge, no "
-               "EHD): boundary contact that α and the lives, read at the mid-plane, do not count.")
+               "EHD): boundary contact that α and the lives, read at the mid-plane, do not count. `--tilt-method "
+               "coupled` balances the support moments with the crankshaft and the block and reads α and the lives "
+               "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
                 "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
