@@ -191,11 +191,13 @@ def support_tilt_compliance(engine, tilt_method="equilibrium"):
     ring = supports.ring is not None and bool(np.any(supports.ring))
     if not (supports.angular_derived or ring):
         return None
-    derived = [*(["the bulkhead web's (stackup.crank.housing.bulkhead_compliance)"] if supports.angular_derived
-                 else []),
-               *(["the bore ring's own turn, the bearing law's deformation stiffness taken slice by slice across "
-                  "the width (stackup.crank.housing.ring_tilt_compliance, an upper end: a cap twisted as a body "
-                  "turns about a quarter as much)"] if ring else [])]
+    derived = []
+    if supports.angular_derived:
+        derived.append("the bulkhead web's (stackup.crank.housing.bulkhead_compliance)")
+    if ring:
+        derived.append("the bore ring's own turn, the bearing law's deformation stiffness taken slice by slice "
+                       "across the width (stackup.crank.housing.ring_tilt_compliance, an upper end: a cap twisted "
+                       "as a body turns about a quarter as much)")
     k = BULKHEAD_FACTOR
     return Uncertainty("supports' angular compliance (bulkhead and bore ring)",
                        {f"support tilt compliance ×{1 / k:g}": {"support_angular_scale": 1 / k},

@@ -223,17 +223,14 @@ def supports(*, linear, angular, thermal_offset=None, source="", thermal_source=
     block rigid against tilt), ``thermal_offset`` [m] (N+1, 2) or None, ``ring`` [rad/(N m)] >= 0 (the bore's
     own turn, :func:`ring_tilt_compliance`) or None.
     """
-    lin = np.atleast_2d(np.asarray(linear, dtype=float))
-    ang = np.atleast_2d(np.asarray(angular, dtype=float))
-    n = max(lin.shape[0], ang.shape[0], 0 if thermal_offset is None else np.shape(thermal_offset)[0])
-    for name, value in (("linear", lin), ("angular", ang)):
+    rows = {name: np.atleast_2d(np.asarray(value, dtype=float))
+            for name, value in (("linear", linear), ("angular", angular), ("ring", ring)) if value is not None}
+    n = max(*(value.shape[0] for value in rows.values()), 0 if thermal_offset is None else np.shape(thermal_offset)[0])
+    for name, value in rows.items():
         if value.shape[-1] != 2 or value.shape[0] not in (1, n):
             raise ValueError(f"{name}: shape {value.shape} is not valid; give (bearings, 2) or (1, 2)")
     offset = None if thermal_offset is None else np.asarray(thermal_offset, dtype=float)
     if offset is not None and offset.shape != (n, 2):
         raise ValueError(f"thermal_offset: shape {offset.shape} is not valid; give ({n}, 2)")
-    own = None if ring is None else np.atleast_2d(np.asarray(ring, dtype=float))
-    if own is not None and (own.shape[-1] != 2 or own.shape[0] not in (1, n)):
-        raise ValueError(f"ring: shape {own.shape} is not valid; give (bearings, 2) or (1, 2)")
-    return Supports(np.broadcast_to(lin, (n, 2)).copy(), np.broadcast_to(ang, (n, 2)).copy(), offset, source,
-                    thermal_source, ring=None if own is None else np.broadcast_to(own, (n, 2)).copy())
+    full = {name: np.broadcast_to(value, (n, 2)).copy() for name, value in rows.items()}
+    return Supports(full["linear"], full["angular"], offset, source, thermal_source, ring=full.get("ring"))

@@ -343,18 +343,19 @@ class _March:
         ``parts`` sub-steps (load, free and imposed tilt linear between the two angles; each sub-step but the last
         taken into the content's history)."""
         kn = (k + 1) % self.w.shape[0]
-        w0, w1, f0, f1 = self.w[k], self.w[kn], self.free[k], self.free[kn]
-        t1 = self.tilt[kn]
         dtau = (self.tau[k + 1] - self.tau[k]) / parts
+
+        def at(values, share):  # exact at the step's ends (share 0 and 1): a whole step is the step itself
+            return (1 - share) * values[k] + share * values[kn]
+
         x = None
         for m in range(1, parts + 1):
             if m > 1:
                 xi, e = x[:2].copy(), (x[2:].copy() if self.coupled else None)
                 self.taken(xi)
             a, b = (m - 1) / parts, m / parts
-            x = self._advance(xi, e, (1 - a) * w0 + a * w1, (1 - b) * w0 + b * w1, (1 - a) * f0 + a * f1,
-                              (1 - b) * f0 + b * f1, self.tilt[k] + b * (t1 - self.tilt[k]) if m < parts else t1,
-                              dtau)
+            x = self._advance(xi, e, at(self.w, a), at(self.w, b), at(self.free, a), at(self.free, b),
+                              at(self.tilt, b), dtau)
         return x
 
     def _advance(self, xi, e, w_from, w_to, free_from, free_to, tilt_to, dtau):
@@ -386,6 +387,8 @@ class _March:
         return (self.p.copy(), self.fill.copy(), self.jac, self.held, self.alpha, self.dtau_prev, list(self.steps))
 
     def restore(self, state):
+        """The march back at a :meth:`snapshot` (a step's field solves leave the field and fill where they
+        stopped)."""
         p, fill, self.jac, self.held, self.alpha, self.dtau_prev, steps = state
         self.p[:] = p
         self.fill[:] = fill

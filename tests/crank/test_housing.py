@@ -44,6 +44,9 @@ def test_zero_angular_compliance_is_a_block_rigid_against_tilt():
     assert s.rigid and s.linear.shape == (1, 2)
     assert supports(linear=[1e-9, 0.6e-9], angular=[0.0, 0.0], ring=[0.0, 0.0]).rigid
     assert not supports(linear=[1e-9, 0.6e-9], angular=[0.0, 0.0], ring=[1e-6, 0.0]).rigid
+    # one row of the block's compliances for every bearing beside a ring per bearing
+    per_bearing = supports(linear=[1e-9, 0.6e-9], angular=[0.0, 0.0], ring=np.full((5, 2), 1e-6))
+    assert per_bearing.linear.shape == per_bearing.angular.shape == per_bearing.ring.shape == (5, 2)
 
 
 def test_ring_tilt_compliance_is_the_least_squares_turn_of_independent_slices():
