@@ -173,7 +173,7 @@ class CrankSpec:
     pressure_trace: tuple | None = None  # measured (cycle angles [deg], pressures [Pa]) replacing the model
     oil: str = "SAE-5W-30"  # stackup.film.oil grade
     oil_supply_temperature: float = 90.0  # [degC]
-    supports: Supports | None = None  # the block's compliance at each main bearing; None: rigid against tilt
+    supports: Supports | None = None  # the block's compliance at each main bearing (from the law without [supports])
     #: where the section inertias come from (``section_inertia_source``; empty: not given, an assumption)
     section_inertia_source: str = ""
     crank_modulus: float = 2.1e11  # Young's modulus of the crankshaft [Pa] (``crank_material``'s)
@@ -648,6 +648,8 @@ def _crank(top, *, scale, units, bearings, extra):
                              f"remove bearing_law.{given[0]}")
         params = {**params, **supports.law_stiffness}
         supports = replace(supports, ring=_ring(params, spec.bearing_width))
+    else:
+        supports = _law_supports(params, bearings, spec.bearing_width)
     oil = top.table("oil")
     grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
     supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
@@ -714,6 +716,19 @@ def _supports(top, *, scale, units, bearings, block, ring):
                    t.source("thermal_source") if thermal is not None else "", angular_derived=bulkhead is not None)
     t.close()
     return out
+
+
+def _law_supports(law, bearings, bearing_width):
+    """The supports of an engine file without a [supports] table: the bearing law's deformation stiffness as
+    their linear compliance (one description of the housing), the bulkhead's web rigid against tilt (the file
+    describes none) and the bore ring's own turn from the law (:func:`_ring`)."""
+    linear = np.broadcast_to(1.0 / np.stack([np.asarray(law["k_lv"], float), np.asarray(law["k_hv"], float)],
+                                            axis=-1), (bearings, 2)).copy()
+    return Supports(linear, np.zeros((bearings, 2)),
+                    source="no [supports] table: the linear compliance the bearing law's deformation stiffness "
+                           "(bearing_law.k_lv, k_hv), the bulkhead's web rigid against tilt, the bore ring's own "
+                           "turn derived from the law",
+                    ring=np.broadcast_to(_ring(law, bearing_width), (bearings, 2)).copy())
 
 
 def _ring(law, bearing_width):

@@ -12,8 +12,8 @@ kinds:
   what to measure to narrow it: the housing's stiffness (its equivalent outer
   diameter, hence the housing swell), the shells' crush height process, how
   much hotter the journal runs than its bulkhead, and, where the engine file
-  assumes them, the crankshaft's bending stiffness and (with the support
-  moments balanced) the supports' angular compliance.
+  assumes them, the crankshaft's bending stiffness and (where the journals'
+  tilt is turned back at the supports) the supports' angular compliance.
 """
 
 from __future__ import annotations
@@ -183,10 +183,10 @@ def support_tilt_compliance(engine, tilt_method="equilibrium"):
     """The :class:`Uncertainty` of the supports' angular compliance where any of it is derived, from a bulkhead
     web (:func:`stackup.crank.housing.bulkhead_compliance`) or, for the bore ring's own turn, from the bearing
     law's plane-strain deformation stiffness (:func:`stackup.crank.housing.ring_tilt_compliance`), and the study
-    balances the support moments (``tilt_method`` "coupled", the only one that reads it), else None:
-    :data:`BULKHEAD_FACTOR` either way."""
+    turns the journals back with it (``tilt_method`` "equilibrium" at each support, "coupled" with all support
+    moments; "free" holds the beam's slope), else None: :data:`BULKHEAD_FACTOR` either way."""
     supports = engine.crank.supports if engine.crank is not None else None
-    if supports is None or tilt_method != "coupled":
+    if supports is None or tilt_method == "free":
         return None
     ring = supports.ring is not None and bool(np.any(supports.ring))
     if not (supports.angular_derived or ring):

@@ -166,3 +166,24 @@ def test_given_angular_compliance_replaces_the_bulkhead(tmp_path):
     e = load_engine(_engine_file(tmp_path, {_WEB: "angular_compliance_urad_per_Nm = [[3, 0.5], [4, 0.6], [4, 0.6], "
                                                   "[4, 0.6], [3, 0.5]]\n"}))
     np.testing.assert_allclose(e.crank.supports.angular[1], [4e-6, 0.6e-6])
+
+
+def test_without_supports_the_bore_ring_turns_by_the_bearing_laws_stiffness(tmp_path):
+    """One description of the housing: with no [supports] table the law's k_lv and k_hv are the supports' linear
+    compliance and the bore ring turns by them across the width; the bulkhead's web is rigid."""
+    from stackup.crank.housing import ring_tilt_compliance
+
+    start = "[supports]\n"
+    text = (load_engine.__globals__["_builtin_dir"]() / "iso-example.toml").read_text()
+    table = text[text.index(start):text.index("[bearing_law]")]
+    path = _engine_file(tmp_path, {table: "", "theta0 = 97.0": "k_lv = 0.5e9\nk_hv = 2.0e9\ntheta0 = 97.0"})
+    supports = load_engine(path).crank.supports
+    np.testing.assert_allclose(supports.linear, np.tile([1 / 0.5e9, 1 / 2.0e9], (5, 1)))
+    np.testing.assert_array_equal(supports.angular, 0.0)
+    assert supports.thermal_offset is None and "bearing law" in supports.source
+    width = load_engine(path).crank.bearing_width
+    cap, across = (0.5e9 + 1.5e9 / (1 + np.exp(-(angle - np.radians(97.0)) / np.radians(15.0)))
+                   for angle in (0.0, np.pi / 2))  # the law's sigmoid at 0 and 90 deg
+    expected = ring_tilt_compliance(stiffness=np.array([cap, across]), bearing_width=width)
+    np.testing.assert_allclose(supports.ring, np.tile(expected, (5, 1)), rtol=1e-12)
+    np.testing.assert_allclose(supports.tilt_compliance[:, 0], 12 / (cap * width**2), rtol=1e-12)

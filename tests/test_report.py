@@ -42,7 +42,7 @@ def test_compare_runs_the_study_its_scenarios_and_the_sensitivity(comparison):
 
     model = [label for u in model_uncertainties(load_engine("iso-example")) for label in u.scenarios]
     assert list(comparison.scenarios) == [*SCENARIOS, *model]
-    assert [ds.attrs["scenario_kind"] for ds in comparison.scenarios.values()] == ["process"] * 2 + ["model"] * 6
+    assert [ds.attrs["scenario_kind"] for ds in comparison.scenarios.values()] == ["process"] * 2 + ["model"] * 8
     assert comparison.scenarios["housing OD 75 mm"].attrs["scenario_source"].startswith("assumed")
     assert all(ds.attrs["kept"] == "summaries" for ds in comparison.scenarios.values())
     assert comparison.scenarios["misalignment ×2"].attrs["mechanics_engines_used"] > 0
@@ -552,7 +552,50 @@ def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_withou
     assert "The tolerances: with the drawing's coaxiality and run-out ×2" in text and "`tilt_unresolved`" in text
 
 
-def test_where_edges_reach_the_wall_the_report_names_the_method_that_counts_them(report_text):
-    # the mid-plane film's α and lives leave the edge contact out: the report says which method counts it
-    paragraph = next(line for line in report_text.splitlines() if "do not count" in line)
-    assert "`--tilt-method coupled`" in paragraph and "over the bearing surface" in paragraph
+def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_count_them():
+    """A study whose α and lives read the film over the width (h_min below h_min_midplane) counts the edges at the
+    wall; one saved when they read the mid-plane does not, and the report names the method that counts them."""
+    import xarray as xr
+
+    from stackup.facts.mechanics import FilmOutcomes, edge_contact
+    from stackup.report.mechanics import _outcomes_text
+    from stackup.study.schema import FILM_STATUS_FLAGS, TILT_STATUS_FLAGS
+
+    def flags(meanings):
+        return {"flag_values": list(range(len(meanings))), "flag_meanings": " ".join(meanings)}
+
+    def study(h_min):
+        status = np.array([[[FILM_STATUS_FLAGS.index(s) for s in ("edge_contact", "periodic")]]], np.int8)
+        dims = ("scheme", "mech_engine", "bearing")
+        not_computed = np.full((1, 1, 2), TILT_STATUS_FLAGS.index("not_computed"), np.int8)
+        return xr.Dataset({"film_status": (dims, status, flags(FILM_STATUS_FLAGS)),
+                           "film_valid": (dims, np.ones((1, 1, 2), bool)),
+                           "edge_contact_share": (dims, [[[0.08, 0.0]]]), "h_min": (dims, [h_min]),
+                           "h_min_midplane": (dims, [[[2e-6, 3e-6]]]),
+                           "tilt_status": (dims, not_computed, flags(TILT_STATUS_FLAGS))},
+                          coords={"scheme": ["s"], "bearing": [1, 2]})
+
+    outcomes = FilmOutcomes(2, {}, 0, 1, 1)
+    counted = " ".join(_outcomes_text(outcomes, edge_contact(study([[0.1e-6, 3e-6]]))))
+    assert "α and the lives read that film over the width" in counted and "do not count" not in counted
+    assert "turned back at its support alone" in counted and "`--tilt-method coupled`" in counted
+    midplane = " ".join(_outcomes_text(outcomes, edge_contact(study([[2e-6, 3e-6]]))))
+    assert "do not count" in midplane and "`--tilt-method coupled`" in midplane
+
+
+def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named():
+    import pandas as pd
+
+    from stackup.report.sections import _life_change_line
+
+    index = pd.MultiIndex.from_tuples([("a", 1), ("a", 2), ("b", 1), ("b", 2)], names=["scheme", "bearing"])
+    positions = pd.DataFrame({"pairs": [50] * 4,
+                              "life_change_h": [(600.0, 400.0, 800.0), (-5.0, -20.0, 10.0), (900.0, 700.0, 1100.0),
+                                                (300.0, 100.0, 500.0)],
+                              "h_min_mean_change_um": [(0.3, 0.2, 0.4), (0.0, -0.1, 0.1), (0.4, 0.3, 0.5),
+                                                       (-0.1, -0.2, 0.0)]}, index=index)
+    engines = pd.DataFrame({"engine_life_change_h": [(550.0, 300.0, 800.0), (280.0, 90.0, 470.0)]},
+                           index=pd.Index(["a", "b"], name="scheme"))
+    line = _life_change_line("support tilt compliance ×2", positions, engines, "a")
+    assert "with a thicker cycle-mean film at 2 of the 4 positions of the schemes (+600 to +900 h" in line
+    assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in line and "bearing 1 of a" not in line

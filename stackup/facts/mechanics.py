@@ -35,9 +35,9 @@ def _computed(ds):
 class EdgeContact:
     """Bearings whose journal edge touches its shell (``edge_contact``) among those whose film is a number.
 
-    With the mid-plane film (``tilt_method`` equilibrium or free) an edge touches where the tilted journal's
-    edge reaches the wall (its film held at the floor); with the film over the bearing surface (``coupled``)
-    where that film falls below h_lim,cr at an edge.
+    With rigid surfaces (``tilt_method`` equilibrium or free) an edge touches where the tilted journal's
+    edge reaches the wall (its film held at the floor); with the support moments on the elastic layer
+    (``coupled``) where the film over the surface falls below h_lim,cr at an edge.
     """
 
     computed: int                # bearing-cycles with a film that is a number
@@ -54,6 +54,8 @@ class EdgeContact:
     periodic: float = np.nan     # share of the bearing-cycles whose support moments repeated within the march
     unresolved: tuple = (np.nan, np.nan)  # median and 95 % over the engines of the share of the march's solved
                                           # angles whose balance was not resolved to the tolerance
+    counted: bool = True         # α and the lives read the film over the width, where the edges are (h_min below
+                                 # h_min_midplane somewhere; a study that read the mid-plane has them equal)
 
 
 def edge_contact(ds):
@@ -68,7 +70,9 @@ def edge_contact(ds):
     per_scheme = [100 * touching[i].sum() / ran[i].sum() for i in range(len(ds.scheme)) if ran[i].any()]
     surface = "tilt_status" in ds and bool(np.any(ds.tilt_status.values != flag(ds.tilt_status, "not_computed")))
     if not surface:
-        return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT)
+        counted = "h_min_midplane" in ds and bool(np.any(ds.h_min.values[ran] < ds.h_min_midplane.values[ran]))
+        return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
+                           counted=counted)
     rows = {}
     for b, bearing in enumerate(ds.bearing.values):
         on, there = touching[..., b], ran[..., b]

@@ -186,7 +186,9 @@ def _outcomes_text(outcomes, edge_contact, tolerance=""):
                                               periodic=fmt.percent(edge_contact.periodic)))
     elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
-        text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
+        counted = edge_contact is not None and edge_contact.counted
+        text.append((words.EDGE_COUNTED if counted else words.EDGE_CYCLES).format(
+            edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
     if edge_contact is not None and edge_contact.surface:
         # also where no edge touches in the study: the tolerances may make some, and the march's convergence is
         # the march's, not the contact's

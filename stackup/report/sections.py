@@ -158,10 +158,21 @@ def _life_change_line(label, positions, engines, chosen):
         return words.SCENARIO_LIVES_SAME.format(scenario=label, pairs=int(mine.pairs.min()))
     changes = [v[0] for v in mine.life_change_h]
     rises = [(scheme, bearing, row) for (scheme, bearing), row in positions.iterrows() if row.life_change_h[1] > 0]
-    where = (words.LIVES_NONE_RISE if not rises else words.LIVES_RISE.format(where=words.listed(
-        words.LIFE_RISE_PART.format(bearing=bearing, scheme=scheme, change=fmt.signed(row.life_change_h[0]),
-                                    film=fmt.fixed(row.h_min_mean_change_um[0], 2, sign=True))
-        for scheme, bearing, row in rises)))
+    # a life that rises with its film is the film's doing: counted; one that rises without it is named
+    thicker = [row for _, _, row in rises if row.h_min_mean_change_um[0] > 0]
+    odd = [(scheme, bearing, row) for scheme, bearing, row in rises if not row.h_min_mean_change_um[0] > 0]
+    parts = []
+    if thicker:
+        life, film = ([row[name][0] for row in thicker] for name in ("life_change_h", "h_min_mean_change_um"))
+        parts.append(words.LIVES_RISE_WITH_FILM.format(
+            count=len(thicker), total=len(positions), lo=fmt.signed(min(life)), hi=fmt.signed(max(life)),
+            film_lo=fmt.signed(min(film), 2), film_hi=fmt.signed(max(film), 2)))
+    if odd:
+        parts.append(words.LIVES_RISE.format(where=words.listed(
+            words.LIFE_RISE_PART.format(bearing=bearing, scheme=scheme, change=fmt.signed(row.life_change_h[0]),
+                                        film=fmt.signed(row.h_min_mean_change_um[0], 2))
+            for scheme, bearing, row in odd)))
+    where = "; ".join(parts) if parts else words.LIVES_NONE_RISE
     return words.SCENARIO_LIVES.format(scenario=label, pairs=int(mine.pairs.min()), scheme=chosen,
                                        lo=fmt.signed(min(changes)), hi=fmt.signed(max(changes)),
                                        bearing=mine.index[int(np.argmin(changes))],

@@ -171,6 +171,8 @@ SCENARIO_LIVES_SAME = ("**Lives under {scenario}** ({pairs} engines, each agains
                        "changes; the engine file gives the scenario nothing to act on.")
 LIVES_NONE_RISE = "no scheme's life rises at any position beyond its 95 % interval"
 LIVES_RISE = "lives rise beyond their 95 % intervals at {where}"
+LIVES_RISE_WITH_FILM = ("lives rise beyond their 95 % intervals with a thicker cycle-mean film at {count} of the {total} "
+                        "positions of the schemes ({lo} to {hi} h; film {film_lo} to {film_hi} µm)")
 LIFE_RISE_PART = "bearing {bearing} of {scheme} ({change} h; cycle-mean film {film} µm)"
 FIT_ALL_PASS = "No bearing of any scheme {checks} at any checked temperature."
 FIT_LOW_PRESSURE = "falls below {pressure:.0f} MPa of contact pressure"
@@ -220,6 +222,12 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
                "EHD): boundary contact that α and the lives, read at the mid-plane, do not count. `--tilt-method "
                "coupled` balances the support moments with the crankshaft and the block and reads α and the lives "
                "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
+EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) the tilted journal's edge, turned back at its support alone "
+                "(the crankshaft's and the block's compliance there, quasi-static), reaches the wall at some crank "
+                "angle, where the film is held at a floor of {floor:.1f} % of the radial clearance (rigid surfaces: "
+                "no elastic edge, no EHD); α and the lives read that film over the width. `--tilt-method coupled` "
+                "balances the moments of all supports together, with the tilt's squeeze, on an elastic layer "
+                "(reports/coupled_supports.md).")
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
                 "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "

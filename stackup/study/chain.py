@@ -24,7 +24,7 @@ from ..film.coupled import STATES as TILT_STATES
 from ..film.coupled import ElasticLayer, support_moments
 from ..film.cycle import FILM_STATUS, HEAT_STEP, bearing_films, checked_film
 from ..film.heat import heat_balance
-from ..film.journal import vector_length
+from ..film.journal import ECCENTRICITY_LIMIT, vector_length
 from .. import _validate as check
 from .. import materials
 from ..contact import column_stiffness, composite_roughness, contact_modulus
@@ -318,12 +318,16 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         support's angular compliance, the bulkhead's and the bore ring's,
         ``engine.crank.supports.tilt_compliance``) over the cycle,
         with the tilt's squeeze and the elastic layer under the film
-        (:mod:`stackup.film.coupled`): ``h_min``, α and the lives then read the
-        film over the whole bearing surface, ``h_min_midplane`` the mid-plane's;
+        (:mod:`stackup.film.coupled`);
         ``equilibrium``, each bearing's tilt against the film's moment and the
-        crankshaft's compliance at its own support, quasi-static, rigid
-        surfaces (:mod:`stackup.film.tilt`), or ``free``, the beam's slope held;
-        with these two ``h_min``, α and the lives read the mid-plane film.
+        compliance at its own support (the crankshaft's there in series with
+        the support's angular compliance, ``supports.tilt_compliance``: the
+        moments of the other supports and the tilt's squeeze left out),
+        quasi-static, rigid surfaces (:mod:`stackup.film.tilt`): with these two
+        ``h_min``, α and the lives read the film over the bearing surface
+        (:func:`_surface_film`), ``h_min_midplane`` the mid-plane's; or
+        ``free``, the beam's slope held (its edges at the wall: a bound), where
+        they read the mid-plane film.
     check_engines : int
         The first engines whose films run again with the check tier
         (:func:`stackup.film.cycle.checked_film`: ``h_min_check``,
@@ -355,24 +359,26 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                               tilt_compliance=constants.compliance if tilt_method == "equilibrium" else None)
         films, surface = _surface(films, tilt, constants, spec, crank_angle, clearance=clearance, journal_d=journal_d,
                                   film_method=film_method) if coupled else (films, None)
+        film = _surface_film(films, surface, tilt_method)
         loads = np.moveaxis(r.reactions, 1, 2)
         out = {"reaction_max": np.hypot(r.reactions[..., 0], r.reactions[..., 1]).max(axis=1),
                "crank_status": worst_status(r.status),
                "tilt_free_max": vector_length(tilt).max(axis=1),
                "law_fit_error": law_error,
                "load_history": loads,
-               **_film_values(films, surface, loads, crank_angle, engine.wear.critical_film),
-               **_life_values(engine, films, surface, spec.bearing_width, clearance=clearance, journal_d=journal_d,
+               **_film_values(films, surface, film, loads, crank_angle, engine.wear.critical_film),
+               **_life_values(engine, films, surface, film, spec.bearing_width, clearance=clearance,
+                              journal_d=journal_d,
                               crank_angle=crank_angle, life_film=life_film, roughness=constants.roughness,
                               modulus=constants.modulus),
-               **_check_values(engine, films, surface, r.reactions, crank_angle, clearance=clearance,
+               **_check_values(engine, films, film, r.reactions, crank_angle, clearance=clearance,
                                journal_d=journal_d, film_method=film_method, life_film=life_film,
-                               engines=check_engines)}
+                               engines=check_engines, coupled=coupled)}
     return _not_a_number(out, films.valid)
 
 
-def _check_values(engine, films, surface, reactions, crank_angle, *, clearance, journal_d, film_method, life_film,
-                  engines):
+def _check_values(engine, films, film, reactions, crank_angle, *, clearance, journal_d, film_method, life_film,
+                  engines, coupled):
     """The check tier's film and life on the first ``engines`` engines (NaN on the others).
 
     The check tier's error on the aligned journal's mid-plane film
@@ -381,7 +387,9 @@ def _check_values(engine, films, surface, reactions, crank_angle, *, clearance, 
     study's mid-plane film and so off the film the study reads (over the
     surface where the support moments ran: the tilt's part of it is the
     geometry's, the centre's the tier's), per statistic (cycle minimum, cycle
-    mean); a bearing where the check tier fails is NaN.
+    mean); with rigid surfaces (``coupled`` False) no cycle minimum below the
+    wall's film, :math:`c(1 - \varepsilon_{lim})`, where the film tier holds an
+    edge; a bearing where the check tier fails is NaN.
     """
     shape = np.shape(clearance)
     out = {name: np.full(shape, np.nan) for name in ("h_min_check", "h_min_mean_check", "life_check")}
@@ -392,9 +400,12 @@ def _check_values(engine, films, surface, reactions, crank_angle, *, clearance, 
                                    viscosity=films.viscosity[first], clearance=np.asarray(clearance)[first],
                                    journal_d=np.asarray(journal_d)[first], method=film_method)
     mid = films.h_min[first]
-    read = _life_film(films, surface)[first]
+    read = np.maximum(film, 0.0)[first]
     out["h_min_check"][first] = read.min(axis=-1) + mid.min(axis=-1) * (accurate.min(axis=-1) / cheap.min(axis=-1)
                                                                         - 1)
+    if not coupled:  # an edge the tier holds at the wall stays there, whichever tier moves the centre
+        wall = 0.5 * np.asarray(clearance)[first] * (1 - ECCENTRICITY_LIMIT)
+        out["h_min_check"][first] = np.maximum(out["h_min_check"][first], wall)
     mean = cycle_film(mid, statistic="cycle-mean")
     out["h_min_mean_check"][first] = cycle_film(read, statistic="cycle-mean") + mean * (
         cycle_film(accurate, statistic="cycle-mean") / cycle_film(cheap, statistic="cycle-mean") - 1)
@@ -420,15 +431,14 @@ def _surface(films, tilt, constants, spec, crank_angle, *, clearance, journal_d,
     return films, surface
 
 
-def _surface_film(films, surface):
-    """The study's film over the cycle (engines, bearings, angles) [m]: over the surface where the support
-    moments ran, else the mid-plane's."""
-    return films.h_min if surface is None else surface.film
-
-
-def _life_film(films, surface):
-    """The film Levanov's methods read over the cycle [m]: :func:`_surface_film`, a negative one no film (0)."""
-    return np.maximum(_surface_film(films, surface), 0.0)
+def _surface_film(films, surface, tilt_method):
+    """The study's film over the cycle (engines, bearings, angles) [m], the one α and the lives read: over the
+    bearing surface where the journal's tilt is turned back (the support moments' on the elastic layer,
+    ``coupled``; the thinnest over the width with the rigid tilted journal, ``equilibrium``), the mid-plane's
+    where the beam's slope is held (``free``: its edges at the wall, a bound, not a film)."""
+    if surface is not None:
+        return surface.film
+    return films.h_min_edge if tilt_method == "equilibrium" else films.h_min
 
 
 def _edge_contact(films, surface, loads, crank_angle, critical):
@@ -444,10 +454,10 @@ def _edge_contact(films, surface, loads, crank_angle, critical):
     return touching.mean(axis=-1), np.where(some, load, np.nan), np.where(some, angle, np.nan)
 
 
-def _film_values(films, surface, loads, crank_angle, critical):
-    """The film's :data:`schema.PER_MECH` variables of a :func:`stackup.film.cycle.bearing_films` result and its
-    support moments (``surface``, None with another tilt method)."""
-    h = _surface_film(films, surface)
+def _film_values(films, surface, h, loads, crank_angle, critical):
+    """The film's :data:`schema.PER_MECH` variables of a :func:`stackup.film.cycle.bearing_films` result, its
+    support moments (``surface``, None with another tilt method) and the film the study reads (``h``,
+    :func:`_surface_film`)."""
     edge = films.h_min_edge if surface is None else surface.film
     share, load, angle = _edge_contact(films, surface, loads, crank_angle, critical)
     tilt_status = np.full(films.h_min.shape[:-1], len(TILT_STATES), np.int8)
@@ -480,15 +490,15 @@ def _film_values(films, surface, loads, crank_angle, critical):
             "h_min_history": h}
 
 
-def _life_values(engine, films, surface, bearing_width, *, clearance, journal_d, crank_angle, life_film, roughness,
-                 modulus):
+def _life_values(engine, films, surface, film, bearing_width, *, clearance, journal_d, crank_angle, life_film,
+                 roughness, modulus):
     """Life and wear of the bearings with these films: Levanov's method 1 on the film statistic ``life_film``,
-    his wear chart (method 2) on the orbit; both, and α, on the film over the bearing surface where the support
-    moments ran (``surface``)."""
+    his wear chart (method 2) on the orbit; both, and α, on the film the study reads (``film``,
+    :func:`_surface_film`; a negative one no film, 0)."""
     wear = engine.wear
     c = np.asarray(clearance) / 2
-    h = _life_film(films, surface)
-    chart = levanov_method2(_wear_positions(films, surface, bearing_width, c), radial_clearance=c,
+    h = np.maximum(film, 0.0)
+    chart = levanov_method2(_wear_positions(films, surface, film, bearing_width, c), radial_clearance=c,
                             crank_angle=crank_angle, speed=engine.crank.speed,
                             journal_radius=np.asarray(journal_d) / 2, h_lim_cr=wear.critical_film,
                             roughness=roughness, contact_modulus=modulus, wear_limit=wear.wear_limit)
@@ -496,30 +506,36 @@ def _life_values(engine, films, surface, bearing_width, *, clearance, journal_d,
     life = levanov_method1(h_min_mean if life_film == "cycle-mean" else cycle_film(h, statistic=life_film),
                            h_lim_cr=wear.critical_film, wear_limit=wear.method1_wear_limit, wear_rate=wear.wear_rate)
     return {"h_min_mean": h_min_mean,
-            "alpha": boundary_share(_surface_film(films, surface), h_lim_cr=wear.critical_film),
+            "alpha": boundary_share(film, h_lim_cr=wear.critical_film),
             "life": life.life,
             "life_wear_chart": chart.life,
             "wear_rate": chart.wear_rate}
 
 
-def _wear_positions(films, surface, bearing_width, radial_clearance):
+def _wear_positions(films, surface, film, bearing_width, radial_clearance):
     r"""Journal centres whose film around the bearing the wear chart reads (engines, bearings, angles, 2) [m].
 
-    Without support moments the mid-plane orbit. With them the thinner edge's
-    centre :math:`\mathbf x \pm \tfrac L2\boldsymbol\gamma` (:math:`\mathbf x` the centre the tilted film
-    carries the load at), moved along its direction so
-    that its thinnest film is the film over the layer, :math:`c - |\mathbf x_e| = h`:
-    the wear chart of Levanov's method 2 along the edge that carries the
-    asperity contact (the contact zone's width across the bearing left out, as
-    the paper's chart has none).
+    Where the study reads the mid-plane film, the mid-plane orbit. With the
+    support moments the thinner edge's centre :math:`\mathbf x \pm \tfrac L2\boldsymbol\gamma`
+    (:math:`\mathbf x` the centre the tilted film carries the load at); with the
+    rigid tilted journal (``equilibrium``, whose tilt over the cycle the film
+    tier does not keep) the mid-plane centre. Either moved along its direction
+    so that its thinnest film is the film the study reads (``film``),
+    :math:`c - |\mathbf x_e| = h`: the wear chart of Levanov's method 2 along the
+    edge that carries the asperity contact (the contact zone's width across the
+    bearing left out, as the paper's chart has none; with ``equilibrium`` the
+    edge's turn from the mid-plane centre's direction too).
     """
-    if surface is None:
+    if film is films.h_min:
         return films.position
-    half = 0.5 * bearing_width * surface.tilt
-    plus, minus = surface.centre + half, surface.centre - half
-    edge = np.where((vector_length(plus) >= vector_length(minus))[..., None], plus, minus)
+    if surface is None:
+        edge = films.position
+    else:
+        half = 0.5 * bearing_width * surface.tilt
+        plus, minus = surface.centre + half, surface.centre - half
+        edge = np.where((vector_length(plus) >= vector_length(minus))[..., None], plus, minus)
     reach = vector_length(edge)
-    target = np.asarray(radial_clearance)[..., None] - surface.film
+    target = np.asarray(radial_clearance)[..., None] - film
     scale = np.where(reach > 0, target / np.where(reach > 0, reach, 1.0), 0.0)
     return edge * scale[..., None]
 
@@ -562,10 +578,11 @@ def _pin_loads(spec, crank_angle):
 
 @dataclass(frozen=True)
 class EngineConstants:
-    """What the chain reads of an engine for every batch: the crankshaft's rotational compliance at its supports
-    (its diagonal (N+1, 2); ``coupled``: between the supports, plus each support's angular compliance on the
-    diagonal, (2, N+1, N+1)), the elastic layer under the film, and the wear's composite roughness and contact
-    modulus."""
+    """What the chain reads of an engine for every batch: the compliance a journal's tilt meets at each support,
+    the crankshaft's rotational compliance there plus the support's angular compliance (the bulkhead's and the
+    bore ring's, ``supports.tilt_compliance``) (N+1, 2); ``coupled``, the crankshaft's between the supports
+    plus each support's on the diagonal (2, N+1, N+1); the elastic layer under the film, and the wear's
+    composite roughness and contact modulus."""
 
     compliance: np.ndarray
     coupled: np.ndarray
@@ -587,7 +604,8 @@ def _engine_constants(engine):
     journal, lining = materials.get(fit.journal_material), materials.get(wear.lining_material)
     compliance = support_compliance(spans=spec.spans, EI=spec.ei)
     coupled = support_compliance(spans=spec.spans, EI=spec.ei, coupled=True)
-    if spec.supports is not None:
+    if spec.supports is not None:  # the support turns with its film's moment, in series with the crankshaft
+        compliance = compliance + spec.supports.tilt_compliance
         for c in range(2):
             coupled[c] += np.diag(spec.supports.tilt_compliance[:, c])
     for array in (compliance, coupled):

@@ -28,7 +28,8 @@ Model inputs, what the engine file assumes and nobody may have measured:
 ``support_angular_scale``
     Factor on the supports' angular compliance [-], the bulkhead's and the
     bore ring's own (:meth:`stackup.crank.housing.Supports.scaled`; read where
-    the support moments are balanced, ``tilt_method`` "coupled").
+    the journals' tilt is turned back at the supports, ``tilt_method``
+    "equilibrium" or "coupled").
 
 The declared sets a comparison runs are in :mod:`stackup.scenarios`.
 """

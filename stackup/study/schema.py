@@ -76,14 +76,14 @@ MECHANICS = {
     "reaction_max": Var(SMB, "N", "maximum bearing load over the engine cycle (NaN where crank_status is not_computed)"),
     "h_min": Var(SMB, "m", "minimum oil film thickness over the bearing surface and the engine cycle: the journal's "
                            "tilt and the elastic layer included (Rozhdestvensky et al.'s inf h_min; negative where "
-                           "the asperities are pressed past their mean planes); the mid-plane's where tilt_method "
-                           "is not coupled"),
+                           "the asperities are pressed past their mean planes) with tilt_method coupled; the "
+                           "thinnest over the width, rigid surfaces, with equilibrium; the mid-plane's with free"),
     "h_min_midplane": Var(SMB, "m", "minimum oil film thickness in the bearing's mid-plane over the engine cycle "
                                     "(the film tier of film_method_used, without tilt)"),
     "h_min_mean": Var(SMB, "m", "cycle mean of the minimum oil film thickness over the bearing surface (the film of "
                                 "Levanov's method 1, negative films counted as 0)"),
     "h_min_edge": Var(SMB, "m", "minimum oil film thickness over the bearing width and the engine cycle, with the "
-                                "journal's tilt (edge film; h_min with tilt_method coupled)"),
+                                "journal's tilt (edge film; h_min with tilt_method coupled or equilibrium)"),
     "tilt_loss": Var(SMB, "m", "cycle-minimum film lost to the journal's tilt: h_min_midplane - h_min_edge"),
     "tilt_max": Var(SMB, "rad", "largest tilt of the journal against its bore over the cycle (the crankshaft's "
                                 "slope at the support turned back by the support moments: tilt_method coupled, "
