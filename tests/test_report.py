@@ -108,16 +108,21 @@ def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_b
     computed = (status != flag(ds.film_status, "not_computed")) & ds.film_valid.values
     touching = computed & (status == flag(ds.film_status, "edge_contact"))
     text = _verdict(ds)
-    assert ("Journal edges touch their shells" in text) == (touching.sum() >= 0.5 * computed.sum())
-    # every bearing touching: said on the first page
+    assert ("Journal edges reach the wall" in text) == (touching.sum() >= 0.5 * computed.sum())
+    # every bearing touching: said on the first page, with what α and the lives make of it
     edged = ds.copy()
     edged["film_status"] = edged.film_status.where(~computed, flag(ds.film_status, "edge_contact"))
     text = _verdict(edged)
-    assert "**Check first:**" in text and "Journal edges touch their shells in 100 % of the bearings" in text
+    assert "**Check first:**" in text and "Journal edges reach the wall in 100 % of the bearings" in text
+    assert "α and the lives read the film there" in text
+    # a study saved when α and the lives read the mid-plane film: they ignore the contact, and the page says so
+    midplane = edged.copy()
+    midplane["h_min"] = midplane.h_min_midplane
+    assert "Journal edges touch their shells in 100 % of the bearings; the lives ignore" in _verdict(midplane)
     # none touching: nothing said
     clear = ds.copy()
     clear["film_status"] = clear.film_status.where(~computed, flag(ds.film_status, "periodic"))
-    assert "Journal edges touch" not in _verdict(clear)
+    assert "Journal edges" not in _verdict(clear)
 
 
 def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(comparison):
@@ -503,6 +508,28 @@ def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_th
     assert "Minimum film over the bearing surface" in text
 
 
+def test_with_the_default_tilt_the_report_says_where_edges_reach_the_wall_and_the_lives_count_them(tmp_path):
+    # tilt_method equilibrium: each journal turned back at its own support; which positions reach the wall, over
+    # how much of the cycle, at what load and crank angle, read from the dataset; α and the lives read that film
+    from stackup.facts.mechanics import edge_contact
+    from stackup.film.cycle import FILM_STATUS
+    from stackup.study import Study
+
+    ds = Study(engine="iso-example", schemes=("iso13778-3",), n_engines=300, mechanics_engines=4,
+               pilot_engines=1000, crank_angle_step=4.0, progress=False).run()
+    edge = edge_contact(ds)
+    assert not edge.surface and edge.counted and edge.touching
+    on = ds.film_status.values == FILM_STATUS.index("edge_contact")
+    assert np.all(ds.h_min.values[on] < ds.h_min_midplane.values[on])  # the film over the width, at the wall
+    assert np.all(np.isfinite(ds.edge_contact_load.values[on])) and np.all(np.isnan(ds.edge_contact_load.values[~on]))
+    assert np.all(ds.alpha.values[on] >= ds.edge_contact_share.values[on])
+    text = write_report(ds, tmp_path).read_text()
+    b = int(edge.per_position.index[0])
+    load = float(np.nanmedian(ds.edge_contact_load.values[..., b - 1][on[..., b - 1]]))
+    assert f"reaches the wall over part of the cycle: bearing {b} in " in text and f"{load / 1e3:.1f} kN" in text
+    assert "α and the lives read that film over the width" in text and "do not count" not in text
+
+
 def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_change_the_edge_contact(tmp_path):
     # the doubled-misalignment scenario on the same engines (common random numbers): each engine's share of the
     # cycle below h_lim,cr against itself, per position, for the first-ranked scheme; and the unresolved share
@@ -519,7 +546,7 @@ def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_c
     np.testing.assert_allclose(changes, direct)
     text = write_report(ds, tmp_path, scenarios={"misalignment ×2": doubled}).read_text()
     assert ("The tolerances: with the drawing's coaxiality and run-out ×2 (misalignment ×2; 6 engines, each against "
-            "itself) iso13778-1's share of the cycle below h_lim,cr changes by") in text
+            "itself) iso13778-1's share of the cycle with an edge below h_lim,cr changes by") in text
     assert "`tilt_unresolved`" in text or not np.nanmax(ds.tilt_unresolved.values) > 0
 
 
@@ -543,7 +570,7 @@ def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_withou
                                life_changes={"misalignment ×2": (positions, None)})
 
     none = _tolerance_text(facts_with([0.0, -0.04, 0.03]), ["s"])
-    assert "share of the cycle below h_lim,cr does not change (median per position, bearings 1–3)" in none
+    assert "share of the cycle with an edge below h_lim,cr does not change (median per position, bearings 1–3)" in none
     assert "−0.0" not in none and "at every position its 95 % interval includes zero" in none
     some = _tolerance_text(facts_with([-0.4, 2.04, 0.0]), ["s"])
     assert "changes by −0.4 to +2.0 points" in some
@@ -572,6 +599,8 @@ def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_
                            "film_valid": (dims, np.ones((1, 1, 2), bool)),
                            "edge_contact_share": (dims, [[[0.08, 0.0]]]), "h_min": (dims, [h_min]),
                            "h_min_midplane": (dims, [[[2e-6, 3e-6]]]),
+                           "edge_contact_load": (dims, [[[31e3, np.nan]]]),
+                           "edge_contact_angle": (dims, [[[372.0, np.nan]]]),
                            "tilt_status": (dims, not_computed, flags(TILT_STATUS_FLAGS))},
                           coords={"scheme": ["s"], "bearing": [1, 2]})
 
@@ -579,6 +608,8 @@ def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_
     counted = " ".join(_outcomes_text(outcomes, edge_contact(study([[0.1e-6, 3e-6]]))))
     assert "α and the lives read that film over the width" in counted and "do not count" not in counted
     assert "turned back at its support alone" in counted and "`--tilt-method coupled`" in counted
+    assert ("reaches the wall over part of the cycle: bearing 1 in 100 % of its bearings, over 8.0 % of the cycle"
+            in counted and "thinnest 0.10 µm, at up to 31.0 kN near 372° crank" in counted)
     midplane = " ".join(_outcomes_text(outcomes, edge_contact(study([[2e-6, 3e-6]]))))
     assert "do not count" in midplane and "`--tilt-method coupled`" in midplane
 

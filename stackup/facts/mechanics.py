@@ -47,7 +47,7 @@ class EdgeContact:
     floor: float                 # the film held at the wall, as a share of the radial clearance [-]
     surface: bool = False        # the film over the bearing surface ran (support moments, elastic layer)
     critical: float = np.nan     # h_lim,cr [m]
-    per_position: pd.DataFrame = None  # touching bearings per position (surface only): their share [%], median
+    per_position: pd.DataFrame = None  # touching bearings per position (where counted): their share [%], median
                                        # share of the cycle [-] and its 5-95 % over all the position's bearings
                                        # (the spread the tolerances and clearances give), thinnest film [m],
                                        # load [N] and crank angle [deg]
@@ -69,10 +69,10 @@ def edge_contact(ds):
                     if touching[..., b].any()]
     per_scheme = [100 * touching[i].sum() / ran[i].sum() for i in range(len(ds.scheme)) if ran[i].any()]
     surface = "tilt_status" in ds and bool(np.any(ds.tilt_status.values != flag(ds.tilt_status, "not_computed")))
-    if not surface:
-        counted = "h_min_midplane" in ds and bool(np.any(ds.h_min.values[ran] < ds.h_min_midplane.values[ran]))
+    counted = surface or ("h_min_midplane" in ds and bool(np.any(ds.h_min.values[ran] < ds.h_min_midplane.values[ran])))
+    if not counted:  # a study that read the mid-plane film: where and when its edges touched was not kept
         return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
-                           counted=counted)
+                           counted=False)
     rows = {}
     for b, bearing in enumerate(ds.bearing.values):
         on, there = touching[..., b], ran[..., b]
@@ -85,9 +85,12 @@ def edge_contact(ds):
                               "film": float(np.median(ds.h_min.values[..., b][on])),
                               "load": float(np.nanmedian(ds.edge_contact_load.values[..., b][on])),
                               "angle": float(np.nanmedian(ds.edge_contact_angle.values[..., b][on]))}
+    table = pd.DataFrame.from_dict(rows, orient="index")
+    if not surface:
+        return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
+                           per_position=table)
     return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
-                       surface=True, critical=Wear.of(ds).critical_film_m,
-                       per_position=pd.DataFrame.from_dict(rows, orient="index"),
+                       surface=True, critical=Wear.of(ds).critical_film_m, per_position=table,
                        periodic=float(np.mean(ds.tilt_status.values[ran] == flag(ds.tilt_status, "periodic"))),
                        unresolved=_unresolved(ds, ran))
 

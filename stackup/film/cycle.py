@@ -250,10 +250,16 @@ def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, jo
             orbit(loads, angle, **geometry, method=check, **fed(check)).h_min)
 
 
+def at_wall(h_min_edge, clearance):
+    """Where the film over the width is held at the limit film :math:`c(1 - \varepsilon_{lim})` (an edge, or the
+    journal, at the wall): ``h_min_edge`` (..., angles) [m] at diametral ``clearance`` (...) [m] -> bool."""
+    floor = 0.5 * np.asarray(clearance, dtype=float)[..., None] * (1 - ECCENTRICITY_LIMIT)
+    return h_min_edge <= floor * (1 + 1e-9)
+
+
 def _at_limit_share(h_min_edge, clearance):
-    """Share of the angles whose film over the width is held at the limit film c (1 - ECCENTRICITY_LIMIT)."""
-    floor = 0.5 * np.asarray(clearance)[..., None] * (1 - ECCENTRICITY_LIMIT)
-    return (h_min_edge <= floor * (1 + 1e-9)).mean(axis=-1)
+    """Share of the angles whose film over the width is held at the limit film (:func:`at_wall`)."""
+    return at_wall(h_min_edge, clearance).mean(axis=-1)
 
 
 def _is_number(status):

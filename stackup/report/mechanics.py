@@ -143,7 +143,7 @@ def _span(values):
 def _tolerance_text(facts, order):
     """Whether the tolerances change the edge contact: the first-ranked scheme's paired change of the share of the
     cycle below h_lim,cr under the scenario that scales the misalignment ('' without one, or without the data)."""
-    if facts.misalignment is None or facts.edge is None or not facts.edge.surface:
+    if facts.misalignment is None or facts.edge is None or facts.edge.per_position is None:
         return ""
     label, factor = facts.misalignment
     positions, _ = facts.life_changes[label]
@@ -160,6 +160,7 @@ def _tolerance_text(facts, order):
               f"changes by {lo} to {hi} points")
     return words.EDGE_TOLERANCE.format(
         factor=f"{factor:g}", label=label, pairs=int(mine.pairs.min()), scheme=scheme, changes=spread,
+        contact=words.BELOW_CRITICAL if facts.edge.surface else words.AT_WALL,
         first=int(mine.index.min()), last=int(mine.index.max()),
         beyond=(words.EDGE_TOLERANCE_BEYOND.format(s=words.plural(len(beyond)), bearings=words.listed(beyond))
                 if beyond else words.EDGE_TOLERANCE_WITHIN))
@@ -186,22 +187,25 @@ def _outcomes_text(outcomes, edge_contact, tolerance=""):
                                               periodic=fmt.percent(edge_contact.periodic)))
     elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
-        counted = edge_contact is not None and edge_contact.counted
-        text.append((words.EDGE_COUNTED if counted else words.EDGE_CYCLES).format(
-            edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
-    if edge_contact is not None and edge_contact.surface:
+        if edge_contact is not None and edge_contact.per_position is not None:
+            text.append(words.EDGE_COUNTED.format(edge=fmt.count(edge), share=100 * edge / max(total, 1),
+                                                  floor=floor,
+                                                  positions="; ".join(_edge_positions(edge_contact.per_position))))
+        else:
+            text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
+    if edge_contact is not None and edge_contact.per_position is not None:
         # also where no edge touches in the study: the tolerances may make some, and the march's convergence is
         # the march's, not the contact's
         median, high = edge_contact.unresolved
         unresolved = (words.EDGE_UNRESOLVED.format(median=fmt.percent(median), high=fmt.percent(high))
-                      if np.isfinite(median) and high > 0 else "")
+                      if edge_contact.surface and np.isfinite(median) and high > 0 else "")
         if (tolerance + unresolved).strip():
             text.append((tolerance + unresolved).strip())
     return [" ".join(text), ""] if text else []
 
 
 def _edge_positions(rows):
-    """Per position with an edge below h_lim,cr: how many bearings, over how much of the cycle, how thin, where."""
+    """Per position with an edge in contact: how many bearings, over how much of the cycle, how thin, where."""
     return [words.EDGE_POSITION_PART.format(bearing=b, touching=fmt.percent(r.touching_pct / 100),
                                             cycle=fmt.percent(r.cycle_share), lo=fmt.percent(r.cycle_lo),
                                             hi=fmt.percent(r.cycle_hi), film=fmt.fixed(1e6 * r.film, 2),

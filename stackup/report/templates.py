@@ -83,6 +83,8 @@ NOT_GRADED_LOST = "{share} of {scheme}'s bearings have a part read outside every
 STOCKOUTS_LOST = "{share} of {scheme}'s bearings wait for a shell (stock-outs)."
 SHELLS_LOST = "{scheme} scraps {share} of its shells."
 EDGE_NOTE = "Journal edges touch their shells in {share} of the bearings; the lives ignore that contact."
+EDGE_COUNTED_NOTE = ("Journal edges reach the wall in {share} of the bearings (each turned back at its own support, "
+                     "rigid surfaces); α and the lives read the film there.")
 EDGE_SURFACE_NOTE = ("Journal edges run below h_lim,cr in {share} of the bearings (support moments balanced, film "
                      "over the surface); α and the lives read that film.")
 FAILURES_NOTE = "Stages failed on some engines (left out of the statistics): {lines}."
@@ -223,20 +225,22 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
                "coupled` balances the support moments with the crankshaft and the block and reads α and the lives "
                "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
 EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) the tilted journal's edge, turned back at its support alone "
-                "(the crankshaft's and the block's compliance there, quasi-static), reaches the wall at some crank "
-                "angle, where the film is held at a floor of {floor:.1f} % of the radial clearance (rigid surfaces: "
-                "no elastic edge, no EHD); α and the lives read that film over the width. `--tilt-method coupled` "
-                "balances the moments of all supports together, with the tilt's squeeze, on an elastic layer "
-                "(reports/coupled_supports.md).")
+                "(the crankshaft's and the block's compliance there, quasi-static), reaches the wall over part of "
+                "the cycle: {positions}. There the film is held at a floor of {floor:.1f} % of the radial clearance "
+                "(rigid surfaces: no elastic edge, no EHD); α and the lives read that film over the width. "
+                "`--tilt-method coupled` balances the moments of all supports together, with the tilt's squeeze, on "
+                "an elastic layer (reports/coupled_supports.md).")
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
                 "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
                 "planes); α and the lives read it. The support moments repeated from cycle to cycle in {periodic} of the "
                 "bearings (`tilt_status`; the others are taken at the march's last cycle).")
 EDGE_TOLERANCE = ("The tolerances: with the drawing's coaxiality and run-out ×{factor} ({label}; {pairs} engines, each "
-                  "against itself) {scheme}'s share of the cycle below h_lim,cr {changes} (median per "
+                  "against itself) {scheme}'s share of the cycle {contact} {changes} (median per "
                   "position, bearings {first}–{last}){beyond}.")
 EDGE_TOLERANCE_NONE = "does not change"
+BELOW_CRITICAL = "with an edge below h_lim,cr"
+AT_WALL = "with an edge at the wall"
 EDGE_TOLERANCE_BEYOND = "; the change is clear of zero (95 % interval) at bearing{s} {bearings}"
 EDGE_TOLERANCE_WITHIN = "; at every position its 95 % interval includes zero"
 EDGE_UNRESOLVED = (" At {median} of the march's solved crank angles (median over the engines; {high} at the 95th "

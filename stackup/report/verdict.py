@@ -199,7 +199,8 @@ def check_first(facts, ranking, window):
                                          checked=words.CHECKED_PART if len(facts.corrected) else ""))
     edge = facts.edge
     if edge is not None and edge.computed and edge.touching >= EDGE_SHARE * edge.computed:
-        note = words.EDGE_SURFACE_NOTE if edge.surface else words.EDGE_NOTE
+        note = (words.EDGE_SURFACE_NOTE if edge.surface else words.EDGE_COUNTED_NOTE if edge.counted
+                else words.EDGE_NOTE)
         notes.append(note.format(share=fmt.percent(edge.touching / edge.computed)))
     return notes
 

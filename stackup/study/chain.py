@@ -22,7 +22,7 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.coupled import STATES as TILT_STATES
 from ..film.coupled import ElasticLayer, support_moments
-from ..film.cycle import FILM_STATUS, HEAT_STEP, bearing_films, checked_film
+from ..film.cycle import FILM_STATUS, HEAT_STEP, at_wall, bearing_films, checked_film
 from ..film.heat import heat_balance
 from ..film.journal import ECCENTRICITY_LIMIT, vector_length
 from .. import _validate as check
@@ -366,7 +366,7 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
                "tilt_free_max": vector_length(tilt).max(axis=1),
                "law_fit_error": law_error,
                "load_history": loads,
-               **_film_values(films, surface, film, loads, crank_angle, engine.wear.critical_film),
+               **_film_values(films, surface, film, loads, crank_angle, engine.wear.critical_film, clearance),
                **_life_values(engine, films, surface, film, spec.bearing_width, clearance=clearance,
                               journal_d=journal_d,
                               crank_angle=crank_angle, life_film=life_film, roughness=constants.roughness,
@@ -441,25 +441,29 @@ def _surface_film(films, surface, tilt_method):
     return films.h_min_edge if tilt_method == "equilibrium" else films.h_min
 
 
-def _edge_contact(films, surface, loads, crank_angle, critical):
-    """Share of the cycle with an edge in asperity contact, the largest load and the thinnest film's angle there."""
+def _edge_contact(films, surface, loads, crank_angle, critical, clearance):
+    """Share of the cycle with an edge in contact, the largest load and the thinnest film's angle there: with the
+    support moments on the elastic layer an edge below ``critical`` (asperity contact), with rigid surfaces an
+    edge held at the wall's film :math:`c(1 - \varepsilon_{lim})`."""
     if surface is None:
-        nan = np.full(films.h_min.shape[:-1], np.nan)
-        return films.edge_contact_share, nan, nan
-    touching = (surface.film < critical) & (surface.film < films.h_min - 1e-9)
+        edge = films.h_min_edge
+        touching = at_wall(edge, clearance)
+    else:
+        edge = surface.film
+        touching = (edge < critical) & (edge < films.h_min - 1e-9)
     load = np.where(touching, vector_length(loads), -np.inf).max(axis=-1)
-    at = np.where(touching, surface.film, np.inf).argmin(axis=-1)
+    at = np.where(touching, edge, np.inf).argmin(axis=-1)
     angle = np.asarray(crank_angle, dtype=float)[at]
     some = touching.any(axis=-1)
     return touching.mean(axis=-1), np.where(some, load, np.nan), np.where(some, angle, np.nan)
 
 
-def _film_values(films, surface, h, loads, crank_angle, critical):
+def _film_values(films, surface, h, loads, crank_angle, critical, clearance):
     """The film's :data:`schema.PER_MECH` variables of a :func:`stackup.film.cycle.bearing_films` result, its
     support moments (``surface``, None with another tilt method) and the film the study reads (``h``,
     :func:`_surface_film`)."""
     edge = films.h_min_edge if surface is None else surface.film
-    share, load, angle = _edge_contact(films, surface, loads, crank_angle, critical)
+    share, load, angle = _edge_contact(films, surface, loads, crank_angle, critical, clearance)
     tilt_status = np.full(films.h_min.shape[:-1], len(TILT_STATES), np.int8)
     unresolved = np.full(films.h_min.shape[:-1], np.nan)
     status = films.status
