@@ -500,10 +500,11 @@ def _compare_parser(sub):
                            f"default: {FILM_CHECK_ENGINES})")
     cmp_.add_argument("--tilt-method", choices=("equilibrium", "coupled", "free"), default="equilibrium",
                       help="the journal's tilt in its bearing: balanced at each bearing against the crankshaft "
-                           "(default); 'coupled', the support moments of all bearings balanced with the crankshaft "
-                           "and the block over the cycle, the film, alpha and lives read over the whole bearing "
-                           "surface (several times the chain's cost: reports/bench_chain.md, reports/coupled_supports.md); 'free', "
-                           "the crankshaft's slope held")
+                           "and the block at its support, the film, alpha and lives read over the width (default); "
+                           "'coupled', the support moments of all bearings balanced together over the cycle, with "
+                           "the tilt's squeeze, on an elastic layer (several times the chain's cost: "
+                           "reports/bench_chain.md, reports/coupled_supports.md); 'free', the crankshaft's slope "
+                           "held, the film read at the mid-plane")
     cmp_.add_argument("--processes", action="store_true",
                       help="run the study and its scenarios on one local worker process per core (dask; the same "
                            "numbers, faster on a large run)")

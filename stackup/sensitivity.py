@@ -284,8 +284,8 @@ def _sobol_outputs(model, u, groups, outputs, bearing, crank_angle_step, crank_m
                             journal_d=engines["journal_d"][ok], bore_offset=engines["bore_offset"][ok],
                             journal_eccentricity=engines["journal_eccentricity"][ok],
                             crank_angle=np.arange(0.0, 720.0, crank_angle_step), crank_method=crank_method,
-                            film_method=film_method, tilt_method="free")  # h_min and life are the mid-plane's:
-    # the tilt reaches only the edge film, so its equilibrium (a large part of the chain's cost) would change neither
+                            film_method=film_method, tilt_method="equilibrium")  # the study's h_min and life:
+    # over the width, so the misalignment's tilt reaches them
     converged = mech["crank_status"] == 0
     for k, name in enumerate(outputs):
         values[np.flatnonzero(ok)[converged], k] = mech[name][converged].min(axis=1)  # the engine's weakest bearing

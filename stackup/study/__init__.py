@@ -153,17 +153,18 @@ class Study:
         engine).
     tilt_method : {"equilibrium", "coupled", "free"}
         The journal's tilt in the film (:func:`stackup.study.chain.mechanical_chain`):
-        each bearing's tilt against the crankshaft's compliance alone, rigid
-        surfaces (default; :mod:`stackup.film.tilt`); the support moments of
-        all bearings balanced with the crankshaft and the block's angular
-        compliance over the cycle, the journal centre moved with the tilt, tilt
-        squeeze and the elastic layer included (:mod:`stackup.film.coupled`:
-        ``h_min``, α and the lives on the film over the bearing surface;
-        reports/coupled_supports.md: with the built-in engines' inputs the
-        edges run below h_lim,cr over 5-50 % of the cycle, which the transient
-        reference confirms and the paper's coaxial diesel does not show, so it
-        is not yet the default); or the beam's slope held. With the first and
-        the last only the edge-film variables depend on it.
+        each bearing's tilt balanced quasi-statically against the compliance
+        at its own support, the crankshaft's in series with the block's
+        (``supports.tilt_compliance``), rigid surfaces (default;
+        :mod:`stackup.film.tilt`); the support moments of all bearings
+        balanced with the crankshaft and the block over the cycle, the journal
+        centre moved with the tilt, tilt squeeze and the elastic layer included
+        (:mod:`stackup.film.coupled`; several times the chain's cost, not yet
+        the default: reports/bench_chain.md); or the beam's slope held. With
+        the first two ``h_min``, α and the lives read the film over the
+        bearing surface (``h_min_midplane`` the mid-plane's); with the last the
+        mid-plane film. The default's and the coupled march's errors against
+        the transient reference: reports/coupled_supports.md.
     life_film : {"cycle-mean", "cycle-minimum"}
         The film Levanov's method 1 reads (:func:`stackup.life.cycle_film`):
         the cycle mean of the minimum film, as the paper's results imply, or
