@@ -237,7 +237,7 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
     """Sobol indices of the root inputs (:func:`stackup.sensitivity.sobol`) for the comparison's schemes.
 
     The operating clearance (bearing 1; every position is alike) for every
-    scheme; the engine's smallest film and its life for the scheme the
+    scheme; the engine's smallest mid-plane film and its life for the scheme the
     ranking puts first (one run of the mechanical chain gives both). Variables
     on (output, scheme, input): ``S1``, ``ST`` and their 95 % bootstrap
     bounds ``*_lo``, ``*_hi``; NaN where an output was not analysed.

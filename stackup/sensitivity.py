@@ -153,7 +153,10 @@ def sobol(engine, scheme, *, output="clearance_operating", n=None, seed=0, scena
     engine, scheme : str, path or loaded object
     output : {"clearance_operating", "h_min", "life"}
         The operating clearance of main bearing ``bearing``; the engine's
-        smallest cycle-minimum film; the engine's life (its weakest bearing).
+        smallest cycle-minimum film at the mid-plane (over the width an edge
+        held at the wall would be a floor that only the clearance moves); the
+        engine's life (its weakest bearing, on the film over the width as the
+        study reads it).
     n : int, optional
         Saltelli base sample, a power of two (default :data:`SOBOL_N`); the
         chain runs on ``n * (groups + 2)`` engines.
@@ -284,9 +287,10 @@ def _sobol_outputs(model, u, groups, outputs, bearing, crank_angle_step, crank_m
                             journal_d=engines["journal_d"][ok], bore_offset=engines["bore_offset"][ok],
                             journal_eccentricity=engines["journal_eccentricity"][ok],
                             crank_angle=np.arange(0.0, 720.0, crank_angle_step), crank_method=crank_method,
-                            film_method=film_method, tilt_method="equilibrium")  # the study's h_min and life:
-    # over the width, so the misalignment's tilt reaches them
+                            film_method=film_method, tilt_method="equilibrium")  # the study's lives: over the width
     converged = mech["crank_status"] == 0
     for k, name in enumerate(outputs):
-        values[np.flatnonzero(ok)[converged], k] = mech[name][converged].min(axis=1)  # the engine's weakest bearing
+        # the film at the mid-plane: over the width an edge held at the wall is a floor only the clearance moves
+        value = mech["h_min_midplane" if name == "h_min" else name]
+        values[np.flatnonzero(ok)[converged], k] = value[converged].min(axis=1)  # the engine's weakest bearing
     return values

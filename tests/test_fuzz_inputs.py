@@ -204,8 +204,10 @@ ENGINE_DEFAULTS = {
     # Levanov's method-1 scale (1e8 s, stackup.life.METHOD1_SCALE) at the file's wear speed
     ("wear", "method1_wear_limit"): lambda e, d: abs(e.wear.method1_wear_limit - 1e8 * e.wear.wear_rate) < 1e-12,
     ("oil_feed",): lambda e, d: e.oil_feed.source.startswith("default:"),
-    # no [supports]: the bearing law's own stiffness and a block rigid against tilt (README, engine file table)
-    ("supports",): lambda e, d: e.crank.supports is None,
+    # no [supports]: the bearing law's own stiffness, the bulkhead's web rigid against tilt and the bore ring's
+    # turn from the law (README, engine file table)
+    ("supports",): lambda e, d: (not e.crank.supports.angular.any() and e.crank.supports.ring.all()
+                                 and "bearing law" in e.crank.supports.source),
     ("supports", "source"): lambda e, d: e.crank.supports.source == "",
     ("oil_feed", "groove_arc"): [90.0, 270.0], ("oil_feed", "hole_angle"): 180.0,
     ("targets", "operating_clearance"): lambda e, d: e.clearance_window == (0.0, np.inf),

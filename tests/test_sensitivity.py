@@ -79,3 +79,29 @@ def test_bootstrap_intervals_repeat_with_seed_zero():
     third = sobol_indices(evaluate, ["a", "b", "c"], n=64, seed=0)
     pd.testing.assert_frame_equal(first, second)
     pd.testing.assert_frame_equal(first, third)
+
+
+def test_the_film_output_is_the_mid_plane_film_and_the_life_the_studys():
+    """The Sobol outputs come from the study's chain (tilt balanced at the supports): the film at the mid-plane (over
+    the width an edge held at the wall is a floor only the clearance moves), the life on the film over the width."""
+    from types import SimpleNamespace
+    from unittest import mock
+
+    from stackup import sensitivity
+
+    engines = {"clearance_operating": np.full((2, 5), 40e-6), "journal_d": np.full((2, 5), 46e-3),
+               "bore_offset": np.zeros((2, 5, 2)), "journal_eccentricity": np.zeros((2, 5, 2))}
+    model = SimpleNamespace(engines=lambda u, groups: engines, engine=None)
+    out = {"crank_status": np.zeros(2, int), "h_min": np.full((2, 5), 0.1e-6),
+           "h_min_midplane": np.array([[2e-6, 1e-6, 3e-6, 1e-6, 2e-6]] * 2), "life": np.full((2, 5), 3.6e6)}
+    seen = {}
+
+    def chain(engine, **kwargs):
+        seen.update(kwargs)
+        return out
+
+    with mock.patch.object(sensitivity, "mechanical_chain", chain):
+        values = sensitivity._sobol_outputs(model, np.zeros((2, 3)), None, ("h_min", "life"), 0, 8.0, "bearing-law",
+                                            "mobility-finite")
+    assert seen["tilt_method"] == "equilibrium"
+    np.testing.assert_array_equal(values, [[1e-6, 3.6e6]] * 2)

@@ -92,6 +92,11 @@ class StudyParameters:
         """The scenario the study ran (:mod:`stackup.study.scenario`), {} for the study itself."""
         return dict(self.items).get("scenario") or {}
 
+    @property
+    def tilt_method(self):
+        """The journal's tilt method of the study ("equilibrium" for a study saved before the key)."""
+        return dict(self.items).get("tilt_method") or "equilibrium"
+
 
 @dataclass(frozen=True)
 class PressFit(_Attribute):

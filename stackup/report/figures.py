@@ -165,7 +165,7 @@ def sensitivity_chart(sensitivity, path):
     rows = -(-len(panels) // columns)
     fig = Figure(figsize=(WIDTH, 2.9 * rows + 0.9), layout="constrained")
     axes = np.atleast_2d(fig.subplots(rows, columns, sharex=True, squeeze=False))
-    labels = {"clearance_operating": "operating clearance", "h_min": "engine's smallest film", "life": "engine life"}
+    labels = {"clearance_operating": "operating clearance", "h_min": "engine's smallest mid-plane film", "life": "engine life"}
     # every panel on the same rows (the inputs of any panel), so the first column's labels name every row; an
     # input that is not one of a panel's outputs' (misalignment for the clearance) has no bar there
     analysed = np.isfinite(sensitivity.ST.values).any(axis=(0, 1))

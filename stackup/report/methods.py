@@ -132,7 +132,20 @@ def limits_of_validity(facts):
     """What the models leave out, said plainly."""
     # with the mass-conserving check the lives carry its scale: the cheap tier's bias is corrected, not a limit
     bias = words.LIFE_CHECKED_PART if len(facts.corrected) else _life_bias(facts.life_bias)
-    return [*words.LIMITS_BEFORE_LIFE, words.LIFE_LIMIT.format(bias=bias), *words.LIMITS_AFTER_LIFE]
+    before = list(words.LIMITS_BEFORE_LIFE)
+    before.insert(-1, words.CRANK_LIMIT.format(block=_block(facts)))
+    return [*before, words.LIFE_LIMIT.format(bias=bias), *words.LIMITS_AFTER_LIFE]
+
+
+def _block(facts):
+    """How the study's crankshaft meets the block against tilt, from its tilt method (and, for a study saved when
+    the default read the mid-plane, its data: no film over the width, no block turned)."""
+    method = facts.study.tilt_method
+    if method == "coupled":
+        return words.BLOCK_COUPLED
+    if method == "free":
+        return words.BLOCK_HELD
+    return words.BLOCK_OWN_SUPPORT if facts.edge is None or facts.edge.counted else words.BLOCK_RIGID
 
 
 #: Study parameters the parameters list gives even at their defaults.

@@ -145,7 +145,7 @@ GRADE_PART = "{label} {lo:+.1f}…{hi:+.1f}"
 # --- what drives the spread -----------------------------------------------------------------------------------
 NO_SENSITIVITY = "The Sobol indices come with `stackup.compare` (its `sensitivity` dataset); none was given."
 #: Sobol outputs in words.
-OUTPUTS = {"clearance_operating": "operating clearance", "h_min": "smallest film", "life": "life"}
+OUTPUTS = {"clearance_operating": "operating clearance", "h_min": "smallest mid-plane film", "life": "life"}
 TIGHTEN_FIRST = ("**Tighten first ({scheme}, {output}):** the {first}, S_T {st:.2f} [{st_lo:.2f}, {st_hi:.2f}] "
                  "(S_1 {s1:.2f}), then the {second} ({second_st:.2f}).{gauges}")
 GAUGES_PART = " Gauges matter through misgrading: {gauges}."
@@ -312,10 +312,16 @@ LIMITS_BEFORE_LIFE = (
     "form error.",
     "- Press fit: plane-stress linear elastic rings; no plastic lining, fretting or relaxation of the crush. The "
     "housing's equivalent ring, the crush process and the journal's temperature: declared ranges (Scenarios).",
-    "- Crankshaft: a beam on point supports; block rigid; loads from the engine file's pressure model.",
     "- Oil film: isothermal at the bearing's effective temperature, no EHD; the cheap dynamic tiers carry no film "
     "content (most of their error, reports/film_speed_vs_error.md).",
 )
+CRANK_LIMIT = "- Crankshaft: a beam on point supports; {block}; loads from the engine file's pressure model."
+BLOCK_RIGID = "block rigid against tilt"
+BLOCK_OWN_SUPPORT = ("each support turns with the block's angular compliance (an assumed derivation) under its own "
+                     "film's moment only, quasi-static, the moments of the other supports left out")
+BLOCK_COUPLED = ("the supports' moments balanced together with the block's angular compliance (an assumed "
+                 "derivation)")
+BLOCK_HELD = "the crankshaft's slope held in the film (no support moments)"
 LIFE_LIMIT = ("- {bias}Levanov's constants were fitted to another engine: compare schemes rather than read the hours "
               "as a guarantee.")
 LIFE_BIAS_PART = ("Method 1 reads the cycle-mean film, up to {error:.0f} % thicker than the transient reference: at "
