@@ -630,3 +630,25 @@ def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named(
     line = _life_change_line("support tilt compliance ×2", positions, engines, "a")
     assert "with a thicker cycle-mean film at 2 of the 4 positions of the schemes (+600 to +900 h" in line
     assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in line and "bearing 1 of a" not in line
+
+
+def test_where_method_1_reads_a_film_below_the_critical_film_the_report_says_its_hours_are_no_margin():
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from stackup.report.mechanics import _method1_range_text
+
+    index = pd.MultiIndex.from_tuples([("s", 1), ("s", 2), ("s", 3)], names=["scheme", "bearing"])
+    corrected = pd.DataFrame({"h_min_mean_corrected": [(4.0e-6, 3.5e-6, 4.5e-6), (1.6e-6, 1.5e-6, 1.7e-6),
+                                                       (1.85e-6, 1.8e-6, 1.9e-6)]}, index=index)
+    facts = SimpleNamespace(study=SimpleNamespace(life_film="cycle-mean"), corrected=corrected,
+                            limits=SimpleNamespace(critical_film=1.9e-6), bearings=pd.DataFrame())
+    text = " ".join(_method1_range_text(facts, "s"))
+    assert "At bearings 2 and 3 s's cycle-mean film, the film method 1 reads, is 1.60 / 1.85 µm, below" in text
+    assert "no film margin" in text
+    # no check: the study's own medians per position; all above h_lim,cr: nothing said
+    bearings = pd.DataFrame({"h_min_mean_median_um": [(5.0, 4.0, 6.0), (2.5, 2.0, 3.0), (3.0, 2.5, 3.5)]},
+                            index=index)
+    assert _method1_range_text(SimpleNamespace(**{**vars(facts), "corrected": pd.DataFrame(),
+                                                  "bearings": bearings}), "s") == []

@@ -339,7 +339,7 @@ def bearing_summary(ds):
     """Per scheme and main-bearing position: film and life of the engines the mechanical chain ran on.
 
     Columns: ``engines`` (whose film at the position is a number: NaN left
-    out), ``h_min_p05_um`` and ``h_min_median_um`` (cycle minimum), Levanov's
+    out), ``h_min_p05_um`` and ``h_min_median_um`` (cycle minimum), ``h_min_mean_median_um`` (cycle mean), Levanov's
     operability criteria ``alpha_over_20_pct`` and ``life_below_target_pct``
     (:func:`position_risks`), ``life_b10_h`` and ``life_median_h``, each a
     (value, lower, upper) 95 % interval.
@@ -355,6 +355,7 @@ def bearing_summary(ds):
             h = numbers(ds.h_min.values[i, done, b] * UM)
             rows.append({"scheme": str(name), "bearing": int(bearing), "engines": int(h.size),
                          "h_min_p05_um": quantile_ci(h, 0.05), "h_min_median_um": quantile_ci(h, 0.5),
+                         "h_min_mean_median_um": quantile_ci(numbers(ds.h_min_mean.values[i, done, b] * UM), 0.5),
                          "alpha_over_20_pct": tuple(100 * v for v in risks["alpha_over_limit"][b]),
                          "life_below_target_pct": tuple(100 * v for v in risks["life_below_target"][b]),
                          "life_b10_h": risks["life_b10_h"][b], "life_median_h": risks["life_median_h"][b]})

@@ -82,7 +82,9 @@ def film_section(facts, ranking):
     spread = crank.mean_kn.groupby(level="bearing").agg(lambda v: v.max() - v.min()).max()
     failed = int(crank.failed.groupby(level="scheme").first().sum())
     surface = facts.edge is not None and facts.edge.surface
-    intro = words.FILM_INTRO.format(where=words.SURFACE_PART if surface else "", method=facts.about.film_method,
+    width = facts.edge is not None and facts.edge.counted and facts.study.tilt_method == "equilibrium"
+    where = words.SURFACE_PART if surface else words.WIDTH_PART if width else ""
+    intro = words.FILM_INTRO.format(where=where, method=facts.about.film_method,
                                     critical=fmt.um(facts.limits.critical_film, 2),
                                     target=fmt.whole(facts.limits.life_target / 3600),
                                     engines=fmt.count(facts.about.mechanics_engines), spread=fmt.fixed(spread, 1),
@@ -96,6 +98,7 @@ def film_section(facts, ranking):
     return section("Loads, oil film and bearing life", *lines,
                    *_outcomes_text(facts.outcomes, facts.edge, _tolerance_text(facts, ranking.index)),
                    *_heat_text(facts.heat, facts.processes.crank), *_corrected_text(facts.corrected, scheme),
+                   *_method1_range_text(facts, scheme),
                    *_trends_text(facts.trends),
                    image("Oil film and life per bearing position", "film_life.png"),
                    *([] if facts.about.summaries else
@@ -122,6 +125,27 @@ def _corrected_text(corrected, scheme):
                                    scheme=scheme, h_min=span("h_min", fmt.UM, film),
                                    h_min_mean=span("h_min_mean", fmt.UM, film),
                                    life=span("life", 1 / 3600, fmt.significant)), ""]
+
+
+def _method1_range_text(facts, scheme):
+    """Where the film Levanov's method 1 reads (the check's scale where the study checked) is below h_lim,cr for
+    ``scheme``: there his law gives lives of hours, outside the films his constants were fitted on."""
+    statistic = "h_min_mean" if facts.study.life_film == "cycle-mean" else "h_min"
+    if len(facts.corrected) and scheme in facts.corrected.index.get_level_values("scheme"):
+        films = {int(b): q[0] for b, q in facts.corrected.xs(scheme, level="scheme")[f"{statistic}_corrected"].items()}
+    elif len(facts.bearings) and scheme in facts.bearings.index.get_level_values("scheme"):
+        films = {int(b): q[0] / fmt.UM for b, q in facts.bearings.xs(scheme, level="scheme")[
+            f"{statistic}_median_um"].items()}
+    else:
+        return []
+    critical = facts.limits.critical_film
+    low = {b: h for b, h in films.items() if np.isfinite(h) and h < critical}
+    if not low:
+        return []
+    return [words.METHOD1_RANGE.format(
+        s=words.plural(len(low)), bearings=words.listed(list(low)), scheme=scheme,
+        statistic=statistic.replace("h_min_mean", "cycle-mean film").replace("h_min", "cycle-minimum film"),
+        films=" / ".join(fmt.fixed(1e6 * h, 2) for h in low.values()), critical=fmt.um(critical, 2)), ""]
 
 
 def _trends_text(trends):

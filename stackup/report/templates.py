@@ -197,7 +197,13 @@ FILM_INTRO = ("Minimum film{where} over the cycle (`{method}` tier) on the first
 SCALED_PART = ", on the scale of the mass-conserving check (below)"
 SURFACE_PART = (" over the bearing surface (the journal's tilt turned back by the support moments of crankshaft and "
                 "block, an elastic layer under the film; tilt_method coupled)")
+WIDTH_PART = (" over the bearing's width (the journal's tilt turned back at its own support by the crankshaft's and "
+              "the block's compliance, rigid surfaces)")
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
+METHOD1_RANGE = ("At bearing{s} {bearings} {scheme}'s {statistic}, the film method 1 reads, is {films} µm, below "
+                 "h_lim,cr = {critical} µm: there Levanov's law gives lives of hours or less (β above 2), far outside "
+                 "the 5-9 µm films his constants were fitted on. Read such a life as no film margin left, not as "
+                 "hours.")
 CORRECTED = ("Checked by `{method}` on {pairs} engines per scheme (control variates on {engines}), {scheme}'s "
              "means per position: cycle-minimum film {h_min} µm, cycle-mean film {h_min_mean} µm, life {life} h.")
 CORRECTED_SPAN = "{lo}–{hi} (±{half}; study tier {cheap_lo}–{cheap_hi})"
