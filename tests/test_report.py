@@ -652,3 +652,15 @@ def test_where_method_1_reads_a_film_below_the_critical_film_the_report_says_its
                             index=index)
     assert _method1_range_text(SimpleNamespace(**{**vars(facts), "corrected": pd.DataFrame(),
                                                   "bearings": bearings}), "s") == []
+
+
+def test_a_metric_the_same_for_every_scheme_is_named_with_its_unit():
+    import pandas as pd
+
+    from stackup.report.sections import non_discriminating
+
+    ranking = pd.DataFrame({"alpha_over_limit_pct": [100.0, 100.0],
+                            "alpha_over_limit_pct_ci": [(98.8, 100.0), (98.8, 100.0)]}, index=["a", "b"])
+    text = non_discriminating(ranking)[0]
+    assert text == ("Boundary friction over 20 % of the cycle (100 % of the bearings for every scheme) does not "
+                    "separate the schemes here.")

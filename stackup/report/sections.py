@@ -81,7 +81,8 @@ def non_discriminating(ranking):
         if not separates(low, high):
             values = ranking[column].astype(float)
             same = (words.NONE_PART if np.all(values == 0) else
-                    words.SAME_VALUE_PART.format(value=values.iloc[0]) if np.allclose(values, values.iloc[0]) else "")
+                    words.SAME_VALUE_PART.format(value=values.iloc[0], unit=words.METRIC_UNITS[column])
+                    if np.allclose(values, values.iloc[0]) else "")
             items.append(words.NON_DISCRIMINATING_NAMES[column] + same)
     if not items:
         return []

@@ -111,7 +111,10 @@ COUNTED_PART = "{count} ({scheme})"
 CONDITIONAL_HOW = "estimated with the shells integrated out (no lots or stock-outs: reports/tails_vs_peers.md)"
 SPLITTING_HOW = "estimated by generalized splitting through the assembly chain (`stackup.tail`)"
 NON_DISCRIMINATING = "{metrics} {verb} not separate the schemes here."
-SAME_VALUE_PART = " ({value:.3g} for every scheme)"
+SAME_VALUE_PART = " ({value:.3g}{unit} for every scheme)"
+#: Units of those metrics as the sentence writes a value of theirs.
+METRIC_UNITS = {"alpha_over_limit_pct": " % of the bearings", "life_below_target_pct": " % of the bearings",
+                "engine_life_median_h": " h"}
 NONE_PART = " (none in any scheme)"
 #: The film and life metrics of the ranking as the sentence naming those that do not separate schemes says them.
 NON_DISCRIMINATING_NAMES = {"alpha_over_limit_pct": "boundary friction over 20 % of the cycle",
