@@ -193,17 +193,16 @@ def support_tilt_compliance(engine, tilt_method="equilibrium"):
         return None
     derived = []
     if supports.angular_derived:
-        derived.append("the bulkhead web's (stackup.crank.housing.bulkhead_compliance)")
+        derived.append("the bulkhead web (stackup.crank.housing.bulkhead_compliance)")
     if ring:
-        derived.append("the bore ring's own turn, the bearing law's deformation stiffness taken slice by slice "
-                       "across the width (stackup.crank.housing.ring_tilt_compliance, an upper end: a cap twisted "
-                       "as a body turns about a quarter as much)")
+        derived.append("the bore ring's own turn from the bearing law's stiffness (ring_tilt_compliance, an upper "
+                       "end)")
     k = BULKHEAD_FACTOR
     return Uncertainty("supports' angular compliance (bulkhead and bore ring)",
                        {f"support tilt compliance ×{1 / k:g}": {"support_angular_scale": 1 / k},
                         f"support tilt compliance ×{k:g}": {"support_angular_scale": k}},
-                       f"assumed: derived, {' and '.join(derived)}, a factor of {k:g} either way (its error "
-                       "against a finite-element model of a bulkhead and cap is not measured)",
+                       f"assumed: derived from {' and '.join(derived)}, a factor of {k:g} either way (not measured "
+                       "against a finite-element model)",
                        "the bulkheads' tilt compliance (a finite-element model of the block, or a bearing cap "
                        "loaded by a couple on a mandrel)")
 

@@ -527,7 +527,7 @@ def test_with_the_default_tilt_the_report_says_where_edges_reach_the_wall_and_th
     b = int(edge.per_position.index[0])
     load = float(np.nanmedian(ds.edge_contact_load.values[..., b - 1][on[..., b - 1]]))
     assert f"reaches the wall over part of the cycle: bearing {b} in " in text and f"{load / 1e3:.1f} kN" in text
-    assert "α and the lives read that film over the width" in text and "do not count" not in text
+    assert "α and the lives read it" in text and "do not count" not in text
 
 
 def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_change_the_edge_contact(tmp_path):
@@ -606,7 +606,7 @@ def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_
 
     outcomes = FilmOutcomes(2, {}, 0, 1, 1)
     counted = " ".join(_outcomes_text(outcomes, edge_contact(study([[0.1e-6, 3e-6]]))))
-    assert "α and the lives read that film over the width" in counted and "do not count" not in counted
+    assert "α and the lives read it" in counted and "do not count" not in counted
     assert "turned back at its support alone" in counted and "`--tilt-method coupled`" in counted
     assert ("reaches the wall over part of the cycle: bearing 1 in 100 % of its bearings, over 8.0 % of the cycle"
             in counted and "thinnest 0.10 µm, at up to 31.0 kN near 372° crank" in counted)
@@ -664,3 +664,18 @@ def test_a_metric_the_same_for_every_scheme_is_named_with_its_unit():
     text = non_discriminating(ranking)[0]
     assert text == ("Boundary friction over 20 % of the cycle (100 % of the bearings for every scheme) does not "
                     "separate the schemes here.")
+
+
+def test_positions_where_a_stray_bearing_reaches_the_wall_are_counted_not_described():
+    import pandas as pd
+
+    from stackup.facts.mechanics import EdgeContact, FilmOutcomes
+    from stackup.report.mechanics import _outcomes_text
+
+    rows = pd.DataFrame({"touching_pct": [0.2, 100.0, 3.0], "cycle_share": [0.02, 0.08, 0.01],
+                         "cycle_lo": [0.0, 0.07, 0.0], "cycle_hi": [0.0, 0.11, 0.0], "film": [0.14e-6, 0.11e-6, 0.1e-6],
+                         "load": [4.5e3, 2.3e3, 3e3], "angle": [76.0, 122.0, 80.0]}, index=[1, 2, 5])
+    edge = EdgeContact(300, 120, [40.0], [0.08], 0.005, per_position=rows)
+    text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 180, 120), edge))
+    assert "over part of the cycle: bearing 2 in 100 % of its bearings" in text and "bearing 1 in" not in text
+    assert "; at 2 other positions in under 5 % of the bearings. There the rigid film" in text

@@ -190,6 +190,10 @@ def _tolerance_text(facts, order):
                 if beyond else words.EDGE_TOLERANCE_WITHIN))
 
 
+#: Positions where fewer of the bearings than this [%] have an edge at the wall are counted, not described.
+FEW_TOUCHING_PCT = 5.0
+
+
 def _outcomes_text(outcomes, edge_contact, tolerance=""):
     """How the films ended: those that are not a number and what that leaves out, or all periodic; edge contact."""
     if outcomes is None:
@@ -212,9 +216,13 @@ def _outcomes_text(outcomes, edge_contact, tolerance=""):
     elif edge:
         floor = 100 * edge_contact.floor if edge_contact is not None else np.nan
         if edge_contact is not None and edge_contact.per_position is not None:
+            rows = edge_contact.per_position
+            few = rows.touching_pct < FEW_TOUCHING_PCT  # named as a count: a stray bearing or two
+            others = (words.EDGE_OTHERS_PART.format(count=int(few.sum()), s=words.plural(int(few.sum())),
+                                                    share=f"{FEW_TOUCHING_PCT:g} %") if few.any() else "")
             text.append(words.EDGE_COUNTED.format(edge=fmt.count(edge), share=100 * edge / max(total, 1),
-                                                  floor=floor,
-                                                  positions="; ".join(_edge_positions(edge_contact.per_position))))
+                                                  floor=floor, positions="; ".join(_edge_positions(rows[~few])),
+                                                  others=others))
         else:
             text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
     if edge_contact is not None and edge_contact.per_position is not None:

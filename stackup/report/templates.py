@@ -233,12 +233,12 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
                "EHD): boundary contact that α and the lives, read at the mid-plane, do not count. `--tilt-method "
                "coupled` balances the support moments with the crankshaft and the block and reads α and the lives "
                "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
-EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) the tilted journal's edge, turned back at its support alone "
-                "(the crankshaft's and the block's compliance there, quasi-static), reaches the wall over part of "
-                "the cycle: {positions}. There the film is held at a floor of {floor:.1f} % of the radial clearance "
-                "(rigid surfaces: no elastic edge, no EHD); α and the lives read that film over the width. "
-                "`--tilt-method coupled` balances the moments of all supports together, with the tilt's squeeze, on "
-                "an elastic layer (reports/coupled_supports.md).")
+EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) the tilted journal's edge, turned back at its support alone, "
+                "reaches the wall over part of the cycle: {positions}{others}. There the rigid film is held at "
+                "{floor:.1f} % of the radial clearance; α and the lives read it. `--tilt-method coupled` balances "
+                "all supports' moments together, with the tilt's squeeze, on an elastic layer "
+                "(reports/coupled_supports.md).")
+EDGE_OTHERS_PART = "; at {count} other position{s} in under {share} of the bearings"
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
                 "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
