@@ -234,7 +234,7 @@ def main(argv=None):
         f"value): {error}. The block's angular compliance is the bulkhead web's and the bore ring's own turn "
         "across the width (stackup.crank.housing.ring_tilt_compliance, from the bearing law's plane-strain "
         "deformation stiffness); `bore ring rigid` leaves the ring's out. The mid-plane film is the film tier's "
-        f"without tilt. `{EQUILIBRIUM}`: each journal's tilt balanced quasi-statically against the film's moment "
+        f"without tilt. {EQUILIBRIUM}: each journal's tilt balanced quasi-statically against the film's moment "
         "and the compliance at its own support (the crankshaft's there and the block's), rigid surfaces; its film "
         "over the surface is the thinnest over the width, and its edge in contact an edge held at the wall "
         "(0.5 % of the clearance).",
