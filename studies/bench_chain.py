@@ -203,7 +203,8 @@ def main(argv=None):
         "",
         "Tilt method `equilibrium` (the study's default): the beam's slope at the support turned back by the "
         "film's restoring moment against the crankshaft's rotational compliance there in series with the "
-        "support's own (bulkhead and bore ring), solved at every crank angle (`stackup.film.tilt`); it costs {1e3 * equilibrium_cost:.2f} ms per bearing-cycle on `mobility-finite` "
+        "support's own (bulkhead and bore ring), solved at every crank angle (`stackup.film.tilt`); it costs "
+        f"{1e3 * equilibrium_cost:.2f} ms per bearing-cycle on `mobility-finite` "
         "(the film stage with it minus without). `free`: that slope held in the film (`Study(tilt_method='free')`), "
         "an upper bound of the tilt; the film stage is the same but for the edge film. `coupled`: the support "
         "moments of all five bearings balanced with the crankshaft and the block over the cycle, each journal's "
@@ -269,7 +270,8 @@ def main(argv=None):
         "",
         f"`free` against `equilibrium` on the same {args.engines} engines: the mid-plane film is identical "
         f"({1e6 * np.nanmax(np.abs(eq['h_min_midplane'] - fr['h_min_midplane'])):.3f} µm at most; `free`'s lives "
-        "read it, `equilibrium`'s the film over the width); the cycle-minimum edge film differs by {np.nanmax(np.abs(edge_gap)):.3f} µm at most "
+        "read it, `equilibrium`'s the film over the width); the cycle-minimum edge film differs by "
+        f"{np.nanmax(np.abs(edge_gap)):.3f} µm at most "
         f"({np.mean(np.abs(edge_gap) < 1e-3) * 100:.0f} % of the bearings alike: both at the limit); the share "
         f"of the cycle in edge contact is {np.nanmedian(share_gap):.0f} points larger (median; "
         f"{np.nanpercentile(share_gap, 95):.0f} at the 95th percentile) and the largest tilt "

@@ -480,8 +480,8 @@ def test_doubled_misalignment_lengthens_no_life_at_any_position(comparison, tmp_
     assert all(change[0] < 0 for change in engines.engine_life_change_h)
     text = write_report(comparison.dataset, tmp_path, scenarios=comparison.scenarios,
                         sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
-    assert "**Lives under misalignment ×2** (12 engines, each against itself)" in text
-    assert "no scheme's life rises at any position beyond its 95 % interval" in text
+    assert "**Lives** under the scenarios that ran the films (12+ engines, each against itself)" in text
+    assert "| misalignment ×2 | " in text and " | none |" in text
 
 
 def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_the_critical_film(tmp_path):
@@ -501,7 +501,7 @@ def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_th
         b = int(edge.per_position.index[0])
         on = touching[..., b - 1]
         film = float(np.median(ds.h_min.values[..., b - 1][on]))
-        assert f"bearing {b} in " in text and f"thinnest {1e6 * film:.2f} µm" in text
+        assert f"bearing {b} (" in text and f"{1e6 * film:.2f} µm at up to" in text
         assert "α and the lives read it" in text and "do not count" not in text
     else:
         assert "runs below h_lim,cr" not in text
@@ -526,7 +526,7 @@ def test_with_the_default_tilt_the_report_says_where_edges_reach_the_wall_and_th
     text = write_report(ds, tmp_path).read_text()
     b = int(edge.per_position.index[0])
     load = float(np.nanmedian(ds.edge_contact_load.values[..., b - 1][on[..., b - 1]]))
-    assert f"reaches the wall over part of the cycle: bearing {b} in " in text and f"{load / 1e3:.1f} kN" in text
+    assert f"reaches the wall: bearing {b} (" in text and f"{load / 1e3:.1f} kN" in text
     assert "α and the lives read it" in text and "do not count" not in text
 
 
@@ -545,8 +545,8 @@ def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_c
     direct = np.median(100 * (doubled.edge_contact_share.values[0] - ds.edge_contact_share.values[0]), axis=0)
     np.testing.assert_allclose(changes, direct)
     text = write_report(ds, tmp_path, scenarios={"misalignment ×2": doubled}).read_text()
-    assert ("The tolerances: with the drawing's coaxiality and run-out ×2 (misalignment ×2; 6 engines, each against "
-            "itself) iso13778-1's share of the cycle with an edge below h_lim,cr changes by") in text
+    assert ("With coaxiality and run-out ×2 (misalignment ×2, 6 paired engines) iso13778-1's share of the cycle "
+            "with an edge below h_lim,cr changes by") in text
     assert "`tilt_unresolved`" in text or not np.nanmax(ds.tilt_unresolved.values) > 0
 
 
@@ -571,12 +571,12 @@ def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_withou
 
     none = _tolerance_text(facts_with([0.0, -0.04, 0.03]), ["s"])
     assert "share of the cycle with an edge below h_lim,cr does not change (median per position, bearings 1–3)" in none
-    assert "−0.0" not in none and "at every position its 95 % interval includes zero" in none
+    assert "−0.0" not in none and "within its 95 % interval of zero everywhere" in none
     some = _tolerance_text(facts_with([-0.4, 2.04, 0.0]), ["s"])
     assert "changes by −0.4 to +2.0 points" in some
     facts = facts_with([1.0, 2.0, 3.0])
     text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 300, 0), facts.edge, _tolerance_text(facts, ["s"])))
-    assert "The tolerances: with the drawing's coaxiality and run-out ×2" in text and "`tilt_unresolved`" in text
+    assert "With coaxiality and run-out ×2" in text and "`tilt_unresolved`" in text
 
 
 def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_count_them():
@@ -607,9 +607,8 @@ def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_
     outcomes = FilmOutcomes(2, {}, 0, 1, 1)
     counted = " ".join(_outcomes_text(outcomes, edge_contact(study([[0.1e-6, 3e-6]]))))
     assert "α and the lives read it" in counted and "do not count" not in counted
-    assert "turned back at its support alone" in counted and "`--tilt-method coupled`" in counted
-    assert ("reaches the wall over part of the cycle: bearing 1 in 100 % of its bearings, over 8.0 % of the cycle"
-            in counted and "thinnest 0.10 µm, at up to 31.0 kN near 372° crank" in counted)
+    assert "`--tilt-method coupled`" in counted
+    assert "reaches the wall: bearing 1 (8.0 %–8.0 % of the cycle; 0.10 µm at up to 31.0 kN near 372°)" in counted
     midplane = " ".join(_outcomes_text(outcomes, edge_contact(study([[2e-6, 3e-6]]))))
     assert "do not count" in midplane and "`--tilt-method coupled`" in midplane
 
@@ -617,7 +616,7 @@ def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_
 def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named():
     import pandas as pd
 
-    from stackup.report.sections import _life_change_line
+    from stackup.report.sections import _life_change_row
 
     index = pd.MultiIndex.from_tuples([("a", 1), ("a", 2), ("b", 1), ("b", 2)], names=["scheme", "bearing"])
     positions = pd.DataFrame({"pairs": [50] * 4,
@@ -627,9 +626,11 @@ def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named(
                                                        (-0.1, -0.2, 0.0)]}, index=index)
     engines = pd.DataFrame({"engine_life_change_h": [(550.0, 300.0, 800.0), (280.0, 90.0, 470.0)]},
                            index=pd.Index(["a", "b"], name="scheme"))
-    line = _life_change_line("support tilt compliance ×2", positions, engines, "a")
-    assert "with a thicker cycle-mean film at 2 of the 4 positions of the schemes (+600 to +900 h" in line
-    assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in line and "bearing 1 of a" not in line
+    row = _life_change_row("support tilt compliance ×2", positions, engines, "a")
+    rises = row["lives that rise"]
+    assert rises.startswith("2 of 4, with a thicker film (+600 to +900 h; +0.30 to +0.40 µm)")
+    assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in rises and "bearing 1 of a" not in rises
+    assert row["per position [h]"] == "−5 (bearing 2) to +600" and row["per engine [h]"] == "+550"
 
 
 def test_where_method_1_reads_a_film_below_the_critical_film_the_report_says_its_hours_are_no_margin():
@@ -677,5 +678,5 @@ def test_positions_where_a_stray_bearing_reaches_the_wall_are_counted_not_descri
                          "load": [4.5e3, 2.3e3, 3e3], "angle": [76.0, 122.0, 80.0]}, index=[1, 2, 5])
     edge = EdgeContact(300, 120, [40.0], [0.08], 0.005, per_position=rows)
     text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 180, 120), edge))
-    assert "over part of the cycle: bearing 2 in 100 % of its bearings" in text and "bearing 1 in" not in text
+    assert "reaches the wall: bearing 2 (7.0 %–11 % of the cycle" in text and "bearing 1 (" not in text
     assert "; at 2 other positions in under 5 % of the bearings. There the rigid film" in text

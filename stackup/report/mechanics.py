@@ -38,7 +38,19 @@ def _film_table(facts, order):
                            (words.SHORT_COLUMN.format(target=target), film.life_below_target_pct)):
         if all(v[0] == 0 for v in shares):  # none anywhere: the intro says so
             table = table.drop(columns=column)
+    if _same_scuffing(film) is not None:  # every scheme alike: the intro says so
+        table = table.drop(columns=words.ALPHA_COLUMN)
     return table
+
+
+def _same_scuffing(film):
+    """(share [%], bearing) where every scheme has the same share of bearings over the scuffing limit at the same
+    worst position, above zero; else None."""
+    shares = [v[0] for v in film.alpha_over_20_pct]
+    positions = set(film.alpha_over_20_position)
+    if len(shares) > 1 and shares[0] > 0 and np.allclose(shares, shares[0]) and len(positions) == 1:
+        return shares[0], positions.pop()
+    return None
 
 
 def _none_text(film):
@@ -46,6 +58,12 @@ def _none_text(film):
     scuffing = all(v[0] == 0 for v in film.alpha_over_20_pct)
     short = all(v[0] == 0 for v in film.life_below_target_pct)
     return (words.NO_SCUFFING_PART if scuffing else "") + (words.NONE_SHORT_PART if short else "")
+
+
+def _same_text(film):
+    """The share over the scuffing limit that every scheme has alike ('' where they differ)."""
+    same = _same_scuffing(film)
+    return "" if same is None else words.SAME_SCUFFING_PART.format(share=fmt.fixed(same[0], 1), bearing=same[1])
 
 
 def _positions_table(facts, scheme):
@@ -90,7 +108,7 @@ def film_section(facts, ranking):
                                     engines=fmt.count(facts.about.mechanics_engines), spread=fmt.fixed(spread, 1),
                                     failed=words.FAILED_PART.format(failed=failed) if failed else "",
                                     scaled=words.SCALED_PART if len(facts.corrected) else "",
-                                    none=_none_text(facts.film))
+                                    none=_none_text(facts.film), same=_same_text(facts.film))
     lines = [intro, "", markdown_table(_film_table(facts, ranking.index)), ""]
     scheme = next((s for s in ranking.index if s in facts.bearings.index.get_level_values("scheme")), None)
     if scheme is not None:

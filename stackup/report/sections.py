@@ -129,20 +129,30 @@ def scenarios_section(facts, ranking, scenario_rankings):
     if not scenario_rankings:
         return section("Scenarios", words.NO_SCENARIOS)
     process, model = scenario_groups(facts)
-    rows = []
+    study = {s: fmt.ppm_number(1e6 * c / max(b, 1)) for s, c, b in
+             zip(ranking.index, ranking.outside_window_counted, _assembled(facts, ranking))}
+    rows, same = [], []
     for label in [*process, *(x for labels in model.values() for x in labels)]:
         other = scenario_rankings[label]
+        values = {s: fmt.ppm_number(other.loc[s, "outside_window_ppm"]) if s in other.index else "—"
+                  for s in ranking.index}
+        if values == study:  # it acts on the films only: named below the table, not a row
+            same.append(label)
+            continue
         firsts = clearance_level(other, ranking.attrs["negligible_ppm"])
-        cells = {s: (f"**{fmt.ppm_number(other.loc[s, 'outside_window_ppm'])}**" if s in firsts else
-                     fmt.ppm_number(other.loc[s, "outside_window_ppm"])) if s in other.index else "—"
-                 for s in ranking.index}
-        rows.append({"scenario": label, **cells})
-    rows.append({"scenario": "none (the study, counted)",
-                 **{s: fmt.ppm_number(1e6 * c / max(b, 1)) for s, c, b in
-                    zip(ranking.index, ranking.outside_window_counted, _assembled(facts, ranking))}})
+        rows.append({"scenario": label, **{s: f"**{v}**" if s in firsts else v for s, v in values.items()}})
+    rows.append({"scenario": "none (the study, counted)", **study})
     lines = [words.SCENARIOS_INTRO, "", markdown_table(pd.DataFrame(rows)), ""]
-    lines += [line for label, (positions, engines) in facts.life_changes.items()
-              for line in (_life_change_line(label, positions, engines, ranking.index[0]), "")]
+    if same:
+        named = words.listed(same)
+        lines += [words.SCENARIOS_SAME.format(labels=named[0].upper() + named[1:],
+                                              verb=words.plural(len(same), "leave", "leaves")), ""]
+    if facts.life_changes:
+        chosen = ranking.index[0]
+        table = pd.DataFrame([_life_change_row(label, positions, engines, chosen)
+                              for label, (positions, engines) in facts.life_changes.items()])
+        pairs = int(min(p.xs(chosen, level="scheme").pairs.min() for p, _ in facts.life_changes.values()))
+        lines += [words.SCENARIO_LIVES_INTRO.format(pairs=pairs, scheme=chosen), "", markdown_table(table), ""]
     if model:
         lines += [words.MODEL_RANGES, ""]
         for name, labels in model.items():
@@ -151,12 +161,13 @@ def scenarios_section(facts, ranking, scenario_rankings):
     return section("Scenarios", *lines)
 
 
-def _life_change_line(label, positions, engines, chosen):
+def _life_change_row(label, positions, engines, chosen):
     """What a scenario that ran the mechanical chain does to the chosen scheme's lives per position and engine, and
-    where any scheme's life at a position rises beyond its 95 % interval (paired on the same engines)."""
+    where any scheme's life at a position rises beyond its 95 % interval (paired on the same engines): one row."""
     mine = positions.xs(chosen, level="scheme")
     if all(v == (0.0, 0.0, 0.0) for v in positions.life_change_h):  # e.g. doubled misalignment of an engine with none
-        return words.SCENARIO_LIVES_SAME.format(scenario=label, pairs=int(mine.pairs.min()))
+        return {"scenario": label, words.LIVES_POSITION_COLUMN: words.LIVES_SAME, words.LIVES_ENGINE_COLUMN: "0",
+                words.LIVES_RISE_COLUMN: words.LIVES_NONE_RISE}
     changes = [v[0] for v in mine.life_change_h]
     rises = [(scheme, bearing, row) for (scheme, bearing), row in positions.iterrows() if row.life_change_h[1] > 0]
     # a life that rises with its film is the film's doing: counted; one that rises without it is named
@@ -173,12 +184,12 @@ def _life_change_line(label, positions, engines, chosen):
             words.LIFE_RISE_PART.format(bearing=bearing, scheme=scheme, change=fmt.signed(row.life_change_h[0]),
                                         film=fmt.signed(row.h_min_mean_change_um[0], 2))
             for scheme, bearing, row in odd)))
-    where = "; ".join(parts) if parts else words.LIVES_NONE_RISE
-    return words.SCENARIO_LIVES.format(scenario=label, pairs=int(mine.pairs.min()), scheme=chosen,
-                                       lo=fmt.signed(min(changes)), hi=fmt.signed(max(changes)),
-                                       bearing=mine.index[int(np.argmin(changes))],
-                                       engine=fmt.signed(engines.loc[chosen, "engine_life_change_h"][0]),
-                                       where=where)
+    return {"scenario": label,
+            words.LIVES_POSITION_COLUMN: words.LIVES_SPAN.format(lo=fmt.signed(min(changes)),
+                                                                 bearing=mine.index[int(np.argmin(changes))],
+                                                                 hi=fmt.signed(max(changes))),
+            words.LIVES_ENGINE_COLUMN: fmt.signed(engines.loc[chosen, "engine_life_change_h"][0]),
+            words.LIVES_RISE_COLUMN: "; ".join(parts) if parts else words.LIVES_NONE_RISE}
 
 
 def _assembled(facts, ranking):

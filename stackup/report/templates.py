@@ -26,7 +26,7 @@ CONTENTS_SHORT = {"What drives the spread": "Spread", "Operating clearance: pres
 SECTION = "## {title}"
 IMAGE = "![{alt}]({file})"
 PARAMETER = "`{name}` {value}"
-DATASET = "Dataset: `{file}`; every parameter of the study, defaults included, is in its `study` attribute (JSON)."
+DATASET = "Dataset: `{file}` (every parameter, defaults included, in its `study` attribute)."
 PARAMETERS_DEFAULTS = "Parameters not listed are at their defaults (`stackup.study.Study`)."
 
 # --- verdict --------------------------------------------------------------------------------------------------
@@ -127,9 +127,10 @@ CENTRED_SOME_PART = "about {share} outside"
 CENTRED_NONE_PART = "none of its {bearings} bearings outside (below {upper} at 95 %)"
 
 # --- scenarios ------------------------------------------------------------------------------------------------
-SCENARIOS_INTRO = ("Each scenario reruns the study's engines with one change (same seed, same parts): the process "
-                   "scenarios, then the model uncertainties (below). Shares outside the window counted [ppm] (no tail "
-                   "estimate); in bold the lowest and those the counts cannot tell from it.")
+SCENARIOS_INTRO = ("Each scenario reruns the study's engines (same seed, same parts) with one change, process then "
+                   "model; shares outside the window counted [ppm]; in bold the lowest and those the counts cannot "
+                   "tell from it.")
+SCENARIOS_SAME = "{labels} {verb} every share outside the window as in the study (they act on the films only)."
 NO_SCENARIOS = "The comparison ran no scenarios."
 MODEL_RANGES = "Model-uncertainty ranges and what narrows them:"
 MODEL_RANGE = "- {input}: {source}. To narrow it: {measure}."
@@ -169,15 +170,17 @@ FIT_INTRO = ("Operating clearance: housing and shells at the operating temperatu
              "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources (in full: the "
              "engine file):")
 IN_FULL_PART = " (in full: the engine file)"
-SCENARIO_LIVES = ("**Lives under {scenario}** ({pairs} engines, each against itself): {scheme}'s median bearing life "
-                  "changes by {lo} h (bearing {bearing}) to {hi} h over the positions, its engines' by {engine} h; "
-                  "{where}.")
-SCENARIO_LIVES_SAME = ("**Lives under {scenario}** ({pairs} engines, each against itself): no life of any scheme "
-                       "changes; the engine file gives the scenario nothing to act on.")
-LIVES_NONE_RISE = "no scheme's life rises at any position beyond its 95 % interval"
-LIVES_RISE = "lives rise beyond their 95 % intervals at {where}"
-LIVES_RISE_WITH_FILM = ("lives rise beyond their 95 % intervals with a thicker cycle-mean film at {count} of the {total} "
-                        "positions of the schemes ({lo} to {hi} h; film {film_lo} to {film_hi} µm)")
+SCENARIO_LIVES_INTRO = ("**Lives** under the scenarios that ran the films ({pairs}+ engines, each against itself): "
+                        "{scheme}'s median life per position and per engine, and any scheme's position whose life "
+                        "rises beyond its 95 % interval.")
+LIVES_POSITION_COLUMN = "per position [h]"
+LIVES_ENGINE_COLUMN = "per engine [h]"
+LIVES_RISE_COLUMN = "lives that rise"
+LIVES_SPAN = "{lo} (bearing {bearing}) to {hi}"
+LIVES_SAME = "none changes (nothing to act on)"
+LIVES_NONE_RISE = "none"
+LIVES_RISE = "at {where}"
+LIVES_RISE_WITH_FILM = "{count} of {total}, with a thicker film ({lo} to {hi} h; {film_lo} to {film_hi} µm)"
 LIFE_RISE_PART = "bearing {bearing} of {scheme} ({change} h; cycle-mean film {film} µm)"
 FIT_ALL_PASS = "No bearing of any scheme {checks} at any checked temperature."
 FIT_LOW_PRESSURE = "falls below {pressure:.0f} MPa of contact pressure"
@@ -193,15 +196,14 @@ NOT_GIVEN_JOURNAL = "not given in the engine file (journal and housing at one te
 
 # --- loads, film and life -------------------------------------------------------------------------------------
 NO_FILM = "The film and life stages did not run (see the verdict)."
-FILM_INTRO = ("Minimum film{where} over the cycle (`{method}` tier) on the first {engines} engines of each scheme; α: the "
-              "share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); lives by Levanov et al. "
-              "(2015) method 1, per position, an engine's its weakest bearing's (target {target} h){scaled}. Mean "
-              "cycle-maximum loads differ between schemes by at most {spread} kN at any position{failed}.{none}")
-SCALED_PART = ", on the scale of the mass-conserving check (below)"
+FILM_INTRO = ("Minimum film{where} over the cycle (`{method}`) on the first {engines} engines of each scheme; α: the "
+              "share of the cycle below h_lim,cr = {critical} µm (scuffing risk above 20 %); Levanov's method-1 "
+              "lives per position, an engine's its weakest bearing's (target {target} h){scaled}. Loads differ "
+              "between schemes by at most {spread} kN{failed}.{none}{same}")
+SCALED_PART = ", on the mass-conserving check's scale"
 SURFACE_PART = (" over the bearing surface (the journal's tilt turned back by the support moments of crankshaft and "
                 "block, an elastic layer under the film; tilt_method coupled)")
-WIDTH_PART = (" over the bearing's width (the journal's tilt turned back at its own support by the crankshaft's and "
-              "the block's compliance, rigid surfaces)")
+WIDTH_PART = " over the width (the tilted journal, rigid surfaces)"
 FAILED_PART = "; the crankshaft failed on {failed} engines (left out)"
 METHOD1_RANGE = ("At bearing{s} {bearings} {scheme}'s {statistic}, the film method 1 reads, is {films} µm, below "
                  "h_lim,cr = {critical} µm: there Levanov's law gives lives of hours or less (β above 2), far outside "
@@ -215,13 +217,14 @@ OPPOSED_TRENDS = ("With more clearance (last figure) the cycle-minimum film thin
 EVERY_POSITION = "at every position"
 AT_POSITIONS = "at bearings {bearings}"
 NO_SCUFFING_PART = " No bearing spends over 20 % of the cycle below h_lim,cr."
+SAME_SCUFFING_PART = " α over 20 % at bearing {bearing} in {share} % of every scheme's bearings."
 NONE_SHORT_PART = " No bearing's life falls below the target."
 ALPHA_COLUMN = "α > 20 %, worst position [% of its bearings]"
 SHORT_COLUMN = "life < {target:.0f} h, worst position [% of its bearings]"
 AT_POSITION = "{share} (bearing {bearing})"
-POSITIONS = ("Per bearing position for {scheme} (medians over engines): bearing{s} {heaviest} carr{verb} the largest "
-             "load, the thinnest films at bearing{thin_s} {thinnest}; tilt: the journal's largest over the cycle; "
-             "edge: engines whose journal edge touches the shell (share of the cycle).")
+POSITIONS = ("Per position for {scheme} (medians over engines): the largest load at bearing{s} {heaviest}, the "
+             "thinnest films at bearing{thin_s} {thinnest}; tilt: the largest; edge: engines whose edge touches "
+             "(share of the cycle).")
 TOUCHING_PART = "{share:.0f} %"
 TOUCHING_SHARE_PART = " ({share:.0f} %)"
 NOT_A_NUMBER = ("Of {total} bearing-cycles, {counts} gave no film (NaN, `film_status`), left out of every film and "
@@ -233,10 +236,9 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
                "EHD): boundary contact that α and the lives, read at the mid-plane, do not count. `--tilt-method "
                "coupled` balances the support moments with the crankshaft and the block and reads α and the lives "
                "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
-EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) the tilted journal's edge, turned back at its support alone, "
-                "reaches the wall over part of the cycle: {positions}{others}. There the rigid film is held at "
-                "{floor:.1f} % of the radial clearance; α and the lives read it. `--tilt-method coupled` balances "
-                "all supports' moments together, with the tilt's squeeze, on an elastic layer "
+EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) a tilted journal's edge reaches the wall: {positions}{others}. "
+                "There the rigid film is held at {floor:.1f} % of the radial clearance; α and the lives read it. "
+                "`--tilt-method coupled` adds the tilt's squeeze and the other supports' moments "
                 "(reports/coupled_supports.md).")
 EDGE_OTHERS_PART = "; at {count} other position{s} in under {share} of the bearings"
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
@@ -244,20 +246,18 @@ EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its t
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
                 "planes); α and the lives read it. The support moments repeated from cycle to cycle in {periodic} of the "
                 "bearings (`tilt_status`; the others are taken at the march's last cycle).")
-EDGE_TOLERANCE = ("The tolerances: with the drawing's coaxiality and run-out ×{factor} ({label}; {pairs} engines, each "
-                  "against itself) {scheme}'s share of the cycle {contact} {changes} (median per "
-                  "position, bearings {first}–{last}){beyond}.")
+EDGE_TOLERANCE = ("With coaxiality and run-out ×{factor} ({label}, {pairs} paired engines) {scheme}'s share of the "
+                  "cycle {contact} {changes} (median per position, bearings {first}–{last}){beyond}.")
 EDGE_TOLERANCE_NONE = "does not change"
 BELOW_CRITICAL = "with an edge below h_lim,cr"
 AT_WALL = "with an edge at the wall"
 EDGE_TOLERANCE_BEYOND = "; the change is clear of zero (95 % interval) at bearing{s} {bearings}"
-EDGE_TOLERANCE_WITHIN = "; at every position its 95 % interval includes zero"
+EDGE_TOLERANCE_WITHIN = ", within its 95 % interval of zero everywhere"
 EDGE_UNRESOLVED = (" At {median} of the march's solved crank angles (median over the engines; {high} at the 95th "
                    "percentile; `tilt_unresolved`) the force and turn-back balance was not resolved: Newton's full "
                    "step stayed longer than its tolerance where the film's moment stops growing with the tilt, and the "
                    "last iterate is taken.")
-EDGE_POSITION_PART = ("bearing {bearing} in {touching} of its bearings, over {cycle} of the cycle ({lo}–{hi} over the "
-                      "engines, 5–95 %), thinnest {film} µm, at up to {load} kN near {angle}° crank")
+EDGE_POSITION_PART = "bearing {bearing} ({lo}–{hi} of the cycle; {film} µm at up to {load} kN near {angle}°)"
 HEAT = ("The heat balance puts the films at {temperature} °C (5-95 %; median {temperature_median} °C{supply}), "
         "{power} W of friction per bearing and {flow} L/min of oil.")
 SUPPLY_PART = ", oil supplied at {supply:.0f} °C"
@@ -326,8 +326,7 @@ LIMITS_BEFORE_LIFE = (
 )
 CRANK_LIMIT = "- Crankshaft: a beam on point supports; {block}; loads from the engine file's pressure model."
 BLOCK_RIGID = "block rigid against tilt"
-BLOCK_OWN_SUPPORT = ("each support turns with the block's angular compliance (an assumed derivation) under its own "
-                     "film's moment only, quasi-static, the moments of the other supports left out")
+BLOCK_OWN_SUPPORT = "each support turns with the block (assumed) under its own moment"
 BLOCK_COUPLED = ("the supports' moments balanced together with the block's angular compliance (an assumed "
                  "derivation)")
 BLOCK_HELD = "the crankshaft's slope held in the film (no support moments)"
