@@ -628,7 +628,7 @@ def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named(
                            index=pd.Index(["a", "b"], name="scheme"))
     row = _life_change_row("support tilt compliance ×2", positions, engines, "a")
     rises = row["lives that rise"]
-    assert rises.startswith("2 of 4, with a thicker film (+600 to +900 h; +0.30 to +0.40 µm)")
+    assert rises.startswith("2 of 4, with a thicker cycle-mean film (+600 to +900 h; +0.30 to +0.40 µm)")
     assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in rises and "bearing 1 of a" not in rises
     assert row["per position [h]"] == "−5 (bearing 2) to +600" and row["per engine [h]"] == "+550"
 
