@@ -70,9 +70,9 @@ def edge_contact(ds):
     per_scheme = [100 * touching[i].sum() / ran[i].sum() for i in range(len(ds.scheme)) if ran[i].any()]
     surface = "tilt_status" in ds and bool(np.any(ds.tilt_status.values != flag(ds.tilt_status, "not_computed")))
     counted = surface or ("h_min_midplane" in ds and bool(np.any(ds.h_min.values[ran] < ds.h_min_midplane.values[ran])))
+    counts = (int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT)
     if not counted:  # a study that read the mid-plane film: where and when its edges touched was not kept
-        return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
-                           counted=False)
+        return EdgeContact(*counts, counted=False)
     rows = {}
     for b, bearing in enumerate(ds.bearing.values):
         on, there = touching[..., b], ran[..., b]
@@ -87,10 +87,8 @@ def edge_contact(ds):
                               "angle": float(np.nanmedian(ds.edge_contact_angle.values[..., b][on]))}
     table = pd.DataFrame.from_dict(rows, orient="index")
     if not surface:
-        return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
-                           per_position=table)
-    return EdgeContact(int(ran.sum()), int(touching.sum()), per_scheme, per_position, 1 - ECCENTRICITY_LIMIT,
-                       surface=True, critical=Wear.of(ds).critical_film_m, per_position=table,
+        return EdgeContact(*counts, per_position=table)
+    return EdgeContact(*counts, surface=True, critical=Wear.of(ds).critical_film_m, per_position=table,
                        periodic=float(np.mean(ds.tilt_status.values[ran] == flag(ds.tilt_status, "periodic"))),
                        unresolved=_unresolved(ds, ran))
 

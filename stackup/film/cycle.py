@@ -250,11 +250,16 @@ def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, jo
             orbit(loads, angle, **geometry, method=check, **fed(check)).h_min)
 
 
+def wall_film(clearance):
+    """The film the cycle tiers hold an edge, or the journal, at when it reaches the wall: :math:`c(1 -
+    \varepsilon_{lim})` [m] at diametral ``clearance`` [m]."""
+    return 0.5 * np.asarray(clearance, dtype=float) * (1 - ECCENTRICITY_LIMIT)
+
+
 def at_wall(h_min_edge, clearance):
-    """Where the film over the width is held at the limit film :math:`c(1 - \varepsilon_{lim})` (an edge, or the
-    journal, at the wall): ``h_min_edge`` (..., angles) [m] at diametral ``clearance`` (...) [m] -> bool."""
-    floor = 0.5 * np.asarray(clearance, dtype=float)[..., None] * (1 - ECCENTRICITY_LIMIT)
-    return h_min_edge <= floor * (1 + 1e-9)
+    """Where the film over the width is held at the wall (:func:`wall_film`): ``h_min_edge`` (..., angles) [m] at
+    diametral ``clearance`` (...) [m] -> bool."""
+    return h_min_edge <= wall_film(clearance)[..., None] * (1 + 1e-9)
 
 
 def _at_limit_share(h_min_edge, clearance):

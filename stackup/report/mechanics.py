@@ -255,11 +255,11 @@ def _outcomes_text(outcomes, edge_contact, tolerance=""):
 
 
 def _edge_positions(rows):
-    """Per position with an edge in contact: how many bearings, over how much of the cycle, how thin, where."""
-    return [words.EDGE_POSITION_PART.format(bearing=b, touching=fmt.percent(r.touching_pct / 100),
-                                            cycle=fmt.percent(r.cycle_share), lo=fmt.percent(r.cycle_lo),
-                                            hi=fmt.percent(r.cycle_hi), film=fmt.fixed(1e6 * r.film, 2),
-                                            load=fmt.fixed(r.load / 1e3, 1), angle=fmt.whole(r.angle))
+    """Per position with an edge in contact: over how much of the cycle (5-95 % over the engines; the share of
+    bearings and the median share are the positions table's), how thin, at what load and where."""
+    return [words.EDGE_POSITION_PART.format(bearing=b, lo=fmt.percent(r.cycle_lo), hi=fmt.percent(r.cycle_hi),
+                                            film=fmt.fixed(1e6 * r.film, 2), load=fmt.fixed(r.load / 1e3, 1),
+                                            angle=fmt.whole(r.angle))
             for b, r in rows.iterrows()]
 
 

@@ -22,9 +22,9 @@ from ..crank.law import BellakhdharLaw, fit_bellakhdhar
 from ..film.bearing_law import load_displacement
 from ..film.coupled import STATES as TILT_STATES
 from ..film.coupled import ElasticLayer, support_moments
-from ..film.cycle import FILM_STATUS, HEAT_STEP, at_wall, bearing_films, checked_film
+from ..film.cycle import FILM_STATUS, HEAT_STEP, at_wall, bearing_films, checked_film, wall_film
 from ..film.heat import heat_balance
-from ..film.journal import ECCENTRICITY_LIMIT, vector_length
+from ..film.journal import vector_length
 from .. import _validate as check
 from .. import materials
 from ..contact import column_stiffness, composite_roughness, contact_modulus
@@ -388,7 +388,7 @@ def _check_values(engine, films, film, reactions, crank_angle, *, clearance, jou
     surface where the support moments ran: the tilt's part of it is the
     geometry's, the centre's the tier's), per statistic (cycle minimum, cycle
     mean); with rigid surfaces (``coupled`` False) no cycle minimum below the
-    wall's film, :math:`c(1 - \varepsilon_{lim})`, where the film tier holds an
+    wall's film (:func:`stackup.film.cycle.wall_film`), where the film tier holds an
     edge; a bearing where the check tier fails is NaN.
     """
     shape = np.shape(clearance)
@@ -404,8 +404,7 @@ def _check_values(engine, films, film, reactions, crank_angle, *, clearance, jou
     out["h_min_check"][first] = read.min(axis=-1) + mid.min(axis=-1) * (accurate.min(axis=-1) / cheap.min(axis=-1)
                                                                         - 1)
     if not coupled:  # an edge the tier holds at the wall stays there, whichever tier moves the centre
-        wall = 0.5 * np.asarray(clearance)[first] * (1 - ECCENTRICITY_LIMIT)
-        out["h_min_check"][first] = np.maximum(out["h_min_check"][first], wall)
+        out["h_min_check"][first] = np.maximum(out["h_min_check"][first], wall_film(np.asarray(clearance)[first]))
     mean = cycle_film(mid, statistic="cycle-mean")
     out["h_min_mean_check"][first] = cycle_film(read, statistic="cycle-mean") + mean * (
         cycle_film(accurate, statistic="cycle-mean") / cycle_film(cheap, statistic="cycle-mean") - 1)
