@@ -525,11 +525,10 @@ def _short_line(scheme, rows, a):
     short = [(g, per_lot[g], rows.order_up_to[g]) for g in rows.index if per_lot[g] < rows.order_up_to[g] - 0.5]
     if not short:
         return ""
-    listed = ", ".join(f"{g} ({math.floor(m):,} made per lot against a stock of {int(s):,})" for g, m, s in short)
-    return (f"{'Scheme ' + scheme + ': t' if scheme is not None else 'T'}he order falls short of the stock per lot "
-            f"in {listed}: more than {100 * (1 - a['service_level']):.2g} % of lots run short of them unless "
-            "shells are left from earlier lots or an allowed alternative pair fits; aim more of the order at those "
-            "grades to cover them.")
+    listed = ", ".join(f"{g} ({math.floor(m):,} made against {int(s):,})" for g, m, s in short)
+    return (f"{'Scheme ' + scheme + ': t' if scheme is not None else 'T'}he order falls short of the stock "
+            f"per lot in {listed}: over {100 * (1 - a['service_level']):.2g} % of lots run short of them unless "
+            "shells are left from earlier lots or an allowed alternative pair fits; aim more of the order at them.")
 
 
 def _estimated_from(a):

@@ -102,7 +102,7 @@ def _mm(value):
 def housing_stiffness(engine, tilt_method="equilibrium"):
     """The :class:`Uncertainty` of the housing's equivalent outer diameter: measured interval, else assumed range."""
     spec, bore = engine.press_fit, engine.housing_bore.lo
-    measure = "the housing swell (fitting tests, `stackup measure swell`)"
+    measure = "the housing swell (`stackup measure swell`)"
     if spec.housing_outer_interval is not None:
         lo, hi = spec.housing_outer_interval
         rigid = hi == float("inf")
@@ -113,8 +113,7 @@ def housing_stiffness(engine, tilt_method="equilibrium"):
         lo = min(HOUSING_RATIO_RANGE[0] * bore, spec.housing_outer)
         hi = max(HOUSING_RATIO_RANGE[1] * bore, spec.housing_outer)
         source = (f"assumed: OD/ID {lo / bore:.2g}-{hi / bore:.2g} around the file's {_mm(spec.housing_outer)} "
-                  "(a bolted bulkhead is no ring, physics.md sec. 3; ISO 13778 clause 4: swell 'of the order of a "
-                  "few micrometres', measure it)")
+                  "(a bolted bulkhead is no ring, physics.md sec. 3)")
     return Uncertainty("housing stiffness (equivalent outer diameter)",
                        {f"housing OD {_mm(lo)}": {"housing_outer": lo}, f"housing OD {_mm(hi)}": {"housing_outer": hi}},
                        source, measure)
@@ -125,8 +124,8 @@ def crush_height(engine, tilt_method="equilibrium"):
     k = CRUSH_SHIFT
     return Uncertainty("crush height process (mean)",
                        {f"crush mean +{k:g}σ": {"crush_shift": k}, f"crush mean −{k:g}σ": {"crush_shift": -k}},
-                       f"assumed: the engine file's crush process, its mean ±{k:g}σ as the parts' process scenarios",
-                       "the shells' crush heights (checking block, ISO 3548-3; `stackup measure fit`)")
+                       f"assumed: the engine file's crush mean ±{k:g}σ",
+                       "crush heights (checking block, ISO 3548-3; `stackup measure fit`)")
 
 
 def _hotter(kelvin):
@@ -143,8 +142,8 @@ def journal_temperature(engine, tilt_method="equilibrium"):
     return Uncertainty("journal–housing temperature difference",
                        {_hotter(lo): {"journal_temperature_excess": lo},
                         _hotter(hi): {"journal_temperature_excess": hi}},
-                       "assumed: journals often run 10-20 K above their bulkheads (physics.md sec. 3); 0 K is the "
-                       "standard's one temperature",
+                       "assumed: journals often run 10-20 K above their bulkheads (physics.md sec. 3); 0 K: the "
+                       "standard's",
                        "journal and bulkhead temperatures in a running engine")
 
 
@@ -171,12 +170,9 @@ def crank_stiffness(engine, tilt_method="equilibrium"):
     return Uncertainty("crankshaft bending stiffness (section inertias)",
                        {f"crank inertia ×{low:g}": {"crank_stiffness_scale": low},
                         f"crank inertia ×{high:.2g} (plain journal)": {"crank_stiffness_scale": high}},
-                       f"assumed: {given}; run from ×{low:g} (throws identified on another engine and scaled may "
-                       f"be off by a factor of two) to the plain {1e3 * d:.0f} mm journal's section (no throw bends "
-                       "less than a straight shaft of its journal; Rozhdestvensky et al.'s coaxial films need about "
-                       "that, reports/coupled_supports.md)",
-                       "the crankshaft's bending compliance (a finite-element model of the crankshaft, or a bending "
-                       "test of the crankshaft on its end journals)")
+                       f"assumed: {given}; ×{low:g} (scaled throws may be off by two) to the plain {1e3 * d:.0f} mm "
+                       "journal's section (no throw is stiffer)",
+                       "the crankshaft's bending compliance (a finite-element model, or a bending test on its end journals)")
 
 
 def support_tilt_compliance(engine, tilt_method="equilibrium"):
@@ -193,18 +189,16 @@ def support_tilt_compliance(engine, tilt_method="equilibrium"):
         return None
     derived = []
     if supports.angular_derived:
-        derived.append("the bulkhead web (stackup.crank.housing.bulkhead_compliance)")
+        derived.append("the bulkhead web (bulkhead_compliance)")
     if ring:
-        derived.append("the bore ring's own turn from the bearing law's stiffness (ring_tilt_compliance, an upper "
-                       "end)")
+        derived.append("the bore ring's turn under the bearing law (ring_tilt_compliance, an upper end)")
     k = BULKHEAD_FACTOR
     return Uncertainty("supports' angular compliance (bulkhead and bore ring)",
                        {f"support tilt compliance ×{1 / k:g}": {"support_angular_scale": 1 / k},
                         f"support tilt compliance ×{k:g}": {"support_angular_scale": k}},
-                       f"assumed: derived from {' and '.join(derived)}, a factor of {k:g} either way (not measured "
-                       "against a finite-element model)",
-                       "the bulkheads' tilt compliance (a finite-element model of the block, or a bearing cap "
-                       "loaded by a couple on a mandrel)")
+                       f"assumed: derived from {' and '.join(derived)}, ×{k:g} either way (not checked against a "
+                       "finite-element model)",
+                       "a bearing cap's tilt under a couple (a finite-element model of the block, or on a mandrel)")
 
 
 #: The model inputs a comparison declares, each called as ``f(engine, tilt_method)`` (the study's tilt method:

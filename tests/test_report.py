@@ -480,7 +480,7 @@ def test_doubled_misalignment_lengthens_no_life_at_any_position(comparison, tmp_
     assert all(change[0] < 0 for change in engines.engine_life_change_h)
     text = write_report(comparison.dataset, tmp_path, scenarios=comparison.scenarios,
                         sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
-    assert "**Lives** under the scenarios that ran the films (12+ engines, each against itself)" in text
+    assert "**Lives** under the scenarios that ran the films (12+ paired engines)" in text
     assert "| misalignment ×2 | " in text and " | none |" in text
 
 

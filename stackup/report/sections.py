@@ -410,8 +410,8 @@ def plan_section(facts, ranking):
     body = _intervals_merged(table.reset_index())
     if "scheme" in body:
         body = body.drop(columns="scheme")
-    return section("Planning: shells per grade", " ".join([summary, *table.attrs["warnings"],
-                                                          table.attrs["title"][-1]]), "", markdown_table(body))
+    return section("Planning: shells per grade", " ".join([summary, *table.attrs["warnings"]]), "",
+                   markdown_table(body))
 
 
 __all__ = ["PLAN_SERVICE_LEVEL", "assembly_section", "centring", "clearance_section", "design_section",

@@ -132,7 +132,7 @@ SCENARIOS_INTRO = ("Each scenario reruns the study's engines (same seed, same pa
                    "tell from it.")
 SCENARIOS_SAME = "{labels} {verb} every share outside the window as in the study (they act on the films only)."
 NO_SCENARIOS = "The comparison ran no scenarios."
-MODEL_RANGES = "Model-uncertainty ranges and what narrows them:"
+MODEL_RANGES = "Model-uncertainty ranges:"
 MODEL_RANGE = "- {input}: {source}. To narrow it: {measure}."
 
 # --- designed scheme ------------------------------------------------------------------------------------------
@@ -154,10 +154,8 @@ TIGHTEN_FIRST = ("**Tighten first ({scheme}, {output}):** the {first}, S_T {st:.
                  "(S_1 {s1:.2f}), then the {second} ({second_st:.2f}).{gauges}")
 GAUGES_PART = " Gauges matter through misgrading: {gauges}."
 GAUGE_INDEX_PART = "{name} {st:.2f}"
-SOBOL_EXPLAINED = ("Sobol indices: S_1, the share of the output's variance an input explains alone; S_T, with its "
-                   "interactions, "
-                   "the grading among them. Process mean shifts are scenarios, not inputs; the film and life use few "
-                   "engines.")
+SOBOL_EXPLAINED = ("S_1: the share of the output's variance an input explains alone; S_T: with its interactions "
+                   "(the grading among them). Process mean shifts are scenarios; the film and life use few engines.")
 
 # --- clearance, press fit -------------------------------------------------------------------------------------
 CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature: the standard's stated ranges) against "
@@ -170,9 +168,9 @@ FIT_INTRO = ("Operating clearance: housing and shells at the operating temperatu
              "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources (in full: the "
              "engine file):")
 IN_FULL_PART = " (in full: the engine file)"
-SCENARIO_LIVES_INTRO = ("**Lives** under the scenarios that ran the films ({pairs}+ engines, each against itself): "
-                        "{scheme}'s median life per position and per engine, and any scheme's position whose life "
-                        "rises beyond its 95 % interval.")
+SCENARIO_LIVES_INTRO = ("**Lives** under the scenarios that ran the films ({pairs}+ paired engines): {scheme}'s "
+                        "median change per position and per engine; any scheme's position whose life rises beyond "
+                        "its 95 % interval.")
 LIVES_POSITION_COLUMN = "per position [h]"
 LIVES_ENGINE_COLUMN = "per engine [h]"
 LIVES_RISE_COLUMN = "lives that rise"
@@ -271,10 +269,10 @@ LOSSES = {"block_scrapped": "{count} bearings to scrapped blocks",
           "not_graded": "{count} to parts read outside every grade",
           "shell_stockout": "{count} to shell stock-outs"}
 PLAN_NEEDS_ENGINES = ("Planning needs each engine's shell demand: run the study with `keep=\"everything\"`.")
-PLAN = ("For {scheme}, the scheme to use, from this study's engines and shell lots (`stackup plan` plans any other "
-        "and explains every column): order {ordered:,} shells per lot of {lot:,} engines (two per bearing and "
-        "{surplus:.3g} % more, {how}); the gauge scraps {scrap:.2g} % of them. The stock per lot covers a lot's "
-        "demand for the grade in {level:.4g} % of lots.")
+PLAN = ("For {scheme}, from this study's engines (`stackup plan` plans any other and explains the columns): order "
+        "{ordered:,} shells per lot of {lot:,} engines (two per bearing and {surplus:.3g} % more, {how}); the gauge "
+        "scraps {scrap:.2g} % of them; the stock per lot covers a lot's demand for its grade in {level:.4g} % of "
+        "lots.")
 PLAN_TO_ORDER = "made to order, each grade aimed at its share of the demand"
 PLAN_SORTED = "one wall process sorted into the grades"
 
