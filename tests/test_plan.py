@@ -263,7 +263,7 @@ def test_the_title_names_grades_whose_order_falls_short_of_their_stock(plan4):
     middle = frame.order_up_to.idxmax()
     frame.loc[middle, "made"] = 10 * frame.loc[middle, "order_up_to"] - 50
     line = next(line for line in planner_table(frame).attrs["title"] if line.startswith("The order falls short"))
-    assert f" {middle} (" in line and f"against a stock of {int(frame.loc[middle, 'order_up_to']):,})" in line
+    assert f" {middle} (" in line and f"against {int(frame.loc[middle, 'order_up_to']):,})" in line
 
 
 def test_the_table_of_one_scheme_of_a_study_speaks_of_that_scheme_only():
