@@ -39,8 +39,10 @@ Quadrature = namedtuple("Quadrature", ("nodes", "weights", "nodes_dry", "weights
 #: What every angle's tilt equilibrium shares: the quadrature, the eccentricity limit, the Newton tolerance.
 Solver = namedtuple("Solver", ("quadrature", "limit", "tolerance"))
 #: One crank angle's balance: journal centre (x0, x1), squeeze velocity (v0, v1), free edge offset (f0, f1),
-#: compliance (k0, k1), and the finite correction's ratio and turn (cosine, sine) at that centre and squeeze.
-Angle = namedtuple("Angle", ("x0", "x1", "v0", "v1", "f0", "f1", "k0", "k1", "ratio", "ct", "st"))
+#: compliance (k0, k1), the finite correction's ratio and turn (cosine, sine) at that centre and squeeze, and the
+#: tilt's own squeeze as an implicit Euler step: the last angle's edge offset (p0, p1) and one over the step in
+#: journal angle (``rate``, 1/rad; 0 holds the tilt: no tilt squeeze).
+Angle = namedtuple("Angle", ("x0", "x1", "v0", "v1", "f0", "f1", "k0", "k1", "ratio", "ct", "st", "p0", "p1", "rate"))
 #: The cycle's mid-plane orbits of B bearings: centre and squeeze xi, v (B, n, 2), free edge offset (B, n, 2),
 #: compliance (B, 2) and L/D (B,) (the finite correction's, where it applies).
 Orbits = namedtuple("Orbits", ("xi", "v", "free", "kappa", "ld"))
@@ -73,6 +75,14 @@ WALL_REACH = 0.5
 WALL_EVALUATIONS = 12
 WALL_TOLERANCE = 0.03
 INSIDE = 0.98
+#: The tilt march (:func:`marches`): the share of the cycle marched from the aligned journal before the cycle
+#: kept (the tilt's squeeze forgets its start within about a quarter of a cycle on the built-in engines), and the
+#: most cycles marched to close the cycle (the last angle's tilt within the Newton tolerance of the pass before).
+WARMUP = 0.25
+MARCH_CYCLES = 3
+#: Film moments at most per step of the march (each Newton iterate's Jacobian differenced: the tilt's squeeze
+#: makes it large and nearly singular, which Broyden's update does not follow).
+MARCH_EVALUATIONS = 40
 #: Equilibrium states per angle.
 EQUILIBRIUM, AT_LIMIT, NOT_SOLVED = 0, 1, 2
 #: Outcomes of a Newton inside the lens (:func:`_newton`).
@@ -345,8 +355,11 @@ def _wall_normal(x0, x1, e0, e1):
 
 @njit(cache=True)
 def _residual(a, e0, e1, quadrature):
-    """e + kappa (rho R(turn) M(e)) - e_free at the angle ``a`` (:data:`Angle`)."""
-    _, _, m0, m1 = film_moment(a.x0, a.x1, a.v0, a.v1, e0, e1, quadrature)
+    """e + kappa (rho R(turn) M(e, u)) - e_free at the angle ``a`` (:data:`Angle`), with the tilt's squeeze
+    u = rate (e - p) - 1/2 k x e (rate 0: the tilt held, :func:`film_moment`)."""
+    u0 = a.rate * (e0 - a.p0) + 0.5 * e1
+    u1 = a.rate * (e1 - a.p1) - 0.5 * e0
+    _, _, m0, m1 = squeeze_moment(a.x0, a.x1, a.v0, a.v1, e0, e1, u0, u1, quadrature)
     return e0 + a.k0 * a.ratio * (a.ct * m0 - a.st * m1) - a.f0, e1 + a.k1 * a.ratio * (a.st * m0 + a.ct * m1) - a.f1
 
 
@@ -570,25 +583,11 @@ def equilibrium(a, g0, g1, on_wall, jac, slope, fresh, solver, budget=MAX_EVALUA
 
 
 @njit(cache=True)
-def _solve_at(b, k, g0, g1, on_wall, fresh, orbits, bearing, solver, memory, out):
-    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes the tilt and state into ``out``.
-
-    ``orbits``: :data:`Orbits`; ``bearing``: the bearing's finite correction (table, eccentricity nodes, whether
-    it applies); ``memory``: the Jacobian (2, 2) and the wall's slope (1,), in and out (usable where ``fresh``).
-    Returns (evaluations, whether the Jacobian is usable at the next angle).
-    """
+def _angle(b, k, orbits, bearing, limit, p0, p1, rate):
+    """The :data:`Angle` of bearing b at angle k (``orbits``: :data:`Orbits`; ``bearing``: its finite correction,
+    as :func:`_solve_at`), the tilt's squeeze a step from the edge offset p at ``rate`` (0: the tilt held)."""
     xi, v, free, kappa = orbits.xi, orbits.v, orbits.free, orbits.kappa
     table, stretched, finite = bearing
-    jac, slope = memory
-    tilt, state = out
-    limit = solver.limit
-    f0 = free[b, k, 0]
-    f1 = free[b, k, 1]
-    if f0 == 0.0 and f1 == 0.0:
-        tilt[b, k, 0] = 0.0
-        tilt[b, k, 1] = 0.0
-        state[b, k] = EQUILIBRIUM
-        return 0, fresh
     x0 = xi[b, k, 0]
     x1 = xi[b, k, 1]
     ratio, ct, st = 1.0, 1.0, 0.0
@@ -599,7 +598,28 @@ def _solve_at(b, k, g0, g1, on_wall, fresh, orbits, bearing, solver, memory, out
         ratio = math.exp(log_ratio)
         ct = math.cos(turn)
         st = math.sin(turn)
-    a = Angle(x0, x1, v[b, k, 0], v[b, k, 1], f0, f1, kappa[b, 0], kappa[b, 1], ratio, ct, st)
+    return Angle(x0, x1, v[b, k, 0], v[b, k, 1], free[b, k, 0], free[b, k, 1], kappa[b, 0], kappa[b, 1], ratio, ct, st,
+                 p0, p1, rate)
+
+
+@njit(cache=True)
+def _solve_at(b, k, g0, g1, on_wall, fresh, orbits, bearing, solver, memory, out):
+    """Tilt equilibrium of bearing b at angle k from the guess (g0, g1); writes the tilt and state into ``out``.
+
+    ``orbits``: :data:`Orbits`; ``bearing``: the bearing's finite correction (table, eccentricity nodes, whether
+    it applies); ``memory``: the Jacobian (2, 2) and the wall's slope (1,), in and out (usable where ``fresh``).
+    Returns (evaluations, whether the Jacobian is usable at the next angle).
+    """
+    jac, slope = memory
+    tilt, state = out
+    limit = solver.limit
+    if orbits.free[b, k, 0] == 0.0 and orbits.free[b, k, 1] == 0.0:
+        tilt[b, k, 0] = 0.0
+        tilt[b, k, 1] = 0.0
+        state[b, k] = EQUILIBRIUM
+        return 0, fresh
+    a = _angle(b, k, orbits, bearing, limit, 0.0, 0.0, 0.0)
+    x0, x1 = a.x0, a.x1
     e0, e1, s, used = equilibrium(a, g0, g1, on_wall, jac, slope, fresh, solver)
     if s == NOT_SOLVED and _edge(x0, x1, e0, e1) > COLD_FROM * (1.0 - limit):
         # far from the wall: start again from the aligned journal (no film moment; Newton's first step is the
@@ -728,3 +748,91 @@ def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, eva
                 jacs[k] = jac
                 slopes[k] = slope[0]
             half //= 2
+
+
+@njit(cache=True)
+def _march_step(a, solver, budget):
+    """One implicit Euler step of the tilt at the angle ``a`` (:data:`Angle`, its squeeze from the last angle's
+    edge offset p): damped Newton from p inside the lens, the Jacobian differenced at every iterate, each step
+    going at most :data:`INSIDE` of the way to the wall. Returns (e0, e1, state, evaluations): EQUILIBRIUM where
+    the step falls below the solver's tolerance times the edge film, AT_LIMIT where Newton presses the edge onto
+    the wall (its step beyond it, the room left below that tolerance times the limit's film), NOT_SOLVED where the
+    budget ends first (the last iterate)."""
+    x0, x1, limit, tolerance = a.x0, a.x1, solver.limit, solver.tolerance
+    if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
+        return 0.0, 0.0, AT_LIMIT, 0
+    e0, e1 = a.p0, a.p1
+    room = wall_room(x0, x1, 0.0, 0.0, e0, e1, limit)
+    if room < 1.0:  # the orbit's centre moved the wall onto the last tilt
+        e0 *= INSIDE * room
+        e1 *= INSIDE * room
+    jac = np.empty((2, 2))
+    r0, r1 = _residual(a, e0, e1, solver.quadrature)
+    evaluations = 1
+    while evaluations < budget:
+        evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
+        det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+        if det == 0.0 or not math.isfinite(det):
+            break
+        d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
+        d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
+        size = math.hypot(d0, d1)
+        room = wall_room(x0, x1, e0, e1, d0, d1, limit)
+        if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
+            return e0 + d0, e1 + d1, EQUILIBRIUM, evaluations
+        if room < 1.0 and room * size <= tolerance * (1.0 - limit):
+            return e0, e1, AT_LIMIT, evaluations
+        t = min(1.0, INSIDE * room)
+        merit = r0 * r0 + r1 * r1
+        for _ in range(MAX_HALVINGS):
+            n0 = e0 + t * d0
+            n1 = e1 + t * d1
+            q0, q1 = _residual(a, n0, n1, solver.quadrature)
+            evaluations += 1
+            if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
+                break
+            t *= 0.5
+        e0, e1, r0, r1 = n0, n1, q0, q1
+    return e0, e1, NOT_SOLVED, evaluations
+
+
+@njit(cache=True, parallel=True)
+def marches(orbits, correction, solver, rate, warmup, cycles, tilt, state, evaluations):
+    """The tilt marched over the cycle with its own squeeze, many bearings (prange over bearings).
+
+    At each angle k, an implicit Euler step from the last angle's edge offset
+    :math:`\\mathbf p` (:func:`_march_step`): the tilt :math:`\\mathbf e` with
+    :math:`\\mathbf e + \\kappa\\mathbf M(\\mathbf x, \\mathbf v, \\mathbf e, \\bar{\\mathbf u}) = \\mathbf e_{free}`,
+    :math:`\\bar{\\mathbf u} = (\\mathbf e - \\mathbf p)\\,\\mathrm{rate}_k - \\tfrac12\\mathbf k\\times\\mathbf e`
+    (``rate`` (n,): one over the step in journal angle that ends at each angle, the first's from the cycle's last
+    angle). The march starts from the aligned journal ``warmup`` angles before the cycle's end and runs whole
+    cycles until the last angle's tilt is within the solver's tolerance of the pass before (times the edge film;
+    at most ``cycles``); the last cycle is kept. ``orbits``, ``correction``, ``solver`` as :func:`equilibria`.
+    Writes tilt (B, n, 2), state (B, n) and evaluations (B, n): film moments computed at each angle over every
+    pass.
+    """
+    xi, v, free, kappa, ld = orbits
+    tables, ld_nodes, stretched, finite = correction
+    (nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance = solver
+    n_b = xi.shape[0]
+    n = xi.shape[1]
+    for b in prange(n_b):
+        cycle = Orbits(xi, v, free, kappa, ld)
+        rule = Solver(Quadrature(nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance)
+        bearing = (bearing_table(Correction(tables, ld_nodes, stretched, finite), ld[b]), stretched, finite)
+        e0, e1 = 0.0, 0.0
+        for k in range(n):
+            evaluations[b, k] = 0
+        before0, before1 = 0.0, 0.0
+        for p in range(cycles + 1):
+            for k in range(n - warmup if p == 0 else 0, n):
+                a = _angle(b, k, cycle, bearing, limit, e0, e1, rate[k])
+                e0, e1, s, used = _march_step(a, rule, MARCH_EVALUATIONS)
+                tilt[b, k, 0] = e0
+                tilt[b, k, 1] = e1
+                state[b, k] = s
+                evaluations[b, k] += used
+            if p > 0 and math.hypot(e0 - before0, e1 - before1) <= tolerance * _edge(xi[b, n - 1, 0], xi[b, n - 1, 1],
+                                                                                     e0, e1):
+                break
+            before0, before1 = e0, e1

@@ -107,7 +107,7 @@ from . import ECCENTRICITY_VALID, Film, min_film_thickness, reynolds
 from .journal import (ECCENTRICITY_LIMIT, STATES, STATUS, Orbit, edge_film, mobility_table,  # noqa: F401 (API)
                       short_table, table_covers, vector_length)
 from .mobility import PERIODIC, mobility_orbit  # noqa: F401 (PERIODIC: API)
-from .tilt import cycle_tilt
+from .tilt import cycle_tilt, march_tilt
 from .elrod import elrod_orbit
 from .transient import transient_orbit
 
@@ -343,12 +343,14 @@ def _run(method, loads, angle, geometry, *, tilt, tilt_compliance, cycles, start
         position, p_max, torque, flow, status, used, squeeze = mobility_orbit(loads, angle, finite=finite,
                                                                               cycles=cycles, start=start, **geometry)
     return _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, finite=finite,
-                      **geometry)
+                      crank_angle=None if method in QUASI_STATIC else angle, **geometry)
 
 
-def _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, *, finite,
+def _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, *, finite, crank_angle,
                journal_radius, bearing_width, radial_clearance, viscosity, speed):
-    """The :class:`Orbit` of a mid-plane orbit: its films, and the tilt in them (the equilibrium with a compliance)."""
+    """The :class:`Orbit` of a mid-plane orbit: its films, and the tilt in them where a compliance turns it back:
+    marched with its squeeze over the ``crank_angle`` of a dynamic tier, held at each angle of a quasi-static one
+    (``crank_angle`` None)."""
     c = radial_clearance
     ecc = vector_length(position) / c[..., None]
     h_min = c[..., None] * (1 - ecc)
@@ -356,9 +358,11 @@ def _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_
     if tilt_compliance is not None:
         # the finite correction where its table covers the bearing (as the mobility-finite tier)
         covered = table_covers(bearing_width / (2 * journal_radius))
-        equilibrium = cycle_tilt(position, squeeze, tilt, compliance=tilt_compliance, journal_radius=journal_radius,
-                                 bearing_width=bearing_width, radial_clearance=c, viscosity=viscosity, speed=speed,
-                                 method="finite" if finite and covered else "short")
+        film = dict(compliance=tilt_compliance, journal_radius=journal_radius, bearing_width=bearing_width,
+                    radial_clearance=c, viscosity=viscosity, speed=speed,
+                    method="finite" if finite and covered else "short")
+        equilibrium = (cycle_tilt(position, squeeze, tilt, **film) if crank_angle is None
+                       else march_tilt(position, squeeze, tilt, crank_angle, **film))
         film_tilt, tilt_state = equilibrium.tilt, equilibrium.state
     h_edge, status = edge_film(position, film_tilt, bearing_width, c, h_min, status, at_limit=tilt_state)
     return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, speed, film_tilt, tilt, tilt_state)

@@ -92,6 +92,8 @@ TOLERANCE = 1e-2
 INTERPOLATE = 1.0
 STRIDE = 8
 METHODS = ("short", "finite")
+#: The engine cycle [deg] the march's crank angles lie in (four strokes: two turns of the journal).
+CYCLE = 720.0
 
 
 def axial_moments(s):
@@ -339,6 +341,34 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, journal_rad
     """
     x = np.asarray(position, dtype=float)
     lead, n = x.shape[:-2], x.shape[-2]
+    args = _kernel_inputs(x, squeeze_velocity, free_tilt, compliance, journal_radius, bearing_width, radial_clearance,
+                          viscosity, speed, method)
+    tilt = np.empty(args.orbits.xi.shape)
+    state = np.empty(tilt.shape[:2], np.int8)
+    evaluations = np.empty(tilt.shape[:2], np.int64)
+    # STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
+    stride = 1 << max(0, int(np.floor(np.log2(STRIDE * n / 720))))
+    _kernel.equilibria(args.orbits, args.correction, _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE),
+                       INTERPOLATE, stride, tilt, state, evaluations)
+    c, l = args.radial_clearance, args.bearing_width
+    gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
+    return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))
+
+
+@dataclass(frozen=True)
+class _KernelInputs:
+    """The tilt kernels' dimensionless orbits and finite correction, and the clearance and width (leading shape)."""
+
+    orbits: _kernel.Orbits
+    correction: Correction
+    radial_clearance: np.ndarray
+    bearing_width: np.ndarray
+
+
+def _kernel_inputs(x, squeeze_velocity, free_tilt, compliance, journal_radius, bearing_width, radial_clearance,
+                   viscosity, speed, method):
+    """The orbit (..., angles, 2) in the kernels' units (:mod:`stackup._kernels.tilt`), flattened to bearings."""
+    lead, n = x.shape[:-2], x.shape[-2]
     vs = np.broadcast_to(np.asarray(squeeze_velocity, dtype=float), x.shape)
     free = np.broadcast_to(np.asarray(free_tilt, dtype=float), x.shape)
     kappa = np.broadcast_to(np.asarray(compliance, dtype=float), (*lead, 2))
@@ -351,14 +381,67 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, journal_rad
     finite = method == "finite"
     ld_nodes, stretched, tables = mobility_table() if finite else short_table()
     ld = (l / (2 * r)).reshape(-1) if finite else np.ones(xi.shape[0])
-    tilt = np.empty(xi.shape)
-    state = np.empty(xi.shape[:2], np.int8)
-    evaluations = np.empty(xi.shape[:2], np.int64)
-    # STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
-    stride = 1 << max(0, int(np.floor(np.log2(STRIDE * n / 720))))
-    _kernel.equilibria(_kernel.Orbits(xi, v, e_free, kappa, np.ascontiguousarray(ld, dtype=float)),
-                       Correction(tables, ld_nodes, stretched, finite),
-                       _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE), INTERPOLATE, stride, tilt, state,
-                       evaluations)
+    return _KernelInputs(_kernel.Orbits(xi, v, e_free, kappa, np.ascontiguousarray(ld, dtype=float)),
+                         Correction(tables, ld_nodes, stretched, finite), c, l)
+
+
+def _increasing_within_a_cycle(values):
+    """The crank angles increase and span less than a cycle (the march's steps close the cycle)."""
+    angle = np.asarray(values["crank_angle"], dtype=float)
+    if angle.ndim != 1 or angle.size < 2 or np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= CYCLE:
+        raise ValueError(f"crank_angle: must be 1-D, increase and span less than {CYCLE:g} deg")
+    if np.asarray(values["position"]).shape[-2] != angle.size:
+        raise ValueError(f"crank_angle: {angle.size} angles, the orbit has {np.asarray(values['position']).shape[-2]}")
+
+
+@renamed(radius="journal_radius", length="bearing_width")
+@validated(method=OneOf(METHODS), position=AngleVectors(), squeeze_velocity=Finite(), free_tilt=Finite(),
+           crank_angle=Finite(), compliance=Positive(zero=True), journal_radius=Positive(), bearing_width=Positive(),
+           radial_clearance=Positive(), viscosity=Positive(), speed=Positive(),
+           relations=(_table_covers_the_bearing, _increasing_within_a_cycle))
+def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance, journal_radius, bearing_width,
+               radial_clearance, viscosity, speed, method="short"):
+    r"""The journal's tilt in its film over a cycle, marched with the tilt's own squeeze (the dynamic tiers).
+
+    :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M(\boldsymbol\gamma, \dot{\boldsymbol\gamma})`
+    on a given mid-plane orbit: the film's moment with the squeeze of the tilting axis,
+    :math:`\mathbf u_s = \dot{\boldsymbol\gamma} - \tfrac\omega2\mathbf k\times\boldsymbol\gamma`
+    (:mod:`stackup.film.tilt`), by implicit Euler from angle to angle (each step solved
+    as :func:`cycle_tilt` solves the held tilt, edge contact included), from the aligned
+    journal a quarter of a cycle before the first angle and on until the cycle closes
+    (the kernel :func:`stackup._kernels.tilt.marches`). The squeeze damps the tilt:
+    an edge approaching the wall meets a film that thickens its pressure like
+    :math:`\dot h/h^3`, so where the held tilt puts an edge on the wall for the part
+    of the cycle the journal spends there at low load, the marched one lags behind the
+    beam and stays off it (on ``rozhdestvensky-4`` coaxial, bearing 2: an edge film of
+    about 1.5 µm against the held tilt's wall, as the transient Reynolds reference with
+    the tilt in its balance; ``reports/coupled_supports.md``).
+
+    Parameters
+    ----------
+    position, squeeze_velocity, free_tilt, compliance, journal_radius, bearing_width, radial_clearance, viscosity, speed, method
+        As :func:`cycle_tilt`.
+    crank_angle : array_like (angles,)
+        Crank angles of the orbit [deg], increasing within one cycle of :data:`CYCLE` deg
+        (the journal turns with the crank: a step of the march is the crank angle's, in rad).
+
+    Returns
+    -------
+    TiltEquilibrium
+        ``evaluations`` counts the film moments of every pass at each angle.
+    """
+    x = np.asarray(position, dtype=float)
+    lead, n = x.shape[:-2], x.shape[-2]
+    args = _kernel_inputs(x, squeeze_velocity, free_tilt, compliance, journal_radius, bearing_width, radial_clearance,
+                          viscosity, speed, method)
+    angle = np.asarray(crank_angle, dtype=float)
+    steps = np.radians(np.diff(angle, prepend=angle[-1] - CYCLE))
+    tilt = np.empty(args.orbits.xi.shape)
+    state = np.empty(tilt.shape[:2], np.int8)
+    evaluations = np.empty(tilt.shape[:2], np.int64)
+    _kernel.marches(args.orbits, args.correction, _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE),
+                    np.ascontiguousarray(1.0 / steps), max(1, round(_kernel.WARMUP * n)), _kernel.MARCH_CYCLES, tilt,
+                    state, evaluations)
+    c, l = args.radial_clearance, args.bearing_width
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))

@@ -10,7 +10,8 @@ from stackup._kernels import mobility as mobility_kernel
 from stackup._kernels import tilt as kernel
 from stackup.film import reynolds
 from stackup.film.orbit import ECCENTRICITY_LIMIT, orbit
-from stackup.film.tilt import STATES, STRETCH_CAP, axial_moments, cycle_tilt, film_moment, quadrature, short_film
+from stackup.film.tilt import (STATES, STRETCH_CAP, axial_moments, cycle_tilt, film_moment, march_tilt, quadrature,
+                               short_film)
 
 QUADRATURE = quadrature()
 
@@ -351,3 +352,116 @@ def test_orbit_rejects_a_compliance_without_a_tilt():
     with pytest.raises(ValueError, match="tilt_compliance"):
         orbit(loads, angle, journal_d=2.0, bearing_width=0.8, clearance=2.0, viscosity=1.0, speed=1.0,
               tilt_compliance=[1.0, 1.0])
+
+
+# --- the tilt marched with its squeeze (the dynamic tiers) ---
+
+def march_twin(xi, v, free_edge, kappa, angle):
+    """The march in numpy: implicit Euler from angle to angle on the numpy twin's moment with the tilt's squeeze,
+    from the aligned journal a quarter of the cycle before its end, then whole cycles until the cycle closes."""
+    n = len(angle)
+    rate = 1 / np.radians(np.diff(angle, prepend=angle[-1] - 720.0))
+    e = np.zeros(2)
+
+    def step(k, p):
+        def residual(q):
+            u = rate[k] * (q - p) - 0.5 * np.array([-q[1], q[0]])
+            return q + kappa * short_film(xi[k], v[k], q, tilt_squeeze=u, lines=8192)[1] - free_edge[k]
+        solution = optimize.root(residual, p, method="hybr", options={"xtol": 1e-12})
+        if not solution.success:  # the twin's wet lines switch on and off: a kink hybr may stop at
+            solution = optimize.root(residual, solution.x, method="lm", options={"xtol": 1e-12})
+        assert np.linalg.norm(residual(solution.x)) < 1e-4
+        return solution.x
+
+    for k in range(n - round(kernel.WARMUP * n), n):
+        e = step(k, e)
+    out = np.empty((n, 2))
+    for _ in range(kernel.MARCH_CYCLES):
+        last = e
+        for k in range(n):
+            e = out[k] = step(k, e)
+        if np.linalg.norm(e - last) < 1e-10:
+            break
+    return out
+
+
+def swinging_case(n=48):
+    """A journal whirling at half the cycle's rate with a free tilt that swings fast, inside the lens."""
+    angle = np.linspace(0, 720, n, endpoint=False)
+    t = np.radians(angle) / 2
+    xi = np.stack([0.5 + 0.2 * np.cos(t), 0.2 * np.sin(t)], axis=-1)
+    v = np.array([rotation_squeeze(x) for x in xi]) + 0.1 * np.stack([-np.sin(t), np.cos(t)], axis=-1)
+    free = np.stack([0.25 * np.cos(2 * t), 0.1 + 0.1 * np.sin(3 * t)], axis=-1)
+    return angle, xi, v, free
+
+
+def test_march_equals_its_numpy_twin():
+    angle, xi, v, free = swinging_case()
+    kappa = 0.3
+    expected = march_twin(xi, v, free, kappa, angle)
+    result = march_tilt(xi, v, 2 * free, angle, compliance=2 * kappa, **UNIT)
+    np.testing.assert_array_equal(result.state, STATES.index("equilibrium"))
+    edge = 1 - np.maximum(np.linalg.norm(xi + expected, axis=-1), np.linalg.norm(xi - expected, axis=-1))
+    # each step within the Newton tolerance (1 % of the edge film) and the kernel's quadrature against the twin's
+    assert np.all(np.linalg.norm(result.tilt / 2 - expected, axis=-1) <= 0.02 * edge)
+
+
+def test_march_lags_a_free_tilt_that_jumps_where_the_held_tilt_jumps_with_it():
+    angle = np.arange(0.0, 720.0, 2.0)
+    xi = np.tile([0.6, 0.1], (angle.size, 1))
+    v = np.array([rotation_squeeze(x) for x in xi])
+    free = np.where((angle >= 360.0)[:, None], [0.3, 0.1], [-0.2, 0.0])
+    marched = march_tilt(xi, v, 2 * free, angle, compliance=2 * 0.3, **UNIT)
+    held = cycle_tilt(xi, v, 2 * free, compliance=2 * 0.3, **UNIT)
+    jump = np.searchsorted(angle, 360.0)
+    before, after = held.tilt[jump - 1], held.tilt[jump + 10]
+    # the squeeze resists the tilt's change: at the jump the marched tilt is still part of the way from the old
+    # balance to the new one, which the held tilt reaches at once and the march some angles later
+    share = (marched.tilt[jump] - before) @ (after - before) / ((after - before) @ (after - before))
+    assert 0.05 < share < 0.95
+    edge = 1 - max(np.linalg.norm(xi[0] + after / 2), np.linalg.norm(xi[0] - after / 2))
+    settled = np.searchsorted(angle, 600.0)
+    assert np.linalg.norm(marched.tilt[settled] - held.tilt[settled]) / 2 <= 0.02 * edge
+
+
+def test_steady_march_is_the_held_equilibrium():
+    angle = np.arange(0.0, 720.0, 4.0)
+    xi = np.tile([0.7, 0.2], (angle.size, 1))
+    v = np.array([rotation_squeeze(x) for x in xi])
+    free = np.tile([0.3, -0.1], (angle.size, 1))
+    marched = march_tilt(xi, v, 2 * free, angle, compliance=2 * 0.2, **UNIT)
+    held = cycle_tilt(xi[:1], v[:1], 2 * free[:1], compliance=2 * 0.2, **UNIT)
+    edge = 1 - max(np.linalg.norm(xi[0] + held.tilt[0] / 2), np.linalg.norm(xi[0] - held.tilt[0] / 2))
+    assert np.all(np.linalg.norm(marched.tilt - held.tilt, axis=-1) / 2 <= 0.02 * edge)
+
+
+def test_march_without_compliance_keeps_the_free_tilt_and_without_free_tilt_stays_aligned():
+    angle, xi, v, free = swinging_case()
+    rigid = march_tilt(xi, v, 2 * free, angle, compliance=0.0, **UNIT)
+    np.testing.assert_allclose(rigid.tilt, 2 * free, rtol=1e-9, atol=1e-15)
+    aligned = march_tilt(xi, v, np.zeros_like(free), angle, compliance=1.0, **UNIT)
+    np.testing.assert_array_equal(aligned.tilt, 0.0)
+    np.testing.assert_array_equal(aligned.state, STATES.index("equilibrium"))
+
+
+def test_march_presses_an_edge_onto_the_wall_where_the_film_cannot_hold_the_journal():
+    angle = np.arange(0.0, 720.0, 8.0)
+    xi = np.tile([0.9, 0.0], (angle.size, 1))
+    xi[-1] = [ECCENTRICITY_LIMIT, 0.0]  # no room for any tilt at one angle
+    v = np.array([rotation_squeeze(x) for x in xi])
+    free = np.tile([2 * 0.9, 0.0], (angle.size, 1))  # the beam alone would put the edge far past the wall
+    result = march_tilt(xi, v, free, angle, compliance=0.01, **UNIT)
+    assert np.all(np.isfinite(result.tilt))
+    np.testing.assert_array_equal(result.state, STATES.index("at_limit"))
+    e = result.tilt / 2
+    reach = np.maximum(np.linalg.norm(xi + e, axis=-1), np.linalg.norm(xi - e, axis=-1))
+    assert np.all(reach <= ECCENTRICITY_LIMIT) and np.all(reach >= ECCENTRICITY_LIMIT - 1e-2 * (1 - ECCENTRICITY_LIMIT))
+
+
+@pytest.mark.parametrize("angle, match", [(np.arange(0.0, 720.0, 15.0)[::-1], "increase"),
+                                          (np.arange(0.0, 1440.0, 30.0), "span less than 720"),
+                                          (np.arange(0.0, 720.0, 30.0), "the orbit has 48")])
+def test_march_rejects_crank_angles_that_do_not_make_a_cycle(angle, match):
+    _, xi, v, free = swinging_case()
+    with pytest.raises(ValueError, match=f"crank_angle.*{match}"):
+        march_tilt(xi, v, free, angle, compliance=0.1, **UNIT)
