@@ -500,9 +500,10 @@ def _compare_parser(sub):
                            f"default: {FILM_CHECK_ENGINES})")
     cmp_.add_argument("--tilt-method", choices=("equilibrium", "coupled", "free"), default="equilibrium",
                       help="the journal's tilt in its bearing: balanced at each bearing against the crankshaft "
-                           "and the block at its support, the film, alpha and lives read over the width (default); "
-                           "'coupled', the support moments of all bearings balanced together over the cycle, with "
-                           "the tilt's squeeze, on an elastic layer (several times the chain's cost: "
+                           "and the block at its support, with the tilt's squeeze, the film, alpha and lives read "
+                           "over the width (default); 'coupled', the support moments of all bearings balanced "
+                           "together over the cycle, each journal's centre moved with its tilt, on an elastic "
+                           "layer (several times the chain's cost: "
                            "reports/bench_chain.md, reports/coupled_supports.md); 'free', the crankshaft's slope "
                            "held, the film read at the mid-plane")
     cmp_.add_argument("--processes", action="store_true",

@@ -234,10 +234,10 @@ def main(argv=None):
         f"value): {error}. The block's angular compliance is the bulkhead web's and the bore ring's own turn "
         "across the width (stackup.crank.housing.ring_tilt_compliance, from the bearing law's plane-strain "
         "deformation stiffness); `bore ring rigid` leaves the ring's out. The mid-plane film is the film tier's "
-        f"without tilt. {EQUILIBRIUM}: each journal's tilt balanced quasi-statically against the film's moment "
-        "and the compliance at its own support (the crankshaft's there and the block's), rigid surfaces; its film "
-        "over the surface is the thinnest over the width, and its edge in contact an edge held at the wall "
-        "(0.5 % of the clearance).",
+        f"without tilt. {EQUILIBRIUM}: each journal's tilt balanced against the film's moment and the compliance "
+        "at its own support (the crankshaft's there and the block's), marched with the tilt's squeeze on the "
+        "film tier's orbit, rigid surfaces; its film over the surface is the thinnest over the width, and its "
+        "edge in contact an edge held at the wall (0.5 % of the clearance).",
         "",
         f"## iso-example, {args.engines} engines sampled within the drawing",
         "",
@@ -265,8 +265,8 @@ def main(argv=None):
         f"One bearing with its own angular compliance (crank and block, no carry-over: the reference balances "
         f"its tilt locally), the chain's load and free slope, every {REFERENCE_STEP} deg: the cheap tier's "
         "coupled march (mobility-finite orbit, short film's moment, elastic layer) and the study's default "
-        "`equilibrium` (the same orbit, the tilt balanced at each angle against the same compliance, "
-        "quasi-static, rigid surfaces, an edge that would pass the wall held there) against `reynolds-transient` "
+        "`equilibrium` (the same orbit, the tilt balanced against the same compliance, marched with its squeeze, "
+        "rigid surfaces, an edge that would pass the wall held there) against `reynolds-transient` "
         "(mass-conserving, fed by the groove, the tilt's squeeze in its content, rigid floor at 0.5 % of the "
         "clearance). Below h_lim,cr: the film over the surface (coupled) or at the edges (equilibrium, reference) "
         "below Levanov's critical film. rozhdestvensky-4 at 103 um, block x1; iso-example at the middle of its "

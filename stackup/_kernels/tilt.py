@@ -756,8 +756,8 @@ def _march_step(a, solver, budget):
     edge offset p): damped Newton from p inside the lens, the Jacobian differenced at every iterate, each step
     going at most :data:`INSIDE` of the way to the wall. Returns (e0, e1, state, evaluations): EQUILIBRIUM where
     the step falls below the solver's tolerance times the edge film, AT_LIMIT where Newton presses the edge onto
-    the wall (its step beyond it, the room left below that tolerance times the limit's film), NOT_SOLVED where the
-    budget ends first (the last iterate)."""
+    the wall (its step beyond it, the room left below that tolerance times the limit's film; the edge is put on
+    the wall), NOT_SOLVED where the budget ends first (the last iterate)."""
     x0, x1, limit, tolerance = a.x0, a.x1, solver.limit, solver.tolerance
     if math.hypot(x0, x1) >= limit * (1.0 - 1e-12):
         return 0.0, 0.0, AT_LIMIT, 0
@@ -781,7 +781,7 @@ def _march_step(a, solver, budget):
         if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
             return e0 + d0, e1 + d1, EQUILIBRIUM, evaluations
         if room < 1.0 and room * size <= tolerance * (1.0 - limit):
-            return e0, e1, AT_LIMIT, evaluations
+            return e0 + room * d0, e1 + room * d1, AT_LIMIT, evaluations  # the edge onto the wall
         t = min(1.0, INSIDE * room)
         merit = r0 * r0 + r1 * r1
         for _ in range(MAX_HALVINGS):

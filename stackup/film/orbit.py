@@ -65,8 +65,10 @@ compliance at the bearing, :func:`stackup.crank.support_compliance`) ``tilt`` is
 the beam's free slope and the tilt in the film is the equilibrium
 :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\,\mathbf M_{film}` with the film's
 restoring moment (:mod:`stackup.film.tilt`): every tier but the transient one
-solves it at each angle on its own mid-plane orbit (the short-bearing moment,
-finite-corrected in the ``finite`` tiers; tilt squeeze neglected), the
+solves it on its own mid-plane orbit (the short-bearing moment,
+finite-corrected in the ``finite`` tiers), the mobility tiers marching the tilt
+with its squeeze from angle to angle, the quasi-static ones holding it at each
+angle; the
 transient tier carries the tilt as two more unknowns of its balance (force
 and moment, tilt squeeze included). Without ``tilt_compliance`` the tilt is
 imposed as given. The edge film is then

@@ -32,13 +32,19 @@ moment scaled and turned by the finite-length correction the
 squeeze direction (measured against the Reynolds tier with tilt in
 ``reports/film_speed_vs_error.md``).
 
-Simplifications of the equilibrium (each measured against the transient
-Reynolds tier with the tilt equilibrium in its film, the reference):
+The tilt's own squeeze, :math:`\dot{\boldsymbol\gamma}` in :math:`\mathbf u_s`: on the
+orbit of a dynamic tier the tilt is marched from angle to angle with it
+(:func:`march_tilt`, implicit Euler; the squeeze damps the tilt, so an edge
+that the held tilt would put on the wall while the journal lingers at high
+eccentricity and low load lags behind the beam and stays off it); on a
+quasi-static tier it is held at each angle (:func:`cycle_tilt`: the tilt
+follows the load, as the centre does there).
+
+Simplifications (each measured against the transient Reynolds tier with the
+tilt balanced in its film, the reference, ``reports/coupled_supports.md``):
 
 - the mid-plane orbit is the film tier's without tilt (the tilt's share of
   the force does not move the journal centre);
-- the tilt's own squeeze, :math:`\dot{\boldsymbol\gamma}` in :math:`\mathbf u_s`, is neglected:
-  the tilt follows the load quasi-statically;
 - each bearing meets its own support's compliance only (the diagonal of
   :func:`stackup.crank.support_compliance`: a moment at a neighbour also turns
   the journal, by about a quarter, the other way).

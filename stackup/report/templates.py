@@ -236,7 +236,7 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
                "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
 EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) a tilted journal's edge reaches the wall: {positions}{others}. "
                 "There the rigid film is held at {floor:.1f} % of the radial clearance; α and the lives read it. "
-                "`--tilt-method coupled` adds the tilt's squeeze and the other supports' moments "
+                "`--tilt-method coupled` adds the other supports' moments and an elastic layer "
                 "(reports/coupled_supports.md).")
 EDGE_OTHERS_PART = "; at {count} other position{s} in under {share} of the bearings"
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "

@@ -322,8 +322,9 @@ def mechanical_chain(engine, *, clearance, journal_d, bore_offset, journal_eccen
         ``equilibrium``, each bearing's tilt against the film's moment and the
         compliance at its own support (the crankshaft's there in series with
         the support's angular compliance, ``supports.tilt_compliance``: the
-        moments of the other supports and the tilt's squeeze left out),
-        quasi-static, rigid surfaces (:mod:`stackup.film.tilt`): with these two
+        moments of the other supports left out), marched with the tilt's
+        squeeze on a dynamic film tier's orbit, held at each angle on a
+        quasi-static one, rigid surfaces (:mod:`stackup.film.tilt`): with these two
         ``h_min``, α and the lives read the film over the bearing surface
         (:func:`_surface_film`), ``h_min_midplane`` the mid-plane's; or
         ``free``, the beam's slope held (its edges at the wall: a bound), where
