@@ -76,10 +76,14 @@ WALL_EVALUATIONS = 12
 WALL_TOLERANCE = 0.03
 INSIDE = 0.98
 #: The tilt march (:func:`marches`): the share of the cycle marched from the aligned journal before the cycle
-#: kept (the tilt's squeeze forgets its start within about a quarter of a cycle on the built-in engines), and the
-#: most cycles marched to close the cycle (the last angle's tilt within the Newton tolerance of the pass before).
+#: kept (the tilt's squeeze forgets its start within about a quarter of a cycle on the built-in engines), the
+#: most cycles marched to close the cycle (the last angle's tilt within the Newton tolerance of the pass before),
+#: and its step on a cycle of 720 angles (the same crank angle on other grids, a power of two; 4 deg: against
+#: 1 deg steps the cycle-minimum film within 0.04 um and its cycle mean within 0.01 um on the built-in engines'
+#: coaxial cases, the share below h_lim,cr within 0.1 point).
 WARMUP = 0.25
 MARCH_CYCLES = 3
+MARCH_STRIDE = 4
 #: Film moments at most per step of the march (each Newton iterate's Jacobian differenced: the tilt's squeeze
 #: makes it large and nearly singular, which Broyden's update does not follow).
 MARCH_EVALUATIONS = 40
@@ -796,43 +800,87 @@ def _march_step(a, solver, budget):
     return e0, e1, NOT_SOLVED, evaluations
 
 
+@njit(cache=True, inline="always")
+def _bdf2(e0, e1, b0, b1, h, h_before):
+    """The last tilt and rate of the variable-step BDF2 derivative (e - p) rate at a step h after the edge offsets
+    e (one step back) and b (two steps back, a step h_before before e; h_before 0: implicit Euler): (p0, p1,
+    rate)."""
+    if h_before <= 0.0:
+        return e0, e1, 1.0 / h
+    w = h / h_before
+    c = (1.0 + w) * (1.0 + w)
+    return (c * e0 - w * w * b0) / (1.0 + 2.0 * w), (c * e1 - w * w * b1) / (1.0 + 2.0 * w), \
+        (1.0 + 2.0 * w) / ((1.0 + w) * h)
+
+
 @njit(cache=True, parallel=True)
-def marches(orbits, correction, solver, rate, warmup, cycles, tilt, state, evaluations):
+def marches(orbits, correction, solver, tau, period, stride, warmup, cycles, tilt, state, evaluations):
     """The tilt marched over the cycle with its own squeeze, many bearings (prange over bearings).
 
-    At each angle k, an implicit Euler step from the last angle's edge offset
-    :math:`\\mathbf p` (:func:`_march_step`): the tilt :math:`\\mathbf e` with
+    Every ``stride``-th angle is a step (``tau`` (n,): each angle's journal angle [rad], ``period`` the cycle's):
+    the tilt :math:`\\mathbf e` with
     :math:`\\mathbf e + \\kappa\\mathbf M(\\mathbf x, \\mathbf v, \\mathbf e, \\bar{\\mathbf u}) = \\mathbf e_{free}`,
-    :math:`\\bar{\\mathbf u} = (\\mathbf e - \\mathbf p)\\,\\mathrm{rate}_k - \\tfrac12\\mathbf k\\times\\mathbf e`
-    (``rate`` (n,): one over the step in journal angle that ends at each angle, the first's from the cycle's last
-    angle). The march starts from the aligned journal ``warmup`` angles before the cycle's end and runs whole
-    cycles until the last angle's tilt is within the solver's tolerance of the pass before (times the edge film;
-    at most ``cycles``); the last cycle is kept. ``orbits``, ``correction``, ``solver`` as :func:`equilibria`.
-    Writes tilt (B, n, 2), state (B, n) and evaluations (B, n): film moments computed at each angle over every
-    pass.
+    :math:`\\bar{\\mathbf u} = \\dot{\\mathbf e} - \\tfrac12\\mathbf k\\times\\mathbf e` with
+    :math:`\\dot{\\mathbf e}` by the variable-step BDF2 formula over the last two steps (:func:`_bdf2`; A-stable,
+    as the squeeze makes the tilt stiff), solved by :func:`_march_step`. The march starts from the aligned
+    journal ``warmup`` steps before the cycle's end and runs whole cycles until the last step's tilt is within
+    the solver's tolerance of the pass before (times the edge film; at most ``cycles``); the last cycle is kept.
+    An angle between two steps takes their film's turn-back (free minus tilt) interpolated, as
+    :func:`equilibria` does (onto the wall where both are at the limit or the mean falls outside the lens).
+    ``orbits``, ``correction``, ``solver`` as :func:`equilibria`. Writes tilt (B, n, 2), state (B, n) and
+    evaluations (B, n): film moments computed at each step over every pass (0 between steps).
     """
     xi, v, free, kappa, ld = orbits
     tables, ld_nodes, stretched, finite = correction
     (nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance = solver
     n_b = xi.shape[0]
     n = xi.shape[1]
+    m = (n + stride - 1) // stride
     for b in prange(n_b):
         cycle = Orbits(xi, v, free, kappa, ld)
         rule = Solver(Quadrature(nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance)
         bearing = (bearing_table(Correction(tables, ld_nodes, stretched, finite), ld[b]), stretched, finite)
-        e0, e1 = 0.0, 0.0
         for k in range(n):
             evaluations[b, k] = 0
-        before0, before1 = 0.0, 0.0
+        e0, e1, b0, b1, h_before = 0.0, 0.0, 0.0, 0.0, 0.0
+        last0, last1 = 0.0, 0.0
         for p in range(cycles + 1):
-            for k in range(n - warmup if p == 0 else 0, n):
-                a = _angle(b, k, cycle, bearing, limit, e0, e1, rate[k])
-                e0, e1, s, used = _march_step(a, rule, MARCH_EVALUATIONS)
+            for j in range(m - warmup if p == 0 else 0, m):
+                k = j * stride
+                h = tau[k] - tau[(j - 1) * stride] if j > 0 else tau[0] + period - tau[(m - 1) * stride]
+                p0, p1, rate = _bdf2(e0, e1, b0, b1, h, h_before)
+                a = _angle(b, k, cycle, bearing, limit, p0, p1, rate)
+                n0, n1, s, used = _march_step(a, rule, MARCH_EVALUATIONS)
+                b0, b1, e0, e1, h_before = e0, e1, n0, n1, h
                 tilt[b, k, 0] = e0
                 tilt[b, k, 1] = e1
                 state[b, k] = s
                 evaluations[b, k] += used
-            if p > 0 and math.hypot(e0 - before0, e1 - before1) <= tolerance * _edge(xi[b, n - 1, 0], xi[b, n - 1, 1],
-                                                                                     e0, e1):
+            k = (m - 1) * stride
+            if p > 0 and math.hypot(e0 - last0, e1 - last1) <= tolerance * _edge(xi[b, k, 0], xi[b, k, 1], e0, e1):
                 break
-            before0, before1 = e0, e1
+            last0, last1 = e0, e1
+        for j in range(m):
+            kp = j * stride
+            kn = kp + stride if j < m - 1 else n  # the cycle closes on its first angle
+            for k in range(kp + 1, min(kn, n)):
+                q = kn if kn < n else 0
+                share = (tau[k] - tau[kp]) / (tau[kn] - tau[kp] if kn < n else tau[0] + period - tau[kp])
+                t0 = free[b, k, 0] - ((1.0 - share) * (free[b, kp, 0] - tilt[b, kp, 0])
+                                      + share * (free[b, q, 0] - tilt[b, q, 0]))
+                t1 = free[b, k, 1] - ((1.0 - share) * (free[b, kp, 1] - tilt[b, kp, 1])
+                                      + share * (free[b, q, 1] - tilt[b, q, 1]))
+                wall = state[b, kp] == AT_LIMIT and state[b, q] == AT_LIMIT
+                room = wall_room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, t0, t1, limit)
+                if wall or room < 1.0:
+                    t0 *= room
+                    t1 *= room
+                    wall = True
+                tilt[b, k, 0] = t0
+                tilt[b, k, 1] = t1
+                if wall:
+                    state[b, k] = AT_LIMIT
+                elif state[b, kp] == state[b, q]:
+                    state[b, k] = state[b, kp]
+                else:
+                    state[b, k] = EQUILIBRIUM

@@ -412,10 +412,11 @@ def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance
     :math:`\boldsymbol\gamma = \boldsymbol\gamma_{free} - C\mathbf M(\boldsymbol\gamma, \dot{\boldsymbol\gamma})`
     on a given mid-plane orbit: the film's moment with the squeeze of the tilting axis,
     :math:`\mathbf u_s = \dot{\boldsymbol\gamma} - \tfrac\omega2\mathbf k\times\boldsymbol\gamma`
-    (:mod:`stackup.film.tilt`), by implicit Euler from angle to angle (each step solved
-    as :func:`cycle_tilt` solves the held tilt, edge contact included), from the aligned
-    journal a quarter of a cycle before the first angle and on until the cycle closes
-    (the kernel :func:`stackup._kernels.tilt.marches`). The squeeze damps the tilt:
+    (:mod:`stackup.film.tilt`), by BDF2 steps of about 4 deg crank (the angles between
+    take the film's turn-back interpolated), each step's balance solved by Newton inside
+    the lens of tilts with both edges off the wall (an edge pressed onto it held there),
+    from the aligned journal a quarter of a cycle before the first angle and on until the
+    cycle closes (the kernel :func:`stackup._kernels.tilt.marches`). The squeeze damps the tilt:
     an edge approaching the wall meets a film that thickens its pressure like
     :math:`\dot h/h^3`, so where the held tilt puts an edge on the wall for the part
     of the cycle the journal spends there at low load, the marched one lags behind the
@@ -440,14 +441,16 @@ def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance
     lead, n = x.shape[:-2], x.shape[-2]
     args = _kernel_inputs(x, squeeze_velocity, free_tilt, compliance, journal_radius, bearing_width, radial_clearance,
                           viscosity, speed, method)
-    angle = np.asarray(crank_angle, dtype=float)
-    steps = np.radians(np.diff(angle, prepend=angle[-1] - CYCLE))
+    tau = np.ascontiguousarray(np.radians(np.asarray(crank_angle, dtype=float)))
     tilt = np.empty(args.orbits.xi.shape)
     state = np.empty(tilt.shape[:2], np.int8)
     evaluations = np.empty(tilt.shape[:2], np.int64)
-    _kernel.marches(args.orbits, args.correction, _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE),
-                    np.ascontiguousarray(1.0 / steps), max(1, round(_kernel.WARMUP * n)), _kernel.MARCH_CYCLES, tilt,
-                    state, evaluations)
+    # MARCH_STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
+    stride = 1 << max(0, int(np.floor(np.log2(_kernel.MARCH_STRIDE * n / 720))))
+    steps = -(-n // stride)
+    _kernel.marches(args.orbits, args.correction, _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE), tau,
+                    np.radians(CYCLE), stride, max(1, round(_kernel.WARMUP * steps)), _kernel.MARCH_CYCLES, tilt, state,
+                    evaluations)
     c, l = args.radial_clearance, args.bearing_width
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))
