@@ -84,8 +84,8 @@ INSIDE = 0.98
 WARMUP = 0.25
 MARCH_CYCLES = 3
 MARCH_STRIDE = 4
-#: Film moments at most per step of the march (each Newton iterate's Jacobian differenced: the tilt's squeeze
-#: makes it large and nearly singular, which Broyden's update does not follow).
+#: Film moments at most per step of the march (the Jacobian differenced at each step, not carried from the last:
+#: the tilt's squeeze makes it large and nearly singular, which Broyden's update does not follow).
 MARCH_EVALUATIONS = 40
 #: Equilibrium states per angle.
 EQUILIBRIUM, AT_LIMIT, NOT_SOLVED = 0, 1, 2
@@ -757,8 +757,9 @@ def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, eva
 @njit(cache=True)
 def _march_step(a, solver, budget):
     """One implicit Euler step of the tilt at the angle ``a`` (:data:`Angle`, its squeeze from the last angle's
-    edge offset p): damped Newton from p inside the lens, the Jacobian differenced at every iterate, each step
-    going at most :data:`INSIDE` of the way to the wall. Returns (e0, e1, state, evaluations): EQUILIBRIUM where
+    edge offset p): damped Newton from p inside the lens, the Jacobian differenced at the first iterate and
+    again after a step the line search had to shorten (chord iterations between), each step going at most
+    :data:`INSIDE` of the way to the wall. Returns (e0, e1, state, evaluations): EQUILIBRIUM where
     the step falls below the solver's tolerance times the edge film, AT_LIMIT where Newton presses the edge onto
     the wall (its step beyond it, the room left below that tolerance times the limit's film; the edge is put on
     the wall), NOT_SOLVED where the budget ends first (the last iterate)."""
@@ -773,8 +774,10 @@ def _march_step(a, solver, budget):
     jac = np.empty((2, 2))
     r0, r1 = _residual(a, e0, e1, solver.quadrature)
     evaluations = 1
+    stale = True
     while evaluations < budget:
-        evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
+        if stale:
+            evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if det == 0.0 or not math.isfinite(det):
             break
@@ -788,15 +791,19 @@ def _march_step(a, solver, budget):
             return e0 + room * d0, e1 + room * d1, AT_LIMIT, evaluations  # the edge onto the wall
         t = min(1.0, INSIDE * room)
         merit = r0 * r0 + r1 * r1
+        lowered = False
         for _ in range(MAX_HALVINGS):
             n0 = e0 + t * d0
             n1 = e1 + t * d1
             q0, q1 = _residual(a, n0, n1, solver.quadrature)
             evaluations += 1
             if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
+                lowered = True
                 break
             t *= 0.5
         e0, e1, r0, r1 = n0, n1, q0, q1
+        # the step's Jacobian serves its chord iterations while they lower the residual
+        stale = not lowered or t < 1.0
     return e0, e1, NOT_SOLVED, evaluations
 
 
