@@ -189,16 +189,15 @@ def support_tilt_compliance(engine, tilt_method="equilibrium"):
         return None
     derived = []
     if supports.angular_derived:
-        derived.append("the bulkhead web (bulkhead_compliance)")
+        derived.append("the bulkhead web's (bulkhead_compliance)")
     if ring:
-        derived.append("the bore ring's turn under the bearing law (ring_tilt_compliance, an upper end)")
+        derived.append("the bore ring's, an upper end (ring_tilt_compliance)")
     k = BULKHEAD_FACTOR
     return Uncertainty("supports' angular compliance (bulkhead and bore ring)",
                        {f"support tilt compliance ×{1 / k:g}": {"support_angular_scale": 1 / k},
                         f"support tilt compliance ×{k:g}": {"support_angular_scale": k}},
-                       f"assumed: derived from {' and '.join(derived)}, ×{k:g} either way (not checked against a "
-                       "finite-element model)",
-                       "a bearing cap's tilt under a couple (a finite-element model of the block, or on a mandrel)")
+                       f"assumed: {' and '.join(derived)}, ×{k:g} either way, not checked against finite elements",
+                       "a bearing cap's tilt under a couple (finite elements, or on a mandrel)")
 
 
 #: The model inputs a comparison declares, each called as ``f(engine, tilt_method)`` (the study's tilt method:

@@ -680,3 +680,21 @@ def test_positions_where_a_stray_bearing_reaches_the_wall_are_counted_not_descri
     text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 180, 120), edge))
     assert "reaches the wall: bearing 2 (7.0 %–11 % of the cycle" in text and "bearing 1 (" not in text
     assert "; at 2 other positions in under 5 % of the bearings. There the rigid film" in text
+
+
+def test_an_edge_that_reaches_the_wall_in_few_bearings_at_every_position_is_counted_not_described():
+    # the marched tilt keeps most edges off the wall: a few bearings at a few positions, none of them described
+    import pandas as pd
+
+    from stackup.facts.mechanics import EdgeContact, FilmOutcomes
+    from stackup.report.mechanics import _outcomes_text
+
+    rows = pd.DataFrame({"touching_pct": [1.0, 0.7], "cycle": [0.01, 0.01], "cycle_lo": [0.0, 0.0],
+                         "cycle_hi": [0.0, 0.0], "film": [1e-7, 1e-7], "load": [2e3, 2e3], "angle": [120.0, 480.0]},
+                        index=pd.Index([2, 4], name="bearing"))
+    edge = EdgeContact(computed=10465, touching=32, per_scheme_pct=[0.3], per_position_share=[0.01, 0.01],
+                       floor=0.005, per_position=rows)
+    text = _outcomes_text(FilmOutcomes(10465, {}, 0, 10433, 32), edge)[0]
+    assert ("In 32 of them (0.3 %) a tilted journal's edge reaches the wall: at 2 positions, each in under 5 % of "
+            "the bearings. There") in text
+    assert ": ;" not in text and "bearing 2 (" not in text

@@ -236,11 +236,14 @@ def _outcomes_text(outcomes, edge_contact, tolerance=""):
         if edge_contact is not None and edge_contact.per_position is not None:
             rows = edge_contact.per_position
             few = rows.touching_pct < FEW_TOUCHING_PCT  # named as a count: a stray bearing or two
-            others = (words.EDGE_OTHERS_PART.format(count=int(few.sum()), s=words.plural(int(few.sum())),
-                                                    share=f"{FEW_TOUCHING_PCT:g} %") if few.any() else "")
-            text.append(words.EDGE_COUNTED.format(edge=fmt.count(edge), share=100 * edge / max(total, 1),
-                                                  floor=floor, positions="; ".join(_edge_positions(rows[~few])),
-                                                  others=others))
+            counted = dict(count=int(few.sum()), s=words.plural(int(few.sum())), share=f"{FEW_TOUCHING_PCT:g} %")
+            if few.all():
+                positions, others = words.EDGE_FEW_PART.format(**counted), ""
+            else:
+                positions = "; ".join(_edge_positions(rows[~few]))
+                others = words.EDGE_OTHERS_PART.format(**counted) if few.any() else ""
+            text.append(words.EDGE_COUNTED.format(edge=fmt.count(edge), share=fmt.percent(edge / max(total, 1)),
+                                                  floor=floor, positions=positions, others=others))
         else:
             text.append(words.EDGE_CYCLES.format(edge=fmt.count(edge), share=100 * edge / max(total, 1), floor=floor))
     if edge_contact is not None and edge_contact.per_position is not None:

@@ -166,25 +166,29 @@ def _standard(source):
 def parameters_table(facts):
     """The study's parameters and the data it used, as rows of (parameter, value) for a readable table.
 
-    Schemes that share a source (the six ISO schemes) share one row. The study's parameters at their
+    Schemes that share a source (the six ISO schemes) share one row; a designed scheme's is the Designed
+    scheme section's, and the engine's is in its file (the dataset's ``input_files``). The study's parameters at their
     :class:`~stackup.study.Study` defaults or unset are left out (:data:`ALWAYS` aside): the dataset's ``study``
     attribute holds them all; the version is the report's header's.
     """
     defaults = {f.name: _text(f.default) for f in fields(Study)}
     rows = [(key, _text(value)) for key, value in facts.study.items
             if value is not None and (key in ALWAYS or _text(value) != defaults.get(key))]
-    rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible)),
-             ("engine source", fmt.cited(facts.sources.engine) + words.IN_FULL_PART)]
+    rows += [("negligible share outside the window [ppm]", fmt.general(facts.ranking.negligible))]
     by_source = {}
+    designed = facts.design.name if facts.design is not None else None  # its source is its own section's
     for name, source in facts.sources.schemes.items():
+        if name == designed:
+            continue
         # one document's numbered schemes (laid on the engine's drawing or not): one row
         numbered = re.fullmatch(r"(.*?), scheme (\d+)(;.*)?", " ".join(source.split()))
         key = (_standard(numbered.group(1)), numbered.group(3) or "") if numbered else (source, "")
         by_source.setdefault(key, []).append((name, numbered.group(2) if numbered else None))
     for (source, after), named in by_source.items():
         numbers = [n for _, n in named if n is not None]
-        text = (f"{source}, scheme{'s' if len(numbers) > 1 else ''} {', '.join(numbers)}{after}" if numbers
-                else source)
+        run = len(numbers) > 2 and [int(n) for n in numbers] == list(range(int(numbers[0]), int(numbers[-1]) + 1))
+        listed = f"{numbers[0]}–{numbers[-1]}" if run else ", ".join(numbers)
+        text = f"{source}, scheme{'s' if len(numbers) > 1 else ''} {listed}{after}" if numbers else source
         rows.append((f"source of {', '.join(name for name, _ in named)}", text))
     return pd.DataFrame(rows, columns=["parameter", "value"])
 

@@ -408,8 +408,8 @@ def plan_section(facts, ranking):
         scrap=0.0 if pd.isna(scrapped) else float(scrapped), level=100 * a["service_level"])
     # The order's explanation is `stackup plan`'s; the report keeps what the order does not cover, whole.
     body = _intervals_merged(table.reset_index())
-    if "scheme" in body:
-        body = body.drop(columns="scheme")
+    # the shells needed are the made less the surplus: `stackup plan` keeps that column
+    body = body.drop(columns=[c for c in body if c == "scheme" or c.startswith("needed")])
     return section("Planning: shells per grade", " ".join([summary, *table.attrs["warnings"]]), "",
                    markdown_table(body))
 

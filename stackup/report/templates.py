@@ -26,7 +26,8 @@ CONTENTS_SHORT = {"What drives the spread": "Spread", "Operating clearance: pres
 SECTION = "## {title}"
 IMAGE = "![{alt}]({file})"
 PARAMETER = "`{name}` {value}"
-DATASET = "Dataset: `{file}` (every parameter, defaults included, in its `study` attribute)."
+DATASET = ("Dataset: `{file}` (every parameter, defaults included, in its `study` attribute; the engine and scheme "
+           "files, their sources included, in `input_files`).")
 PARAMETERS_DEFAULTS = "Parameters not listed are at their defaults (`stackup.study.Study`)."
 
 # --- verdict --------------------------------------------------------------------------------------------------
@@ -167,7 +168,6 @@ READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to ha
 FIT_INTRO = ("Operating clearance: housing and shells at the operating temperature, swollen by the press fit, the "
              "journal at its own temperature; press-fit checks at {temperatures} °C. Limits and sources (in full: the "
              "engine file):")
-IN_FULL_PART = " (in full: the engine file)"
 SCENARIO_LIVES_INTRO = ("**Lives** under the scenarios that ran the films ({pairs}+ paired engines): {scheme}'s "
                         "median change per position and per engine; any scheme's position whose life rises beyond "
                         "its 95 % interval.")
@@ -234,11 +234,13 @@ EDGE_CYCLES = ("In {edge} of them ({share:.0f} %) the tilted journal's edge reac
                "EHD): boundary contact that α and the lives, read at the mid-plane, do not count. `--tilt-method "
                "coupled` balances the support moments with the crankshaft and the block and reads α and the lives "
                "over the bearing surface, on an elastic layer (reports/coupled_supports.md).")
-EDGE_COUNTED = ("In {edge} of them ({share:.0f} %) a tilted journal's edge reaches the wall: {positions}{others}. "
+EDGE_COUNTED = ("In {edge} of them ({share}) a tilted journal's edge reaches the wall: {positions}{others}. "
                 "There the rigid film is held at {floor:.1f} % of the radial clearance; α and the lives read it. "
                 "`--tilt-method coupled` adds the other supports' moments and an elastic layer "
                 "(reports/coupled_supports.md).")
 EDGE_OTHERS_PART = "; at {count} other position{s} in under {share} of the bearings"
+#: The positions of EDGE_COUNTED where at every one fewer of the bearings than FEW_TOUCHING_PCT touch.
+EDGE_FEW_PART = "at {count} position{s}, each in under {share} of the bearings"
 EDGE_SURFACE = ("In {edge} of them ({share:.0f} %) an edge of the journal, its tilt turned back by the support "
                 "moments, runs below h_lim,cr = {critical} µm over part of the cycle: {positions}. There the film over "
                 "the surface is computed on the elastic layer (below zero: the asperities pressed past their mean "
@@ -306,7 +308,7 @@ CHECKED_ERRORS_PART = ("; against the mass-conserving check on this engine thick
 LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why} and Δh_lim = "
         "{method1_limit} µm (Δh_lim/γ = {method1_scale:.1e} s, the scale of the paper's method-1 results), method 2 on "
         "{wear_limit} µm ({wear_source}); h_lim,cr = {critical} µm from Rz {journal_rz} + {shell_rz} µm; wear speed "
-        "{wear_rate:.0e} m/s.")
+        "γ = {wear_rate:.0e} m/s.")
 CYCLE_MEAN_PART = " (as the paper's 5-9 µm films need)"
 NOT_CYCLE_MEAN_PART = " (the paper implies the cycle mean)"
 STATISTICS = ("- **Statistics:** 95 % intervals: order statistics (quantiles), Clopper–Pearson (shares), normal "
