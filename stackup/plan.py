@@ -412,8 +412,10 @@ def planner_table(frame):
     else:
         table = _shell_table(frame, a, a["scrap_share"])
         totals, idle = {None: table.loc["all shells"]}, {None: a["unasked"]}
+    several = len(totals) > 1  # a line names the scheme it is about where the table holds several
     title = [_shell_title(a, frame), _order_line(a, table)]
-    title += [_made_line(scheme, total, table.columns, a["volume"]) for scheme, total in totals.items()]
+    title += [_made_line(scheme if several else None, total, table.columns, a["volume"])
+              for scheme, total in totals.items()]
     if a.get("lot_note"):
         title.append(a["lot_note"][0].upper() + a["lot_note"][1:] + ".")
     title.append(_stock_line(a))
@@ -425,10 +427,10 @@ def planner_table(frame):
         warnings.append(f"Note: that stock ({stock:,} shells of all grades) is more than the {a['shells_per_lot']:,} "
                      f"shells made per lot: the surplus of {100 * a['shell_surplus']:.3g} % does not cover the mix of "
                      f"a lot of {lot:,} engines at {100 * level:.4g} %.")
-    warnings += [_idle_line(scheme, record) for scheme, record in idle.items() if record]
+    warnings += [_idle_line(scheme if several else None, record) for scheme, record in idle.items() if record]
     parts = ({s: frame.xs(s, level="scheme") for s in totals} if isinstance(frame.index, pd.MultiIndex)
              else {None: frame})
-    warnings += [line for scheme, rows in parts.items() if (line := _short_line(scheme, rows, a))]
+    warnings += [line for scheme, rows in parts.items() if (line := _short_line(scheme if several else None, rows, a))]
     table.attrs["title"] = [*title, *warnings, _estimated_from(a) + "."]
     table.attrs["warnings"] = warnings  # what the order does not cover (a short report keeps these lines whole)
     return table

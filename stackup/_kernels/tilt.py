@@ -78,9 +78,8 @@ INSIDE = 0.98
 #: The tilt march (:func:`marches`): the share of the cycle marched from the aligned journal before the cycle
 #: kept (the tilt's squeeze forgets its start within about a quarter of a cycle on the built-in engines), the
 #: most cycles marched to close the cycle (the last angle's tilt within the Newton tolerance of the pass before),
-#: and its step on a cycle of 720 angles (the same crank angle on other grids, a power of two; 4 deg: against
-#: 1 deg steps the cycle-minimum film within 0.04 um and its cycle mean within 0.01 um on the built-in engines'
-#: coaxial cases, the share below h_lim,cr within 0.1 point).
+#: and its step on a cycle of 720 angles (the same crank angle on other grids, a power of two; against steps of
+#: one angle: tests/film/test_tilt.py).
 WARMUP = 0.25
 MARCH_CYCLES = 3
 MARCH_STRIDE = 4

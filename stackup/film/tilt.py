@@ -420,9 +420,8 @@ def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance
     an edge approaching the wall meets a film that thickens its pressure like
     :math:`\dot h/h^3`, so where the held tilt puts an edge on the wall for the part
     of the cycle the journal spends there at low load, the marched one lags behind the
-    beam and stays off it (on ``rozhdestvensky-4`` coaxial, bearing 2: an edge film of
-    about 1.5 µm against the held tilt's wall, as the transient Reynolds reference with
-    the tilt in its balance; ``reports/coupled_supports.md``).
+    beam and stays off it, as the transient Reynolds reference with the tilt in its
+    balance does (``reports/coupled_supports.md``, its last table).
 
     Parameters
     ----------

@@ -105,7 +105,7 @@ METRICS = {"outside_window_ppm": "share outside the window",
            "surplus_pct": "surplus", "engine_life_median_h": "median engine life"}
 RANKING_RULE = ("Window {lo}–{hi} µm ({whose}). Metrics in turn: {metrics}; on each, the best scheme and those "
                 "level with it (95 % intervals overlapping, or under {negligible} ppm apart on the share outside, 1 "
-                "point on the surplus) go on to the next.")
+                "point on the surplus) go on.")
 STUDY_WINDOW_PART, ENGINE_WINDOW_PART = "the study's", "the engine's"
 ESTIMATED_NOTE = "† Fewer than {fewest} bearings counted outside: {how}; counted: {counted}."
 COUNTED_PART = "{count} ({scheme})"
@@ -128,19 +128,18 @@ CENTRED_SOME_PART = "about {share} outside"
 CENTRED_NONE_PART = "none of its {bearings} bearings outside (below {upper} at 95 %)"
 
 # --- scenarios ------------------------------------------------------------------------------------------------
-SCENARIOS_INTRO = ("Each scenario reruns the study's engines (same seed, same parts) with one change, process then "
-                   "model; shares outside the window counted [ppm]; in bold the lowest and those the counts cannot "
-                   "tell from it.")
+SCENARIOS_INTRO = ("Each scenario reruns the study's engines (same seed and parts) with one change; shares outside the "
+                   "window counted [ppm]; in bold the lowest and those the counts cannot tell from it.")
 SCENARIOS_SAME = "{labels} {verb} every share outside the window as in the study (they act on the films only)."
 NO_SCENARIOS = "The comparison ran no scenarios."
 MODEL_RANGES = "Model-uncertainty ranges:"
-MODEL_RANGE = "- {input}: {source}. To narrow it: {measure}."
+MODEL_RANGE = "- {input}: {source}; measure {measure}."
 
 # --- designed scheme ------------------------------------------------------------------------------------------
 DESIGNED = ("`{name}` was designed for this engine and window by `stackup.design` ({evaluations} candidate limit "
             "sets, {seconds:.0f} s) from `{start}`, the ISO scheme with the lowest objective, and judged like every "
-            "other scheme: {outcome}{against} Its reasons are the comments of its scheme text (the "
-            "dataset's `input_files`). Grade limits in µm from each dimension's lower drawing limit:")
+            "other scheme: {outcome}{against} Its reasons are the comments of its scheme text. Grade limits in µm "
+            "from each dimension's lower drawing limit:")
 DESIGN_OUTCOME_PART = "rank {rank}"
 DESIGN_AGAINST_PART = ", against {outcome} for `{start}`."
 DESIGN_START_ABSENT_PART = " (`{start}` is not among the schemes compared)."
@@ -159,8 +158,8 @@ SOBOL_EXPLAINED = ("S_1: the share of the output's variance an input explains al
                    "(the grading among them). Process mean shifts are scenarios; the film and life use few engines.")
 
 # --- clearance, press fit -------------------------------------------------------------------------------------
-CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature: the standard's stated ranges) against "
-                   "each scheme's stated range and, where it differs, its worst case over the allowed combinations.")
+CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature, as the standard states ranges) against "
+                   "each scheme's stated range and, where it differs, its worst case over the allowed pairs.")
 NONE_STATED = "none ({worst})"
 READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to half a step outside its class is paired "
             "as inside it: its worst case, {worst_lo:.1f}–{worst_hi:.1f} µm, reaches beyond the stated "
@@ -308,7 +307,7 @@ CHECKED_ERRORS_PART = ("; against the mass-conserving check on this engine thick
 LIFE = ("- **Life:** Levanov et al. (2015) method 1 on the {film} of the minimum film{why} and Δh_lim = "
         "{method1_limit} µm (Δh_lim/γ = {method1_scale:.1e} s, the scale of the paper's method-1 results), method 2 on "
         "{wear_limit} µm ({wear_source}); h_lim,cr = {critical} µm from Rz {journal_rz} + {shell_rz} µm; wear speed "
-        "γ = {wear_rate:.0e} m/s.")
+        "{wear_rate:.0e} m/s.")
 CYCLE_MEAN_PART = " (as the paper's 5-9 µm films need)"
 NOT_CYCLE_MEAN_PART = " (the paper implies the cycle mean)"
 STATISTICS = ("- **Statistics:** 95 % intervals: order statistics (quantiles), Clopper–Pearson (shares), normal "
