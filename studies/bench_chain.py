@@ -203,12 +203,14 @@ def main(argv=None):
         "",
         "Tilt method `equilibrium` (the study's default): the beam's slope at the support turned back by the "
         "film's restoring moment against the crankshaft's rotational compliance there in series with the "
-        "support's own (bulkhead and bore ring), solved at every crank angle (`stackup.film.tilt`); it costs "
+        "support's own (bulkhead and bore ring), marched over the cycle with the tilt's squeeze on the dynamic "
+        "tiers (BDF2 steps of 4 deg, `stackup.film.tilt.march_tilt`), held at each angle on the quasi-static ones "
+        "(`cycle_tilt`); it costs "
         f"{1e3 * equilibrium_cost:.2f} ms per bearing-cycle on `mobility-finite` "
         "(the film stage with it minus without). `free`: that slope held in the film (`Study(tilt_method='free')`), "
         "an upper bound of the tilt; the film stage is the same but for the edge film. `coupled`: the support "
         "moments of all five bearings balanced with the crankshaft and the block over the cycle, each journal's "
-        "centre moved with its tilt, the tilt's squeeze and the elastic layer (`stackup.film.coupled`, after the "
+        "centre moved with its tilt, and the elastic layer (`stackup.film.coupled`, after the "
         "untilted film stage); its film-stage column is empty (the march is not a part of `bearing_films`).",
         "",
         "`short` and `finite` are the quasi-static tiers (each crank angle a steady load, their heat balance "
