@@ -461,6 +461,30 @@ def _on_wall(a, theta, solver, budget, slope):
     return b0, b1, True, ob, used
 
 
+@njit(cache=True, inline="always")
+def _direction(jac, det, r0, r1):
+    """Newton's step -jac^-1 r for the Jacobian jac (2, 2) with determinant det."""
+    return -(jac[1, 1] * r0 - jac[0, 1] * r1) / det, -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
+
+
+@njit(cache=True)
+def _backtrack(a, e0, e1, d0, d1, t, merit, quadrature):
+    """The step t d from e, halved at most :data:`MAX_HALVINGS` times until the residual's square falls by
+    Armijo's share of t below ``merit``: (n0, n1, q0, q1, t, lowered, evaluations) at the last point tried."""
+    lowered = False
+    used = 0
+    for _ in range(MAX_HALVINGS):
+        n0 = e0 + t * d0
+        n1 = e1 + t * d1
+        q0, q1 = _residual(a, n0, n1, quadrature)
+        used += 1
+        if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
+            lowered = True
+            break
+        t *= 0.5
+    return n0, n1, q0, q1, t, lowered, used
+
+
 @njit(cache=True)
 def _newton(a, e0, e1, jac, fresh, solver, budget):
     """Damped Newton at the angle ``a`` inside the lens from (e0, e1), with Broyden's update of ``jac`` (differences
@@ -482,26 +506,17 @@ def _newton(a, e0, e1, jac, fresh, solver, budget):
             evaluations += _difference_jacobian(a, e0, e1, r0, r1, solver, jac)
             differenced = True
             continue
-        d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
-        d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
+        d0, d1 = _direction(jac, det, r0, r1)
         size = math.hypot(d0, d1)
         room = wall_room(x0, x1, e0, e1, d0, d1, limit)
         if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
             return e0 + d0, e1 + d1, CONVERGED, evaluations
         if room < 1.0 and room * size <= tolerance * (1.0 - limit):
             return e0, e1, WALL, evaluations
-        t = min(1.0, room)  # an edge may go as far as the wall, not past it
-        merit = r0 * r0 + r1 * r1
-        accepted = False
-        for _ in range(MAX_HALVINGS):
-            n0 = e0 + t * d0
-            n1 = e1 + t * d1
-            q0, q1 = _residual(a, n0, n1, solver.quadrature)
-            evaluations += 1
-            if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
-                accepted = True
-                break
-            t *= 0.5
+        # an edge may go as far as the wall, not past it
+        n0, n1, q0, q1, _, accepted, used = _backtrack(a, e0, e1, d0, d1, min(1.0, room), r0 * r0 + r1 * r1,
+                                                      solver.quadrature)
+        evaluations += used
         if accepted:
             _broyden(jac, n0 - e0, n1 - e1, q0 - r0, q1 - r1)
             e0, e1, r0, r1 = n0, n1, q0, q1
@@ -780,27 +795,16 @@ def _march_step(a, solver, budget):
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if det == 0.0 or not math.isfinite(det):
             break
-        d0 = -(jac[1, 1] * r0 - jac[0, 1] * r1) / det
-        d1 = -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
+        d0, d1 = _direction(jac, det, r0, r1)
         size = math.hypot(d0, d1)
         room = wall_room(x0, x1, e0, e1, d0, d1, limit)
         if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
             return e0 + d0, e1 + d1, EQUILIBRIUM, evaluations
         if room < 1.0 and room * size <= tolerance * (1.0 - limit):
             return e0 + room * d0, e1 + room * d1, AT_LIMIT, evaluations  # the edge onto the wall
-        t = min(1.0, INSIDE * room)
-        merit = r0 * r0 + r1 * r1
-        lowered = False
-        for _ in range(MAX_HALVINGS):
-            n0 = e0 + t * d0
-            n1 = e1 + t * d1
-            q0, q1 = _residual(a, n0, n1, solver.quadrature)
-            evaluations += 1
-            if q0 * q0 + q1 * q1 <= (1.0 - 1e-4 * t) * merit:
-                lowered = True
-                break
-            t *= 0.5
-        e0, e1, r0, r1 = n0, n1, q0, q1
+        e0, e1, r0, r1, t, lowered, used = _backtrack(a, e0, e1, d0, d1, min(1.0, INSIDE * room),
+                                                      r0 * r0 + r1 * r1, solver.quadrature)
+        evaluations += used
         # the step's Jacobian serves its chord iterations while they lower the residual
         stale = not lowered or t < 1.0
     return e0, e1, NOT_SOLVED, evaluations

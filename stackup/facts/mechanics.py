@@ -83,14 +83,20 @@ def edge_contact(ds):
                               "cycle_share": float(np.median(share[..., b][on])),
                               "cycle_lo": float(lo), "cycle_hi": float(hi),
                               "film": float(np.median(ds.h_min.values[..., b][on])),
-                              "load": float(np.nanmedian(ds.edge_contact_load.values[..., b][on])),
-                              "angle": float(np.nanmedian(ds.edge_contact_angle.values[..., b][on]))}
+                              "load": _median_of_recorded(ds.edge_contact_load.values[..., b][on]),
+                              "angle": _median_of_recorded(ds.edge_contact_angle.values[..., b][on])}
     table = pd.DataFrame.from_dict(rows, orient="index")
     if not surface:
         return EdgeContact(*counts, per_position=table)
     return EdgeContact(*counts, surface=True, critical=Wear.of(ds).critical_film_m, per_position=table,
                        periodic=float(np.mean(ds.tilt_status.values[ran] == flag(ds.tilt_status, "periodic"))),
                        unresolved=_unresolved(ds, ran))
+
+
+def _median_of_recorded(values):
+    """The median of the values recorded (not NaN), NaN where none is (a tier that records no edge load)."""
+    recorded = values[np.isfinite(values)]
+    return float(np.median(recorded)) if recorded.size else np.nan
 
 
 def _unresolved(ds, ran):
