@@ -467,6 +467,17 @@ def _direction(jac, det, r0, r1):
     return -(jac[1, 1] * r0 - jac[0, 1] * r1) / det, -(-jac[1, 0] * r0 + jac[0, 0] * r1) / det
 
 
+@njit(cache=True, inline="always")
+def _step_ends(x0, x1, e0, e1, d0, d1, limit, tolerance):
+    """Where Newton's step d from e ends: (room, converged, pressed). ``room``: the share of d the lens leaves
+    (:func:`wall_room`); converged: d is below ``tolerance`` times the edge film and stays inside; pressed: d
+    points beyond the wall and the room left is below ``tolerance`` times the limit's film."""
+    size = math.hypot(d0, d1)
+    room = wall_room(x0, x1, e0, e1, d0, d1, limit)
+    return (room, size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0,
+            room < 1.0 and room * size <= tolerance * (1.0 - limit))
+
+
 @njit(cache=True)
 def _backtrack(a, e0, e1, d0, d1, t, merit, quadrature):
     """The step t d from e, halved at most :data:`MAX_HALVINGS` times until the residual's square falls by
@@ -507,11 +518,10 @@ def _newton(a, e0, e1, jac, fresh, solver, budget):
             differenced = True
             continue
         d0, d1 = _direction(jac, det, r0, r1)
-        size = math.hypot(d0, d1)
-        room = wall_room(x0, x1, e0, e1, d0, d1, limit)
-        if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
+        room, converged, pressed = _step_ends(x0, x1, e0, e1, d0, d1, limit, tolerance)
+        if converged:
             return e0 + d0, e1 + d1, CONVERGED, evaluations
-        if room < 1.0 and room * size <= tolerance * (1.0 - limit):
+        if pressed:
             return e0, e1, WALL, evaluations
         # an edge may go as far as the wall, not past it
         n0, n1, q0, q1, _, accepted, used = _backtrack(a, e0, e1, d0, d1, min(1.0, room), r0 * r0 + r1 * r1,
@@ -650,6 +660,16 @@ def _solve_at(b, k, g0, g1, on_wall, fresh, orbits, bearing, solver, memory, out
     return used, s != NOT_SOLVED
 
 
+@njit(cache=True, inline="always")
+def _turn_back_between(free, tilt, b, k, kp, kn, share):
+    """Edge offset of bearing b at angle k that takes the film's turn-back (free minus tilt) of the angles kp and
+    kn interpolated, ``share`` of the way from kp to kn (the free tilt carries the beam's fast changes)."""
+    return (free[b, k, 0] - ((1.0 - share) * (free[b, kp, 0] - tilt[b, kp, 0])
+                             + share * (free[b, kn, 0] - tilt[b, kn, 0])),
+            free[b, k, 1] - ((1.0 - share) * (free[b, kp, 1] - tilt[b, kp, 1])
+                             + share * (free[b, kn, 1] - tilt[b, kn, 1])))
+
+
 @njit(cache=True, parallel=True)
 def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, evaluations):
     """Tilt equilibrium at every angle of many bearings (prange over bearings).
@@ -731,10 +751,7 @@ def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, eva
                                      free[b, kn, 1] - tilt[b, kn, 1] - free[b, kp, 1] + tilt[b, kp, 1])
                     film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
                                _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
-                    e0 = free[b, k, 0] - ((1.0 - share) * (free[b, kp, 0] - tilt[b, kp, 0])
-                                          + share * (free[b, kn, 0] - tilt[b, kn, 0]))
-                    e1 = free[b, k, 1] - ((1.0 - share) * (free[b, kp, 1] - tilt[b, kp, 1])
-                                          + share * (free[b, kn, 1] - tilt[b, kn, 1]))
+                    e0, e1 = _turn_back_between(free, tilt, b, k, kp, kn, share)
                     if state[b, kp] == AT_LIMIT:
                         # both on the wall: the edge film is the limit's whatever the tilt, whose direction the
                         # mean keeps within about interpolate / 2 rad
@@ -796,11 +813,10 @@ def _march_step(a, solver, budget):
         if det == 0.0 or not math.isfinite(det):
             break
         d0, d1 = _direction(jac, det, r0, r1)
-        size = math.hypot(d0, d1)
-        room = wall_room(x0, x1, e0, e1, d0, d1, limit)
-        if size <= tolerance * _edge(x0, x1, e0, e1) and room >= 1.0:
+        room, converged, pressed = _step_ends(x0, x1, e0, e1, d0, d1, limit, tolerance)
+        if converged:
             return e0 + d0, e1 + d1, EQUILIBRIUM, evaluations
-        if room < 1.0 and room * size <= tolerance * (1.0 - limit):
+        if pressed:
             return e0 + room * d0, e1 + room * d1, AT_LIMIT, evaluations  # the edge onto the wall
         e0, e1, r0, r1, t, lowered, used = _backtrack(a, e0, e1, d0, d1, min(1.0, INSIDE * room),
                                                       r0 * r0 + r1 * r1, solver.quadrature)
@@ -835,8 +851,9 @@ def marches(orbits, correction, solver, tau, period, stride, warmup, cycles, til
     as the squeeze makes the tilt stiff), solved by :func:`_march_step`. The march starts from the aligned
     journal ``warmup`` steps before the cycle's end and runs whole cycles until the last step's tilt is within
     the solver's tolerance of the pass before (times the edge film; at most ``cycles``); the last cycle is kept.
-    An angle between two steps takes their film's turn-back (free minus tilt) interpolated, as
-    :func:`equilibria` does (onto the wall where both are at the limit or the mean falls outside the lens).
+    An angle between two steps takes their film's turn-back (free minus tilt) interpolated
+    (:func:`_turn_back_between`), as :func:`equilibria` does (onto the wall where both are at the limit or the
+    mean falls outside the lens).
     ``orbits``, ``correction``, ``solver`` as :func:`equilibria`. Writes tilt (B, n, 2), state (B, n) and
     evaluations (B, n): film moments computed at each step over every pass (0 between steps).
     """
@@ -876,10 +893,7 @@ def marches(orbits, correction, solver, tau, period, stride, warmup, cycles, til
             for k in range(kp + 1, min(kn, n)):
                 q = kn if kn < n else 0
                 share = (tau[k] - tau[kp]) / (tau[kn] - tau[kp] if kn < n else tau[0] + period - tau[kp])
-                t0 = free[b, k, 0] - ((1.0 - share) * (free[b, kp, 0] - tilt[b, kp, 0])
-                                      + share * (free[b, q, 0] - tilt[b, q, 0]))
-                t1 = free[b, k, 1] - ((1.0 - share) * (free[b, kp, 1] - tilt[b, kp, 1])
-                                      + share * (free[b, q, 1] - tilt[b, q, 1]))
+                t0, t1 = _turn_back_between(free, tilt, b, k, kp, q, share)
                 wall = state[b, kp] == AT_LIMIT and state[b, q] == AT_LIMIT
                 room = wall_room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, t0, t1, limit)
                 if wall or room < 1.0:

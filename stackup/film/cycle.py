@@ -42,10 +42,10 @@ from . import ECCENTRICITY_VALID
 from . import oil as oils
 from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
-from .journal import ECCENTRICITY_LIMIT, Orbit
+from .journal import ECCENTRICITY_LIMIT, Orbit, within_one_cycle
 from .journal import STATUS as ORBIT_STATUS
 from .orbit import (ALIASES, DYNAMIC, FED, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
-                    cycle_tier_errors, one_cycle, orbit, tier_names, within_one_cycle)
+                    cycle_tier_errors, one_cycle, orbit, tier_names)
 from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
 from .transient import transient_orbit
 

@@ -21,6 +21,14 @@ STATUS = ("periodic", "not_periodic", "collapsed", "failed", "edge_contact")
 STATES = ("equilibrium", "at_limit", "not_solved")
 #: Largest eccentricity a journal reaches; a film held there has collapsed.
 ECCENTRICITY_LIMIT = 0.995
+#: The engine cycle [deg] the cycle tiers' crank angles lie in (four strokes: two turns of the journal).
+CYCLE = 720.0
+
+
+def within_one_cycle(crank_angle):
+    """A ValueError unless the crank angles (angles,) increase and span less than a cycle."""
+    if np.any(np.diff(crank_angle) <= 0) or crank_angle[-1] - crank_angle[0] >= CYCLE:
+        raise ValueError(f"crank_angle: must increase and span less than {CYCLE:g} deg")
 
 
 def vector_length(vectors):

@@ -107,7 +107,7 @@ from .._kernels import mobility as _kernel
 from .._validate import Finite, Integer, OneOf, Positive, one_of, renamed, validated
 from . import ECCENTRICITY_VALID, Film, min_film_thickness, reynolds
 from .journal import (ECCENTRICITY_LIMIT, STATES, STATUS, Orbit, edge_film, mobility_table,  # noqa: F401 (API)
-                      short_table, table_covers, vector_length)
+                      short_table, table_covers, vector_length, within_one_cycle)
 from .mobility import PERIODIC, mobility_orbit  # noqa: F401 (PERIODIC: API)
 from .tilt import cycle_tilt, march_tilt
 from .elrod import elrod_orbit
@@ -214,12 +214,6 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
         return table[name]
 
     return next((t for t in ranked if all(error(t, m) <= max_error for m in measures)), "reynolds-transient")
-
-
-def within_one_cycle(crank_angle):
-    """A ValueError unless the crank angles (angles,) increase and span less than a cycle."""
-    if np.any(np.diff(crank_angle) <= 0) or crank_angle[-1] - crank_angle[0] >= 720.0:
-        raise ValueError("crank_angle: must increase and span less than 720 deg")
 
 
 def one_cycle(loads_name):

@@ -80,7 +80,8 @@ import numpy as np
 from .._kernels import tilt as _kernel
 from .._kernels.mobility import Correction, bearing_table, table_lookup
 from .._validate import AngleVectors, Finite, OneOf, Positive, renamed, validated
-from .journal import ECCENTRICITY_LIMIT, STATES, mobility_table, outside_table, short_table, table_covers  # noqa: F401
+from .journal import (CYCLE, ECCENTRICITY_LIMIT, STATES, mobility_table, outside_table,  # noqa: F401
+                      short_table, table_covers, within_one_cycle)
 
 #: Gauss-Legendre nodes on the arc that carries pressure and on the rest of the bearing.
 GAUSS_NODES = 12
@@ -98,8 +99,6 @@ TOLERANCE = 1e-2
 INTERPOLATE = 1.0
 STRIDE = 8
 METHODS = ("short", "finite")
-#: The engine cycle [deg] the march's crank angles lie in (four strokes: two turns of the journal).
-CYCLE = 720.0
 
 
 def axial_moments(s):
@@ -352,13 +351,17 @@ def cycle_tilt(position, squeeze_velocity, free_tilt, *, compliance, journal_rad
     tilt = np.empty(args.orbits.xi.shape)
     state = np.empty(tilt.shape[:2], np.int8)
     evaluations = np.empty(tilt.shape[:2], np.int64)
-    # STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
-    stride = 1 << max(0, int(np.floor(np.log2(STRIDE * n / 720))))
     _kernel.equilibria(args.orbits, args.correction, _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE),
-                       INTERPOLATE, stride, tilt, state, evaluations)
+                       INTERPOLATE, _stride(STRIDE, n), tilt, state, evaluations)
     c, l = args.radial_clearance, args.bearing_width
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))
+
+
+def _stride(per_720, n):
+    """The angles between two solved ones on a cycle of ``n`` angles, for ``per_720`` on a cycle of 720: the same
+    crank angle on other grids, a power of two (1 on coarse grids)."""
+    return 1 << max(0, int(np.floor(np.log2(per_720 * n / 720))))
 
 
 @dataclass(frozen=True)
@@ -391,11 +394,12 @@ def _kernel_inputs(x, squeeze_velocity, free_tilt, compliance, journal_radius, b
                          Correction(tables, ld_nodes, stretched, finite), c, l)
 
 
-def _increasing_within_a_cycle(values):
-    """The crank angles increase and span less than a cycle (the march's steps close the cycle)."""
+def _one_cycle_of_the_orbit(values):
+    """The crank angles are one per angle of the orbit, increasing within a cycle (the march's steps close it)."""
     angle = np.asarray(values["crank_angle"], dtype=float)
-    if angle.ndim != 1 or angle.size < 2 or np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= CYCLE:
-        raise ValueError(f"crank_angle: must be 1-D, increase and span less than {CYCLE:g} deg")
+    if angle.ndim != 1 or angle.size < 2:
+        raise ValueError(f"crank_angle: shape {angle.shape} is not valid; expected (angles,), at least 2")
+    within_one_cycle(angle)
     if np.asarray(values["position"]).shape[-2] != angle.size:
         raise ValueError(f"crank_angle: {angle.size} angles, the orbit has {np.asarray(values['position']).shape[-2]}")
 
@@ -404,7 +408,7 @@ def _increasing_within_a_cycle(values):
 @validated(method=OneOf(METHODS), position=AngleVectors(), squeeze_velocity=Finite(), free_tilt=Finite(),
            crank_angle=Finite(), compliance=Positive(zero=True), journal_radius=Positive(), bearing_width=Positive(),
            radial_clearance=Positive(), viscosity=Positive(), speed=Positive(),
-           relations=(_table_covers_the_bearing, _increasing_within_a_cycle))
+           relations=(_table_covers_the_bearing, _one_cycle_of_the_orbit))
 def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance, journal_radius, bearing_width,
                radial_clearance, viscosity, speed, method="short"):
     r"""The journal's tilt in its film over a cycle, marched with the tilt's own squeeze (the dynamic tiers).
@@ -444,8 +448,7 @@ def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance
     tilt = np.empty(args.orbits.xi.shape)
     state = np.empty(tilt.shape[:2], np.int8)
     evaluations = np.empty(tilt.shape[:2], np.int64)
-    # MARCH_STRIDE is for a cycle of 720 angles: the same crank angle on other grids, in powers of two
-    stride = 1 << max(0, int(np.floor(np.log2(_kernel.MARCH_STRIDE * n / 720))))
+    stride = _stride(_kernel.MARCH_STRIDE, n)
     steps = -(-n // stride)
     _kernel.marches(args.orbits, args.correction, _kernel.Solver(quadrature(), ECCENTRICITY_LIMIT, TOLERANCE), tau,
                     np.radians(CYCLE), stride, max(1, round(_kernel.WARMUP * steps)), _kernel.MARCH_CYCLES, tilt, state,
