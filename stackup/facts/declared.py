@@ -223,9 +223,9 @@ class DesignRecord(_Attribute):
 
 @dataclass(frozen=True)
 class Sources:
-    """Where the engine's data come from: plain-text attributes, whitespace folded (empty when not given)."""
+    """Where the engine's data come from: plain-text attributes, whitespace folded (empty when not given); the
+    engine's own source is in its file (the dataset's ``input_files``)."""
 
-    engine: str
     press_fit_limits: str
     crush_height: str
     clearance_window: str
@@ -236,8 +236,8 @@ class Sources:
         def text(name):
             return " ".join(str(ds.attrs.get(name, "")).split())
 
-        return cls(text("engine_source"), text("press_fit_limits_source"), text("crush_height_source"),
-                   text("clearance_window_source"), parsed(ds, "scheme_sources"))
+        return cls(text("press_fit_limits_source"), text("crush_height_source"), text("clearance_window_source"),
+                   parsed(ds, "scheme_sources"))
 
 
 @dataclass(frozen=True)
