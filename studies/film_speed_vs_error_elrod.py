@@ -136,9 +136,7 @@ def section(cases, bearings, out, seconds, reference, ref_seconds, cached=False)
         f"{seconds[default] / seconds['mobility-finite']:,.0f} times `mobility-finite` and "
         f"{ref_seconds / seconds[default]:,.0f} times less than the reference (its time from its own run, "
         "possibly under another load): the speed target is "
-        f"{'met' if fast else 'missed'} on this machine ({load_note()}: on a shared, loaded machine the times, and "
-        "the ratios between the variants below, are uncertain; rerun on an idle one before reading the speed "
-        "against the target). Against the same reference `mobility-finite` "
+        f"{'met' if fast else 'missed'} on this machine ({load_note()}). Against the same reference `mobility-finite` "
         f"is off by {100 * abs(worst_of(out['mobility-finite'], reference, 'h_min')):.1f} % and "
         f"{100 * abs(worst_of(out['mobility-finite'], reference, 'h_min_mean')):.1f} %. "
         + groove_note(cases, bearings, out, reference, default, snapped, ref_seconds),
@@ -165,10 +163,19 @@ def section(cases, bearings, out, seconds, reference, ref_seconds, cached=False)
     return lines
 
 
+#: Load average above the timing process's own core beyond which the machine counts as shared while timed.
+OTHER_LOAD = 0.5
+
+
 def load_note():
-    """The machine's load while the cheap tiers were timed (the two cores are shared)."""
+    """The machine's load while the cheap tiers were timed (the cores are shared; the timing itself keeps one
+    busy), and what it means for the times."""
     one, five, _ = os.getloadavg()
-    return f"load average {one:.1f} (1 min) and {five:.1f} (5 min) on {os.cpu_count()} cores while timed"
+    note = f"load average {one:.1f} (1 min) and {five:.1f} (5 min) on {os.cpu_count()} cores while timed, this run's "
+    if max(one, five) - 1.0 <= OTHER_LOAD:
+        return note + "one core included: the machine was otherwise idle"
+    return (note + "one core included: other work shared the machine, so the times, and the ratios between the "
+            "variants below, are uncertain; rerun on an idle one before reading the speed against the target")
 
 
 def converged_note(bearings, out, reference, default):

@@ -5,7 +5,10 @@ import pytest
 
 from stackup._kernels import elrod as kernel
 from stackup.film import min_film_thickness
+from stackup.film import elrod as tier
 from stackup.film.elrod import SMOOTHING, elrod_orbit, grid
+from stackup.film.heat import OilFeed
+from stackup.film.mobility import mobility_orbit
 from stackup.film.orbit import ECCENTRICITY_LIMIT, STATUS, orbit
 
 GEOMETRY = dict(journal_d=0.046, bearing_width=0.022, clearance=46e-6, viscosity=0.0075, speed=419.0)
@@ -187,7 +190,8 @@ def test_one_step_solves_the_twins_equations(half):
 
 @pytest.mark.parametrize("load", [500.0, 4000.0])
 def test_steady_load_settles_near_the_steady_reynolds_film_on_the_thin_side(load):
-    """A constant load: the orbit settles on a steady film within 10 % of the Reynolds tier's, thinner.
+    """A constant load: the orbit settles on a steady film within 10 % of the Reynolds tier's, thinner, its
+    ripple (what is left of the start's transient) within twice the closure the orbit is run to.
 
     The Reynolds tier has the Swift-Stieber condition; the mass-conserving film reforms short of oil after the
     cavitated zone and carries less (the transient reference shows the same, below).
@@ -197,7 +201,7 @@ def test_steady_load_settles_near_the_steady_reynolds_film_on_the_thin_side(load
     steady = float(min_film_thickness(load, **GEOMETRY, method="reynolds").h_min)
     assert STATUS[int(film.status)] == "periodic"
     assert np.all(film.h_min < steady) and np.all(film.h_min > 0.9 * steady)
-    assert np.ptp(film.h_min) < 0.01 * steady
+    assert np.ptp(film.h_min) < 2 * tier.PERIODIC * film.h_min.min()
 
 
 @pytest.mark.slow
@@ -267,6 +271,59 @@ def test_load_turning_at_half_the_shaft_speed_collapses_the_film():
     film = orbit(loads, ANGLE, **GEOMETRY, method="elrod-coarse", cycles=4)
     assert STATUS[int(film.status)] in ("collapsed", "not_periodic")
     assert np.all(np.isfinite(film.h_min))
+
+
+GROOVE = OilFeed("groove", 3.5e5, groove_arc=(0.5 * np.pi, 1.5 * np.pi), groove_width=0.003)
+
+
+def reversing_loads():
+    """A centre main bearing's load: the firing peak on the cap, an inertia load toward the block (the grooved
+    upper shell) over most of the cycle, near zero where it reverses, so the journal crosses the clearance."""
+    a = np.radians(ANGLE)
+    x = -(20000.0 * np.exp(-0.5 * ((ANGLE - 370.0) / 12.0) ** 2) - 1500.0 + 1300.0 * np.cos(a))
+    return np.ascontiguousarray(np.stack([-x, -300.0 * np.sin(a)], axis=-1))
+
+
+def march(loads, guide=None, periodic=tier.PERIODIC):
+    """The tier's kernel on one bearing of GEOMETRY fed by GROOVE: ((status, cycles, steps, Newton iterations,
+    crossings), mid-plane film [m])."""
+    r, length, c = GEOMETRY["journal_d"] / 2, GEOMETRY["bearing_width"], GEOMETRY["clearance"] / 2
+    mu, w = GEOMETRY["viscosity"], GEOMETRY["speed"]
+    mobility = mobility_orbit(loads[None], ANGLE, finite=True, cycles=20, start=None, journal_radius=np.array([r]),
+                              bearing_width=np.array([length]), radial_clearance=np.array([c]),
+                              viscosity=np.array([mu]), speed=np.array([w])).position[0] / c
+    g = grid(length_over_radius=length / r, n_theta=tier.N_THETA, n_land=tier.N_LAND, half=True,
+             **tier._feed_patch(length, r, mu * w * r**2 / c**2, GROOVE))
+    stepping = kernel.Stepping(tier.STEP_TOLERANCE, *np.radians([tier.FIRST_STEP, tier.LARGEST_STEP,
+                                                                  tier.SMALLEST_STEP, tier.LEAP_STEP]))
+    newton = kernel.Newton(tier.FORCE_TOLERANCE, tier.BALANCE_TOLERANCE, tier.MAX_NEWTON, SMOOTHING)
+    record, outs = np.empty((ANGLE.size, 2)), np.empty((ANGLE.size, 3))
+    counts = kernel.march(loads / (mu * w * r**4 / c**2), np.radians(np.append(ANGLE, 720.0)),
+                          np.zeros((ANGLE.size, 2)), mobility[0].copy(),
+                          np.ascontiguousarray(mobility if guide is None else guide), g, newton, stepping,
+                          ECCENTRICITY_LIMIT, periodic, 8, kernel.workspace(*g.fixed.shape, g.j0, 2), record, outs)
+    return counts, c * (1.0 - np.hypot(*record.T))
+
+
+def test_a_journal_crossing_the_clearance_is_found_wherever_the_search_starts():
+    """Where the load reverses the journal crosses the clearance within a step; it is sought first on a guide
+    (the mobility orbit), which only seeds the search: with a guide at the centre throughout (never the
+    answer), the same orbit within 0.2 %."""
+    loads = reversing_loads()
+    (status, _, _, _, crossings), film = march(loads)
+    _, centred = march(loads, guide=np.zeros((ANGLE.size, 2)))
+    assert STATUS[status] == "periodic" and crossings > 0
+    np.testing.assert_allclose([centred.min(), centred.mean()], [film.min(), film.mean()], rtol=2e-3)
+
+
+def test_closing_the_orbit_tighter_moves_the_film_less_than_the_tiers_error():
+    """The orbit closes within PERIODIC of the thinnest film; five times tighter costs cycles and moves the
+    cycle minimum and mean by under 0.5 % (the tier's error against its converged solution: about 2 %)."""
+    loads = reversing_loads()
+    (_, cycles, *_), film = march(loads)
+    (_, tight_cycles, *_), tight = march(loads, periodic=tier.PERIODIC / 5)
+    assert tight_cycles >= cycles
+    np.testing.assert_allclose([film.min(), film.mean()], [tight.min(), tight.mean()], rtol=5e-3)
 
 
 def test_tilt_thins_the_edge_film():

@@ -352,14 +352,19 @@ SMALLEST_SCALE = 1e-3
 #: row (a tenth of the step or less).
 LINE_SEARCH = 8
 STALLED = 3
-#: A leap (:func:`leap`): most Newton steps on the centre, most halvings of each. A leap that has not converged
-#: in 40 wanders along a film that barely carries (its force error held near 1e-3 of the cycle's largest load for
-#: dozens of steps on rozhdestvensky-4's bearing 3); the march then halves the time step and leaps again, which
-#: converges (80 cost that bearing 470 ms a cycle against 280 ms, its films within 0.3 %; 15 failed there).
+#: A leap (:func:`leap`): most Levenberg-Marquardt steps on the centre, most trials of each (the damping raised
+#: by LEAP_GROWTH after a trial that does not lower the force error, lowered by it after one that does), and the
+#: damping at the start, relative to the diagonal of S'S.
 LEAP_ITERATIONS = 40
 LEAP_SEARCH = 12
-#: A leap's line search starts at this many times the last accepted step (at most a full Newton step).
 LEAP_GROWTH = 4.0
+LEAP_DAMPING = 1e-2
+#: A leap that stalls (a step lowers the force error by less than LEAP_STALL) with the force balanced within
+#: LEAP_FORCE of the cycle's largest load is taken as it is: where the film barely carries, the force error
+#: lingers near that for dozens of steps, the time step was then halved and the leap redone, and on
+#: rozhdestvensky-4's bearing 3 that cost more than the rest of the cycle.
+LEAP_FORCE = 1e-3
+LEAP_STALL = 0.5
 
 
 def workspace(n_t, n_z, j0, k):
@@ -532,10 +537,12 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
 
     A massless journal whose load turns onto a film short of oil crosses the clearance within a step, as far as
     the film there carries the load; the full Newton of :func:`balance_step` stalls on the way (its residuals
-    mix the field's and the force's). Here Newton runs on the centre alone: each trial centre's field is solved
-    with the centre held, the force's error is the residual, its Jacobian the field's Schur complement, and a
-    step is halved until that error falls. :func:`balance_step` polishes the result. Returns as
-    :func:`balance_step`.
+    mix the field's and the force's). Here Levenberg-Marquardt runs on the centre alone: each trial centre's
+    field is solved with the centre held, the force's error f is the residual and the field's Schur complement
+    S its Jacobian, the step d solves (S'S + lam diag S'S) d = S'f, and lam grows until the error falls (S is
+    near singular along a film that barely carries: Newton's own step overshoots there).
+    :func:`balance_step` polishes the result; a leap that stalls within :data:`LEAP_FORCE` of the cycle's
+    largest load is taken with its field solved at the centre held. Returns as :func:`balance_step`.
     """
     n_t, n_z = phi.shape
     m = n_z - 1 - grid.j0
@@ -547,7 +554,7 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
     f1 = force[1] - target[1]
     size = math.hypot(f0, f1)
     y = np.empty(2)
-    alpha = 1.0 / LEAP_GROWTH
+    lam = LEAP_DAMPING
     for _ in range(LEAP_ITERATIONS):
         if size <= tol.force * scale:
             break
@@ -555,17 +562,21 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
         det = s00 * s11 - s01 * s10
         if not ok or det == 0.0 or not math.isfinite(det):
             return -1
-        # F(xi + d) ~ F(xi) - S d = target
-        d0 = (f0 * s11 - f1 * s01) / det
-        d1 = (s00 * f1 - s10 * f0) / det
-        # the search starts near the last step's length: where the film begins to carry, Newton's step on the
-        # centre overshoots by orders of magnitude iteration after iteration, and halving from 1 each time
-        # costs a field solve per halving
-        alpha = min(1.0, LEAP_GROWTH * alpha)
+        # F(xi + d) ~ F(xi) - S d = target: Levenberg-Marquardt on the centre, (S'S + lam diag S'S) d = S' f
+        a00 = s00 * s00 + s10 * s10
+        a01 = s00 * s01 + s10 * s11
+        a11 = s01 * s01 + s11 * s11
+        r0 = s00 * f0 + s10 * f1
+        r1 = s01 * f0 + s11 * f1
         accepted = False
         for _ in range(LEAP_SEARCH):
-            y[0] = xi[0] + alpha * d0
-            y[1] = xi[1] + alpha * d1
+            m00 = a00 * (1.0 + lam)
+            m11 = a11 * (1.0 + lam)
+            dm = m00 * m11 - a01 * a01
+            d0 = (r0 * m11 - r1 * a01) / dm
+            d1 = (m00 * r1 - a01 * r0) / dm
+            y[0] = xi[0] + d0
+            y[1] = xi[1] + d1
             e = math.hypot(y[0], y[1])
             if e > limit:
                 y[0] *= limit / e
@@ -575,19 +586,28 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
                 force = film_force(work.pressure, grid)
                 g0 = force[0] - target[0]
                 g1 = force[1] - target[1]
-                if math.hypot(g0, g1) < (1.0 - 1e-4 * alpha) * size:
+                if math.hypot(g0, g1) < size:
                     accepted = True
+                    lam = max(lam / LEAP_GROWTH, 1e-12)
                     break
-            alpha *= 0.5
+            lam = max(lam, 1e-6) * LEAP_GROWTH
         if not accepted:
-            # the field of the last accepted centre back in work (its Jacobian is read next)
-            return -2 if math.hypot(xi[0], xi[1]) >= limit * (1.0 - 1e-9) else -1
+            break
         phi[:, :] = trial
         xi[0] = y[0]
         xi[1] = y[1]
         f0, f1 = g0, g1
+        before = size
         size = math.hypot(f0, f1)
-    return balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
+        if size <= LEAP_FORCE * scale and size > LEAP_STALL * before:
+            break
+    if size <= tol.force * scale:
+        return balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
+    if size > LEAP_FORCE * scale:
+        return -2 if math.hypot(xi[0], xi[1]) >= limit * (1.0 - 1e-9) else -1
+    # balanced within LEAP_FORCE only: the field of this centre (work may hold a rejected trial's)
+    return 0 if balance_step(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work, False) >= 0 \
+        else -1
 
 
 @njit(cache=True, fastmath=FAST)
@@ -649,16 +669,17 @@ def _at(values, tau, t, out):
 
 
 @njit(cache=True, fastmath=FAST)
-def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, work, record, outs):
+def march(w, tau, slope, xi0, guide, grid, tol, stepping, limit, periodic, max_cycles, work, record, outs):
     """Periodic orbit of one bearing under the loads ``w`` (n, 2) given at the times ``tau`` (n + 1,), in place.
 
     Adaptive BDF2 on the content (variable step, backward Euler at the first step): each step by
     :func:`balance_step` from the previous field and a centre extrapolated from the last two; the step grows or
     shrinks so that the balanced centre differs from its prediction by about ``stepping.tolerance`` of the film
-    left (a step past three times that, or one whose Newton fails, is redone at half the size). Loads and film
-    slope (``slope`` (n, 2)) are linear between the times given; every cycle ends on a step. ``record`` (n, 2)
-    the centre and ``outs`` (n, 3) the outputs of :func:`outputs` at each time given, of the last cycle
-    (linear between steps). Returns (status, cycles, steps, Newton iterations and leaps in all).
+    left (a step past three times that, or one whose Newton fails, is redone at half the size); a step whose
+    Newton fails at ``stepping.leap`` or shorter seeks the journal on ``guide`` (n, 2) (from the second cycle on,
+    the last cycle's orbit), then leaps (:func:`leap`). Loads and film slope (``slope`` (n, 2)) are linear
+    between the times given; every cycle ends on a step. ``record`` (n, 2) the centre and ``outs`` (n, 3) the
+    outputs of :func:`outputs` at each time given, of the last cycle (linear between steps). Returns (status, cycles, steps, Newton iterations and leaps in all).
     """
     n = w.shape[0]
     period = tau[n]
@@ -669,6 +690,7 @@ def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, 
             if grid.fixed[i, j]:
                 phi[i, j] = grid.p_fixed[i, j]
     phi_saved = phi.copy()
+    phi_old = phi.copy()
     content = np.empty((n_t, n_z))
     content_old = np.empty((n_t, n_z))
     history = np.empty((n_t, n_z))
@@ -679,6 +701,7 @@ def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, 
         scale = max(scale, abs(w[k, 0]) + abs(w[k, 1]))
     xi = xi0.copy()
     xi_old = xi0.copy()
+    track = guide.copy()  # where a crossing journal is first sought: the guide, then the last cycle's orbit
     guess = np.empty(2)
     _at(slope, tau, 0.0, tilt)
     film(xi, tilt, grid, work.h, work.dh, work.he, work.dhe, work.hn, work.dhn)
@@ -735,15 +758,27 @@ def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, 
             _at(w, tau, t + h, target)
             _at(slope, tau, t + h, tilt)
             phi_saved[:, :] = phi
+            if steps >= 1:  # the field extrapolated as the centre is: Newton then needs fewer iterations
+                for i in range(n_t):
+                    for j in range(n_z):
+                        if not grid.fixed[i, j]:
+                            phi[i, j] += r * (phi[i, j] - phi_old[i, j])
             done = balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
             newton += done if done >= 0 else tol.iterations
             jumped = False
             if done == -1 and h <= stepping.leap:
                 # no balance near the prediction at a short step: the journal crosses to where the film carries
                 phi[:, :] = phi_saved
-                trial[0] = xi[0]
-                trial[1] = xi[1]
-                done = leap(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
+                _at(track, tau, t + h, trial)
+                done = -1
+                if balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work,
+                                False) >= 0:
+                    done = balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
+                if done == -1:
+                    phi[:, :] = phi_saved
+                    trial[0] = xi[0]
+                    trial[1] = xi[1]
+                    done = leap(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
                 jumped = done != -1
                 leaps += 1
             film_left = max(1.0 - max(widest, math.hypot(trial[0], trial[1])), 1.0 - limit)
@@ -762,6 +797,7 @@ def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, 
             if done == -2 or math.hypot(trial[0], trial[1]) >= limit * (1.0 - 1e-12):
                 collapsed = True
             # the step is taken: its content, centre and outputs (balance_step leaves the film at the centre)
+            phi_old[:, :] = phi if jumped else phi_saved
             content_old[:, :] = content
             for i in range(n_t):
                 for j in range(n_z):
@@ -795,6 +831,7 @@ def march(w, tau, slope, xi0, grid, tol, stepping, limit, periodic, max_cycles, 
                 h = h * factor_h
         film_left = 1.0 - (limit if collapsed else widest)
         closure = math.hypot(xi[0] - start0, xi[1] - start1)
+        track[:, :] = record
         if cycle > 1 and closure <= periodic * film_left:
             return (COLLAPSED if collapsed else PERIODIC), cycle, steps, newton, leaps
         status = COLLAPSED if collapsed else NOT_PERIODIC

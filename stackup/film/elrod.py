@@ -44,13 +44,23 @@ the outputs linear between steps onto every angle.
 Each step is one nonlinear system: the nodes' :math:`\phi` and the journal centre
 :math:`\xi` (massless journal, Booker [3]_: the film force equals the load). The node
 balances are piecewise linear in :math:`\phi`; semismooth Newton on them bordered by
-the force balance :math:`\bar{\mathbf F}(\phi) = \bar{\mathbf W}`, from the previous step's field
-and a centre extrapolated from the last two steps, converges in a few
-iterations. The field's Jacobian is block cyclic tridiagonal (a block per angle:
-the nodes over the width) and is factored directly; the force balance enters
-through its Schur complement (2 x 2). The orbit is repeated from the
-``mobility-finite`` tier's position until it closes within :data:`PERIODIC` of the
-thinnest film, as the reference does.
+the force balance :math:`\bar{\mathbf F}(\phi) = \bar{\mathbf W}`, from a field and a centre
+extrapolated from the last two steps, converges in a few iterations. The
+field's Jacobian is block cyclic tridiagonal (a block per angle: the nodes over the
+width) and is factored directly; the force balance enters through its Schur
+complement (2 x 2). The orbit is repeated from the ``mobility-finite`` tier's
+position until it closes within :data:`PERIODIC` of the thinnest film, as the
+reference does.
+
+Where the load turns onto a film short of oil, the massless journal crosses the
+clearance within a step and no balance lies near the prediction. The journal is
+then sought where the ``mobility-finite`` orbit (first cycle) or the last cycle's
+orbit is at that time, and failing that by a leap: Levenberg-Marquardt on the
+centre alone, each trial centre's field solved with the centre held. Along a film
+that barely carries, that search stalls with the force balanced to about 1e-3 of
+the cycle's largest load; a leap within
+:data:`stackup._kernels.elrod.LEAP_FORCE` of it that stalls is taken as it is (the
+load there is a small part of the cycle's, and the film thick).
 
 Outputs per angle as the reference: mid-plane minimum film :math:`c(1 - |\xi|)`,
 the peak of the pressure field, friction torque
@@ -104,8 +114,10 @@ MAX_NEWTON = 25
 #: Width of the band of the universal variable over which the switch between pressure and fill is smoothed
 #: (pressure per mu omega R^2 / c^2, fill): p (1 - g) = SMOOTHING^2 / 4.
 SMOOTHING = 1e-2
-#: Periodic when the journal returns after a cycle to within this share of the thinnest film.
-PERIODIC = 2e-3
+#: Periodic when the journal returns after a cycle to within this share of the thinnest film. The orbit contracts
+#: fast from its second cycle on: a tighter closure moves the cycle's minimum and mean film far less than the
+#: tier's error against the converged solution (``reports/film_speed_vs_error.md``), at a cycle's cost each.
+PERIODIC = 1e-2
 #: The feed when none is given: a patch on the block side (Theta = pi), its width [rad] and share of the length
 #: (as :mod:`stackup.film.transient`).
 FEED_ANGLE = np.pi
@@ -234,11 +246,12 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
     tau = np.radians(np.append(crank_angle, crank_angle[0] + 720.0) - crank_angle[0])
     stepping = _kernel.Stepping(float(step_tolerance), np.radians(FIRST_STEP), np.radians(float(largest_step)),
                                 np.radians(SMALLEST_STEP), np.radians(LEAP_STEP))
-    if start is None:
-        start = mobility_orbit(loads, crank_angle, finite=table_covers(length / (2 * radius)), cycles=20, start=None,
-                               journal_radius=radius, bearing_width=length, radial_clearance=c, viscosity=viscosity,
-                               speed=speed).position[..., 0, :]
-    start = np.broadcast_to(start, (*lead, 2))
+    # the mobility-finite orbit: where the march starts (unless told) and where a journal that crosses the
+    # clearance is first sought (a film that carries the load there, before the slower leap)
+    guide = mobility_orbit(loads, crank_angle, finite=table_covers(length / (2 * radius)), cycles=20, start=None,
+                           journal_radius=radius, bearing_width=length, radial_clearance=c, viscosity=viscosity,
+                           speed=speed).position
+    start = guide[..., 0, :] if start is None else np.broadcast_to(start, (*lead, 2))
     position = np.empty((*lead, n, 2))
     out = {k: np.empty((*lead, n)) for k in ("peak", "torque", "flow")}
     status = np.empty(lead, np.int8)
@@ -255,7 +268,8 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
         work = _kernel.workspace(g.fixed.shape[0], g.fixed.shape[1], g.j0, 2)
         record, outs = np.empty((n, 2)), np.empty((n, 3))
         status[idx], used[idx], _, _, _ = _kernel.march(
-            np.ascontiguousarray(loads[idx] / unit_force), tau, slope, np.array(start[idx] / c_b, dtype=float), g,
+            np.ascontiguousarray(loads[idx] / unit_force), tau, slope, np.array(start[idx] / c_b, dtype=float),
+            np.ascontiguousarray(guide[idx] / c_b), g,
             tol, stepping, ECCENTRICITY_LIMIT, PERIODIC, int(cycles), work, record, outs)
         position[idx] = record * c_b
         out["peak"][idx] = outs[:, 0] * unit_pressure
