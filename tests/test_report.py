@@ -665,6 +665,11 @@ def test_a_metric_the_same_for_every_scheme_is_named_with_its_unit():
     text = non_discriminating(ranking)[0]
     assert text == ("Boundary friction over 20 % of the cycle (100 % of the bearings for every scheme) does not "
                     "separate the schemes here.")
+    # a plural name alone takes a plural verb
+    ranking = pd.DataFrame({"life_below_target_pct": [0.0, 0.0],
+                            "life_below_target_pct_ci": [(0.0, 1.2), (0.0, 1.2)]}, index=["a", "b"])
+    assert non_discriminating(ranking)[0] == ("Lives below the target (none in any scheme) do not separate the "
+                                              "schemes here.")
 
 
 def test_positions_where_a_stray_bearing_reaches_the_wall_are_counted_not_described():

@@ -73,7 +73,7 @@ def _estimated_note(ranking):
 
 def non_discriminating(ranking):
     """One sentence naming the film and life metrics that do not separate the schemes here (none: no sentence)."""
-    items = []
+    items, columns = [], []
     for column in ("alpha_over_limit_pct", "life_below_target_pct", "engine_life_median_h"):
         if column not in ranking or f"{column}_ci" not in ranking:
             continue
@@ -84,11 +84,13 @@ def non_discriminating(ranking):
                     words.SAME_VALUE_PART.format(value=values.iloc[0], unit=words.METRIC_UNITS[column])
                     if np.allclose(values, values.iloc[0]) else "")
             items.append(words.NON_DISCRIMINATING_NAMES[column] + same)
+            columns.append(column)
     if not items:
         return []
     metrics = words.listed(items)
+    singular = len(columns) == 1 and columns[0] not in words.NON_DISCRIMINATING_PLURAL
     return [words.NON_DISCRIMINATING.format(metrics=metrics[0].upper() + metrics[1:],
-                                            verb="does" if len(items) == 1 else "do")]
+                                            verb="does" if singular else "do")]
 
 
 def centring(facts, ranking):

@@ -121,6 +121,8 @@ NONE_PART = " (none in any scheme)"
 NON_DISCRIMINATING_NAMES = {"alpha_over_limit_pct": "boundary friction over 20 % of the cycle",
                             "life_below_target_pct": "lives below the target",
                             "engine_life_median_h": "the median engine life"}
+#: Of those, the names that take a plural verb alone.
+NON_DISCRIMINATING_PLURAL = {"life_below_target_pct"}
 CENTRED = ("**Centring:** {scheme} has the narrowest operating clearance ({std:.2f} µm standard deviation against "
            "{chosen_std:.2f} µm) but its mean sits {shift} µm {side} the window's middle: with shells aimed {half} µm "
            "{verb} each it would put {result}; `stackup design` designs such a scheme.")
