@@ -623,12 +623,16 @@ def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named(
                               "life_change_h": [(600.0, 400.0, 800.0), (-5.0, -20.0, 10.0), (900.0, 700.0, 1100.0),
                                                 (300.0, 100.0, 500.0)],
                               "h_min_mean_change_um": [(0.3, 0.2, 0.4), (0.0, -0.1, 0.1), (0.4, 0.3, 0.5),
-                                                       (-0.1, -0.2, 0.0)]}, index=index)
+                                                       (-0.1, -0.2, 0.0)],
+                              "h_min_change_um": [(-0.5, -0.6, -0.4), (0.0, -0.1, 0.1), (0.2, 0.1, 0.3),
+                                                  (-0.1, -0.2, 0.0)]}, index=index)
     engines = pd.DataFrame({"engine_life_change_h": [(550.0, 300.0, 800.0), (280.0, 90.0, 470.0)]},
                            index=pd.Index(["a", "b"], name="scheme"))
     row = _life_change_row("support tilt compliance ×2", positions, engines, "a")
     rises = row["lives that rise"]
-    assert rises.startswith("2 of 4, with a thicker cycle-mean film (+600 to +900 h; +0.30 to +0.40 µm)")
+    # bearing 1 of a: a thicker mean, a thinner minimum (method 1's direction), said; bearing 1 of b: both thicker
+    assert rises.startswith("2 of 4 (+600 to +900 h): cycle-mean film +0.30 to +0.40 µm, cycle minimum −0.50 µm "
+                            "at 1 (method 1 reads the mean)")
     assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in rises and "bearing 1 of a" not in rises
     assert row["per position [h]"] == "−5 (bearing 2) to +600" and row["per engine [h]"] == "+550"
 
