@@ -711,8 +711,10 @@ def test_ctrl_c_while_writing_a_report_again_leaves_the_old_report(small_run):
 @pytest.mark.parametrize("after", [0.3, 0.5, 0.7, 0.9, 1.1])
 def test_ctrl_c_while_the_command_starts_exits_130_with_one_line(after):
     # python is up, numpy, scipy, pandas, xarray and numba are being imported: a Ctrl-C inside an extension's
-    # initialisation or in code it runs through PyRun_String used to end as an ImportError or by SIGINT
-    process = _start(["plan", "--scheme", "iso13778-4", "--volume", 100])
+    # initialisation or in code it runs through PyRun_String used to end as an ImportError or by SIGINT. A large
+    # sample keeps the command running well past 1.1 s: with the default one it can finish by then on an idle
+    # machine, and a Ctrl-C while the interpreter shuts down (its handler gone) ends it by SIGINT
+    process = _start(["plan", "--scheme", "iso13778-4", "--volume", 100, "--sample", 1_000_000])
     time.sleep(after)
     process.send_signal(signal.SIGINT)
     _, err = process.communicate(timeout=120)
