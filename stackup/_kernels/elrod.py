@@ -532,7 +532,7 @@ def _reduced_jacobian(work, n_t, m):
 
 
 @njit(cache=True, fastmath=FAST)
-def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work):
+def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work, damped=True):
     """The step's balance far from the centre ``xi``, where no film near it carries the load, in place.
 
     A massless journal whose load turns onto a film short of oil crosses the clearance within a step, as far as
@@ -540,8 +540,9 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
     mix the field's and the force's). Here Levenberg-Marquardt runs on the centre alone: each trial centre's
     field is solved with the centre held, the force's error f is the residual and the field's Schur complement
     S its Jacobian, the step d solves (S'S + lam diag S'S) d = S'f, and lam grows until the error falls (S is
-    near singular along a film that barely carries: Newton's own step overshoots there).
-    :func:`balance_step` polishes the result; a leap that stalls within :data:`LEAP_FORCE` of the cycle's
+    near singular along a film that barely carries: Newton's own step overshoots there). With ``damped`` False,
+    Newton's step S d = f is halved until the error falls instead (the search starting near the last step's
+    length); each finds crossings the other misses. :func:`balance_step` polishes the result; a leap that stalls within :data:`LEAP_FORCE` of the cycle's
     largest load is taken with its field solved at the centre held. Returns as :func:`balance_step`.
     """
     n_t, n_z = phi.shape
@@ -555,6 +556,7 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
     size = math.hypot(f0, f1)
     y = np.empty(2)
     lam = LEAP_DAMPING
+    alpha = 1.0 / LEAP_GROWTH
     for _ in range(LEAP_ITERATIONS):
         if size <= tol.force * scale:
             break
@@ -568,15 +570,22 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
         a11 = s01 * s01 + s11 * s11
         r0 = s00 * f0 + s10 * f1
         r1 = s01 * f0 + s11 * f1
+        # Newton's step: where the film begins to carry it overshoots by orders of magnitude iteration after
+        # iteration, so its search starts near the last accepted length
+        n0 = (f0 * s11 - f1 * s01) / det
+        n1 = (s00 * f1 - s10 * f0) / det
+        alpha = min(1.0, LEAP_GROWTH * alpha)
         accepted = False
         for _ in range(LEAP_SEARCH):
-            m00 = a00 * (1.0 + lam)
-            m11 = a11 * (1.0 + lam)
-            dm = m00 * m11 - a01 * a01
-            d0 = (r0 * m11 - r1 * a01) / dm
-            d1 = (m00 * r1 - a01 * r0) / dm
-            y[0] = xi[0] + d0
-            y[1] = xi[1] + d1
+            if damped:
+                m00 = a00 * (1.0 + lam)
+                m11 = a11 * (1.0 + lam)
+                dm = m00 * m11 - a01 * a01
+                y[0] = xi[0] + (r0 * m11 - r1 * a01) / dm
+                y[1] = xi[1] + (m00 * r1 - a01 * r0) / dm
+            else:
+                y[0] = xi[0] + alpha * n0
+                y[1] = xi[1] + alpha * n1
             e = math.hypot(y[0], y[1])
             if e > limit:
                 y[0] *= limit / e
@@ -586,11 +595,12 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work)
                 force = film_force(work.pressure, grid)
                 g0 = force[0] - target[0]
                 g1 = force[1] - target[1]
-                if math.hypot(g0, g1) < size:
+                if math.hypot(g0, g1) < (1.0 if damped else 1.0 - 1e-4 * alpha) * size:
                     accepted = True
                     lam = max(lam / LEAP_GROWTH, 1e-12)
                     break
             lam = max(lam, 1e-6) * LEAP_GROWTH
+            alpha *= 0.5
         if not accepted:
             break
         phi[:, :] = trial
@@ -773,12 +783,16 @@ def march(w, tau, slope, xi0, guide, grid, tol, stepping, limit, periodic, max_c
                 done = -1
                 if balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work,
                                 False) >= 0:
-                    done = balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
-                if done == -1:
+                    # a balance found from there, not a centre pushed onto the wall (the leap decides that)
+                    done = max(balance_step(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit,
+                                            work), -1)
+                for damped in (True, False):
+                    if done != -1:
+                        break
                     phi[:, :] = phi_saved
                     trial[0] = xi[0]
                     trial[1] = xi[1]
-                    done = leap(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work)
+                    done = leap(phi, trial, tilt, history, c_time, target, scale, grid, tol, limit, work, damped)
                 jumped = done != -1
                 leaps += 1
             film_left = max(1.0 - max(widest, math.hypot(trial[0], trial[1])), 1.0 - limit)

@@ -55,8 +55,9 @@ reference does.
 Where the load turns onto a film short of oil, the massless journal crosses the
 clearance within a step and no balance lies near the prediction. The journal is
 then sought where the ``mobility-finite`` orbit (first cycle) or the last cycle's
-orbit is at that time, and failing that by a leap: Levenberg-Marquardt on the
-centre alone, each trial centre's field solved with the centre held. Along a film
+orbit is at that time (a balance there, not the wall), and failing that by a
+leap: Levenberg-Marquardt on the centre alone, each trial centre's field solved
+with the centre held, then Newton's step on it if that fails. Along a film
 that barely carries, that search stalls with the force balanced to about 1e-3 of
 the cycle's largest load; a leap within
 :data:`stackup._kernels.elrod.LEAP_FORCE` of it that stalls is taken as it is (the
