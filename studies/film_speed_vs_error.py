@@ -191,7 +191,7 @@ def cheap_tiers(cases):
 
 
 def tilt_cost(cases):
-    """One core's time per bearing-cycle of mobility-finite without and with the tilt equilibrium [s]."""
+    """One core's time per bearing-cycle of mobility-finite without and with the tilt marched over the cycle [s]."""
     numba.set_num_threads(1)
     seconds = {"mobility-finite": [], "with tilt": []}
     for name, case in cases.items():
@@ -596,7 +596,7 @@ def main(argv=None):
     lines += [
         "",
         f"Cost: `mobility-finite` {1e3 * tilt_seconds['mobility-finite']:.2f} ms per bearing-cycle on one core, "
-        f"{1e3 * tilt_seconds['with tilt']:.2f} ms with the tilt equilibrium (+"
+        f"{1e3 * tilt_seconds['with tilt']:.2f} ms with the tilt marched over the cycle (+"
         f"{1e3 * (tilt_seconds['with tilt'] - tilt_seconds['mobility-finite']):.2f} ms; the whole chain against "
         "the crankshaft cycle: reports/bench_chain.md).",
     ]
