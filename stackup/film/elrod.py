@@ -60,8 +60,8 @@ leap: Levenberg-Marquardt on the centre alone, each trial centre's field solved
 with the centre held, then Newton's step on it if that fails. Along a film
 that barely carries, that search stalls with the force balanced to about 1e-3 of
 the cycle's largest load; a leap within
-:data:`stackup._kernels.elrod.LEAP_FORCE` of it that stalls is taken as it is (the
-load there is a small part of the cycle's, and the film thick).
+:data:`stackup._kernels.elrod.LEAP_FORCE` of it that stalls is taken as it is (a
+film that barely carries meets a load that is a small part of the cycle's).
 
 Outputs per angle as the reference: mid-plane minimum film :math:`c(1 - |\xi|)`,
 the peak of the pressure field, friction torque
