@@ -352,8 +352,9 @@ SMALLEST_SCALE = 1e-3
 #: row (a tenth of the step or less).
 LINE_SEARCH = 8
 STALLED = 3
-#: A leap (:func:`leap`): most Levenberg-Marquardt steps on the centre, most trials of each (the damping raised
-#: by LEAP_GROWTH after a trial that does not lower the force error, lowered by it after one that does), and the
+#: A leap (:func:`leap`): most steps on the centre, most trials of each (Levenberg-Marquardt: the damping raised
+#: by LEAP_GROWTH after a trial that does not lower the force error, lowered by it after one that does; Newton:
+#: the step halved, each search starting at LEAP_GROWTH times the last accepted length), and Levenberg-Marquardt's
 #: damping at the start, relative to the diagonal of S'S.
 LEAP_ITERATIONS = 40
 LEAP_SEARCH = 12
