@@ -543,8 +543,9 @@ def leap(phi, xi, slope, history, c_time, target, scale, grid, tol, limit, work,
     S its Jacobian, the step d solves (S'S + lam diag S'S) d = S'f, and lam grows until the error falls (S is
     near singular along a film that barely carries: Newton's own step overshoots there). With ``damped`` False,
     Newton's step S d = f is halved until the error falls instead (the search starting near the last step's
-    length); each finds crossings the other misses. :func:`balance_step` polishes the result; a leap that stalls within :data:`LEAP_FORCE` of the cycle's
-    largest load is taken with its field solved at the centre held. Returns as :func:`balance_step`.
+    length); each finds crossings the other misses. :func:`balance_step` polishes the result; a leap that
+    stalls within :data:`LEAP_FORCE` of the cycle's largest load is taken with its field solved at the centre
+    held. Returns as :func:`balance_step`.
     """
     n_t, n_z = phi.shape
     m = n_z - 1 - grid.j0
@@ -684,13 +685,14 @@ def march(w, tau, slope, xi0, guide, grid, tol, stepping, limit, periodic, max_c
     """Periodic orbit of one bearing under the loads ``w`` (n, 2) given at the times ``tau`` (n + 1,), in place.
 
     Adaptive BDF2 on the content (variable step, backward Euler at the first step): each step by
-    :func:`balance_step` from the previous field and a centre extrapolated from the last two; the step grows or
+    :func:`balance_step` from a field and a centre extrapolated from the last two; the step grows or
     shrinks so that the balanced centre differs from its prediction by about ``stepping.tolerance`` of the film
     left (a step past three times that, or one whose Newton fails, is redone at half the size); a step whose
     Newton fails at ``stepping.leap`` or shorter seeks the journal on ``guide`` (n, 2) (from the second cycle on,
     the last cycle's orbit), then leaps (:func:`leap`). Loads and film slope (``slope`` (n, 2)) are linear
     between the times given; every cycle ends on a step. ``record`` (n, 2) the centre and ``outs`` (n, 3) the
-    outputs of :func:`outputs` at each time given, of the last cycle (linear between steps). Returns (status, cycles, steps, Newton iterations and leaps in all).
+    outputs of :func:`outputs` at each time given, of the last cycle (linear between steps). Returns (status,
+    cycles, steps, Newton iterations and leaps in all).
     """
     n = w.shape[0]
     period = tau[n]

@@ -25,6 +25,12 @@ def signed(value, digits=0):
     return f"{value:+,.{digits}f}".replace("-", "−")
 
 
+def signed_span(values, digits=2):
+    """Signed values as one ('+0.41') or their range ('−0.52 to −0.31') where they differ at ``digits``."""
+    lo, hi = (signed(v, digits) for v in (min(values), max(values)))
+    return lo if lo == hi else f"{lo} to {hi}"
+
+
 def interval(value, ci, digits=1):
     """'value [lower, upper]' to ``digits`` decimals; '—' where the value is not a number."""
     if not np.isfinite(value):

@@ -172,14 +172,9 @@ def _trends_text(trends):
         return []
     every = len(trends.opposed) == len(trends.film)
     where = words.EVERY_POSITION if every else words.AT_POSITIONS.format(bearings=words.listed(trends.opposed))
-    return [words.OPPOSED_TRENDS.format(where=where, film=_span(trends.film[trends.opposed]),
-                                        life=_span(trends.life[trends.opposed]), pairs=fmt.count(trends.pairs)), ""]
-
-
-def _span(values):
-    """Correlations as '+0.41' or '−0.52 to −0.31'."""
-    lo, hi = (fmt.signed(v, 2) for v in (min(values), max(values)))
-    return lo if lo == hi else f"{lo} to {hi}"
+    return [words.OPPOSED_TRENDS.format(where=where, film=fmt.signed_span(trends.film[trends.opposed]),
+                                        life=fmt.signed_span(trends.life[trends.opposed]),
+                                        pairs=fmt.count(trends.pairs)), ""]
 
 
 def _tolerance_text(facts, order):

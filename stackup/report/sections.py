@@ -180,9 +180,8 @@ def _life_change_row(label, positions, engines, chosen):
         life, film = ([row[name][0] for row in thicker] for name in ("life_change_h", "h_min_mean_change_um"))
         # the film contact and wear depend on may thin meanwhile: say so, it is method 1's reading, not the bearing's
         thinner = [row.h_min_change_um[0] for row in thicker if row.h_min_change_um[2] < 0]
-        lo, hi = fmt.signed(min(thinner or [0.0]), 2), fmt.signed(max(thinner or [0.0]), 2)
         minimum = words.LIVES_RISE_THINNER_MINIMUM.format(
-            span=lo if lo == hi else f"{lo} to {hi}",
+            span=fmt.signed_span(thinner),
             where="" if len(thinner) == len(thicker) else words.LIVES_RISE_THINNER_AT.format(count=len(thinner))
         ) if thinner else ""
         parts.append(words.LIVES_RISE_WITH_FILM.format(
