@@ -45,7 +45,7 @@ __all__ = ["Comparison", "Study", "compare", "design", "plan", "rank", "__versio
 
 #: The package face, imported on first use (PEP 562): ``import stackup`` and the command line start at once, so a
 #: Ctrl-C in the first seconds reaches the command's handler rather than the middle of importing numba and xarray.
-_FACE = {"Comparison": ".comparison", "compare": ".comparison", "Study": ".study", "design": None, "plan": None,
+_FACE = {"Comparison": "._comparison", "compare": "._comparison", "Study": ".study", "design": None, "plan": None,
          "rank": None}
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .comparison import Comparison
+from ._comparison import Comparison
 from .study.schema import STORED_RESOLUTION, STORED_RESOLUTION_OF
 from .study.store import open_study, to_stored
 

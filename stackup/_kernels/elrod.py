@@ -1,7 +1,7 @@
 r"""The ``elrod-coarse`` cycle tier's kernels: Elrod's universal variable on a coarse grid, Newton per step (numba).
 
 The readable statement (equations, units, sources) is in :mod:`stackup.film.elrod`;
-``tests/test_elrod.py`` holds the numpy twins these kernels must match. Everything
+``tests/film/test_elrod.py`` holds the numpy twins these kernels must match. Everything
 is dimensionless as in :mod:`stackup.film.transient`: :math:`\bar h = h/c`,
 :math:`\bar z = z/R`, :math:`\tau = \omega t`, :math:`\bar p = p c^2/(\mu\omega R^2)`.
 

@@ -1,6 +1,6 @@
 """Contact zones of Levanov's wear chart (method 2): which points of the bearing surface the film leaves in contact.
 
-The readable statement is :func:`stackup.life.levanov_method2`; ``tests/test_life_kernels.py``
+The readable statement is :func:`stackup.life.levanov_method2`; ``tests/life/test_life_kernels.py``
 holds the numpy twin this kernel must match. One pass over the journal positions finds the
 crank angles whose minimum film :math:`c - |\\mathbf x|` is below the critical film, a second
 lists, at those angles only, the chart points whose film

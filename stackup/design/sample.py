@@ -9,7 +9,7 @@ engine, so a scenario moves the same parts.
 The operating clearance of a bearing is linear in the wall sum of its two
 shells to within nanometres over the design window (press fit and swell
 change by a fraction of a per cent of the wall change; measured in
-``tests/test_design.py``), so each bearing is described by two numbers from
+``tests/design/test_design.py``), so each bearing is described by two numbers from
 the operating clearance a study computes
 (:func:`stackup.study.clearance.operating_clearance`):
 

@@ -5,7 +5,7 @@ The readings are drawn with the library's own sampler (a
 its shared share: what an engine file's entry means), so a fit that recovers
 the truth recovers what the engine file would say. The fitting tests are made
 with :func:`stackup.fit.press_fit` at a known housing outer diameter plus gauge
-noise. Used by the tests (``tests/test_measure_coverage.py``) and by
+noise. Used by the tests (``tests/measure/test_measure_coverage.py``) and by
 ``studies/measured_data.py``, which writes the measured coverage to
 ``reports/measured_data.md``.
 """

@@ -364,7 +364,7 @@ def test_an_engines_end_bearing_whose_journal_crosses_the_clearance_stays_off_th
     groove): the journal crosses the clearance where the load turns onto the grooved shell. A search from the
     mobility orbit once settled it on the wall there (0.13 µm, then failed); the orbit is periodic, off the wall,
     and within 1 % of the same tier at a step tolerance five times tighter."""
-    case = np.load(Path(__file__).parent / "data" / "inline6_bearing7_loads.npz")
+    case = np.load(Path(__file__).parents[1] / "data" / "inline6_bearing7_loads.npz")
     geometry = {k: float(case[k]) for k in ("journal_d", "bearing_width", "clearance", "speed", "viscosity")}
     feed = OilFeed(str(case["feed_kind"]), float(case["feed_supply_pressure"]),
                    groove_arc=tuple(case["feed_groove_arc"]), groove_width=float(case["feed_groove_width"]))

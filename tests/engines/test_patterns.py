@@ -14,8 +14,8 @@ from stackup.patterns import ISO_SCHEMES, adapt, clearance_offset, target_cleara
 from stackup.schemes import from_dict, load
 
 #: An engine file of another size and bearing count, written as a user would (tests/data).
-INLINE_SIX = Path(__file__).parent / "data" / "inline6.toml"
-README = Path(__file__).parents[1] / "README.md"
+INLINE_SIX = Path(__file__).parents[1] / "data" / "inline6.toml"
+README = Path(__file__).parents[2] / "README.md"
 
 
 def readme_engine(tmp_path):

@@ -1,6 +1,6 @@
 """The built-in FPT NEF 6.7 L inline six (``nef-6``): its published numbers, its assumptions' arithmetic, and
 its bearings as a bearing engineer reads them (the ISO schemes laid on its drawing grade its bearings:
-tests/test_patterns.py).
+tests/engines/test_patterns.py).
 
 Literature values (not regenerated from this package):
 [1] Case 445/M2-668T/M2 service manual 6-74500 (2003), sec. 4 p. 6: journals 82.99-83.01 mm, main half

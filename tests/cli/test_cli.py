@@ -345,7 +345,7 @@ def test_the_same_run_again_replaces_it_and_ctrl_c_while_saving_leaves_it_as_it_
 def test_engines_and_schemes_list_the_built_in_ones_and_what_the_user_path_adds(tmp_path, engine_file):
     mine = tmp_path / "mine"
     mine.mkdir()
-    (mine / "house-4.toml").write_text(Path(__file__).parents[1].joinpath("schemes", "iso13778-4.toml").read_text()
+    (mine / "house-4.toml").write_text(Path(__file__).parents[2].joinpath("schemes", "iso13778-4.toml").read_text()
                                        .replace('name = "iso13778-4"', 'name = "house-4"'))
     (mine / "broken.toml").write_text("not toml")
     (mine / "test-engine.toml").write_text(engine_file().read_text())
@@ -494,7 +494,7 @@ def test_damaged_store_metadata_is_named_and_not_repaired_chunk_by_chunk(engine_
 def test_the_quick_start_writes_where_git_tracks_nothing():
     from stackup.cli import COMPARE_OUT, QUICK_OUT
 
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     if not (root / ".git").exists():
         pytest.skip("not a git checkout")
     tracked = subprocess.run(["git", "ls-files", COMPARE_OUT, QUICK_OUT], cwd=root, capture_output=True, text=True)
@@ -506,8 +506,8 @@ def test_the_quick_start_writes_where_git_tracks_nothing():
 
 # --- what a new user tripped on (issue 36): each case typed as a user types it -------------------------------
 
-INLINE6 = Path(__file__).parent / "data" / "inline6.toml"
-ISO4 = Path(__file__).parents[1] / "schemes" / "iso13778-4.toml"
+INLINE6 = Path(__file__).parents[1] / "data" / "inline6.toml"
+ISO4 = Path(__file__).parents[2] / "schemes" / "iso13778-4.toml"
 
 
 def _one_line_refusal(result, *parts):
