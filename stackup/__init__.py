@@ -5,9 +5,11 @@ The package is built in layers; each imports only the layers below it
 ``pyproject.toml``):
 
 application
-    :mod:`~stackup.comparison` (the main job, :func:`compare`),
-    :mod:`~stackup.io`, :mod:`~stackup.report`, :mod:`~stackup.cli`
-    (with :mod:`~stackup.design_cli` and :mod:`~stackup.output`).
+    :mod:`~stackup.cli` over its subcommands (:mod:`~stackup.commands`, a
+    module each), :mod:`~stackup.comparison` (the main job into a folder,
+    :func:`stackup.comparison.run`), :mod:`~stackup.report`,
+    :mod:`~stackup.io` and :mod:`~stackup.output`, and the comparison in
+    memory (:func:`compare`, ``stackup._comparison``).
 analysis
     :mod:`~stackup.facts` (the numbers of a comparison, which the ranking and
     the report share), :mod:`~stackup.rank`, :mod:`~stackup.plan`,

@@ -32,6 +32,8 @@ from . import _validate as check
 from ._comparison import (COMPARISON_NOTE, SCENARIO_MECHANICS_ENGINES, SOBOL_CRANK_ANGLE_STEP, TAIL_ENGINES,  # noqa: F401
                           TAIL_ROOTS, TAIL_SAMPLES, UNGRADED_LIMIT, Comparison, checked_runs, compare, compare_checked,
                           design_record, sensitivity_dataset, tails_dataset)
+from ._main_job import (COMPARE_ENGINES, COMPARE_MIN_ENGINES, COMPARE_OUT, FILM_CHECK_ENGINES,  # noqa: F401
+                        QUICK_ENGINES, QUICK_OUT)
 from .engines import load_engine
 from .facts import NEGLIGIBLE_PPM, PLAN_VOLUME
 from .io import open_comparison, save_comparison
@@ -41,13 +43,6 @@ from .scenarios import DECLARED
 from .study import ISO_SCHEMES
 from .study.schema import PER_ENGINE
 
-#: Engines of the main job, of its quick variant, and the fewest it runs: the report's 95 % intervals, the plan's
-#: safety stock and the sensitivity regression need about a hundred engines.
-COMPARE_ENGINES, QUICK_ENGINES, COMPARE_MIN_ENGINES = 100_000, 10_000, 100
-#: Engines per scheme whose films the main job checks with the mass-conserving tier (control variates).
-FILM_CHECK_ENGINES = 5
-#: Output folders of the main job and of its quick variant (relative to the working folder).
-COMPARE_OUT, QUICK_OUT = "reports/compare", "reports/compare-quick"
 #: Copies of a comparison's per-engine data in memory at once: the study, then the saved dataset the report reads.
 COPIES_IN_MEMORY = 2
 #: ``design`` of :func:`run` that designs a scheme with the designer's defaults.

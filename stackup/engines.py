@@ -261,13 +261,14 @@ class Engine:
         return self.press_fit.limits
 
 
-def _builtin_dir():
+def builtin_folder():
+    """The folder of the built-in engine files."""
     return Path(str(resources.files("stackup") / "data" / "engines"))
 
 
 def engine_locations():
     """Where :func:`load_engine` finds each engine by name: {name: path}, the user's folders first."""
-    return locations("STACKUP_ENGINE_PATH", _builtin_dir())
+    return locations("STACKUP_ENGINE_PATH", builtin_folder())
 
 
 def available_engines():

@@ -465,7 +465,8 @@ def _pairing(top, housing, journal, shells):
     return cells, alternatives
 
 
-def _builtin_dir():
+def builtin_folder():
+    """The folder of the built-in scheme files (inside the package when installed)."""
     packaged = resources.files("stackup") / "_scheme_files"
     if packaged.is_dir():
         return Path(str(packaged))
@@ -475,7 +476,7 @@ def _builtin_dir():
 
 def files():
     """Where :func:`load` finds each scheme by name: {name: path}, the user's folders first."""
-    return locations("STACKUP_SCHEME_PATH", _builtin_dir())
+    return locations("STACKUP_SCHEME_PATH", builtin_folder())
 
 
 def available():

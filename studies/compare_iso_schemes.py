@@ -2,27 +2,24 @@
 
     python studies/compare_iso_schemes.py [--engine iso-example] [--n 100000] [--seed 0] [--out DIR]
 
-The same as ``stackup compare`` (it runs that command): the designer, the
-study, its declared scenarios, the tails and the Sobol indices; the
-comparison is saved in one compact netCDF file and the report is written
-from that file. Its default output is the reference report kept in git
-(the dataset itself is not tracked): ``reports/reference/compare`` for the
-example engine, ``reports/reference/compare-ENGINE`` for another
+The same folder as ``stackup compare`` writes (both call :func:`stackup.comparison.run`): the designer, the study,
+its declared scenarios, the tails and the Sobol indices; the comparison is saved in one netCDF file and the report
+is written from that file. Its default output is the reference report kept in git (the dataset itself is not
+tracked): ``reports/reference/compare`` for the example engine, ``reports/reference/compare-ENGINE`` for another
 (``--engine nef-6``: the heavy-duty inline six).
 """
 
 import argparse
-import sys
 
-from stackup.cli import main
+import stackup.comparison
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--engine", default="iso-example")
-    parser.add_argument("--n", type=int, default=100_000)
+    parser.add_argument("--n", type=int, default=stackup.comparison.COMPARE_ENGINES)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--out")
     args = parser.parse_args()
     out = args.out or "reports/reference/compare" + ("" if args.engine == "iso-example" else f"-{args.engine}")
-    sys.exit(main(["compare", "--engine", args.engine, "--n", str(args.n), "--seed", str(args.seed), "--out", out,
-                   "--force"]))
+    written = stackup.comparison.run(out, engine=args.engine, n_engines=args.n, seed=args.seed, force=True, log=print)
+    print(f"{written.report} in {written.seconds:.0f} s\nverdict: {written.verdict}")

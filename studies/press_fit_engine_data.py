@@ -40,13 +40,13 @@ ISO = tuple(f"iso13778-{k}" for k in range(1, 7))
 UM, MPA = 1e6, 1e-6
 
 
-def _builtin_dir():
+def builtin_folder():
     return Path(str(resources.files("stackup") / "data" / "engines"))
 
 
 def variant(folder, engine, name, changes):
     """A copy of a built-in engine file with text replaced (each old text must be there once)."""
-    text = (_builtin_dir() / f"{engine}.toml").read_text()
+    text = (builtin_folder() / f"{engine}.toml").read_text()
     for old, new in changes:
         if text.count(old) != 1:
             raise ValueError(f"{engine}.toml: {old!r} found {text.count(old)} times")
@@ -147,7 +147,7 @@ def main(argv=None):
                       "Window: " + " ".join(engine.clearance_window_source.split()), ""]
 
         # the example engine as it was: Kopeliovich's aluminium-housing crush on the iron housing
-        text = (_builtin_dir() / "iso-example.toml").read_text()
+        text = (builtin_folder() / "iso-example.toml").read_text()
         before = variant(folder, "iso-example", "iso-example-before", [
             ("limits = [0.065, 0.090]", "limits = [0.100, 0.137]"),
             ("lining_thickness = 0.30           # [mm]\n", ""),

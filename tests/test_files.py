@@ -82,7 +82,7 @@ def test_oils_file_is_read_strictly(tmp_path):
 def test_a_scheme_needs_no_stated_clearance_and_refuses_wrong_types(tmp_path):
     from stackup import schemes
 
-    text = (schemes._builtin_dir() / "iso13778-4.toml").read_text()
+    text = (schemes.builtin_folder() / "iso13778-4.toml").read_text()
     (tmp_path / "s.toml").write_text(text.replace("stated_clearance = [0.026, 0.044]\n", ""))
     assert schemes.load(tmp_path / "s.toml").stated_clearance is None
     cases = {("A = [50.000, 50.006]", 'A = ["50.000", 50.006]'): r"key housing.grades.A: '50.000' is text, not a number",
@@ -100,7 +100,7 @@ def test_a_scheme_needs_no_stated_clearance_and_refuses_wrong_types(tmp_path):
     (tmp_path / "d").mkdir()
     with pytest.raises(ValueError, match=r"scheme file '.*d': is a folder, not a file"):
         schemes.load(tmp_path / "d")
-    text6 = (schemes._builtin_dir() / "iso13778-6.toml").read_text()
+    text6 = (schemes.builtin_folder() / "iso13778-6.toml").read_text()
     (tmp_path / "s.toml").write_text(text6.replace("step = 0.001", 'step = "0.001"', 1))
     with pytest.raises(ValueError, match=r"key housing.classes.step: '0.001' is text, not a number"):
         schemes.load(tmp_path / "s.toml")

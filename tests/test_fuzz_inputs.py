@@ -25,8 +25,8 @@ from hypothesis import strategies as st
 
 from stackup import engines, schemes
 
-ENGINE_FILES = sorted(Path(engines._builtin_dir()).glob("*.toml"))
-SCHEME_FILES = sorted(Path(schemes._builtin_dir()).glob("*.toml"))
+ENGINE_FILES = sorted(Path(engines.builtin_folder()).glob("*.toml"))
+SCHEME_FILES = sorted(Path(schemes.builtin_folder()).glob("*.toml"))
 
 
 # --- writing a table back as TOML --------------------------------------------------------------------------

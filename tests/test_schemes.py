@@ -208,7 +208,7 @@ def test_a_seventh_scheme_as_a_file_needs_no_code(write_toml, monkeypatch):
     ],
 )
 def test_loader_errors_name_file_key_and_value(write_toml, change, message):
-    text = (schemes._builtin_dir() / "iso13778-4.toml").read_text()
+    text = (schemes.builtin_folder() / "iso13778-4.toml").read_text()
     old, new = change
     assert old in text
     path = write_toml("bad.toml", text.replace(old, new, 1))
@@ -217,7 +217,7 @@ def test_loader_errors_name_file_key_and_value(write_toml, change, message):
 
 
 def test_matrix_with_a_short_row_is_rejected(write_toml):
-    text = (schemes._builtin_dir() / "iso13778-6.toml").read_text()
+    text = (schemes.builtin_folder() / "iso13778-6.toml").read_text()
     path = write_toml("bad6.toml", text.replace('"dddccccccbbbbbbaaaa"', '"dddccccccbbbbbbaaa"', 1))
     with pytest.raises(ValueError, match=r"key pairing.matrix\[0\]: 18 letters for 19 housing classes"):
         schemes.load(path)

@@ -15,7 +15,8 @@ import pandas as pd
 import pytest
 import xarray as xr
 
-from stackup.cli import COMPARE_MIN_ENGINES, main, parser
+from stackup.cli import main, parser
+from stackup.comparison import COMPARE_MIN_ENGINES
 from stackup.io import open_dataset
 from stackup.plan import plan
 from stackup.study import Study, open_study
@@ -276,12 +277,12 @@ def test_a_run_with_another_tilt_method_is_another_run(tmp_path):
 
 
 def test_the_terminal_verdict_is_the_reports_first_verdict_line(tmp_path):
-    from stackup.cli import _verdict_line
+    from stackup.comparison import verdict_line
 
     report = tmp_path / "report.md"
     report.write_text("# title\n\n<!-- verdict -->\n**Use B** for e: 1 ppm of `x`.\n\n**What it costs:** 2.\n"
                       "<!-- /verdict -->\n", encoding="utf-8")
-    assert _verdict_line(report) == "Use B for e: 1 ppm of x."
+    assert verdict_line(report) == "Use B for e: 1 ppm of x."
 
 @pytest.fixture(scope="module")
 def small_run(tmp_path_factory):
@@ -492,7 +493,7 @@ def test_damaged_store_metadata_is_named_and_not_repaired_chunk_by_chunk(engine_
 
 
 def test_the_quick_start_writes_where_git_tracks_nothing():
-    from stackup.cli import COMPARE_OUT, QUICK_OUT
+    from stackup.comparison import COMPARE_OUT, QUICK_OUT
 
     root = Path(__file__).resolve().parents[2]
     if not (root / ".git").exists():

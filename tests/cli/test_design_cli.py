@@ -32,12 +32,16 @@ def test_a_bad_option_is_refused_in_one_line_in_the_command_words(options, says,
 
 
 def test_a_library_refusal_reaches_the_user_under_the_option_that_set_it():
-    from stackup.design_cli import in_options
+    from stackup.commands._options import in_options
+    from stackup.commands.design import OPTIONS
 
-    said = in_options(ValueError("shell_grades: 30 is not valid; at most 26 grades"))
-    assert str(said) == "--grades: 30 is not valid; at most 26 grades"
-    assert str(in_options(ValueError("n_engines: 5 is below 100"))) == "--n: 5 is below 100"
-    assert str(in_options(ValueError("engine file 'x.toml': no such file"))) == "engine file 'x.toml': no such file"
+    said = in_options(ValueError("shell_grades: 30 is not valid; at most 26 grades"), OPTIONS)
+    assert said == "--grades: 30 is not valid; at most 26 grades"
+    assert in_options(ValueError("n_engines: 5 is below 100"), OPTIONS) == "--n: 5 is below 100"
+    assert in_options(ValueError("engine file 'x.toml': no such file"), OPTIONS) == "engine file 'x.toml': no such file"
+    # a parameter named inside the message, and the force flag, in the command's words too
+    assert (in_options(ValueError("n_engines: 10 engines need 2 GB; give n_engines at most 5, or pass force=True"),
+                       OPTIONS) == "--n: 10 engines need 2 GB; give --n at most 5, or pass --force")
 
 
 def test_design_prints_the_share_outside_on_the_design_and_on_the_check_sample(tmp_path):

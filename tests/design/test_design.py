@@ -221,14 +221,14 @@ def test_bad_options_are_refused_with_the_field_named(options, message):
 def test_design_subcommand_writes_the_scheme_with_the_window_in_micrometres(tmp_path, capsys):
     import argparse
 
-    from stackup.design_cli import add_parser
+    from stackup.commands.design import add_parser
 
     parser = argparse.ArgumentParser(prog="stackup")
     add_parser(parser.add_subparsers(dest="command", required=True))
     out = tmp_path / "my-scheme.toml"
     args = parser.parse_args(["design", "--grades", "3", "--window", "47", "63", "--n", "600", "--generations", "0",
                               "--no-scenarios", "--name", "mine", "--out", str(out)])
-    assert args.func(args) == 0
+    assert args.func(args, None) == 0
     scheme = schemes.load(out)
     assert scheme.name == "mine" and len(scheme.shell.labels) == 3
     assert "47-63 um" in scheme.source

@@ -70,7 +70,7 @@ def test_window_from_relative_clearance_of_the_journal():
 
 
 def _engine_file(tmp_path, change):
-    text = (load_engine.__globals__["_builtin_dir"]() / "iso-example.toml").read_text()
+    text = (load_engine.__globals__["builtin_folder"]() / "iso-example.toml").read_text()
     for old, new in change.items():
         assert old in text
         text = text.replace(old, new)
@@ -98,7 +98,7 @@ def test_bad_press_fit_and_target_data_is_named(tmp_path, change, message):
 
 def test_file_without_limits_gets_kopeliovichs_with_their_source(tmp_path):
     start = "[press_fit.limits]"
-    text = (load_engine.__globals__["_builtin_dir"]() / "iso-example.toml").read_text()
+    text = (load_engine.__globals__["builtin_folder"]() / "iso-example.toml").read_text()
     block = text[text.index(start):text.index("[crank]")]
     e = load_engine(_engine_file(tmp_path, {block: ""}))
     assert e.press_fit_limits == KOPELIOVICH_LIMITS
@@ -174,7 +174,7 @@ def test_without_supports_the_bore_ring_turns_by_the_bearing_laws_stiffness(tmp_
     from stackup.crank.housing import ring_tilt_compliance
 
     start = "[supports]\n"
-    text = (load_engine.__globals__["_builtin_dir"]() / "iso-example.toml").read_text()
+    text = (load_engine.__globals__["builtin_folder"]() / "iso-example.toml").read_text()
     table = text[text.index(start):text.index("[bearing_law]")]
     path = _engine_file(tmp_path, {table: "", "theta0 = 97.0": "k_lv = 0.5e9\nk_hv = 2.0e9\ntheta0 = 97.0"})
     supports = load_engine(path).crank.supports

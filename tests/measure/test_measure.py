@@ -12,7 +12,7 @@ import pytest
 from scipy import stats
 
 import stackup
-from stackup import cli, measure_cli
+from stackup import cli
 from stackup.engines import engine_path, load_engine
 from stackup.measure import calibrate_housing, fit_csv, fit_process, write_engine
 from stackup.measure.coverage import BORE_LIMITS, synthetic_fitting_tests
@@ -225,7 +225,7 @@ def test_limits_in_the_wrong_order_are_refused(tmp_path):
                                          r"limit first"):
         fit_process(_normal_sample(), limits=(50.018, 50.000))
     path = _csv(tmp_path, "b.csv", ["bore"] + [f"{v:.4f}" for v in _normal_sample() / MM])
-    code = measure_cli.main(["measure", "fit", str(path), "--column", "bore", "--limits", "50.018", "50.000"])
+    code = cli.main(["measure", "fit", str(path), "--column", "bore", "--limits", "50.018", "50.000"])
     assert code == 2
 
 
@@ -357,7 +357,7 @@ def test_measure_fit_command_prints_the_entry_and_draws(tmp_path, capsys):
     lines += [f"B{i // 5},{i % 5 + 1},{50.009 + 0.002 * z:.4f}" for i, z in enumerate(rng.standard_normal(100))]
     path = _csv(tmp_path, "b.csv", lines)
     figure = tmp_path / "b.png"
-    code = measure_cli.main(["measure", "fit", str(path), "--column", "bore", "--limits", "50.000", "50.018",
+    code = cli.main(["measure", "fit", str(path), "--column", "bore", "--limits", "50.000", "50.018",
                              "--gauge-repeatability", "0.0005", "--group", "block", "--resamples", "200",
                              "--figure", str(figure)])
     out = capsys.readouterr().out
@@ -382,8 +382,8 @@ def test_measure_swell_command_writes_a_copy(tmp_path, capsys):
     path = _csv(tmp_path, "t.csv", [",".join(table)] + [",".join(f"{table[c][i]:.9g}" for c in table)
                                                          for i in range(8)])
     out = tmp_path / "eng.toml"
-    assert measure_cli.main(["measure", "swell", str(path), "--engine", "iso-example", "--out", str(out)]) == 0
+    assert cli.main(["measure", "swell", str(path), "--engine", "iso-example", "--out", str(out)]) == 0
     assert "housing_outer = " in capsys.readouterr().out
     assert load_engine(out).name == "eng"
-    assert measure_cli.main(["measure", "swell", str(path), "--out", str(out)]) == 2
+    assert cli.main(["measure", "swell", str(path), "--out", str(out)]) == 2
     assert "--out: " in capsys.readouterr().err

@@ -292,7 +292,7 @@ def test_a_stage_failing_on_many_engines_stops_the_run_naming_stage_share_and_ca
     from stackup.study.failures import FailureCount, StageFailure
 
     # a scheme whose journal grades start 6 um above the drawing's lower limit: about 8 % cannot be graded
-    text = (schemes._builtin_dir() / "iso13778-4.toml").read_text().replace(
+    text = (schemes.builtin_folder() / "iso13778-4.toml").read_text().replace(
         "A = [46.000, 46.006], B = [46.006, 46.012], C = [46.012, 46.018]",
         "A = [46.006, 46.012], B = [46.012, 46.018], C = [46.018, 46.024]")
     wrong = write_toml("shifted.toml", text.replace('name = "iso13778-4"', 'name = "shifted"'))

@@ -1,29 +1,19 @@
-"""The ``stackup design`` subcommand: a scheme designed for an engine, written as a scheme file.
-
-Kept apart from :mod:`stackup.cli` so the command line stays thin: this
-module parses the arguments and calls :func:`stackup.design.design`, as a
-study script would. ``stackup.cli`` wires it in with::
-
-    from .design_cli import add_parser as add_design_parser
-    add_design_parser(sub)
-"""
+"""``stackup design``: a scheme designed for an engine (:func:`stackup.design.design`), written as a scheme file."""
 
 from __future__ import annotations
 
 import sys
 import time
 
-#: Smallest diametral clearance a main bearing runs with, as a share of its journal diameter [-]: 0.1 per mille
-#: (4.6 um on the 46 mm example journal), a tenth of the usual 0.75-1.25 per mille (MAHLE Clevite, in the
-#: example engine's [targets]); a --window below it is no clearance window (most likely one in mm).
-MIN_CLEARANCE_RATIO = 1e-4
+from ._options import Formatter, refused_in, window_option
+
 #: Fewest engines of a design sample (stackup.design.design's n_engines).
 MIN_ENGINES = 100
 
 
 def add_parser(subparsers):
     """Add ``design`` to the ``stackup`` subcommands (an ``argparse`` subparsers object)."""
-    p = subparsers.add_parser("design", help="design a selective-fitting scheme for an engine",
+    p = subparsers.add_parser("design", formatter_class=Formatter, help="design a selective-fitting scheme for an engine",
                               description="Design housing, journal and shell grades and the pairing table that "
                                           "keep the operating clearance in the engine's window; write the scheme "
                                           "file (its comments explain the choices).")
@@ -55,7 +45,7 @@ OPTIONS = {"shell_grades": "--grades", "housing_grades": "--housing-grades", "jo
 def checked(args):
     """The options of parsed ``args`` checked in the command's words (``ValueError`` naming the option and
     what is valid); returns the window in m or None."""
-    from .design.problem import LABELS
+    from ..design.problem import LABELS
 
     for option, value in (("--grades", args.grades), ("--housing-grades", args.housing_grades),
                           ("--journal-grades", args.journal_grades)):
@@ -69,25 +59,16 @@ def checked(args):
             raise ValueError(f"{option}: {value} is not valid; give a whole number >= 0")
     if args.window is None:
         return None
-    from .engines import load_engine
+    from ..engines import load_engine
 
     return window_option(args.window, load_engine(args.engine))
 
 
-def in_options(error):
-    """``error`` (a ValueError of the library) with a leading parameter name spelled as its option."""
-    text = str(error)
-    for name, option in OPTIONS.items():
-        if text.startswith(f"{name}:"):
-            return ValueError(option + text[len(name):])
-    return error
-
-
-def run(args, state=None):
+def run(args, state):
     """Design the scheme of parsed ``args``, write it, print its explanation."""
-    from .design import design
-    from .output import prepare_file, write_file
-    from .scenarios import DECLARED
+    from ..design import design
+    from ..output import prepare_file, write_file
+    from ..scenarios import DECLARED
 
     window = checked(args)
     out = prepare_file(args.out, force=args.force, option="--out")  # refused before the design runs
@@ -97,13 +78,11 @@ def run(args, state=None):
     def log(line):
         print(f"[{time.perf_counter() - t0:5.1f} s] {line}" if not terminal else line, flush=True)
 
-    try:
+    with refused_in(OPTIONS):
         result = design(args.engine, window=window, shell_grades=args.grades, housing_grades=args.housing_grades,
                         journal_grades=args.journal_grades, scenarios={} if args.no_scenarios else DECLARED,
                         seed=args.seed, n_engines=args.n, start=args.start, generations=args.generations,
                         name=args.name, log=log)
-    except ValueError as error:
-        raise in_options(error) from None
     write_file(out, result.scheme.to_toml_text())
     print("\n".join(result.scheme.notes))
     check = result.check
@@ -112,24 +91,3 @@ def run(args, state=None):
           f"{check.interval['nominal'][1] * 1e6:.3g}] ppm on the independent check sample")
     print(f"scheme: {out}")
     return 0
-
-
-def window_option(window_um, engine):
-    """The --window (of compare and design) in m from LO HI in um, or None; a window no main bearing could have is refused naming why."""
-    if window_um is None:
-        return None
-    lo, hi = window_um
-    if not 0.0 < lo < hi < 1000.0:
-        raise ValueError(f"--window: {lo:g} {hi:g} um is not a clearance window; give LO HI in micrometres with "
-                         "0 < LO < HI < 1000, e.g. --window 45 65")
-    journal = engine.journal_d.lo
-    if hi * 1e-6 < MIN_CLEARANCE_RATIO * journal:
-        likely = "; give LO HI in micrometres"
-        for unit, scale in (("millimetres", 1e3), ("metres", 1e6)):
-            if MIN_CLEARANCE_RATIO * journal <= hi * scale * 1e-6 <= 1e-3:
-                likely = f"; these look like {unit}: give --window {lo * scale:.6g} {hi * scale:.6g} (micrometres)"
-        raise ValueError(f"--window: {lo:g} {hi:g} um is no main bearing's clearance: {engine.name}'s "
-                         f"{journal * 1e3:g} mm journal runs with some tens of micrometres (a diametral clearance "
-                         f"below {MIN_CLEARANCE_RATIO * journal * 1e6:.1f} um, {1e3 * MIN_CLEARANCE_RATIO:g} per "
-                         f"mille of the journal, is below its oil film){likely}")
-    return lo / 1e6, hi / 1e6

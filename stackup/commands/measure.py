@@ -1,36 +1,24 @@
-"""The ``stackup measure`` subcommands: a process fitted to measured data, the housing calibrated on fitting tests.
-
-Kept apart from :mod:`stackup.cli` so the command line stays thin: this
-module parses the arguments and calls :func:`stackup.measure.fit_csv` and
-:func:`stackup.measure.calibrate_housing`, as a study script would.
-``stackup.cli`` wires it in with::
-
-    from .measure_cli import add_parser as add_measure_parser
-    add_measure_parser(sub)
-
-``python -m stackup.measure_cli fit ...`` runs it alone (:func:`main`).
-"""
+"""``stackup measure``: a process fitted to measured data (``fit``), the housing calibrated on fitting tests
+(``swell``), through :func:`stackup.measure.fit_csv` and :func:`stackup.measure.calibrate_housing`."""
 
 from __future__ import annotations
 
-import argparse
-import sys
+from ._options import Formatter, refused_in
 
 #: Library parameter names as these commands spell them, for the messages.
 OPTIONS = {"limits": "--limits", "gauge_repeatability": "--gauge-repeatability", "units": "--units",
            "out": "--out", "confidence": "--confidence", "resamples": "--resamples"}
-EXIT_REFUSED = 2
 
 
 def add_parser(subparsers):
     """Add ``measure`` (with ``fit`` and ``swell``) to the ``stackup`` subcommands; return its parser."""
-    p = subparsers.add_parser("measure", help="fit processes and the housing's stiffness to measured data",
+    p = subparsers.add_parser("measure", formatter_class=Formatter, help="fit processes and the housing's stiffness to measured data",
                               description="Take measured data in: fit a process model to SPC readings of one "
                                           "dimension (stackup measure fit), or the housing's equivalent outer "
                                           "diameter to fitting tests (stackup measure swell); each prints the "
                                           "engine file's entry.")
     actions = p.add_subparsers(dest="action", required=True, metavar="ACTION", help="what to fit")
-    fit = actions.add_parser("fit", help="fit a process to a column of readings",
+    fit = actions.add_parser("fit", formatter_class=Formatter, help="fit a process to a column of readings",
                              description="Fit normal, skew-normal, two-normal mixture (and, with --sequence, "
                                          "drifting-mean) models to the readings; choose by BIC with an "
                                          "Anderson-Darling test; remove the gauge's repeatability; print Cpk with "
@@ -54,7 +42,7 @@ def add_parser(subparsers):
     fit.add_argument("--resamples", type=int, default=1000, help="bootstrap resamples (default 1000)")
     fit.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (default 0)")
     fit.set_defaults(func=run_fit)
-    swell = actions.add_parser("swell", help="calibrate the housing's outer diameter on fitting tests",
+    swell = actions.add_parser("swell", formatter_class=Formatter, help="calibrate the housing's outer diameter on fitting tests",
                                description="Fit the housing's equivalent outer diameter (press_fit.housing_outer) "
                                            "to fitting tests through the press fit, by least squares, with its "
                                            "profile-likelihood interval; with --out write a copy of the engine "
@@ -72,11 +60,11 @@ def add_parser(subparsers):
     return p
 
 
-def run_fit(args, state=None):
+def run_fit(args, state):
     """Fit the process of parsed ``args``; print its summary and the engine file entry."""
-    from .measure import fit_csv
+    from ..measure import fit_csv
 
-    with _options():
+    with refused_in(OPTIONS):
         fit = fit_csv(args.file, args.column, limits=args.limits, units=args.units,
                       gauge_repeatability=args.gauge_repeatability, group=args.group, sequence=args.sequence,
                       drop_missing=args.drop_missing, confidence=args.confidence, resamples=args.resamples,
@@ -90,52 +78,19 @@ def run_fit(args, state=None):
     return 0
 
 
-def run_swell(args, state=None):
+def run_swell(args, state):
     """Calibrate the housing of parsed ``args`` on its fitting tests; print it; write the engine copy if asked."""
     from pathlib import Path
 
-    from .measure import calibrate_housing
+    from ..measure import calibrate_housing
 
     if args.out and Path(args.out).exists() and not args.force:  # refused before the fit runs
         raise ValueError(f"--out: {args.out!r} exists; pass --force to replace it, or give another file name")
-    with _options():
+    with refused_in(OPTIONS):
         result = calibrate_housing(args.file, args.engine, confidence=args.confidence)
     print(result.summary())
     if args.out:
-        with _options():
+        with refused_in(OPTIONS):
             path = result.write_engine(args.out, name=args.name or Path(args.out).stem, force=args.force)
         print(f"engine file: {path}")
     return 0
-
-
-class _options:
-    """Re-raise a ValueError with the library's parameter names spelled as this command's options (:data:`OPTIONS`)."""
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, kind, error, traceback):
-        if kind is not None and issubclass(kind, ValueError):
-            name, colon, rest = str(error).partition(":")
-            if colon and name in OPTIONS:
-                raise ValueError(OPTIONS[name] + colon + rest) from None
-        return False
-
-
-def main(argv=None):
-    """``stackup measure`` on its own: parse ``argv``, run, return the exit code (2: refused, with the reason)."""
-    top = argparse.ArgumentParser(prog="stackup")
-    add_parser(top.add_subparsers(dest="command", required=True))
-    try:
-        args = top.parse_args(argv)
-    except SystemExit as done:
-        return done.code
-    try:
-        return args.func(args)
-    except ValueError as error:  # bad input, said in words (the options spelled as typed), not a traceback
-        print(f"stackup: error: {error}", file=sys.stderr)
-        return EXIT_REFUSED
-
-
-if __name__ == "__main__":
-    sys.exit(main())
