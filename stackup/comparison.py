@@ -156,8 +156,9 @@ def run(out, *, engine="iso-example", schemes=ISO_SCHEMES, n_engines=COMPARE_ENG
         design=design is not None, tilt_method=tilt_method), force=force)
     try:
         result = compare_checked(runs, engine=engine, schemes=schemes, n_engines=n_engines, seed=seed,
-                                 scenarios=scenarios, negligible=negligible, design=design, log=log, window=window, scheduler=scheduler,
-                                 progress=progress, film_check_engines=film_check_engines, tilt_method=tilt_method)
+                                 scenarios=scenarios, negligible=negligible, design=design, log=log, window=window,
+                                 scheduler=scheduler, progress=progress, film_check_engines=film_check_engines,
+                                 tilt_method=tilt_method)
         log(f"saving the dataset: {os.path.join(out, DATASET)}")
         data = save_comparison(result, staged.staging / DATASET, compact=compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")

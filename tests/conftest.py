@@ -1,3 +1,13 @@
+"""Test tiers and the fixtures every tier shares.
+
+Tiers (markers, registered in pyproject.toml): ``integration`` (studies,
+comparisons and subprocesses), ``slow`` (the long ones: wheel builds, the
+README run as scripts, coverage over hundreds of seeds); every other test is
+``unit``, marked here at collection. ``pytest`` alone runs the unit tier
+(``-m unit`` in pyproject.toml's addopts); ``pytest -m integration``,
+``pytest -m slow`` the others; the README's test command runs them all.
+"""
+
 import textwrap
 
 import pytest
@@ -5,6 +15,17 @@ from hypothesis import settings
 
 settings.register_profile("default", deadline=None, max_examples=25)
 settings.load_profile("default")
+
+#: The tiers a test can be marked with; a test marked with neither is a unit test.
+TIERS = ("integration", "slow")
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Mark every test that is not in another tier ``unit``, before ``-m`` selects (hence ``tryfirst``)."""
+    for item in items:
+        if not any(item.get_closest_marker(tier) for tier in TIERS):
+            item.add_marker(pytest.mark.unit)
 
 
 @pytest.fixture

@@ -17,13 +17,14 @@ OPTIONS = {"n_engines": "--n", "schemes": "--schemes", "out": "--out", "engine":
 
 def add_parser(subparsers):
     """Add ``compare`` to the ``stackup`` subcommands; return its parser."""
-    p = subparsers.add_parser("compare", formatter_class=Formatter, help="compare selective-fitting schemes on an engine",
+    p = subparsers.add_parser("compare", formatter_class=Formatter,
+                              help="compare selective-fitting schemes on an engine",
                               description="Compare selective-fitting schemes on an engine: a study of sampled "
                               "engines, the declared robustness scenarios and what drives the spread; writes the "
                               "dataset (compare.nc) and the report (report.md, report.html) into the output folder. "
                               "One line per stage is printed as it starts.",
-                              epilog="examples:\n  stackup compare --quick\n"
-                                     "  stackup compare --schemes iso13778-4 my-scheme.toml --window 45 65 --out runs/a")
+                              epilog="examples:\n  stackup compare --quick\n  stackup compare --schemes "
+                                     "iso13778-4 my-scheme.toml --window 45 65 --out runs/a")
     p.add_argument("--engine", default="iso-example", help="engine name (see `stackup engines`) or engine TOML file")
     p.add_argument("--schemes", nargs="+", metavar="SCHEME",
                    help="scheme names (see `stackup schemes`) or scheme TOML files (default: iso13778-1 ... -6)")

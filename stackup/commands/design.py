@@ -13,7 +13,8 @@ MIN_ENGINES = 100
 
 def add_parser(subparsers):
     """Add ``design`` to the ``stackup`` subcommands (an ``argparse`` subparsers object)."""
-    p = subparsers.add_parser("design", formatter_class=Formatter, help="design a selective-fitting scheme for an engine",
+    p = subparsers.add_parser("design", formatter_class=Formatter,
+                              help="design a selective-fitting scheme for an engine",
                               description="Design housing, journal and shell grades and the pairing table that "
                                           "keep the operating clearance in the engine's window; write the scheme "
                                           "file (its comments explain the choices).")

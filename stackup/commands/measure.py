@@ -12,7 +12,8 @@ OPTIONS = {"limits": "--limits", "gauge_repeatability": "--gauge-repeatability",
 
 def add_parser(subparsers):
     """Add ``measure`` (with ``fit`` and ``swell``) to the ``stackup`` subcommands; return its parser."""
-    p = subparsers.add_parser("measure", formatter_class=Formatter, help="fit processes and the housing's stiffness to measured data",
+    p = subparsers.add_parser("measure", formatter_class=Formatter,
+                              help="fit processes and the housing's stiffness to measured data",
                               description="Take measured data in: fit a process model to SPC readings of one "
                                           "dimension (stackup measure fit), or the housing's equivalent outer "
                                           "diameter to fitting tests (stackup measure swell); each prints the "
@@ -42,7 +43,8 @@ def add_parser(subparsers):
     fit.add_argument("--resamples", type=int, default=1000, help="bootstrap resamples (default 1000)")
     fit.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (default 0)")
     fit.set_defaults(func=run_fit)
-    swell = actions.add_parser("swell", formatter_class=Formatter, help="calibrate the housing's outer diameter on fitting tests",
+    swell = actions.add_parser("swell", formatter_class=Formatter,
+                               help="calibrate the housing's outer diameter on fitting tests",
                                description="Fit the housing's equivalent outer diameter (press_fit.housing_outer) "
                                            "to fitting tests through the press fit, by least squares, with its "
                                            "profile-likelihood interval; with --out write a copy of the engine "

@@ -72,7 +72,8 @@ def run_repair(args, state):
 
 def _status(path, st):
     if st.study is None:
-        return f"{path}: a Zarr store not streamed by a study ({'complete' if st.finished else 'no dataset attributes'})"
+        held = "complete" if st.finished else "no dataset attributes"
+        return f"{path}: a Zarr store not streamed by a study ({held})"
     s = st.study
     kept = "every engine kept" if s.get("keep") == "everything" else "streaming summaries"
     text = f"{path}: a study of {s['n_engines']:,} engines x {len(s['schemes'])} schemes ({kept}); "

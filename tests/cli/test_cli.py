@@ -1,54 +1,27 @@
-"""The command line as a user meets it: subprocesses, exit codes, messages and the files left behind."""
+"""The command line as a user meets it, run in this process: exit codes, messages and the files left behind.
+
+What is about the process itself (Ctrl-C, kill, start-up, arguments that are not text) is in test_process.py.
+"""
 
 import argparse
 import json
 import math
 import os
-import signal
 import subprocess
-import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+from cli_helpers import (INLINE6, ISO4, SMALL_COMPARE, listing, no_traceback_nor_warning, one_line_refusal,
+                         stackup)
 
 from stackup.cli import main, parser
 from stackup.comparison import COMPARE_MIN_ENGINES
-from stackup.io import open_dataset
 from stackup.plan import plan
 from stackup.study import Study, open_study
 from stackup.study.damage import DamagedStore
-
-# a small comparison with scenarios (a minute here; the tests that use it stop it at once)
-def _interruptible():
-    """In the child before it starts: Ctrl-C as a terminal delivers it, even where pytest itself runs with SIGINT
-    ignored (a background job of a shell without job control), which Python would otherwise inherit."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
-SMALL_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "iso13778-6", "--no-design"]
-# the smallest comparison, with its own design window: about 20 s here
-WINDOW_COMPARE = ["compare", "--n", str(COMPARE_MIN_ENGINES), "--schemes", "iso13778-4", "--no-scenarios", "--no-design",
-                  "--window", "30", "45"]
-
-
-def stackup(*args, cwd=None, env=None, timeout=300):
-    """Run ``stackup ARGS`` as a user would (a fresh process); the CompletedProcess."""
-    environment = {**os.environ, **(env or {})}
-    return subprocess.run([sys.executable, "-m", "stackup.cli", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, env=environment, timeout=timeout)
-
-
-def listing(folder):
-    """Every file under ``folder`` with its size and modification time."""
-    return {str(p.relative_to(folder)): (p.stat().st_size, p.stat().st_mtime_ns) for p in Path(folder).rglob("*")}
-
-
-def no_traceback_nor_warning(result):
-    return "Traceback" not in result.stderr and "Warning" not in result.stderr
 
 
 # --- help -----------------------------------------------------------------------------------------------------
@@ -225,18 +198,6 @@ def test_compare_refuses_a_window_that_is_not_one_in_micrometres(tmp_path):
         assert result.returncode == 2 and "--window: " in result.stderr and "in micrometres" in result.stderr
 
 
-def test_ctrl_c_ends_a_run_with_one_line_and_leaves_nothing(tmp_path):
-    out = tmp_path / "run"
-    process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *SMALL_COMPARE, "--out", str(out)],
-                               preexec_fn=_interruptible,
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    first = process.stdout.readline()
-    assert "study: 100 engines" in first
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=120)
-    assert process.returncode == 130
-    assert err == f"stackup: interrupted during study; nothing was saved: {out} was not created\n"
-    assert list(tmp_path.iterdir()) == []  # no half-written folder, no staging folder
 
 
 def _fake_run(folder, **study):
@@ -284,60 +245,12 @@ def test_the_terminal_verdict_is_the_reports_first_verdict_line(tmp_path):
                       "<!-- /verdict -->\n", encoding="utf-8")
     assert verdict_line(report) == "Use B for e: 1 ppm of x."
 
-@pytest.fixture(scope="module")
-def small_run(tmp_path_factory):
-    """The smallest comparison written by the command line (25 s here, mostly the tails and Sobol stages)."""
-    out = tmp_path_factory.mktemp("compare") / "run"
-    return out, stackup(*WINDOW_COMPARE, "--out", out)
 
 
-@pytest.mark.slow
-def test_a_run_logs_each_stage_and_writes_its_files_whole(small_run):
-    out, result = small_run
-    assert result.returncode == 0 and result.stderr == ""  # no progress bars off a terminal, no warnings
-    stages = [line.split("] ", 1)[1] for line in result.stdout.splitlines() if line.startswith("[")]
-    assert stages[0].startswith("study: 100 engines x 1 scheme")
-    assert [s.split(":")[0] for s in stages[1:-2]] == ["tails", "sensitivity"]  # the library's own stages
-    assert stages[-2:] == [f"saving the dataset: {out}/compare.nc", f"writing the report: {out}/report.md and report.html"]
-    assert result.stdout.splitlines()[-1].startswith("verdict: ")  # the report's first verdict line, plain
-    assert "**" not in result.stdout.splitlines()[-1]
-    names = {p.name for p in out.iterdir()}
-    assert {"compare.nc", "report.md", "report.html", "clearance_histogram.png"} <= names
-    assert not any(name.startswith(".stackup-partial") for name in names)
-    assert not any(p.name.startswith(".stackup-partial") for p in out.parent.iterdir())
-    ds = open_dataset(out / "compare.nc")
-    assert ds.clearance_window.values.tolist() == [30e-6, 45e-6]  # the --window, in m
 
 
-@pytest.mark.slow
-def test_a_different_run_into_a_folder_holding_a_run_is_refused(small_run):
-    out, _ = small_run
-    before = listing(out)
-    result = stackup(*WINDOW_COMPARE, "--seed", 3, "--out", out)
-    assert result.returncode == 2 and result.stdout == ""
-    assert "holds another run (100 engines of iso-example, 1 scheme, seed 0, window 30-45 um, no scenarios)" \
-        in result.stderr
-    assert listing(out) == before
 
 
-@pytest.mark.slow
-def test_the_same_run_again_replaces_it_and_ctrl_c_while_saving_leaves_it_as_it_was(small_run):
-    out, _ = small_run
-    before = listing(out)
-    process = subprocess.Popen([sys.executable, "-m", "stackup.cli", *WINDOW_COMPARE, "--out", str(out)],
-                               preexec_fn=_interruptible,
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    for line in process.stdout:
-        if "saving the dataset" in line:
-            break
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=120)
-    assert process.returncode == 130
-    assert err == f"stackup: interrupted during saving the dataset; nothing was saved: {out} is as it was\n"
-    assert listing(out) == before
-    again = stackup(*WINDOW_COMPARE, "--out", out)
-    assert again.returncode == 0
-    assert all(listing(out)[name][1] > before[name][1] for name in before)  # every file written anew
 
 
 # --- engines and schemes ------------------------------------------------------------------------------------
@@ -507,29 +420,18 @@ def test_the_quick_start_writes_where_git_tracks_nothing():
 
 # --- what a new user tripped on (issue 36): each case typed as a user types it -------------------------------
 
-INLINE6 = Path(__file__).parents[1] / "data" / "inline6.toml"
-ISO4 = Path(__file__).parents[2] / "schemes" / "iso13778-4.toml"
-
-
-def _one_line_refusal(result, *parts):
-    """Exit 2, nothing on stdout, one line on stderr holding every part, no traceback."""
-    assert result.returncode == 2, result.stderr
-    assert result.stdout == "" and no_traceback_nor_warning(result)
-    assert result.stderr.count("\n") == 1 and result.stderr.startswith("stackup: error: "), result.stderr
-    for part in parts:
-        assert part in result.stderr, (part, result.stderr)
 
 
 def test_a_window_in_millimetres_is_refused_naming_the_likely_mistake(tmp_path):
     result = stackup("compare", "--window", "0.045", "0.065", "--out", tmp_path / "run")
-    _one_line_refusal(result, "--window: 0.045 0.065 um is no main bearing's clearance",
+    one_line_refusal(result, "--window: 0.045 0.065 um is no main bearing's clearance",
                       "these look like millimetres: give --window 45 65 (micrometres)")
     assert not (tmp_path / "run").exists()
 
 
 def test_more_engines_than_the_machine_holds_are_refused_before_any_folder(tmp_path):
     result = stackup("compare", "--n", "10000000000", "--out", tmp_path / "run")
-    _one_line_refusal(result, "--n: 10,000,000,000 engines would need about", "give --n at most")
+    one_line_refusal(result, "--n: 10,000,000,000 engines would need about", "give --n at most")
     assert list(tmp_path.iterdir()) == []
 
 
@@ -546,7 +448,7 @@ def test_an_unknown_material_oil_or_firing_order_names_file_key_and_what_is_vali
     assert old in text
     engine.write_text(text.replace(old, new), encoding="utf-8")
     result = stackup("compare", "--engine", engine, "--out", tmp_path / "run")
-    _one_line_refusal(result, f"engine file '{engine.name}', key {key}: ", hint)
+    one_line_refusal(result, f"engine file '{engine.name}', key {key}: ", hint)
     assert not (tmp_path / "run").exists()
 
 
@@ -558,7 +460,7 @@ def test_a_key_written_twice_is_named_with_its_line(tmp_path):
     line = scheme.read_text().splitlines().index("grades = { A = [50.000, 50.006], B = [50.006, 50.012], "
                                                  "C = [50.012, 50.018] }") + 1
     result = stackup("compare", "--schemes", scheme, "--out", tmp_path / "run")
-    _one_line_refusal(result, f"scheme file '{scheme.name}': a key is written twice (line {line}: ", "write each key once")
+    one_line_refusal(result, f"scheme file '{scheme.name}': a key is written twice (line {line}: ", "write each key once")
     assert "immutable namespace" not in result.stderr
 
 
@@ -567,23 +469,12 @@ def test_a_scheme_leaving_parts_ungraded_is_refused_before_the_study_naming_it(t
     scheme = tmp_path / "narrow.toml"
     scheme.write_text(text.replace("C = [50.012, 50.018] }", "C = [50.012, 50.013] }", 1), encoding="utf-8")
     result = stackup("compare", "--n", 100, "--no-design", "--no-scenarios", "--schemes", "iso13778-4", scheme, "--out",
-                     tmp_path / "run", timeout=300)
-    _one_line_refusal(result, f"--schemes: scheme narrow-c ({scheme}) leaves ", "of the housing bores read outside",
+                     tmp_path / "run")
+    one_line_refusal(result, f"--schemes: scheme narrow-c ({scheme}) leaves ", "of the housing bores read outside",
                       "widen the scheme's grades to the engine's drawing limits")
     assert not (tmp_path / "run").exists()
 
 
-def test_an_engine_path_that_is_not_utf8_is_refused_before_the_study(tmp_path):
-    if sys.platform == "darwin":
-        pytest.skip("macOS file names are UTF-8 by construction")
-    folder = os.fsencode(tmp_path)
-    name = os.path.join(folder, b"motor\xff.toml")
-    with open(name, "wb") as file:
-        file.write(INLINE6.read_bytes())
-    result = subprocess.run([os.fsencode(sys.executable), b"-m", b"stackup.cli", b"compare", b"--engine", name,
-                             b"--out", os.path.join(folder, b"run")], capture_output=True, text=True, timeout=120)
-    _one_line_refusal(result, "the path is not UTF-8 text", "rename the file or its folder with UTF-8 characters")
-    assert not os.path.exists(os.path.join(folder, b"run"))
 
 
 def test_a_user_scheme_is_found_by_its_file_name_and_by_the_name_the_report_gives_it(tmp_path):
@@ -597,7 +488,7 @@ def test_a_user_scheme_is_found_by_its_file_name_and_by_the_name_the_report_give
     assert by_file.returncode == by_name.returncode == 0, by_name.stderr
     assert by_file.stdout == by_name.stdout
     typo = stackup("plan", "--scheme", "my-schme", "--volume", 100, env=env)
-    _one_line_refusal(typo, "scheme: 'my-schme' is not a known scheme", "did you mean 'my-scheme'?")
+    one_line_refusal(typo, "scheme: 'my-schme' is not a known scheme", "did you mean 'my-scheme'?")
 
 
 def test_a_run_claims_its_folder_so_a_second_run_at_once_is_refused(tmp_path):
@@ -609,53 +500,17 @@ def test_a_run_claims_its_folder_so_a_second_run_at_once_is_refused(tmp_path):
         result = stackup(*SMALL_COMPARE, "--out", out)
     finally:
         claim.release()
-    _one_line_refusal(result, f"--out '{out}' is being written by another stackup run (process {os.getpid()})",
+    one_line_refusal(result, f"--out '{out}' is being written by another stackup run (process {os.getpid()})",
                       "wait for it to finish, or give another folder")
     assert not out.exists()
 
 
-def _start(args, **kwargs):
-    return subprocess.Popen([sys.executable, "-m", "stackup.cli", *map(str, args)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, preexec_fn=_interruptible, **kwargs)
 
 
-def _wait_for(process, text):
-    for line in process.stdout:
-        if text in line:
-            return line
-    raise AssertionError(f"the run ended before {text!r}: {process.stderr.read()}")
 
 
-@pytest.mark.slow
-def test_a_killed_runs_staging_folder_is_removed_by_the_next_run_and_folders_follow_the_umask(tmp_path):
-    out = tmp_path / "run"
-    killed = _start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
-    _wait_for(killed, "study: ")
-    killed.kill()  # kill -9: nothing of the run's own code runs
-    killed.communicate(timeout=60)
-    left = [p.name for p in tmp_path.iterdir() if p.name.startswith(".stackup-partial-")]
-    assert left and not out.exists()
-    assert all((tmp_path / name).stat().st_mode & 0o777 == 0o755 for name in left)  # not 0700: a colleague reads
-    again = _start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
-    _wait_for(again, "study: ")  # the claim is taken and the stale staging folders removed before the study
-    assert not any((tmp_path / name).exists() for name in left)
-    again.send_signal(signal.SIGINT)
-    _, err = again.communicate(timeout=120)
-    assert again.returncode == 130 and err == f"stackup: interrupted during study; nothing was saved: {out} was not created\n"
-    assert [p.name for p in tmp_path.iterdir() if not p.name.startswith(".stackup-claim-")] == []
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("stage", ["study", "tails", "sensitivity", "saving the dataset", "writing the report"])
-def test_ctrl_c_at_any_stage_exits_130_with_one_line_saying_what_was_kept(tmp_path, stage):
-    out = tmp_path / "run"
-    process = _start([*WINDOW_COMPARE, "--out", out])
-    _wait_for(process, f"] {stage}")
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=300)
-    assert process.returncode == 130, err
-    assert err == f"stackup: interrupted during {stage}; nothing was saved: {out} was not created\n"
-    assert [p.name for p in tmp_path.iterdir() if not p.name.startswith(".stackup-claim-")] == []
 
 
 def test_ctrl_c_inside_a_numba_kernel_is_an_interrupt():
@@ -672,51 +527,9 @@ def test_ctrl_c_inside_a_numba_kernel_is_an_interrupt():
     assert not _interrupt(SystemError("a real one"))
 
 
-def _started_after_imports(args):
-    """``stackup ARGS`` in a fresh process that prints "ready" once the package is imported (see the test below)."""
-    code = ("import sys; import stackup.cli as cli; import stackup.comparison, stackup.plan, stackup.report; "
-            "print('ready', flush=True); "
-            f"sys.exit(cli.main({[str(a) for a in args]!r}))")
-    process = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                               preexec_fn=_interruptible)
-    assert process.stdout.readline() == "ready\n"
-    time.sleep(1)  # into the command
-    return process
 
 
-def test_ctrl_c_while_planning_exits_130_with_one_line(tmp_path):
-    csv = tmp_path / "plan.csv"
-    process = _started_after_imports(["plan", "--scheme", "iso13778-4", "--volume", 10_000, "--sample", 400_000,
-                                      "--csv", csv])
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=120)
-    assert process.returncode == 130
-    assert err == f"stackup: interrupted during planning shells; nothing was saved: {csv} was not created\n"
-    assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.slow
-def test_ctrl_c_while_writing_a_report_again_leaves_the_old_report(small_run):
-    folder, result = small_run
-    assert result.returncode == 0, result.stderr
-    before = listing(folder)
-    process = _started_after_imports(["report", folder / "compare.nc"])
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=120)
-    assert process.returncode == 130
-    assert err in [f"stackup: interrupted during {stage}; nothing was saved: {folder} is as it was\n"
-                   for stage in ("reading the dataset", "writing the report")]
-    assert listing(folder) == before
 
 
-@pytest.mark.parametrize("after", [0.3, 0.5, 0.7, 0.9, 1.1])
-def test_ctrl_c_while_the_command_starts_exits_130_with_one_line(after):
-    # python is up, numpy, scipy, pandas, xarray and numba are being imported: a Ctrl-C inside an extension's
-    # initialisation or in code it runs through PyRun_String used to end as an ImportError or by SIGINT. A large
-    # sample keeps the command running well past 1.1 s: with the default one it can finish by then on an idle
-    # machine, and a Ctrl-C while the interpreter shuts down (its handler gone) ends it by SIGINT
-    process = _start(["plan", "--scheme", "iso13778-4", "--volume", 100, "--sample", 1_000_000])
-    time.sleep(after)
-    process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=120)
-    assert process.returncode == 130 and err.startswith("stackup: interrupted") and err.count("\n") == 1, err
