@@ -151,7 +151,6 @@ def checked_runs(engine, schemes, seed, *, scenarios, uncertainties, tilt_method
     labels = [str(s) for s in schemes]
     for scheme in schemes:
         load_scheme(scheme)
-    runs = _scenario_runs(scenarios, _uncertainties(uncertainties, engine, tilt_method))
     loaded_engine, loaded = load_inputs(input_files(engine, labels), labels)  # the schemes as the study lays them
     pilot = pilot_parts(loaded_engine, seed, pilot_engines)
     for label, scheme in zip(labels, loaded):
@@ -162,7 +161,7 @@ def checked_runs(engine, schemes, seed, *, scenarios, uncertainties, tilt_method
                              f"inside the drawing limits ungraded: {graded.where(scheme, loaded_engine)}, in the "
                              f"study's pilot sample of {pilot_engines:,} engines; the main job needs at most "
                              f"{100 * UNGRADED_LIMIT:g} %: widen the scheme's grades to the engine's drawing limits")
-    return runs
+    return _scenario_runs(scenarios, _uncertainties(uncertainties, engine, tilt_method))
 
 
 def compare_checked(runs_asked, *, engine, schemes, n_engines, seed, scenarios, negligible, design, scheduler, progress,
