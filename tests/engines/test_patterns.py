@@ -15,14 +15,14 @@ from stackup.schemes import from_dict, load
 
 #: An engine file of another size and bearing count, written as a user would (tests/data).
 INLINE_SIX = Path(__file__).parents[1] / "data" / "inline6.toml"
-README = Path(__file__).parents[2] / "README.md"
+ENGINE_FILE_DOC = Path(__file__).parents[2] / "docs" / "engine-file.md"
 
 
-def readme_engine(tmp_path):
-    """The smallest engine file of the README's "Your own engine", written to ``tmp_path``."""
-    text = README.read_text(encoding="utf-8")
+def documented_engine(tmp_path):
+    """The smallest engine file of the docs' "Your own engine" (docs/engine-file.md), written to ``tmp_path``."""
+    text = ENGINE_FILE_DOC.read_text(encoding="utf-8")
     block = re.search(r"A seven-bearing inline six.*?```toml\n(.*?)```", text, re.S)
-    assert block, "README.md: the engine-file example of 'Your own engine' is missing"
+    assert block, "docs/engine-file.md: the engine-file example of 'Your own engine' is missing"
     path = tmp_path / "readme-six.toml"
     path.write_text(block.group(1), encoding="utf-8")
     return path
@@ -122,9 +122,10 @@ def test_adapted_schemes_grade_the_engines_bearings(engine, name):
     assert np.mean(upper >= 0) >= 0.95
 
 
-def test_the_readmes_engine_file_loads_and_its_iso_schemes_grade_its_bearings(tmp_path):
-    """The README's engine file is complete: it loads strictly, has a window and a crank, and is graded."""
-    engine = load_engine(readme_engine(tmp_path))
+def test_the_docs_engine_file_loads_and_its_iso_schemes_grade_its_bearings(tmp_path):
+    """The engine file of docs/engine-file.md is complete: it loads strictly, has a window and a crank, and is
+    graded."""
+    engine = load_engine(documented_engine(tmp_path))
     assert engine.main_bearings == 7 and engine.crank is not None
     assert engine.clearance_window == pytest.approx((0.00075 * 59.981e-3, 0.00125 * 59.981e-3))
     parts, _ = draw_lot(engine, lot_generator(seed_sequence(1), 0), 2000)
