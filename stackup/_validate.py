@@ -15,7 +15,7 @@ validated function, and in the study's chain (:func:`trusted`), the
 functions it calls skip them, so a model function's body and its hot paths
 never check and need no unchecked twin. :func:`renamed` keeps an old keyword
 working, with a :class:`DeprecationWarning`, where the naming glossary
-renamed it (docs: README, "Names").
+renamed it (docs/names.md).
 """
 
 from __future__ import annotations

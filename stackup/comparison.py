@@ -189,7 +189,7 @@ def check_memory(n_engines, engine, schemes):
                      f"twice: the study and the saved dataset the report reads), and this machine has {_bytes(have)}; "
                      f"give n_engines at most {most:,}, or run the study in Python with Study(..., keep=\"summaries\") "
                      "(streaming summaries, memory that does not grow with the engines) or store=\"runs/big.zarr\" "
-                     "(every engine on disk): README, \"Running a study on several processes or a dask cluster\"")
+                     "(every engine on disk): docs/library.md, \"Running a study on several processes or a dask cluster\"")
 
 
 def memory_per_engine(bearings, schemes):

@@ -205,7 +205,7 @@ ENGINE_DEFAULTS = {
     ("wear", "method1_wear_limit"): lambda e, d: abs(e.wear.method1_wear_limit - 1e8 * e.wear.wear_rate) < 1e-12,
     ("oil_feed",): lambda e, d: e.oil_feed.source.startswith("default:"),
     # no [supports]: the bearing law's own stiffness, the bulkhead's web rigid against tilt and the bore ring's
-    # turn from the law (README, engine file table)
+    # turn from the law (docs/engine-file.md, "What the sections hold")
     ("supports",): lambda e, d: (not e.crank.supports.angular.any() and e.crank.supports.ring.all()
                                  and "bearing law" in e.crank.supports.source),
     ("supports", "source"): lambda e, d: e.crank.supports.source == "",

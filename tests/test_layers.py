@@ -131,7 +131,7 @@ def test_plan_and_rank_are_modules_and_calls(name, call):
     assert callable(module)
 
 
-def test_planner_table_and_optimise_supply_reachable_as_the_readme_says():
+def test_planner_table_and_optimise_supply_reachable_as_the_docs_say():
     import stackup.plan
 
     assert callable(stackup.plan.planner_table) and callable(stackup.plan.optimise_supply)
