@@ -261,7 +261,7 @@ def journal_position(load, *, eccentricity, attitude_angle, clearance):
 #: Steady tiers from cheapest to dearest (the order they are registered in).
 BY_COST = METHODS
 #: Grid on which :func:`tier_errors` measures the cheaper tiers against the reference: it spans the finite
-#: tier's whole table (L/D 0.1-2, eccentricity 0.02-0.995, and below its first node) and lies between the
+#: tier's whole table (L/D 0.1-2, eccentricity 0.02 up to the limit, and below its first node) and lies between the
 #: table's nodes, where its interpolation error is largest.
 ERROR_GRID = {"length_over_diameter": (0.12, 0.175, 0.225, 0.35, 0.55, 0.85, 1.4, 1.8),
               "eccentricity": (0.01, 0.03, 0.33, 0.55, 0.77, 0.89, 0.905, 0.935, 0.975, 0.9875, 0.99375)}
