@@ -15,7 +15,8 @@ from stackup.film.reynolds import solve_field
 from stackup.film.tiers import short_load_function
 
 LENGTH_OVER_DIAMETER = np.array([0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.6, 0.75, 1.0, 1.25, 1.5, 2.0])
-# up to ECCENTRICITY_VALID (0.995): above it the tier holds the last node's correction and flags the film
+# up to ECCENTRICITY_LIMIT (stackup.film.journal, 0.995): above it the tier holds the last node's correction and
+# flags the film
 ECCENTRICITY = np.concatenate([np.linspace(0.02, 0.9, 45), np.linspace(0.91, 0.98, 8), [0.985, 0.99, 0.9925, 0.995]])
 
 

@@ -43,7 +43,8 @@ import stackup
 from stackup.crank import support_compliance
 from stackup.engines import load_engine
 from stackup.film import BY_COST, ERROR_GRID, cheapest_tier, min_film_thickness, reynolds, tier_errors
-from stackup.film.orbit import ALIASES, ECCENTRICITY_LIMIT, STATUS, cheapest_cycle_tier, cycle_tier_errors, orbit
+from stackup.film import registry
+from stackup.film.orbit import ECCENTRICITY_LIMIT, STATUS, cheapest_cycle_tier, cycle_tier_errors, orbit
 from stackup.film.tilt import film_moment
 
 DEFAULT_ERROR = 0.05
@@ -218,22 +219,23 @@ def write_errors(out, seconds, references):
              "# engines against reynolds-transient with mass-conserving (Elrod-Adams) cavitation, and in",
              "# [tiers.X.swift-stieber] against the same tier with the Reynolds condition. Regenerate with that study.",
              ""]
-    measured = (*CHEAP_TIERS, "reynolds", "reynolds-transient")
+    reference_tier = registry.reference_tier().name
+    measured = (*CHEAP_TIERS, "reynolds", reference_tier)
+    rows = {registry.tier(tier).error_row for tier in measured}  # each tier's row, as its record names it
     for tier in measured:
         for label, reference in references.items():
-            lines.append(f'[tiers."{tier}"{label}]')
+            lines.append(f'[tiers."{registry.tier(tier).error_row}"{label}]')
             if not label:
                 lines.append(f"seconds = {seconds[tier]:.6g}")
             for q in QUANTITIES:
-                same = tier == "reynolds-transient" and not label
+                same = tier == reference_tier and not label
                 err = 0.0 if same else float(np.max(np.abs(relative(out[tier][q], reference[q]))))
                 lines.append(f"{q} = {err:.6g}")
             lines.append("")
     # the tiers other studies measure (studies/film_speed_vs_error_elrod.py) keep their entries
     kept = ERRORS_FILE.read_text().split("\n[tiers.")[1:] if ERRORS_FILE.exists() else []
     for block in kept:
-        name = block.split('"')[1]
-        if ALIASES.get(name, name) not in {ALIASES.get(t, t) for t in measured}:
+        if block.split('"')[1] not in rows:
             lines.append("[tiers." + block.rstrip("\n"))
             lines.append("")
     ERRORS_FILE.write_text("\n".join(lines))

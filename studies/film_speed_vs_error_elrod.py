@@ -30,6 +30,7 @@ from _common import best_time, environment
 from _film_cases import engine_case
 from film_speed_vs_error import ENGINES, ERRORS_FILE, QUANTITIES, _job_key, _slow_tier, relative, summary
 
+from stackup.film import registry
 from stackup.film.elrod import LARGEST_STEP, N_LAND, N_THETA, STEP_TOLERANCE
 from stackup.film.orbit import STATUS, cycle_tier_errors, orbit
 from stackup.film.transient import N_Z as REFERENCE_N_Z
@@ -97,11 +98,12 @@ def write_errors(errors, seconds):
     """The tier's entry of film_cycle_errors.toml (replacing an earlier one); not measured against the
     Swift-Stieber run, so it has no ``swift-stieber`` table."""
     text = ERRORS_FILE.read_text()
-    head = '[tiers."elrod-coarse"]'
+    row = registry.tier("elrod-coarse").error_row  # the row the tier's record reads
+    head = f'[tiers."{row}"]'
     if head in text:
         start = text.index(head)
         rest = text[start:].split("\n[tiers.")
-        kept = [r for r in rest[1:] if not r.startswith('"elrod-coarse"')]
+        kept = [r for r in rest[1:] if not r.startswith(f'"{row}"')]
         text = text[:start] + "\n[tiers.".join([""] + kept).lstrip("\n")
     block = [head, f"seconds = {seconds:.6g}", *(f"{q} = {errors[q]:.6g}" for q in QUANTITIES), ""]
     ERRORS_FILE.write_text(text.rstrip("\n") + "\n\n" + "\n".join(block))

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import Integer, OneOf, Positive, renamed, validated
-from . import METHODS, min_film_thickness
+from .steady import METHODS, min_film_thickness
 
 #: Share of the loads spaced geometrically from max_load / 1000 (the journal floating in its clearance);
 #: the rest linearly up to max_load (the stiff end that carries the firing loads).

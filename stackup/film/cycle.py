@@ -7,13 +7,14 @@ film, the journal centre and the peak pressure at every crank angle. Life is
 not this stage's business: the study's chain computes it from the film.
 
 Film methods a study names (:data:`FILM_METHODS`) are the cycle tiers of
-:func:`stackup.film.orbit.orbit`, by the same names:
+:func:`stackup.film.orbit.orbit`, by the same names (the records of :mod:`stackup.film.registry`;
+this stage reads each tier's kind, feed, side models and options there):
 
 - ``"short"``, ``"finite"``, ``"reynolds"``: quasi-static, each crank angle a
   steady load on that steady tier (no squeeze film);
 - ``"mobility"``, ``"mobility-finite"``, ``"elrod-coarse"``, ``"reynolds-transient"``:
   the dynamic tiers (the mass-conserving ``"elrod-coarse"`` and the reference
-  ``"reynolds-transient"`` fed by the engine's groove or hole, :data:`FED`; the
+  ``"reynolds-transient"`` fed by the engine's groove or hole, :data:`stackup.film.orbit.FED`; the
   study's former name ``"transient"`` is a deprecated alias,
   :func:`stackup.film.orbit.canonical_tier`).
 
@@ -38,16 +39,15 @@ import numpy as np
 from scipy.special import lambertw
 
 from .._validate import Finite, InRange, Integer, OneOf, Positive, renamed, validated
-from . import ECCENTRICITY_VALID
 from . import oil as oils
+from . import registry
 from .heat import STATUS as HEAT_STATUS
 from .heat import TEMPERATURE_LIMIT, TEMPERATURE_SHARE, check_feed, feed_flow, heat_balance
 from .journal import ECCENTRICITY_LIMIT, Orbit, within_one_cycle
 from .journal import STATUS as ORBIT_STATUS
-from .orbit import (ALIASES, DYNAMIC, FED, METHODS, QUASI_STATIC, cheapest_cycle_tier, compliance_with_tilt,
-                    cycle_tier_errors, one_cycle, orbit, tier_names)
+from .orbit import (ALIASES, DYNAMIC, METHODS, cheapest_cycle_tier, compliance_with_tilt, cycle_tier_errors,
+                    one_cycle, orbit, tier_names, tier_options)
 from .orbit import canonical_tier  # noqa: F401 (the study resolves its film_method's deprecated names with it)
-from .transient import transient_orbit
 
 #: Crank-angle spacing of the load history the heat balance reads [deg]: its cycle means barely change
 #: below it (reports/bearing_life.md), on a quarter of a 1 deg grid's angles.
@@ -55,8 +55,8 @@ HEAT_STEP = 4.0
 #: Crank-angle spacing of the dynamic heat balance's coarse orbit [deg]: fine enough to catch the load peaks, whose
 #: temperature rise the balance extrapolates (the balance's accuracy on the full orbit: reports/bench_chain.md).
 DYNAMIC_HEAT_STEP = 8.0
-#: Film methods a study names: the cycle tiers of :func:`stackup.film.orbit.orbit` (quasi-static ones
-#: :data:`QUASI_STATIC`, dynamic ones :data:`DYNAMIC`).
+#: Film methods a study names: the cycle tiers of :func:`stackup.film.orbit.orbit` (the registry's, read at each
+#: use; quasi-static ones :data:`stackup.film.orbit.QUASI_STATIC`, dynamic ones :data:`DYNAMIC`).
 FILM_METHODS = METHODS
 #: Orbit status per bearing in a study: the orbit's, then the quasi-static tiers' (no orbit to close).
 FILM_STATUS = (*ORBIT_STATUS, "quasi_static")
@@ -110,7 +110,7 @@ class BearingFilms:
     valid : numpy.ndarray of bool
         The film is a number: ``status`` is none of :data:`NOT_A_NUMBER` (a
         dynamic tier's orbit closed; a quasi-static tier's steady film stayed
-        within :data:`stackup.film.ECCENTRICITY_VALID` at every angle).
+        within :data:`~stackup.film.journal.ECCENTRICITY_LIMIT` at every angle).
     temperature : numpy.ndarray
         Effective film temperature [degC].
     friction_power, oil_flow, feed_flow : numpy.ndarray
@@ -153,7 +153,7 @@ def _cycle_of_reactions(values):
 
 def _feed_of_the_heat_balance(values):
     """The oil feed fits the bearing (the quasi-static tiers' heat balance reads it as :func:`heat_balance` does)."""
-    if values["method"] in QUASI_STATIC:
+    if registry.tier(values["method"]).kind == "quasi-static":
         check_feed(values["feed"], values["spec"].bearing_width)
 
 
@@ -193,11 +193,12 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
     crank_angle = np.asarray(crank_angle, dtype=float)
     step = float(crank_angle[1] - crank_angle[0]) if len(crank_angle) > 1 else 720.0
     geometry = dict(journal_d=journal_d, bearing_width=spec.bearing_width, clearance=clearance, speed=spec.speed)
-    if method in QUASI_STATIC:
+    tier = registry.tier(method)
+    if tier.kind == "quasi-static":
+        # the heat balance on the tier's side model (the steady Reynolds film is too dear to iterate on)
         stride = max(1, int(round(HEAT_STEP / step)))
         heat = heat_balance(loads[..., ::stride, :], **geometry, oil=spec.oil,
-                            supply_temperature=spec.oil_supply_temperature, feed=feed,
-                            method="short" if method == "short" else "finite")
+                            supply_temperature=spec.oil_supply_temperature, feed=feed, method=tier.length_model)
         film = orbit(loads, crank_angle, **geometry, viscosity=heat.viscosity, method=method, tilt=tilt,
                      tilt_compliance=tilt_compliance)
         status = np.where(film.status == ORBIT_STATUS.index("edge_contact"), film.status,
@@ -207,7 +208,7 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
         return BearingFilms(film.h_min, film.h_min_edge, film.position, film.p_max, status, _is_number(status),
                             heat.temperature, heat.friction_power, heat.flow, heat.feed_flow, heat.status,
                             film.tilt_max, _at_limit_share(film.h_min_edge, clearance), heat.viscosity)
-    options = {"feed": feed} if method in FED else {}
+    options = {"feed": feed} if tier.fed else {}
     balance, film, fed = balanced_orbit(loads, crank_angle, tier=method, oil=spec.oil,
                                         supply_temperature=spec.oil_supply_temperature, feed=feed,
                                         stride=max(1, int(round(DYNAMIC_HEAT_STEP / step))), tilt=tilt,
@@ -217,17 +218,14 @@ def bearing_films(spec, feed, reactions, crank_angle, *, clearance, journal_d, m
                         film.tilt_max, _at_limit_share(film.h_min_edge, clearance), balance.viscosity)
 
 
-#: The tier that checks the study's film on some of its engines (multi-fidelity: :func:`checked_film`).
-CHECK_METHOD = "elrod-coarse"
-
-
-def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, journal_d, method, check=CHECK_METHOD):
+def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, journal_d, method, check=None):
     """The mid-plane film over the cycle of the same bearings by the study's tier and by a more accurate one,
     both on the aligned journal at the viscosity of the bearings' heat balance.
 
     The bearings of a :func:`bearing_films` result (by tier ``method``, its
     heat balance's ``viscosity`` [Pa s]) run again with ``method`` and with ``check`` (default the
-    mass-conserving :data:`CHECK_METHOD`, fed by the engine's oil ``feed``),
+    registry's check tier, :func:`stackup.film.registry.check_tier`: the mass-conserving
+    ``elrod-coarse``; a fed tier fed by the engine's oil ``feed``),
     without the journal's tilt: the accurate tier takes a tilt only as
     imposed and fails where a tilted edge reaches the wall (an edge the rigid
     block makes touch), so the two tiers are compared where both hold; the
@@ -242,9 +240,10 @@ def checked_film(spec, feed, reactions, crank_angle, *, viscosity, clearance, jo
     geometry = dict(journal_d=np.asarray(journal_d, dtype=float), bearing_width=spec.bearing_width,
                     clearance=np.asarray(clearance, dtype=float), speed=spec.speed, viscosity=viscosity)
     angle = np.asarray(crank_angle, dtype=float)
+    check = registry.check_tier().name if check is None else check
 
     def fed(tier):
-        return {"feed": feed} if tier in FED else {}
+        return {"feed": feed} if registry.tier(tier).fed else {}
 
     return (orbit(loads, angle, **geometry, method=method, **fed(method)).h_min,
             orbit(loads, angle, **geometry, method=check, **fed(check)).h_min)
@@ -272,8 +271,9 @@ def _is_number(status):
 
 
 def _steady_valid(film):
-    """The steady tier's checked range: eccentricity within :data:`stackup.film.ECCENTRICITY_VALID` at every angle."""
-    return np.all(film.eccentricity <= ECCENTRICITY_VALID * (1 + 1e-12), axis=-1)
+    """The steady tier's checked range: eccentricity within :data:`~stackup.film.journal.ECCENTRICITY_LIMIT` at every
+    angle."""
+    return np.all(film.eccentricity <= ECCENTRICITY_LIMIT * (1 + 1e-12), axis=-1)
 
 
 @dataclass(frozen=True)
@@ -306,13 +306,12 @@ def _balanced_rise(anchor_t, anchor_rise, decay, supply):
 
 
 def _tier_options(values):
-    """The tier's options: ``cycles`` and those of the transient tier, checked as they declare them."""
-    options = values["options"] or {}
+    """The tier's options: ``cycles`` and the tier's own (:func:`stackup.film.orbit.tier_options`)."""
+    options = dict(values["options"] or {})
     if options.get("cycles") is not None:
         Integer(minimum=1)("cycles", options["cycles"])
-    for name, constraint in transient_orbit.constraints.items():
-        if options.get(name) is not None:
-            constraint(name, options[name])
+    options.pop("cycles", None)
+    tier_options(values["tier"], options, values["tilt_compliance"])
 
 
 @renamed(diameter="journal_d", length="bearing_width")

@@ -93,7 +93,7 @@ import numpy as np
 
 from .._kernels import elrod as _kernel
 from .._validate import Finite, Integer, Positive, integer, renamed, validated
-from .journal import ECCENTRICITY_LIMIT, Orbit, edge_film, table_covers
+from .journal import ECCENTRICITY_LIMIT, Orbit, edge_film, feed_patch, table_covers
 from .mobility import mobility_orbit
 
 #: Grid: angles around the bearing, nodes on each land between the feed groove and the bearing's end.
@@ -119,11 +119,6 @@ SMOOTHING = 1e-2
 #: fast from its second cycle on: a tighter closure moves the cycle's minimum and mean film far less than the
 #: tier's error against the converged solution (``reports/film_speed_vs_error.md``), at a cycle's cost each.
 PERIODIC = 1e-2
-#: The feed when none is given: a patch on the block side (Theta = pi), its width [rad] and share of the length
-#: (as :mod:`stackup.film.transient`).
-FEED_ANGLE = np.pi
-FEED_WIDTH = np.radians(6.0)
-FEED_LENGTH_SHARE = 0.3
 
 
 def axial_nodes(half_length, feed_half_width, n_land):
@@ -192,19 +187,6 @@ def grid(*, length_over_radius, n_theta, n_land, feed_arc, feed_half_width, feed
                         0.5 * (z[1:] + z[:-1]), width, weight, 0 if half else 1, fixed, p_fixed, 1.0 - limit)
 
 
-def _feed_patch(length, radius, unit_pressure, feed):
-    """Arc [rad], half-width [R] and dimensionless pressure of the nodes held full by the feed."""
-    if feed is None:
-        arc, half_width, supply = (FEED_ANGLE - FEED_WIDTH / 2, FEED_ANGLE + FEED_WIDTH / 2), \
-            FEED_LENGTH_SHARE * length / 2, 0.0
-    elif feed.kind == "groove":
-        arc, half_width, supply = feed.groove_arc, feed.groove_width / 2, feed.supply_pressure
-    else:
-        arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
-        half_width, supply = feed.hole_diameter / 2, feed.supply_pressure
-    return dict(feed_arc=arc, feed_half_width=half_width / radius, feed_pressure=supply / unit_pressure)
-
-
 def _land_nodes(field, value):
     """Nodes on a land: 1 to 6 (Newton-Cotes weights stay positive up to 8 points, the land's ends included)."""
     value = integer(field, value, minimum=1)
@@ -264,7 +246,7 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
         unit_pressure = mu * w * r**2 / c_b**2
         half = tilt is None
         g = grid(length_over_radius=l / r, n_theta=int(n_theta), n_land=int(n_land), half=half,
-                 **_feed_patch(l, r, unit_pressure, feed))
+                 **feed_patch(feed, journal_radius=r, bearing_width=l, unit_pressure=unit_pressure))
         slope = np.zeros((n, 2)) if tilt is None else np.ascontiguousarray(tilt[idx] * r / c_b)
         work = _kernel.workspace(g.fixed.shape[0], g.fixed.shape[1], g.j0, 2)
         record, outs = np.empty((n, 2)), np.empty((n, 3))

@@ -68,7 +68,7 @@ import numpy as np
 
 from .. import _validate as check
 from .._validate import AngleVectors, InRange, OneOf, Positive, renamed, validated
-from . import journal_position, min_film_thickness
+from .steady import journal_position, min_film_thickness
 from . import oil as oils
 
 FEEDS = ("groove", "hole")

@@ -1,10 +1,12 @@
-r"""The journal in its bearing over the engine cycle: what every cycle tier shares.
+r"""The journal in its bearing over the engine cycle: what every tier shares.
 
-The cycle tiers (:mod:`~stackup.film.orbit`'s quasi-static tiers, :mod:`~stackup.film.mobility`,
-:mod:`~stackup.film.transient`) and the tilt equilibrium (:mod:`~stackup.film.tilt`) import this
-module and none of them another's internals: the eccentricity limit, the status codes of an orbit
-and of the tilt equilibrium, the result :class:`Orbit`, the finite-length correction's table and the
-edge film of a tilted journal.
+The cycle tiers (:mod:`~stackup.film.quasi_static`, :mod:`~stackup.film.mobility`,
+:mod:`~stackup.film.elrod`, :mod:`~stackup.film.transient`), the steady tiers
+(:mod:`~stackup.film.steady`, :mod:`~stackup.film.reynolds`) and the tilt equilibrium
+(:mod:`~stackup.film.tilt`) import this module and none of them another's internals: the
+eccentricity limit, the status codes of an orbit and of the tilt equilibrium, the result
+:class:`Orbit`, the finite-length correction's table, the edge film of a tilted journal and the
+patch the fed tiers hold full.
 """
 
 from __future__ import annotations
@@ -19,10 +21,19 @@ import numpy as np
 STATUS = ("periodic", "not_periodic", "collapsed", "failed", "edge_contact")
 #: States of the tilt equilibrium at an angle (flag values 0..2).
 STATES = ("equilibrium", "at_limit", "not_solved")
-#: Largest eccentricity a journal reaches; a film held there has collapsed.
+#: Largest eccentricity the film models go to: the thinnest film they resolve is 0.5 % of the radial clearance.
+#: One limit for every tier: the steady Reynolds tier solves up to it and the finite tier's table ends there
+#: (a steady film beyond it is returned with ``valid`` False, the short-bearing curve scaled past it); a cycle
+#: tier's journal, or a tilted journal's edge, is held there (the film has collapsed, or the edge is at the
+#: wall); the mobility tier's correction table is tabulated up to it.
 ECCENTRICITY_LIMIT = 0.995
 #: The engine cycle [deg] the cycle tiers' crank angles lie in (four strokes: two turns of the journal).
 CYCLE = 720.0
+#: The feed when none is given (:func:`feed_patch`): a patch on the block side (Theta = pi, opposite the cap), its
+#: width around the bearing [rad] and its share of the bearing's width; a hole is a patch this wide too.
+FEED_ANGLE = np.pi
+FEED_WIDTH = np.radians(6.0)
+FEED_LENGTH_SHARE = 0.3
 
 
 def within_one_cycle(crank_angle):
@@ -205,3 +216,24 @@ def edge_film(position, tilt, bearing_width, radial_clearance, h_min, status, at
         touching = touching | (at_limit == 1)
     status = np.where((status == 0) & touching.any(axis=-1), STATUS.index("edge_contact"), status).astype(np.int8)
     return np.maximum(np.minimum(h_min, c[..., None] - reach), floor), status
+
+
+def feed_patch(feed, *, journal_radius, bearing_width, unit_pressure, angle=FEED_ANGLE, pressure=0.0):
+    """Where the fed tiers hold their film full of oil, on their dimensionless grids.
+
+    ``feed`` (:class:`stackup.film.heat.OilFeed`): its groove (arc, axial width) or its hole (a
+    :data:`FEED_WIDTH` wide patch at the hole's angle, the hole's diameter long), at its supply pressure;
+    None: a :data:`FEED_WIDTH` wide patch at ``angle`` [rad], :data:`FEED_LENGTH_SHARE` of the bearing's
+    width long, at the gauge ``pressure`` [Pa]. The patch is centred on the mid-plane. ``journal_radius``,
+    ``bearing_width`` [m] and ``unit_pressure`` (the pressure the grid's is a share of) [Pa] are one bearing's.
+
+    Returns ``feed_arc`` (start, end) [rad], ``feed_half_width`` [journal radii] and ``feed_pressure`` [-].
+    """
+    if feed is None:
+        arc, width = (angle - FEED_WIDTH / 2, angle + FEED_WIDTH / 2), FEED_LENGTH_SHARE * bearing_width
+    elif feed.kind == "groove":
+        arc, width, pressure = feed.groove_arc, feed.groove_width, feed.supply_pressure
+    else:
+        arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
+        width, pressure = feed.hole_diameter, feed.supply_pressure
+    return dict(feed_arc=arc, feed_half_width=width / 2 / journal_radius, feed_pressure=pressure / unit_pressure)

@@ -1,8 +1,8 @@
 """The mobility tiers' orbit (Booker's mobility method), compiled: ``"mobility"`` and ``"mobility-finite"``.
 
 The equations are stated with the tiers in :mod:`stackup.film.orbit`; the kernels are
-:mod:`stackup._kernels.mobility`. :func:`stackup.film.orbit.orbit` turns this tier's orbit into an
-:class:`~stackup.film.journal.Orbit` (eccentricity, films, tilt); the transient tier starts from it.
+:mod:`stackup._kernels.mobility`. :func:`mobility_tier_orbit` turns this tier's orbit into an
+:class:`~stackup.film.journal.Orbit` (eccentricity, films, tilt); the mass-conserving tiers start from it.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ import numpy as np
 
 from .._kernels import mobility as _kernel
 from .journal import ECCENTRICITY_LIMIT, mobility_table, outside_table, short_table, table_covers, vector_length
+from .tilt import tilted_orbit
 
 #: The orbit is periodic when the journal returns after a cycle to within this share of the thinnest film.
 PERIODIC = 1e-3
@@ -70,3 +71,18 @@ def mobility_orbit(loads, crank_angle, *, finite, cycles, start, journal_radius,
         + 0.5 * (position[..., 1] * loads[..., 0] - position[..., 0] * loads[..., 1])
     flow = (2 * radius * length * c * w)[..., None] * vector_length(v)
     return MobilityOrbit(position, p_max, torque, flow, status.reshape(lead), used.reshape(lead), squeeze)
+
+
+def mobility_tier_orbit(loads, crank_angle, *, finite, journal_radius, bearing_width, radial_clearance, viscosity,
+                        speed, tilt, tilt_compliance, cycles, start):
+    """The :class:`~stackup.film.journal.Orbit` of a mobility tier (a tier's function, :mod:`stackup.film.registry`).
+
+    :func:`mobility_orbit` (``finite``: the ``mobility-finite`` tier's correction, also in the tilt's moment),
+    the tilt marched over the cycle on it (:func:`~stackup.film.tilt.tilted_orbit`).
+    """
+    geometry = dict(journal_radius=journal_radius, bearing_width=bearing_width, radial_clearance=radial_clearance,
+                    viscosity=viscosity, speed=speed)
+    position, p_max, torque, flow, status, used, squeeze = mobility_orbit(loads, crank_angle, finite=finite,
+                                                                          cycles=cycles, start=start, **geometry)
+    return tilted_orbit(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, finite=finite,
+                        crank_angle=crank_angle, **geometry)

@@ -1,11 +1,12 @@
 r"""Dynamically loaded bearings over the engine cycle: the journal orbit, its film and pressure.
 
-Tiers of :func:`orbit` (``method``); their measured costs and errors are in
+Tiers of :func:`orbit` (``method``), each a record in :mod:`stackup.film.registry` (the package's in
+:mod:`stackup.film.catalogue`); their measured costs and errors are in
 ``reports/film_speed_vs_error.md`` and :func:`cheapest_cycle_tier` picks from them:
 
 ``"short"``, ``"finite"``, ``"reynolds"``
     Quasi-static: each crank angle as a steady load on that steady tier
-    (:func:`stackup.film.min_film_thickness`): no squeeze film.
+    (:func:`stackup.film.min_film_thickness`, :mod:`stackup.film.quasi_static`): no squeeze film.
 ``"mobility"``
     The journal centre moves so that the film force balances the load at
     every instant (massless journal, Booker's mobility method), with the
@@ -27,9 +28,9 @@ Tiers of :func:`orbit` (``method``); their measured costs and errors are in
     mass-conserving (Elrod-Adams, JFO) cavitation, the journal centre integrated
     over the cycle (:mod:`stackup.film.transient`).
 
-The names before issue 30 stay accepted, with a DeprecationWarning (:data:`ALIASES`):
-``"quasi-static"`` with ``steady_method``, ``"quasi-static-<steady tier>"``, ``"mobility-short"``
-and the study's ``"transient"``.
+The names before issue 30 stay accepted, with a DeprecationWarning (:data:`ALIASES`, each tier's
+:attr:`~stackup.film.registry.Tier.aliases`): ``"quasi-static"`` with ``steady_method``,
+``"quasi-static-<steady tier>"``, ``"mobility-short"`` and the study's ``"transient"``.
 
 Mobility tiers (:mod:`stackup.film.mobility`). In the engine-fixed frame, journal centre :math:`\mathbf x`
 (from the bearing centre), journal speed :math:`\omega` (positive from axis 0 to
@@ -103,27 +104,24 @@ from importlib import resources
 
 import numpy as np
 
-from .._kernels import mobility as _kernel
 from .._validate import Finite, Integer, OneOf, Positive, one_of, renamed, validated
-from . import ECCENTRICITY_VALID, Film, min_film_thickness, reynolds
-from .journal import (ECCENTRICITY_LIMIT, STATES, STATUS, Orbit, edge_film, mobility_table,  # noqa: F401 (API)
-                      short_table, table_covers, vector_length, within_one_cycle)
-from .mobility import PERIODIC, mobility_orbit  # noqa: F401 (PERIODIC: API)
-from .tilt import cycle_tilt, march_tilt
-from .elrod import elrod_orbit
-from .transient import transient_orbit
+from . import catalogue  # noqa: F401 (registers the package's tiers)
+from . import registry
+from .journal import ECCENTRICITY_LIMIT, STATES, STATUS, Orbit, mobility_table  # noqa: F401 (API)
+from .journal import within_one_cycle
+from .mobility import PERIODIC  # noqa: F401 (API)
 
-#: Cycle tiers :func:`orbit` runs (``method``), cheapest first; the study's film methods are the same names.
-METHODS = ("short", "finite", "mobility", "mobility-finite", "elrod-coarse", "reynolds", "reynolds-transient")
+#: Cycle tiers :func:`orbit` runs (``method``), cheapest first; the study's film methods are the same names
+#: (the registry's, read at each use).
+METHODS = registry.Names()
 #: Quasi-static tiers (a steady tier at each angle) and dynamic ones (an orbit integrated over cycles).
-QUASI_STATIC = ("short", "finite", "reynolds")
-DYNAMIC = ("mobility", "mobility-finite", "elrod-coarse", "reynolds-transient")
+QUASI_STATIC = registry.Names(kind="quasi-static")
+DYNAMIC = registry.Names(kind="dynamic")
 #: Tiers that fill their film from the engine's oil feed (``feed``: groove or hole held at the supply pressure);
 #: the others take the film as full wherever its pressure is positive.
-FED = ("elrod-coarse", "reynolds-transient")
+FED = registry.Names(fed=True)
 #: Deprecated names of the tiers -> their names (``"quasi-static"`` takes its tier from ``steady_method``).
-ALIASES = {"quasi-static-short": "short", "quasi-static-finite": "finite", "quasi-static-reynolds": "reynolds",
-           "mobility-short": "mobility", "transient": "reynolds-transient"}
+ALIASES = registry.ALIASES
 #: Measures of a cycle tier's error (:func:`cycle_tier_errors`).
 MEASURES = ("h_min", "h_min_mean", "p_max", "p_max_mean", "friction_power")
 
@@ -177,11 +175,13 @@ def cycle_tier_errors():
     error of the cycle minimum (``h_min``) and cycle mean (``h_min_mean``) of the
     minimum film, the peak pressure's maximum and mean and the mean friction
     power, against the mass-conserving reference, and in ``"swift-stieber"``
-    against the same reference with the Reynolds cavitation condition. A file
-    written before the tiers were renamed (:data:`ALIASES`) reads under the names.
+    against the same reference with the Reynolds cavitation condition. Each
+    registered tier reads its row (:attr:`~stackup.film.registry.Tier.error_row`);
+    a tier without one is not measured.
     """
     with open(resources.files("stackup") / "data" / "film_cycle_errors.toml", "rb") as f:
-        return {ALIASES.get(tier, tier): errors for tier, errors in tomllib.load(f)["tiers"].items()}
+        rows = tomllib.load(f)["tiers"]
+    return {tier.name: rows[tier.error_row] for tier in registry.tiers() if tier.error_row in rows}
 
 
 def _each_measure(field, names):
@@ -200,7 +200,8 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
     ``"swift-stieber"`` (the same transient tier with the Reynolds condition, the
     cavitation model of every cheaper tier: it measures their numerical error
     only). ``tiers``: the tiers to choose from (default every measured one). Falls
-    back to ``reynolds-transient`` when no cheaper tier qualifies.
+    back to the reference (``reynolds-transient``, :func:`~stackup.film.registry.reference_tier`)
+    when no cheaper tier qualifies.
     """
     max_error = float(max_error)
     errors = cycle_tier_errors()
@@ -213,7 +214,7 @@ def cheapest_cycle_tier(max_error, *, measures=("h_min", "h_min_mean"), referenc
         table = errors[tier] if reference == "mass-conserving" else errors[tier]["swift-stieber"]
         return table[name]
 
-    return next((t for t in ranked if all(error(t, m) <= max_error for m in measures)), "reynolds-transient")
+    return next((t for t in ranked if all(error(t, m) <= max_error for m in measures)), registry.reference_tier().name)
 
 
 def one_cycle(loads_name):
@@ -234,20 +235,26 @@ def compliance_with_tilt(values):
         raise ValueError("tilt_compliance: given without tilt (the journal's free slope)")
 
 
-#: The tiers that take options of their own (``**transient_options`` of :func:`orbit`), by tier.
-TIER_FUNCTIONS = {"elrod-coarse": elrod_orbit, "reynolds-transient": transient_orbit}
+def tier_options(method, options, tilt_compliance=None):
+    """A ValueError unless ``options`` (a dict) are options of the tier ``method`` (its record's
+    :attr:`~stackup.film.registry.Tier.options`), each as the tier checks it, and the tier balances the tilt
+    where a ``tilt_compliance`` is given."""
+    tier = registry.tier(method)
+    for name, value in options.items():
+        if name not in tier.options:
+            taken = ", ".join(tier.options) or "none"
+            raise ValueError(f"{name}: not an option of method={method!r} (its options: {taken})")
+        if value is not None and tier.options[name] is not None:
+            tier.options[name](name, value)
+    if tier.imposed_tilt and tilt_compliance is not None:
+        turned = ", ".join(repr(t.name) for t in registry.tiers() if t.kind == "dynamic" and not t.imposed_tilt)
+        raise ValueError(f"tilt_compliance: not valid with method={method!r}, which takes the tilt as imposed "
+                         f"(give the tilt in the film, or use one of {turned})")
 
 
-def _transient_options(values):
-    """The tier's own options, checked as its function (:data:`TIER_FUNCTIONS`) declares them."""
-    options = values["transient_options"]
-    function = TIER_FUNCTIONS.get(values["method"], transient_orbit)
-    for name, constraint in function.constraints.items():
-        if options.get(name) is not None:
-            constraint(name, options[name])
-    if values["method"] == "elrod-coarse" and values["tilt_compliance"] is not None:
-        raise ValueError("tilt_compliance: not valid with method='elrod-coarse', which takes the tilt as imposed "
-                         "(give the tilt in the film, or use 'mobility-finite' or 'reynolds-transient')")
+def _own_options(values):
+    """Relation: the tier's own options (``**options`` of :func:`orbit`), checked as its record declares them."""
+    tier_options(values["method"], values["options"], values["tilt_compliance"])
 
 
 @renamed(diameter="journal_d", length="bearing_width")
@@ -255,9 +262,9 @@ def _transient_options(values):
 @validated(method=OneOf(METHODS), load_history=Finite(), crank_angle=Finite(), journal_d=Positive(),
            bearing_width=Positive(), clearance=Positive(), viscosity=Positive(), speed=Positive(),
            cycles=Integer(minimum=1), tilt=Finite(), tilt_compliance=Positive(zero=True), start=Finite(),
-           relations=(one_cycle("load_history"), compliance_with_tilt, _transient_options))
+           relations=(one_cycle("load_history"), compliance_with_tilt, _own_options))
 def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, viscosity, speed, method="mobility",
-          tilt=None, tilt_compliance=None, cycles=None, start=None, **transient_options):
+          tilt=None, tilt_compliance=None, cycles=None, start=None, **options):
     """Film over the engine cycle of dynamically loaded bearings.
 
     Parameters
@@ -274,7 +281,8 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
     speed : float or array_like (...)
         Journal angular speed [rad/s] (positive: from load axis 0 towards axis 1).
     method : str
-        A tier of :data:`METHODS` (deprecated names: :data:`ALIASES`).
+        A tier of :data:`METHODS` (deprecated names: :data:`ALIASES`); its record in
+        :mod:`stackup.film.registry` runs it.
     tilt : array_like (..., angles, 2), optional
         Slope of the journal axis relative to the bearing axis [rad], per
         component of the engine frame (the journal centre at axial position
@@ -285,20 +293,21 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
         Rotational compliance of the journal at the bearing per component of the
         engine frame [rad/(N m)] (:func:`stackup.crank.support_compliance`): the
         tilt in the film balances the film's moment against it
-        (:mod:`stackup.film.tilt`).
+        (:mod:`stackup.film.tilt`); not valid with a tier that takes the tilt as imposed.
     cycles : int, optional
         Most cycles a dynamic tier integrates to reach a periodic orbit
-        (default 20 for the mobility tiers, 8 for ``"elrod-coarse"`` and ``"reynolds-transient"``).
+        (default the tier's, :attr:`~stackup.film.registry.Tier.cycles`: 20 for the mobility
+        tiers, 8 for ``"elrod-coarse"`` and ``"reynolds-transient"``).
     start : array_like (..., 2), optional
         Journal centre at the first crank angle [m] to start a dynamic tier
         from (e.g. the ``position[..., 0, :]`` of a coarser orbit); default the
         bearing centre (the mobility tiers) or the ``mobility-finite`` orbit's
         (the transient tier). A start near the periodic orbit saves laps; the
         orbit reached is the same.
-    **transient_options
-        Grid and cavitation options of ``"reynolds-transient"``
-        (:func:`stackup.film.transient.transient_orbit`) and of ``"elrod-coarse"``
-        (:func:`stackup.film.elrod.elrod_orbit`).
+    **options
+        The tier's own options (:attr:`~stackup.film.registry.Tier.options`), e.g. the oil
+        feed and the grid of ``"reynolds-transient"`` (:func:`stackup.film.transient.transient_orbit`)
+        and of ``"elrod-coarse"`` (:func:`stackup.film.elrod.elrod_orbit`).
 
     Returns
     -------
@@ -315,95 +324,8 @@ def orbit(load_history, crank_angle, *, journal_d, bearing_width, clearance, vis
         tilt_compliance = np.broadcast_to(np.asarray(tilt_compliance, dtype=float), (*lead, 2))
     if start is not None:
         start = np.broadcast_to(np.asarray(start, dtype=float), (*lead, 2))
-    if cycles is None:
-        cycles = 8 if method in TIER_FUNCTIONS else 20
-    return _run(method, loads, np.asarray(crank_angle, dtype=float), geometry, tilt=tilt,
-                tilt_compliance=tilt_compliance, cycles=cycles, start=start, options=transient_options)
-
-
-def _run(method, loads, angle, geometry, *, tilt, tilt_compliance, cycles, start, options):
-    """The tier ``method``'s orbit on inputs broadcast to the loads' leading shape (``geometry`` radial, SI)."""
-    if method == "elrod-coarse":
-        return elrod_orbit(loads, angle, **geometry, tilt=tilt, cycles=cycles, start=start, **options)
-    if method == "reynolds-transient":
-        return transient_orbit(loads, angle, **geometry, tilt=tilt, tilt_compliance=tilt_compliance, cycles=cycles,
-                               start=start, **options)
-    if method in QUASI_STATIC:
-        position, p_max, torque, flow = _quasi_static(loads, method, **geometry)
-        lead = loads.shape[:-2]
-        status, used = np.zeros(lead, np.int8), np.zeros(lead, int)
-        squeeze = -0.5 * geometry["speed"][..., None, None] * np.stack([-position[..., 1], position[..., 0]], axis=-1)
-        finite = method != "short"
-    else:
-        finite = method == "mobility-finite"
-        position, p_max, torque, flow, status, used, squeeze = mobility_orbit(loads, angle, finite=finite,
-                                                                              cycles=cycles, start=start, **geometry)
-    return _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, finite=finite,
-                      crank_angle=None if method in QUASI_STATIC else angle, **geometry)
-
-
-def _with_tilt(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, *, finite, crank_angle,
-               journal_radius, bearing_width, radial_clearance, viscosity, speed):
-    """The :class:`Orbit` of a mid-plane orbit: its films, and the tilt in them where a compliance turns it back:
-    marched with its squeeze over the ``crank_angle`` of a dynamic tier, held at each angle of a quasi-static one
-    (``crank_angle`` None)."""
-    c = radial_clearance
-    ecc = vector_length(position) / c[..., None]
-    h_min = c[..., None] * (1 - ecc)
-    film_tilt, tilt_state = tilt, None
-    if tilt_compliance is not None:
-        # the finite correction where its table covers the bearing (as the mobility-finite tier)
-        covered = table_covers(bearing_width / (2 * journal_radius))
-        film = dict(compliance=tilt_compliance, journal_radius=journal_radius, bearing_width=bearing_width,
-                    radial_clearance=c, viscosity=viscosity, speed=speed,
-                    method="finite" if finite and covered else "short")
-        equilibrium = (cycle_tilt(position, squeeze, tilt, **film) if crank_angle is None
-                       else march_tilt(position, squeeze, tilt, crank_angle, **film))
-        film_tilt, tilt_state = equilibrium.tilt, equilibrium.state
-    h_edge, status = edge_film(position, film_tilt, bearing_width, c, h_min, status, at_limit=tilt_state)
-    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, speed, film_tilt, tilt, tilt_state)
-
-
-def _quasi_static(loads, steady, *, journal_radius, bearing_width, radial_clearance, viscosity, speed):
-    """Steady film at each angle; the journal sits at the attitude angle ahead of the load, in the turning direction."""
-    c, mu, w = (a[..., None] for a in (radial_clearance, viscosity, speed))
-    r, l = journal_radius[..., None], bearing_width[..., None]
-    magnitude = np.linalg.norm(loads, axis=-1)
-    kw = dict(journal_d=2 * r, bearing_width=l, clearance=2 * c, viscosity=mu, speed=w)
-    if steady == "reynolds":
-        film, field_peak = _steady_reynolds(np.maximum(magnitude, 1e-6), **kw)
-    else:
-        film = min_film_thickness(np.maximum(magnitude, 1e-6), **kw, method=steady)
-        eps = np.minimum(film.eccentricity, ECCENTRICITY_LIMIT)
-        ld_nodes, stretched, tables = mobility_table() if steady == "finite" else short_table()
-        flat_eps = np.ascontiguousarray(eps, dtype=float).ravel()
-        factor = np.empty(flat_eps.size)
-        ld = np.ascontiguousarray(np.broadcast_to(l / (2 * r), eps.shape), dtype=float).ravel()
-        _kernel.steady_peak_factors(flat_eps, ld, _kernel.Correction(tables, ld_nodes, stretched, steady == "finite"),
-                                    factor)
-        # v_s = (1/2) k x xi: |v| = eps/2
-        field_peak = 1.5 * mu * w * (l / c) ** 2 * 0.5 * eps * factor.reshape(eps.shape)
-    direction = np.arctan2(loads[..., 1], loads[..., 0]) + film.attitude_angle
-    ecc = np.where(magnitude > 0, film.eccentricity, 0.0)
-    position = (c * ecc)[..., None] * np.stack([np.cos(direction), np.sin(direction)], axis=-1)
-    return position, field_peak, film.friction_torque, film.side_flow
-
-
-def _steady_reynolds(load, *, journal_d, bearing_width, clearance, viscosity, speed):
-    """Steady Reynolds tier at each angle, with the peak of its pressure field."""
-    load, journal_d, bearing_width, clearance, viscosity, speed = np.broadcast_arrays(
-        load, journal_d, bearing_width, clearance, viscosity, speed)
-    out = {k: np.empty(load.shape) for k in ("eps", "phi", "torque", "flow", "peak")}
-    for idx in np.ndindex(load.shape):
-        r, l, c, mu, w = (float(a[idx]) for a in (journal_d / 2, bearing_width, clearance / 2, viscosity, speed))
-        unit = mu * w * r**4 / c**2
-        field = reynolds.eccentricity_for_load(float(load[idx]) / unit, l / r)
-        friction, flow = reynolds.friction_and_flow(field)
-        out["eps"][idx] = field.eps
-        out["phi"][idx] = field.attitude
-        out["torque"][idx] = mu * w * r**4 / c * friction
-        out["flow"][idx] = w * r**2 * c / 12 * flow
-        out["peak"][idx] = mu * w * r**2 / c**2 * field.pressure.max()
-    c = clearance / 2
-    return Film(out["eps"], c * (1 - out["eps"]), out["phi"], out["torque"], out["flow"],
-                out["eps"] <= ECCENTRICITY_VALID), out["peak"]
+    tier = registry.tier(method)
+    inputs = dict(tilt=tilt, cycles=tier.cycles if cycles is None else cycles, start=start, **options)
+    if not tier.imposed_tilt:
+        inputs["tilt_compliance"] = tilt_compliance
+    return tier.run(loads, np.asarray(crank_angle, dtype=float), **geometry, **inputs)

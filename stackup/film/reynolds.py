@@ -36,6 +36,7 @@ from scipy import optimize, sparse
 from scipy.sparse.linalg import spsolve
 
 from .._kernels.reynolds import integrate, psor
+from .journal import ECCENTRICITY_LIMIT
 
 N_THETA = 144
 N_Z = 25
@@ -91,7 +92,8 @@ def friction_and_flow(field):
 
 
 def eccentricity_for_load(dimensionless_load, length_over_radius, *, n_theta=N_THETA, n_z=N_Z):
-    """The field whose dimensionless load equals ``dimensionless_load`` (Brent on log load)."""
+    """The field whose dimensionless load equals ``dimensionless_load`` (Brent on log load), at an eccentricity up to
+    :data:`~stackup.film.journal.ECCENTRICITY_LIMIT` (a ValueError for a load beyond it)."""
     cache = {}
 
     def mismatch(eps):
@@ -100,7 +102,7 @@ def eccentricity_for_load(dimensionless_load, length_over_radius, *, n_theta=N_T
         cache[eps] = field
         return np.log(field.force) - np.log(dimensionless_load)
 
-    lo, hi = 1e-4, 0.995
+    lo, hi = 1e-4, ECCENTRICITY_LIMIT
     if mismatch(hi) < 0:
         raise ValueError(f"load: the Reynolds tier needs an eccentricity above {hi} for this load")
     if mismatch(lo) > 0:

@@ -80,8 +80,8 @@ import numpy as np
 from .._kernels import tilt as _kernel
 from .._kernels.mobility import Correction, bearing_table, table_lookup
 from .._validate import AngleVectors, Finite, OneOf, Positive, renamed, validated
-from .journal import (CYCLE, ECCENTRICITY_LIMIT, STATES, mobility_table, outside_table,  # noqa: F401
-                      short_table, table_covers, within_one_cycle)
+from .journal import (CYCLE, ECCENTRICITY_LIMIT, STATES, Orbit, edge_film, mobility_table,  # noqa: F401
+                      outside_table, short_table, table_covers, vector_length, within_one_cycle)
 
 #: Gauss-Legendre nodes on the arc that carries pressure and on the rest of the bearing.
 GAUSS_NODES = 12
@@ -456,3 +456,31 @@ def march_tilt(position, squeeze_velocity, free_tilt, crank_angle, *, compliance
     c, l = args.radial_clearance, args.bearing_width
     gamma = tilt.reshape(*lead, n, 2) * (2 * c / l)[..., None, None]
     return TiltEquilibrium(gamma, state.reshape(*lead, n), evaluations.reshape(*lead, n))
+
+
+def tilted_orbit(position, squeeze, p_max, torque, flow, status, used, tilt, tilt_compliance, *, finite, crank_angle,
+                 journal_radius, bearing_width, radial_clearance, viscosity, speed):
+    """The :class:`~stackup.film.journal.Orbit` of a mid-plane orbit: its films, and the tilt in them.
+
+    The mid-plane orbit of a cheap tier (journal centre (..., angles, 2) [m], its squeeze velocity [m/s], peak
+    pressure, friction torque, side flow, status and cycles) with the ``tilt`` given (..., angles, 2) [rad] or
+    None; where a ``tilt_compliance`` turns it back, the tilt in the film is the equilibrium with the film's
+    moment (``finite``: finite-corrected where the table covers the bearing, as the mobility-finite tier),
+    marched with its squeeze over the ``crank_angle`` of a dynamic tier (:func:`march_tilt`), held at each angle
+    of a quasi-static one (``crank_angle`` None, :func:`cycle_tilt`). Geometry (...) radial, SI.
+    """
+    c = radial_clearance
+    ecc = vector_length(position) / c[..., None]
+    h_min = c[..., None] * (1 - ecc)
+    film_tilt, tilt_state = tilt, None
+    if tilt_compliance is not None:
+        # the finite correction where its table covers the bearing (as the mobility-finite tier)
+        covered = table_covers(bearing_width / (2 * journal_radius))
+        film = dict(compliance=tilt_compliance, journal_radius=journal_radius, bearing_width=bearing_width,
+                    radial_clearance=c, viscosity=viscosity, speed=speed,
+                    method="finite" if finite and covered else "short")
+        equilibrium = (cycle_tilt(position, squeeze, tilt, **film) if crank_angle is None
+                       else march_tilt(position, squeeze, tilt, crank_angle, **film))
+        film_tilt, tilt_state = equilibrium.tilt, equilibrium.state
+    h_edge, status = edge_film(position, film_tilt, bearing_width, c, h_min, status, at_limit=tilt_state)
+    return Orbit(h_min, h_edge, ecc, position, p_max, torque, flow, status, used, speed, film_tilt, tilt, tilt_state)

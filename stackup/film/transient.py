@@ -59,7 +59,8 @@ from .._kernels import mobility as _mobility
 from .._kernels.reynolds import Grid, Sweeps, elrod_adams
 from .._kernels.tilt import wall_room
 from .._validate import Finite, Integer, OneOf, Positive, renamed, validated
-from .journal import ECCENTRICITY_LIMIT, STATES, Orbit, edge_film, mobility_table, table_covers
+from .journal import (ECCENTRICITY_LIMIT, FEED_ANGLE, STATES, Orbit, edge_film, feed_patch, mobility_table,
+                      table_covers)
 from .mobility import mobility_orbit
 
 CAVITATION = ("elrod-adams", "reynolds")
@@ -75,17 +76,13 @@ FORCE_TOLERANCE = 1e-6
 MAX_BROYDEN = 40
 #: Periodic when the journal returns after a cycle to within this share of the thinnest film.
 PERIODIC = 2e-3
-#: Oil supply: hole on the block side (opposite the cap, Theta = pi), its width [rad] and share of the length.
-FEED_ANGLE = np.pi
-FEED_WIDTH = np.radians(6.0)
-FEED_LENGTH_SHARE = 0.3
 
 
 class _Film:
     """Grid and dimensionless film of one bearing."""
 
-    def __init__(self, *, length_over_radius, clearance_over_radius, n_theta, n_z, feed_arc, feed_length_share,
-                 feed_pressure, limit=0.995):
+    def __init__(self, *, length_over_radius, clearance_over_radius, n_theta, n_z, feed_arc, feed_half_width,
+                 feed_pressure, limit):
         self.limit = limit
         self.theta = 2 * np.pi * np.arange(n_theta) / n_theta
         self.dtheta = 2 * np.pi / n_theta
@@ -101,7 +98,7 @@ class _Film:
         self.p_fixed = np.zeros((n_theta, n_z))
         start, end = feed_arc
         near = np.mod(self.theta - start + 1e-12, 2 * np.pi) <= (end - start) + 2e-12
-        along = np.abs(self.z) <= feed_length_share * length_over_radius / 2 + 1e-12
+        along = np.abs(self.z) <= feed_half_width + 1e-12
         hole = near[:, None] & along[None, :]
         self.fixed |= hole
         self.p_fixed[hole] = feed_pressure
@@ -161,7 +158,7 @@ def transient_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial
     feed : stackup.film.heat.OilFeed, optional
         The engine's oil feed: its supply pressure and groove (arc and axial width)
         or hole replace ``feed_pressure`` and ``feed_angle`` (a hole is a
-        :data:`FEED_WIDTH` wide patch at ``feed.hole_angle``, the hole's diameter
+        :data:`~stackup.film.journal.FEED_WIDTH` wide patch at ``feed.hole_angle``, the hole's diameter
         long).
     start : array_like (..., 2), optional
         Journal centre at the first angle [m]; default from the ``mobility-finite`` tier
@@ -189,13 +186,13 @@ def transient_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial
     status = np.empty(lead, np.int8)
     used = np.empty(lead)
     options = dict(mass_conserving=cavitation == "elrod-adams", time_order=time_order, tilt_squeeze=tilt_squeeze)
-    feed_options = dict(feed=feed, feed_pressure=feed_pressure, feed_angle=feed_angle)
     for idx in np.ndindex(lead):
         r, l, c_b, mu, w = (float(a[idx]) for a in (radius, length, c, viscosity, speed))
         unit_force = mu * w * r**4 / c_b**2
         unit_pressure = mu * w * r**2 / c_b**2
         film = _Film(length_over_radius=l / r, clearance_over_radius=c_b / r, n_theta=n_theta, n_z=n_z,
-                     **_feed_patch(l, unit_pressure, **feed_options), limit=ECCENTRICITY_LIMIT)
+                     **feed_patch(feed, journal_radius=r, bearing_width=l, unit_pressure=unit_pressure,
+                                  angle=feed_angle, pressure=feed_pressure), limit=ECCENTRICITY_LIMIT)
         # the tilt equilibrium in edge offsets e = gamma L/(2c): e + kappa M = e_free, M per mu omega R^5/c^2
         kappa = None if tilt_compliance is None else (np.asarray(tilt_compliance[idx], float) * mu * w * r**5 * l
                                                       / (2 * c_b**3))
@@ -209,19 +206,6 @@ def transient_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial
         out["flow"][idx] = flow * w * r**2 * c_b / 12
     return _orbit_of(position, out, status, used, tilt, film_tilt, coupled=tilt_compliance is not None,
                      bearing_width=length, radial_clearance=c, speed=speed)
-
-
-def _feed_patch(length, unit_pressure, *, feed, feed_pressure, feed_angle):
-    """The oil feed of :class:`_Film` (arc [rad], share of the length, dimensionless pressure) of a bearing."""
-    if feed is None:
-        arc, share, supply = (feed_angle - FEED_WIDTH / 2, feed_angle + FEED_WIDTH / 2), FEED_LENGTH_SHARE, \
-            feed_pressure
-    elif feed.kind == "groove":
-        arc, share, supply = feed.groove_arc, feed.groove_width / length, feed.supply_pressure
-    else:
-        arc = (feed.hole_angle - FEED_WIDTH / 2, feed.hole_angle + FEED_WIDTH / 2)
-        share, supply = feed.hole_diameter / length, feed.supply_pressure
-    return dict(feed_arc=arc, feed_length_share=share, feed_pressure=supply / unit_pressure)
 
 
 def _mobility_table_at(length_over_diameter):

@@ -12,7 +12,7 @@ from functools import partial
 import numpy as np
 import pandas as pd
 
-from ..film.cycle import CHECK_METHOD
+from ..film.registry import check_tier
 from . import format as fmt
 from . import templates as words
 from .sections import image, in_order, markdown_table, section
@@ -139,7 +139,7 @@ def _corrected_text(corrected, scheme):
                                            cheap_lo=write(cheap.min()), cheap_hi=write(cheap.max()))
 
     film = partial(fmt.fixed, digits=2)
-    return [words.CORRECTED.format(method=CHECK_METHOD, pairs=int(mine.pairs.min()), engines=int(mine.engines.max()),
+    return [words.CORRECTED.format(method=check_tier().name, pairs=int(mine.pairs.min()), engines=int(mine.engines.max()),
                                    scheme=scheme, h_min=span("h_min", fmt.UM, film),
                                    h_min_mean=span("h_min_mean", fmt.UM, film),
                                    life=span("life", 1 / 3600, fmt.significant)), ""]

@@ -1,7 +1,7 @@
 """Methods and assumptions, limits of validity and the parameters of a comparison, filled from its facts.
 
 What each stage's tier solves is the stage's own sentence (``TIER_NOTES`` of
-:mod:`stackup.fit`, :mod:`stackup.crank` and :mod:`stackup.film`).
+:mod:`stackup.fit` and :mod:`stackup.crank`, the film tier's record in :mod:`stackup.film.registry`).
 """
 
 from __future__ import annotations
@@ -13,8 +13,7 @@ from dataclasses import fields
 import pandas as pd
 
 from ..crank import TIER_NOTES as CRANK_TIERS
-from ..film import TIER_NOTES as FILM_TIERS
-from ..film.orbit import ALIASES as TIER_ALIASES
+from ..film.registry import find as film_tier
 from ..fit import TIER_NOTES as FIT_TIERS
 from ..study import Study
 from . import format as fmt
@@ -90,7 +89,8 @@ def methods(facts):
 def _film_method(facts):
     """The film tier, what it solves and its measured error against the transient reference, in one bullet."""
     method = facts.about.film_method
-    tier = FILM_TIERS.get(TIER_ALIASES.get(method, method), method)  # a dataset from before the tiers' one name
+    record = film_tier(method)  # by a deprecated name in a dataset from before the tiers' one name
+    tier = method if record is None else record.notes
     e, checked = facts.film_errors, facts.corrected
     errors = ("" if e is None else
               words.FILM_ERRORS_PART.format(h_min=100 * e.h_min, h_min_mean=100 * e.h_min_mean,

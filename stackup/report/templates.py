@@ -6,7 +6,8 @@ builders (:mod:`~stackup.report.verdict`, :mod:`~stackup.report.methods`,
 with numbers written by :mod:`~stackup.report.format`. A template named
 ``*_PART`` is a clause another template takes. What a stage's tier solves
 and leaves out is the stage's own sentence (``TIER_NOTES`` of
-:mod:`stackup.fit`, :mod:`stackup.crank`, :mod:`stackup.film`).
+:mod:`stackup.fit` and :mod:`stackup.crank`, the film tier's record's notes in
+:mod:`stackup.film.registry`).
 """
 
 from __future__ import annotations

@@ -29,7 +29,8 @@ from .._validate import InRange, Integer, OneOf, OrNone, Window
 from .._random import seed_sequence
 from ..crank.cycle import METHODS as CRANK_METHODS
 from ..fit import METHODS as FIT_METHODS
-from ..film.cycle import FILM_METHODS, canonical_tier
+from ..film.cycle import canonical_tier
+from ..film.registry import Names as FilmTiers
 from ..life import FILM_STATISTICS
 from ..parts import SAMPLERS
 from ..patterns import ISO_SCHEMES
@@ -70,7 +71,7 @@ PARAMETERS = {
     "keep": OneOf(("everything", "summaries")),
     "fit_method": OneOf(FIT_METHODS),
     "crank_method": OneOf(CRANK_METHODS),
-    "film_method": OneOf((*FILM_METHODS, "auto")),
+    "film_method": OneOf(FilmTiers(also=("auto",))),  # the registered film tiers, read at each check
     "bearing_law": OneOf(("paper", "fitted")),
     "tilt_method": OneOf(chain.TILT_METHODS),
     "film_error": _Float(InRange(0.0, 1.0)),
@@ -173,7 +174,7 @@ class Study:
     film_check_engines : int
         Engines of each scheme (the first, up to ``mechanics_engines``) whose
         films run again with the mass-conserving tier
-        (:data:`stackup.film.cycle.CHECK_METHOD`) at the same tilt and heat
+        (:func:`stackup.film.registry.check_tier`) at the same tilt and heat
         balance (``h_min_check``, ``h_min_mean_check``, ``life_check``): the
         report combines both tiers by control variates, so its film and life
         means carry the accurate tier's mean and the error of that estimate

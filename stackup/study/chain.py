@@ -25,6 +25,7 @@ from ..film.coupled import ElasticLayer, support_moments
 from ..film.cycle import FILM_STATUS, HEAT_STEP, at_wall, bearing_films, checked_film, wall_film
 from ..film.heat import heat_balance
 from ..film.journal import vector_length
+from ..film.registry import tier as film_tier
 from .. import _validate as check
 from .. import materials
 from ..contact import column_stiffness, composite_roughness, contact_modulus
@@ -423,7 +424,7 @@ def _surface(films, tilt, constants, spec, crank_angle, *, clearance, journal_d,
     surface = support_moments(films.position, np.moveaxis(tilt, 1, 2), crank_angle, compliance=constants.coupled,
                               journal_radius=np.asarray(journal_d) / 2, bearing_width=spec.bearing_width,
                               radial_clearance=np.asarray(clearance) / 2, viscosity=films.viscosity, speed=spec.speed,
-                              layer=constants.layer, method="short" if film_method in ("short", "mobility") else "finite")
+                              layer=constants.layer, method=film_tier(film_method).length_model)
     lost = films.valid & ~np.isfinite(surface.film).all(axis=-1)
     if lost.any():
         films = replace(films, valid=films.valid & ~lost,

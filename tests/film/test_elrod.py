@@ -10,6 +10,7 @@ from stackup.film import min_film_thickness
 from stackup.film import elrod as tier
 from stackup.film.elrod import SMOOTHING, elrod_orbit, grid
 from stackup.film.heat import OilFeed
+from stackup.film.journal import feed_patch
 from stackup.film.mobility import mobility_orbit
 from stackup.film.orbit import ECCENTRICITY_LIMIT, STATUS, orbit
 
@@ -295,7 +296,7 @@ def march(loads, guide=None, periodic=tier.PERIODIC):
                               bearing_width=np.array([length]), radial_clearance=np.array([c]),
                               viscosity=np.array([mu]), speed=np.array([w])).position[0] / c
     g = grid(length_over_radius=length / r, n_theta=tier.N_THETA, n_land=tier.N_LAND, half=True,
-             **tier._feed_patch(length, r, mu * w * r**2 / c**2, GROOVE))
+             **feed_patch(GROOVE, journal_radius=r, bearing_width=length, unit_pressure=mu * w * r**2 / c**2))
     stepping = kernel.Stepping(tier.STEP_TOLERANCE, *np.radians([tier.FIRST_STEP, tier.LARGEST_STEP,
                                                                   tier.SMALLEST_STEP, tier.LEAP_STEP]))
     newton = kernel.Newton(tier.FORCE_TOLERANCE, tier.BALANCE_TOLERANCE, tier.MAX_NEWTON, SMOOTHING)

@@ -6,6 +6,7 @@ import pytest
 from stackup._kernels.reynolds import Grid, Sweeps, elrod_adams
 from stackup.film import min_film_thickness
 from stackup.film.orbit import STATUS, orbit
+from stackup.film.journal import ECCENTRICITY_LIMIT
 from stackup.film.transient import _Film
 
 GEOMETRY = dict(journal_d=0.046, bearing_width=0.022, clearance=60e-6, viscosity=0.008, speed=419.0)
@@ -16,7 +17,7 @@ def small_problem(seed, mass_conserving=True):
     """A 24 x 7 film with a tilted, eccentric journal moving since the last step (dimensionless)."""
     rng = np.random.default_rng(seed)
     film = _Film(length_over_radius=0.8, clearance_over_radius=1e-3, n_theta=24, n_z=7, feed_arc=(np.pi - 0.15, np.pi + 0.15),
-                 feed_length_share=0.3, feed_pressure=0.05)
+                 feed_half_width=0.3 * 0.8 / 2, feed_pressure=0.05, limit=ECCENTRICITY_LIMIT)
     xi = rng.uniform(-0.6, 0.6, 2)
     gamma = rng.uniform(-2e-4, 2e-4, 2)
     h, h_e, h3e, h3n = film.thickness(xi, gamma)
