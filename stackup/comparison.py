@@ -40,7 +40,7 @@ from .io import open_comparison, save_comparison
 from .output import DATASET, prepare_folder, run_identity
 from .report import write_report
 from .scenarios import DECLARED
-from .study import ISO_SCHEMES
+from .study import ISO_SCHEMES, Study
 from .study.schema import PER_ENGINE
 
 #: Copies of a comparison's per-engine data in memory at once: the study, then the saved dataset the report reads.
@@ -86,7 +86,7 @@ class Written:
 def run(out, *, engine="iso-example", schemes=ISO_SCHEMES, n_engines=COMPARE_ENGINES, seed=0, window=None,
         scenarios=DECLARED, uncertainties="declared", design=DESIGN_DEFAULTS, negligible=NEGLIGIBLE_PPM,
         volume=PLAN_VOLUME, film_check_engines=FILM_CHECK_ENGINES, tilt_method="equilibrium", compact=False,
-        force=False, scheduler=None, progress=None, log=None):
+        force=False, scheduler=None, progress=None, log=None, **study_options):
     """Run the main job into the folder ``out``: pre-flight, compare, save, reopen, report.
 
     The defaults are ``stackup compare``'s: 100,000 engines of the built-in
@@ -129,6 +129,10 @@ def run(out, *, engine="iso-example", schemes=ISO_SCHEMES, n_engines=COMPARE_ENG
         Replace another run in ``out``.
     log : callable or None
         Called with one line of text as each stage starts (``print`` for logs).
+    **study_options
+        Further :class:`~stackup.study.Study` parameters (e.g. ``mechanics_engines``,
+        ``crank_angle_step``), as :func:`compare` takes them; a folder holds
+        the same run only where they are the same too.
 
     Returns
     -------
@@ -149,16 +153,17 @@ def run(out, *, engine="iso-example", schemes=ISO_SCHEMES, n_engines=COMPARE_ENG
     design = None if design is None else dict(design)
     loaded = load_engine(engine)
     runs = checked_runs(engine, schemes, seed, scenarios=scenarios, uncertainties=uncertainties,
-                        tilt_method=tilt_method, negligible=negligible)
+                        tilt_method=tilt_method, negligible=negligible,
+                        pilot_engines=study_options.get("pilot_engines", Study.pilot_engines))
     check_memory(n_engines, loaded, len(schemes) + (design is not None))
     staged = prepare_folder(out, option="out", identity=run_identity(
         engine=engine, schemes=schemes, n_engines=n_engines, seed=seed, window=window, scenarios=scenarios,
-        design=design is not None, tilt_method=tilt_method), force=force)
+        design=design is not None, tilt_method=tilt_method, **study_options), force=force)
     try:
         result = compare_checked(runs, engine=engine, schemes=schemes, n_engines=n_engines, seed=seed,
                                  scenarios=scenarios, negligible=negligible, design=design, log=log, window=window,
                                  scheduler=scheduler, progress=progress, film_check_engines=film_check_engines,
-                                 tilt_method=tilt_method)
+                                 tilt_method=tilt_method, **study_options)
         log(f"saving the dataset: {os.path.join(out, DATASET)}")
         data = save_comparison(result, staged.staging / DATASET, compact=compact)
         log(f"writing the report: {os.path.join(out, 'report.md')} and report.html")

@@ -275,7 +275,7 @@ def _check_contents(folder, where, identity, force):
     if not any((folder / name).is_file() for name in (DATASET, "report.md")):
         raise OutputRefused(f"{where} is not empty and holds no stackup run (it holds {entries[0].name!r}); give a "
                             "new or empty folder")
-    saved = saved_run(folder)
+    saved = saved_run(folder, options=tuple(k for k in identity or () if k not in (*IDENTITY, "scenarios", "design")))
     if force or (saved is not None and identity is not None and saved == _normalised(identity)):
         return
     raise OutputRefused(f"{where} holds another run ({describe(saved)}); pass --force to replace it, or give "
@@ -321,12 +321,13 @@ def _make_parents(folder):
     folder.mkdir(parents=True, exist_ok=True)
 
 
-def saved_run(folder):
+def saved_run(folder, options=()):
     """The identity of the run saved in ``folder``, or None if unreadable.
 
     Its :data:`IDENTITY` parameters (the schemes as given, without the one
     the run designed), its scenario labels and whether it designed a scheme
-    (``design``): what :func:`run_identity` gives for the same command.
+    (``design``), and the study parameters named in ``options``: what
+    :func:`run_identity` gives for the same run.
     """
     import netCDF4
 
@@ -338,16 +339,18 @@ def saved_run(folder):
                 (g for g in nc.groups if g.startswith("scenario_")), key=lambda g: int(g.split("_")[1]))]
     except (OSError, KeyError, AttributeError, ValueError, RuntimeError):
         return None
-    identity = {k: study.get(k) for k in IDENTITY}
+    identity = {k: study.get(k) for k in (*IDENTITY, *options)}
     identity["tilt_method"] = identity["tilt_method"] or "equilibrium"  # a study saved before the key
     identity["schemes"] = [s for s in identity["schemes"] or [] if s != designed]  # the run designed it
     return _normalised({**identity, "scenarios": scenarios, "design": designed is not None})
 
 
-def run_identity(*, engine, schemes, n_engines, seed, window, scenarios, design, tilt_method="equilibrium"):
-    """A comparison's identity as :func:`saved_run` reads it back (``window`` in m or None, ``design`` a bool)."""
-    return _normalised({"engine": engine, "schemes": list(schemes), "n_engines": n_engines, "seed": seed,
-                        "window": list(window) if window else None, "tilt_method": tilt_method,
+def run_identity(*, engine, schemes, n_engines, seed, window, scenarios, design, tilt_method="equilibrium",
+                 **study_options):
+    """A comparison's identity as :func:`saved_run` reads it back (``window`` in m or None, ``design`` a bool;
+    ``study_options``: further study parameters the run was given, as the study stores them)."""
+    return _normalised({**study_options, "engine": engine, "schemes": list(schemes), "n_engines": n_engines,
+                        "seed": seed, "window": list(window) if window else None, "tilt_method": tilt_method,
                         "scenarios": list(scenarios), "design": bool(design)})
 
 

@@ -8,6 +8,7 @@ README run as scripts, coverage over hundreds of seeds); every other test is
 ``pytest -m slow`` the others; the README's test command runs them all.
 """
 
+import os
 import textwrap
 
 import pytest
@@ -94,3 +95,32 @@ def engine_file(tmp_path_factory):
         return path
 
     return make
+
+
+#: The integration tier's shared comparison: two ISO schemes and a designed one, two process scenarios and the
+#: declared model uncertainties, 600 engines of the example engine, 12 of them through the mechanics.
+SMALL_COMPARISON = dict(schemes=("iso13778-4", "iso13778-6"), n_engines=600, seed=4, pilot_engines=3000,
+                        mechanics_engines=12, crank_angle_step=12.0, progress=False,
+                        scenarios={"bore mean +1σ": {"housing_shift": 1.0},
+                                   "misalignment ×2": {"misalignment_scale": 2.0}},
+                        design={"n_engines": 500, "generations": 0, "name": "designed"})
+
+
+@pytest.fixture(scope="session")
+def small_comparison(tmp_path_factory):
+    """The main job (:func:`stackup.comparison.run`) of :data:`SMALL_COMPARISON`, written once per test session
+    into a folder every test worker reads: the first worker to ask writes it under a lock, the others open it."""
+    import fcntl
+
+    import stackup.comparison
+    from stackup.io import open_comparison
+
+    if os.environ.get("PYTEST_XDIST_WORKER") is None:  # one process: its own folder
+        return stackup.comparison.run(tmp_path_factory.mktemp("small-comparison") / "run", **SMALL_COMPARISON)
+    root = tmp_path_factory.getbasetemp().parent  # this session's, shared by its workers
+    folder = root / "small-comparison"
+    with open(root / "small-comparison.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if (folder / "report.md").is_file():
+            return stackup.comparison.Written(folder, open_comparison(folder / "compare.nc"), 0.0)
+        return stackup.comparison.run(folder, **SMALL_COMPARISON)

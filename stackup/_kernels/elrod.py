@@ -30,8 +30,11 @@ import numpy as np
 from numba import njit
 
 PERIODIC, NOT_PERIODIC, COLLAPSED, FAILED = 0, 1, 2, 3
-#: Floating-point shortcuts the kernels may take (no NaN or inf reaches them: the inputs are checked).
-FAST = {"contract", "arcp", "reassoc", "nsz"}
+#: Floating-point shortcuts the kernels may take (no NaN or inf reaches them: the inputs are checked). Not
+#: "reassoc": with it the code numba compiles in the process and the code it loads from its cache summed in other
+#: orders, and the adaptive march took other steps (the same orbit 0.13 um apart at one angle, cycle minima nm
+#: apart): a study must give the same numbers on its first run and its next (tests/film/test_compiled.py).
+FAST = {"contract", "arcp", "nsz"}
 
 #: The grid: angles (n_t,), their normals at the nodes (2, n_t) and at the east faces (2, n_t), axial nodes z
 #: (n_z,) and north faces z_n (n_z - 1,), cell widths (n_z,), force weights (n_z,), the first free row j0
