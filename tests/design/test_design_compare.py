@@ -1,7 +1,7 @@
 """`stackup compare --schemes ... designed.toml` beside the scheme the comparison designs itself: no clash of names
 (issue 31): the comparison's own design is renamed where a given scheme carries its name."""
 
-from stackup.comparison import _distinct_name
+from stackup._comparison import _distinct_name
 
 
 def test_the_comparison_design_takes_a_name_no_given_scheme_has():
