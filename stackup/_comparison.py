@@ -24,7 +24,7 @@ from .rank import rank
 from .scenarios import DECLARED, MECHANICS_KEYS, model_uncertainties
 from .schemes import load as load_scheme
 from .sensitivity import sobol
-from .study import ISO_SCHEMES, Study
+from .study import ISO_SCHEMES, Study, schema
 from .study.inputs import input_files, load_inputs, scheme_text
 from .study.pilot import grading, pilot_parts
 from .study.scenario import checked
@@ -306,26 +306,18 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
         frames.update({(output, best): frame for output, frame in both.items()})
     outputs = list(dict.fromkeys(output for output, _ in frames))
     inputs = list(dict.fromkeys(i for frame in frames.values() for i in frame.index))
-    columns = ("S1", "S1_lo", "S1_hi", "ST", "ST_lo", "ST_hi")
-    values = {c: np.full((len(outputs), len(schemes), len(inputs)), np.nan) for c in columns}
+    values = {c: np.full((len(outputs), len(schemes), len(inputs)), np.nan) for c in schema.SOBOL_INDICES}
     evaluations = np.zeros((len(outputs), len(schemes)), np.int64)
     for (output, scheme), frame in frames.items():
         i, j = outputs.index(output), schemes.index(scheme)
-        for c in columns:
+        for c in schema.SOBOL_INDICES:
             values[c][i, j] = frame[c].reindex(inputs).to_numpy()
         evaluations[i, j] = frame.attrs["evaluations"]
-    dims = ("output", "scheme", "input")
-    names = {"S1": "first-order Sobol index (share of the variance the input explains alone)",
-             "ST": "total Sobol index (share of the variance the input explains with its interactions)"}
-    data = {c: (dims, values[c], {"units": "1", "long_name": names[c] if c in names else
-                                  f"{'lower' if c.endswith('lo') else 'upper'} 95 % bootstrap bound of {c[:2]}"})
-            for c in columns}
-    data["evaluations"] = (dims[:2], evaluations, {"units": "1", "long_name": "engines through the chain"})
-    coords = {"output": ("output", outputs, {"long_name": "output variable (h_min, life: the engine's weakest bearing)"}),
-              "scheme": ("scheme", schemes, {"long_name": "selective-fitting scheme"}),
-              "input": ("input", inputs, {"long_name": "root input (stackup.study.roots)"})}
-    return xr.Dataset(data, coords=coords, attrs={"method": "Sobol indices on root inputs through the assembly "
-                                                            "chain (stackup.sensitivity.sobol, SALib)", "seed": seed})
+    data = {name: var(evaluations if name == "evaluations" else values[name])
+            for name, var in schema.SENSITIVITY.items()}
+    return xr.Dataset(data, coords=schema.coords(output=outputs, scheme=schemes, input=inputs),
+                      attrs={"method": "Sobol indices on root inputs through the assembly chain "
+                                       "(stackup.sensitivity.sobol, SALib)", "seed": seed})
 
 
 @check.validated(method=check.OneOf(("conditional", "splitting")), window=check.Window())
@@ -350,7 +342,6 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     engine = load_engine(engine)
     window = engine.clearance_window if window is None else window
     loaded = [load_scheme(s) for s in schemes]
-    sides = ("lower", "upper")
     shares, errors, cost, roots = (np.full((len(loaded), 2), np.nan) for _ in range(4))
     interval = np.full((len(loaded), 2, 2), np.nan)
     outside, outside_interval = np.full(len(loaded), np.nan), np.full((len(loaded), 2), np.nan)
@@ -362,7 +353,7 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
             outside[i], outside_interval[i] = r.outside, r.outside_interval
             cost[i] = r.samples * r.engines * engine.main_bearings
             continue
-        for j, side in enumerate(sides):
+        for j, side in enumerate(schema.SIDES):
             if not np.isfinite(window[j]) or (side == "lower" and window[j] <= 0):
                 continue
             t = clearance_tail(engine, scheme, side=side, threshold=window[j], seed=seed,
@@ -370,25 +361,15 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
             shares[i, j], errors[i, j], cost[i, j], roots[i, j] = t.share, t.standard_error, t.bearings, \
                 t.effective_bearings
             interval[i, j] = t.interval
-    dims = ("scheme", "side")
     name = {"conditional": "the shells integrated out (stackup.design.estimate)",
             "splitting": "generalized splitting (stackup.tail)"}[method]
-    data = {"tail_share": (dims, shares, {"units": "1", "long_name": f"share of assembled bearings beyond the window "
-                                                                      f"edge ({name})"}),
-            "tail_standard_error": (dims, errors, {"units": "1", "long_name": "standard error of tail_share"}),
-            "tail_interval": ((*dims, "bound"), interval, {"units": "1", "long_name": "95 % interval of tail_share"}),
-            "tail_bearings": (dims, cost, {"units": "1", "long_name": "bearings the estimate evaluated"})}
+    values = {"tail_share": shares, "tail_standard_error": errors, "tail_interval": interval, "tail_bearings": cost}
     if method == "splitting":
-        data["tail_roots_in_tail"] = (dims, roots, {"units": "1", "long_name": "root bearings of the estimate with "
-                                                                                "descendants in the tail"})
+        values["tail_roots_in_tail"] = roots
     else:
-        data["tail_outside_share"] = ("scheme", outside, {"units": "1", "long_name": f"share of assembled bearings "
-                                                                                      f"outside the window ({name})"})
-        data["tail_outside_interval"] = (("scheme", "bound"), outside_interval,
-                                         {"units": "1", "long_name": "95 % interval of tail_outside_share"})
+        values.update(tail_outside_share=outside, tail_outside_interval=outside_interval)
+    data = {key: schema.TAILS[key](value, long_name=schema.TAILS[key].long_name.format(method=name))
+            for key, value in values.items()}
     return xr.Dataset(
-        data,
-        coords={"scheme": ("scheme", [s.name for s in loaded], {"long_name": "selective-fitting scheme"}),
-                "side": ("side", list(sides), {"long_name": "edge of the design window"}),
-                "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"})},
+        data, coords=schema.coords(scheme=[s.name for s in loaded], side=schema.SIDES, bound=schema.BOUNDS),
         attrs={"window": list(map(float, window)), "method": name, "tail_method": method, "seed": seed})

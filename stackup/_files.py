@@ -25,7 +25,8 @@ import numpy as np
 
 from . import _validate as check
 
-#: Length units a file may declare, in m.
+#: Length units a file may declare [m per unit]: the one table of their sizes (a format that accepts fewer keeps
+#: its own list of the names it accepts, and reads their sizes here).
 UNITS = {"mm": 1e-3, "um": 1e-6, "m": 1.0}
 
 

@@ -169,6 +169,11 @@ class InRange:
         return in_range(field, value, self.lo, self.hi, lo_open=self.lo_open, hi_open=self.hi_open, unit=self.unit)
 
 
+#: Poisson's ratio of an isotropic elastic material [-]: its strain energy is positive definite only for
+#: -1 < nu < 1/2.
+POISSON = InRange(-1.0, 0.5, lo_open=True, hi_open=True)
+
+
 @dataclass(frozen=True)
 class OneOf:
     """One of the legal option strings."""

@@ -37,7 +37,7 @@ import numpy as np
 from scipy import special
 from scipy.interpolate import CubicSpline
 
-from ._validate import Finite, InRange, Positive, validated
+from ._validate import POISSON, Finite, Positive, validated
 
 
 @dataclass(frozen=True)
@@ -105,8 +105,7 @@ def _f52(lam):
     return out
 
 
-@validated(modulus_1=Positive(), modulus_2=Positive(), poisson_1=InRange(-1.0, 0.5, lo_open=True, hi_open=True),
-           poisson_2=InRange(-1.0, 0.5, lo_open=True, hi_open=True))
+@validated(modulus_1=Positive(), modulus_2=Positive(), poisson_1=POISSON, poisson_2=POISSON)
 def contact_modulus(modulus_1, poisson_1, modulus_2, poisson_2):
     """Contact modulus :math:`E^*` [Pa] of two elastic bodies (moduli [Pa], Poisson's ratios [-])."""
     e1, n1, e2, n2 = (np.asarray(a, dtype=float) for a in (modulus_1, poisson_1, modulus_2, poisson_2))
@@ -152,7 +151,7 @@ def greenwood_tripp(film_thickness, *, roughness, contact_modulus, asperities=TY
     return scale * _f52(np.atleast_1d(h / sigma)).reshape(np.shape(h / sigma))
 
 
-@validated(thickness=Positive(), modulus=Positive(), poisson=InRange(-1.0, 0.5, lo_open=True, hi_open=True))
+@validated(thickness=Positive(), modulus=Positive(), poisson=POISSON)
 def column_stiffness(thickness, modulus, poisson):
     r"""Stiffness of an elastic layer as columns in series (Winkler foundation) [Pa/m].
 

@@ -25,7 +25,7 @@ import io
 import math
 import os
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 from importlib import resources
@@ -38,6 +38,7 @@ from .crank.housing import Supports, bulkhead_compliance, ring_tilt_compliance
 from .crank.law import stiffness as law_stiffness
 from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
+from .fit import CHECK_STRESS, TEMPERATURE
 from .life import LEVANOV_2015, METHOD1_SCALE
 from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
 from .parts import ShellSupply
@@ -347,6 +348,11 @@ def _dimension(top, key, *, scale, units, plausible, what, required=True):
     return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt, source=source)
 
 
+#: How much hotter than its housing a journal may run in service [K] (an engine file's
+#: ``press_fit.journal_temperature_excess``, a scenario's): journals often run 10-20 K above their bulkheads
+#: (physics.md sec. 3), a cooled or warming journal below; a plausibility bound, as :data:`PLAUSIBLE` is for
+#: lengths.
+JOURNAL_TEMPERATURE_EXCESS = check.InRange(-50.0, 100.0, unit=" K")
 #: Sizes a length may have [m], for the plausibility checks of engine files.
 PLAUSIBLE = {"bore": (5e-3, 2.0), "crush": (5e-6, 1e-3), "wall_sigma": (1e-9, 50e-6), "ring": (5e-3, 5.0),
              "width": (2e-3, 0.5), "lining": (0.0, 3e-3), "crank": (0.02, 5.0), "span": (0.02, 2.0),
@@ -410,7 +416,7 @@ def _press_fit(top, bore, *, scale, units):
     length = dict(scale=scale, units=units)
 
     def temperature(name, default):
-        return t.number(name, default, lo=-60.0, hi=300.0, unit=" degC")
+        return t.number(name, default, **asdict(TEMPERATURE))
 
     lining_thickness = t.length("lining_thickness", 0.0, **length, plausible=PLAUSIBLE["lining"],
                                 what="lining thickness")
@@ -427,7 +433,7 @@ def _press_fit(top, bore, *, scale, units):
         bearing_width=t.length("length", required=True, **length, plausible=PLAUSIBLE["width"], what="shell width"),
         check_bore=t.length("check_bore", bore.lo / scale, **length, plausible=PLAUSIBLE["bore"],
                             what="checking-block bore"),
-        check_stress=t.number("check_stress", 100e6, lo=0.0, hi=2e9, lo_open=True, unit=" Pa"),
+        check_stress=t.number("check_stress", 100e6, **asdict(CHECK_STRESS)),
         assembly_temperature=temperature("assembly_temperature", 20.0),
         temperature=temperature("temperature", 20.0),
         lining_thickness=lining_thickness,
@@ -436,7 +442,7 @@ def _press_fit(top, bore, *, scale, units):
         hot_temperature=temperature("hot_temperature", None),
         limits=_limits(t),
         crush_source=t.text("crush_height_source", ""),
-        journal_temperature_excess=t.number("journal_temperature_excess", 0.0, lo=-50.0, hi=100.0, unit=" K"),
+        journal_temperature_excess=t.number("journal_temperature_excess", 0.0, **asdict(JOURNAL_TEMPERATURE_EXCESS)),
         journal_temperature_source=t.text("journal_temperature_source", ""),
         housing_outer_interval=_housing_outer_interval(t, bore, **length),
     )

@@ -7,7 +7,7 @@ and :func:`get` also accepts a :class:`Material` directly.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from importlib import resources
 from pathlib import Path
 
@@ -38,7 +38,7 @@ class Material:
     source: str = ""
 
     def __post_init__(self):
-        check.fields(self, {"modulus": check.Positive(), "poisson": check.InRange(-1.0, 0.5, lo_open=True, hi_open=True),
+        check.fields(self, {"modulus": check.Positive(), "poisson": check.POISSON,
                             "expansion": check.Finite()}, prefix=f"material {self.name!r} ")
 
 
@@ -54,7 +54,7 @@ def _read(path):
         # SI only: a modulus in GPa (210) or an expansion in um/(m K) (11.5) is refused as implausible.
         out[name] = Material(name,
                              t.number("modulus", required=True, lo=1e8, hi=1e13, unit=" Pa"),
-                             t.number("poisson", required=True, lo=-1.0, hi=0.5, lo_open=True, hi_open=True),
+                             t.number("poisson", required=True, **asdict(check.POISSON)),
                              t.number("expansion", required=True, lo=-1e-4, hi=1e-4, unit=" 1/K"),
                              t.text("source", ""))
         t.close()

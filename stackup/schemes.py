@@ -50,10 +50,11 @@ from pathlib import Path
 import numpy as np
 
 from ._validate import Finite, OneOf, validated
-from ._files import Table, did_you_mean, locations, read_toml
+from ._files import UNITS, Table, did_you_mean, locations, read_toml
 from .tolerances import quantize
 
-_UNITS = {"mm": 1e-3, "m": 1.0}
+#: Length units a scheme file may declare (ISO 13778 writes mm); their sizes: :data:`stackup._files.UNITS`.
+_UNIT_NAMES = ("mm", "m")
 #: Readings are snapped to this grid before comparison with grade limits [m].
 _SNAP = 1e-9
 UNGRADED = "-"
@@ -595,8 +596,8 @@ _LETTERS = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
 def _from_dict(data, *, where, path):
     """The scheme of a table, every key read through :class:`stackup._files.Table` (unknown keys refused)."""
     top = Table(data, where)
-    units = top.text("units", required=True, options=tuple(_UNITS))
-    scale = _UNITS[units]
+    units = top.text("units", required=True, options=_UNIT_NAMES)
+    scale = UNITS[units]
     name = top.text("name", Path(path).stem)
     title = top.text("title", "")
     source = top.text("source", "")

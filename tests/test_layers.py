@@ -135,3 +135,15 @@ def test_planner_table_and_optimise_supply_reachable_as_the_docs_say():
     import stackup.plan
 
     assert callable(stackup.plan.planner_table) and callable(stackup.plan.optimise_supply)
+
+
+def test_no_package_face_hides_one_of_its_modules_behind_a_function():
+    """STYLE: a module's public name is never reused in its package's face (``stackup.report.verdict`` is the
+    module, whatever the face re-exports), so every module stays reachable as an attribute of its package."""
+    hidden = []
+    for name in sorted(_modules()):
+        module = importlib.import_module(name)
+        parent, _, short = name.rpartition(".")
+        if parent and getattr(sys.modules[parent], short, None) is not module:
+            hidden.append(name)
+    assert hidden == []

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import STATUS, reactions
+from .shaft import STATUS, reactions
 
 #: Crank status in a dataset: the solver's codes, then engines the stage did not run on.
 CYCLE_STATUS = (*STATUS, "not_computed")

@@ -31,7 +31,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._validate import Finite, InRange, OrNone, Positive, validated
+from .._validate import POISSON, Finite, OrNone, Positive, validated
 
 
 @dataclass(frozen=True)
@@ -151,7 +151,7 @@ def ring_tilt_compliance(*, stiffness, bearing_width):
 
 
 @validated(thickness=Positive(), height=Positive(), width=Positive(), ring_height=Positive(), modulus=Positive(),
-           poisson=InRange(-1.0, 0.5, lo_open=True, hi_open=True))
+           poisson=POISSON)
 def bulkhead_compliance(*, thickness, height, width, ring_height, modulus, poisson):
     r"""Angular compliance of a main bearing's support from its bulkhead web as plate strips [rad/(N m)].
 

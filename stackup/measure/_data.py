@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .._files import UNITS as LENGTH_UNITS
+
 #: Spellings of a missing reading in a CSV cell (compared in lower case).
 MISSING = ("", "nan", "na", "n/a", "null", "none", "-")
 #: Farthest a reading may lie from its drawing limits, in tolerance widths, before it is taken for a typing
@@ -25,9 +27,11 @@ MISSING = ("", "nan", "na", "n/a", "null", "none", "-")
 FARTHEST = 10.0
 #: Fewest different readings a fit needs: fewer means a gauge resolution as coarse as the spread.
 MIN_DISTINCT = 4
-#: Length units of measured data [m per unit] and how messages spell them.
-UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6}
+#: Length units measured data may be written in, in the order a unit slip is looked for, and how messages spell
+#: them.
 UNIT_NAMES = {"m": "m", "mm": "mm", "um": "µm"}
+#: Their sizes [m per unit], from the one table of length units.
+UNITS = {unit: LENGTH_UNITS[unit] for unit in UNIT_NAMES}
 
 
 @dataclass(frozen=True)

@@ -35,7 +35,7 @@ place in the sequence.
 from __future__ import annotations
 
 import numpy as np
-from scipy import special, stats
+from scipy import special
 
 from ..tolerances import MAX_SKEWNESS, Mixture, Normal, SkewNormal, ToolWear
 

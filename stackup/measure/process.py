@@ -61,7 +61,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy import special, stats
+from scipy import stats
 
 from .._random import as_generator
 from .._validate import InRange, Integer, validated
@@ -69,7 +69,7 @@ from ..tolerances import CPK_QUANTILES
 from . import _data
 from .engine_file import inline
 from .models import BY_NAME, MODELS, NormalModel
-from .shared import SharedShare, group_codes, shared_share
+from .shared import group_codes, shared_share
 
 #: Samples of the parametric bootstrap of the goodness-of-fit test.
 GOF_RESAMPLES = 200

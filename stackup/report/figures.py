@@ -103,15 +103,23 @@ def film_by_bearing(ds, path):
     for ax in (ax_h, ax_l):
         ax.set_xticks(np.arange(len(bearings)), [str(b) for b in bearings])
         ax.set_xlabel("main bearing position (1 at the front)")
+    _film_and_life_axes(ds, ax_h, ax_l, life_label="bearing life [h]",
+                        titles=("Oil film per bearing position (box: quartiles, whiskers: 1.5 IQR)",
+                                "Life per bearing position"))
+    ax_l.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def _film_and_life_axes(ds, ax_h, ax_l, *, life_label, titles):
+    """Labels, titles (film, life) and the film's legend of a figure of films [µm] beside lives [h], the lives on a
+    log scale with the engine's life target."""
     ax_l.set_yscale("log")
     ax_l.axhline(float(ds.life_target) / 3600, color="k", ls="--", lw=1, label="life target")
     ax_h.set_ylabel("cycle-minimum film h_min [µm]")
-    ax_l.set_ylabel("bearing life [h]")
-    ax_h.set_title("Oil film per bearing position (box: quartiles, whiskers: 1.5 IQR)", fontsize=10)
-    ax_l.set_title("Life per bearing position", fontsize=10)
+    ax_l.set_ylabel(life_label)
+    ax_h.set_title(titles[0], fontsize=10)
+    ax_l.set_title(titles[1], fontsize=10)
     ax_h.legend(fontsize=8, ncols=2)
-    ax_l.legend(fontsize=8)
-    return _save(fig, path)
 
 
 def film_life_by_clearance(ds, path, bins=12):
@@ -147,13 +155,9 @@ def film_life_by_clearance(ds, path, bins=12):
             ax.plot(middles, medians, color=f"C{b}", lw=2, label=f"bearing {bearing}")
     for ax in (ax_h, ax_l):
         ax.set_xlabel("operating clearance (diametral) [µm]")
-    ax_l.set_yscale("log")
-    ax_l.axhline(float(ds.life_target) / 3600, color="k", ls="--", lw=1, label="life target")
-    ax_h.set_ylabel("cycle-minimum film h_min [µm]")
-    ax_l.set_ylabel("bearing life, Levanov method 1 [h]")
-    ax_h.set_title("Oil film against clearance per position (lines: medians)", fontsize=10)
-    ax_l.set_title("Life against clearance per position (lines: medians)", fontsize=10)
-    ax_h.legend(fontsize=8, ncols=2)
+    _film_and_life_axes(ds, ax_h, ax_l, life_label="bearing life, Levanov method 1 [h]",
+                        titles=("Oil film against clearance per position (lines: medians)",
+                                "Life against clearance per position (lines: medians)"))
     return _save(fig, path)
 
 

@@ -39,12 +39,13 @@ from __future__ import annotations
 from dataclasses import replace
 
 from .. import _validate as check
+from ..engines import JOURNAL_TEMPERATURE_EXCESS
 
 #: The keys a scenario may hold and what each must be (see the module docstring).
 CHECKS = {"housing_shift": check.Finite(), "journal_shift": check.Finite(),
           "gauge_repeatability": check.Positive(zero=True), "misalignment_scale": check.Positive(zero=True),
           "housing_outer": check.Positive(), "crush_shift": check.Finite(),
-          "journal_temperature_excess": check.InRange(-50.0, 100.0, unit=" K"),
+          "journal_temperature_excess": JOURNAL_TEMPERATURE_EXCESS,
           "crank_stiffness_scale": check.InRange(0.01, 100.0), "support_angular_scale": check.Positive(zero=True)}
 KEYS = tuple(CHECKS)
 

@@ -254,6 +254,79 @@ SUMMARY = {
     "clearance_operating_sampled": Var(SMB, "m", "diametral operating clearance of the bearings of the mechanical chain"),
 }
 
+#: Sobol indices of the root inputs per output and scheme (a comparison's sensitivity dataset,
+#: :func:`stackup.comparison.sensitivity_dataset`), each with its 95 % bootstrap bounds.
+SOBOL_INDICES = {
+    "S1": Var(("output", "scheme", "input"), "1",
+              "first-order Sobol index (share of the variance the input explains alone)"),
+    "S1_lo": Var(("output", "scheme", "input"), "1", "lower 95 % bootstrap bound of S1"),
+    "S1_hi": Var(("output", "scheme", "input"), "1", "upper 95 % bootstrap bound of S1"),
+    "ST": Var(("output", "scheme", "input"), "1",
+              "total Sobol index (share of the variance the input explains with its interactions)"),
+    "ST_lo": Var(("output", "scheme", "input"), "1", "lower 95 % bootstrap bound of ST"),
+    "ST_hi": Var(("output", "scheme", "input"), "1", "upper 95 % bootstrap bound of ST"),
+}
+#: The sensitivity dataset's variables, in dataset order.
+SENSITIVITY = {**SOBOL_INDICES,
+               "evaluations": Var(("output", "scheme"), "1", "engines through the chain", dtype="i8", fill=0)}
+
+#: Shares of bearings beyond each edge of the design window per scheme (a comparison's tails dataset,
+#: :func:`stackup.comparison.tails_dataset`); ``{method}`` in a long name is the estimator, as the dataset's
+#: ``method`` attribute names it. ``tail_roots_in_tail`` is the splitting estimator's only, ``tail_outside_*``
+#: the conditional one's.
+TAILS = {
+    "tail_share": Var(("scheme", "side"), "1", "share of assembled bearings beyond the window edge ({method})"),
+    "tail_standard_error": Var(("scheme", "side"), "1", "standard error of tail_share"),
+    "tail_interval": Var(("scheme", "side", "bound"), "1", "95 % interval of tail_share"),
+    "tail_bearings": Var(("scheme", "side"), "1", "bearings the estimate evaluated"),
+    "tail_roots_in_tail": Var(("scheme", "side"), "1", "root bearings of the estimate with descendants in the tail"),
+    "tail_outside_share": Var(("scheme",), "1", "share of assembled bearings outside the window ({method})"),
+    "tail_outside_interval": Var(("scheme", "bound"), "1", "95 % interval of tail_outside_share"),
+}
+
+
+@dataclass(frozen=True)
+class Coord:
+    """A coordinate's declaration: its long name, and its units where its values have some."""
+
+    long_name: str
+    units: str | None = None
+
+    @property
+    def attrs(self):
+        return {"long_name": self.long_name} if self.units is None else {"units": self.units,
+                                                                          "long_name": self.long_name}
+
+
+#: The coordinate of every dimension of a study's datasets and a comparison's, declared once.
+COORDS = {
+    "scheme": Coord("selective-fitting scheme"),
+    "engine": Coord("sampled engine (block, crankshaft and its shells)"),
+    "mech_engine": Coord("engine of the mechanical chain (its number on the engine dimension)"),
+    "bearing": Coord("main bearing position"),
+    "shell_grade": Coord("shell grade label"),
+    "bound": Coord("interval bound"),
+    "axis": Coord("engine-fixed axis: towards the bearing cap, transverse"),
+    "part": Coord("graded part"),
+    "crank_angle": Coord("crank angle from firing TDC of the first cylinder fired", "degree"),
+    "status": Coord("assembly status"),
+    "clearance_bin": Coord("clearance bin centre", "m"),
+    "rank": Coord("rank among the extremes"),
+    "field": Coord("recorded quantity"),
+    "output": Coord("output variable (h_min, life: the engine's weakest bearing)"),
+    "input": Coord("root input (stackup.study.roots)"),
+    "side": Coord("edge of the design window"),
+}
+#: Values of the coordinates that are the same in every dataset.
+BOUNDS, SIDES, PARTS, AXES = ("lower", "upper"), ("lower", "upper"), ("housing", "journal"), ("cap", "transverse")
+
+
+def coords(**values):
+    """Coordinates as :class:`xarray.Dataset` takes them, name -> (name, values, attrs), each with the attributes
+    :data:`COORDS` declares (e.g. ``coords(scheme=names, bound=BOUNDS)``)."""
+    # a tuple of values goes in as a list: xarray would take a tuple for one value
+    return {name: (name, list(v) if isinstance(v, tuple) else v, COORDS[name].attrs) for name, v in values.items()}
+
 
 
 def flag(variable, meaning):
@@ -297,9 +370,3 @@ def scheme_variables(schemes):
     return {"clearance_stated": FULL["clearance_stated"](stated),
             "clearance_limit": FULL["clearance_limit"](np.array([s.clearance_limits() for s in schemes])),
             "reading_resolution": FULL["reading_resolution"](resolution)}
-
-
-def mech_engine_coord(n):
-    """The ``mech_engine`` coordinate of a dataset whose mechanical chain ran on its first ``n`` engines."""
-    return ("mech_engine", np.arange(n), {"long_name": "engine of the mechanical chain (its number on the engine "
-                                                       "dimension)"})

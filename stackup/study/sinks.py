@@ -69,20 +69,12 @@ def full_dataset(study, ctx, per_engine, per_mech, shells, mechanics_used):
     fixed = {**schema.scheme_variables(schemes), **schema.design_variables(engine)}
     data = {name: fixed[name] if name in fixed else var(values[name]) for name, var in schema.FULL.items()}
     data.update({name: fixed[name] for name in schema.DESIGN})
-    coords = {
-        "scheme": ("scheme", [s.name for s in schemes], {"long_name": "selective-fitting scheme"}),
-        "engine": ("engine", np.arange(n), {"long_name": "sampled engine (block, crankshaft and its shells)"}),
-        "bearing": ("bearing", np.arange(1, b + 1), {"long_name": "main bearing position"}),
-        "shell_grade": ("shell_grade", grade_labels, {"long_name": "shell grade label"}),
-        "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
-        "axis": ("axis", ["cap", "transverse"], {"long_name": "engine-fixed axis: towards the bearing cap, transverse"}),
-        "part": ("part", ["housing", "journal"], {"long_name": "graded part"}),
-        "mech_engine": schema.mech_engine_coord(mechanics_used),
-    }
+    coords = schema.coords(scheme=[s.name for s in schemes], engine=np.arange(n), bearing=np.arange(1, b + 1),
+                           shell_grade=grade_labels, bound=schema.BOUNDS, axis=schema.AXES, part=schema.PARTS,
+                           mech_engine=np.arange(mechanics_used))
     if study.history:
         data.update({name: var(used[name]) for name, var in schema.HISTORY.items()})
-        coords["crank_angle"] = ("crank_angle", ctx.crank_angle,
-                                 {"units": "degree", "long_name": "crank angle from firing TDC of the first cylinder fired"})
+        coords.update(schema.coords(crank_angle=ctx.crank_angle))
     attrs = {"title": f"Selective assembly of {engine.title or engine.name}", **attributes(study, ctx, mechanics_used)}
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
@@ -219,8 +211,7 @@ class StoreSink:
             # one dask chunk (a small graph however large the study); the Zarr chunks follow the study's
             variables[name] = xr.Variable(var.dims, da.empty(shape, dtype=var.dtype, chunks=shape), var.attrs,
                                           encoding={"chunks": chunks})
-        coords = {"engine": ("engine", np.arange(study.n_engines), one.engine.attrs),
-                  "mech_engine": schema.mech_engine_coord(ctx.mechanics)}
+        coords = schema.coords(engine=np.arange(study.n_engines), mech_engine=np.arange(ctx.mechanics))
         template = xr.Dataset(variables, coords=coords)
         return to_stored(template.assign_coords({k: v for k, v in one.coords.items() if k not in sizes}))
 

@@ -219,18 +219,10 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
     fields = ["clearance_operating", "engine", "bearing", *INPUTS]
     for side in ("low", "high"):
         data[f"worst_{side}"] = summary[f"worst_{side}"](total.worst[side])
-    coords = {
-        "scheme": ("scheme", [s.name for s in schemes], {"long_name": "selective-fitting scheme"}),
-        "status": ("status", list(STATUS), {"long_name": "assembly status"}),
-        "shell_grade": ("shell_grade", grade_labels, {"long_name": "shell grade label"}),
-        "clearance_bin": ("clearance_bin", centres, {"units": "m", "long_name": "clearance bin centre"}),
-        "rank": ("rank", np.arange(1, WORST + 1), {"long_name": "rank among the extremes"}),
-        "field": ("field", fields, {"long_name": "recorded quantity"}),
-        "bound": ("bound", ["lower", "upper"], {"long_name": "interval bound"}),
-        "part": ("part", ["housing", "journal"], {"long_name": "graded part"}),
-        "bearing": ("bearing", np.arange(1, sample["h_min"].shape[2] + 1), {"long_name": "main bearing position"}),
-        "mech_engine": schema.mech_engine_coord(sample["crank_status"].shape[1]),
-    }
+    coords = schema.coords(scheme=[s.name for s in schemes], status=list(STATUS), shell_grade=grade_labels,
+                           clearance_bin=centres, rank=np.arange(1, WORST + 1), field=fields, bound=schema.BOUNDS,
+                           part=schema.PARTS, bearing=np.arange(1, sample["h_min"].shape[2] + 1),
+                           mech_engine=np.arange(sample["crank_status"].shape[1]))
     return xr.Dataset(data, coords=coords, attrs={**attrs, "kept": "summaries"})
 
 
