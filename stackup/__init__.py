@@ -11,10 +11,11 @@ application
     :mod:`~stackup.io` and :mod:`~stackup.output`, and the comparison in
     memory (:func:`compare`, ``stackup._comparison``).
 analysis
-    :mod:`~stackup.facts` (the numbers of a comparison, which the ranking and
-    the report share), :mod:`~stackup.rank`, :mod:`~stackup.plan`,
-    :mod:`~stackup.sensitivity`, :mod:`~stackup.tail`, :mod:`~stackup.design`,
-    :mod:`~stackup.scenarios`.
+    in three sub-layers: :mod:`~stackup.rank`; over :mod:`~stackup.facts` (the
+    numbers of a comparison, which the ranking and the report share) and
+    :mod:`~stackup.design`; over :mod:`~stackup.plan`,
+    :mod:`~stackup.sensitivity`, :mod:`~stackup.tail`,
+    :mod:`~stackup.scenarios` and :mod:`~stackup.measure`.
 study
     :mod:`~stackup.study`: the chain where the stages meet, the dataset
     schema, sinks, store, schedulers and the one bearing -> operating
