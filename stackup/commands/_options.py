@@ -87,14 +87,15 @@ def in_options(error, options):
     """The text of ``error`` (a ValueError of the library) in the command's words.
 
     ``options`` maps the library's parameter names to the options that set
-    them: a message that starts with a parameter's name (``n_engines: ...``,
-    ``out 'x' ...``) starts with its option instead, a parameter with an
+    them: a message that starts with a parameter's name and a colon or a
+    quoted value (``n_engines: ...``, ``out 'x' ...``) starts with its option
+    instead, a parameter with an
     underscore in its name is spelled as its option anywhere in the message
     (``give n_engines at most ...``), and ``force=True`` reads ``--force``.
     """
     text = str(error)
     for name, option in options.items():
-        if re.match(rf"{re.escape(name)}[: ]", text):
+        if re.match(rf"{re.escape(name)}(:| ')", text):
             text = option + text[len(name):]
             break
     for name, option in options.items():

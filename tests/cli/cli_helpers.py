@@ -37,10 +37,16 @@ def stackup_process(*args, cwd=None, env=None, timeout=300):
                           cwd=cwd, env={**os.environ, **(env or {})}, timeout=timeout)
 
 
-def start(args, **kwargs):
-    """``stackup ARGS`` started in a fresh process that a Ctrl-C (SIGINT) reaches as a terminal's would."""
+def start(args, *, umask=None):
+    """``stackup ARGS`` started in a fresh process that a Ctrl-C (SIGINT) reaches as a terminal's would (with the
+    file mode mask ``umask`` if given)."""
+    def before():
+        interruptible()
+        if umask is not None:
+            os.umask(umask)
+
     return subprocess.Popen([sys.executable, "-m", "stackup.cli", *map(str, args)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, preexec_fn=interruptible, **kwargs)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=before)
 
 
 def interruptible():

@@ -296,6 +296,7 @@ def _corrupt(path):
     path.write_bytes(data)
 
 
+@pytest.mark.integration
 def test_a_sound_store_is_checked_whole(engine_file, tmp_path):
     store = tmp_path / "s.zarr"
     _study(engine_file, store).run()
@@ -307,6 +308,7 @@ def test_a_sound_store_is_checked_whole(engine_file, tmp_path):
     assert missing.returncode == 2 and "is not a Zarr store" in missing.stderr and no_traceback_nor_warning(missing)
 
 
+@pytest.mark.integration
 def test_a_damaged_chunk_is_named_with_its_recovery_and_recomputed_alone(engine_file, tmp_path, monkeypatch):
     store = tmp_path / "s.zarr"
     reference = _study(engine_file).run()
@@ -340,6 +342,7 @@ def test_a_damaged_chunk_is_named_with_its_recovery_and_recomputed_alone(engine_
     assert stackup("store", "check", store).returncode == 0
 
 
+@pytest.mark.integration
 def test_a_damaged_chunk_state_stops_the_resume_naming_it(engine_file, tmp_path):
     store = tmp_path / "s.zarr"
     reference = _study(engine_file).run()
@@ -355,6 +358,7 @@ def test_a_damaged_chunk_state_stops_the_resume_naming_it(engine_file, tmp_path)
     xr.testing.assert_identical(_study(engine_file, store).run().load(), reference)
 
 
+@pytest.mark.integration
 def test_an_interrupted_study_store_says_what_is_saved_and_how_to_resume(engine_file, tmp_path, monkeypatch):
     store = tmp_path / "s.zarr"
     original = Study.chunk
@@ -373,6 +377,7 @@ def test_an_interrupted_study_store_says_what_is_saved_and_how_to_resume(engine_
             "these.") in result.stdout
 
 
+@pytest.mark.integration
 def test_a_damaged_running_total_of_summaries_restarts_them(engine_file, tmp_path):
     import zarr
 
@@ -394,6 +399,7 @@ def test_a_damaged_running_total_of_summaries_restarts_them(engine_file, tmp_pat
     assert stackup("store", "check", store).returncode == 0
 
 
+@pytest.mark.integration
 def test_damaged_store_metadata_is_named_and_not_repaired_chunk_by_chunk(engine_file, tmp_path):
     store = tmp_path / "s.zarr"
     _study(engine_file, store).run()

@@ -1,17 +1,10 @@
 """`stackup design` as a user meets it: refusals in the command's words (its options, micrometres), one line,
 exit 2, before any design runs; both figures of a design (design sample, independent check) printed."""
 
-import subprocess
-import sys
-
 import pytest
+from cli_helpers import stackup
 
 from stackup import schemes
-
-
-def stackup(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "stackup.cli", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, timeout=300)
 
 
 @pytest.mark.parametrize("options, says", [

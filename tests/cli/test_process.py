@@ -109,14 +109,14 @@ def _wait_for(process, text):
 @pytest.mark.slow
 def test_a_killed_runs_staging_folder_is_removed_by_the_next_run_and_folders_follow_the_umask(tmp_path):
     out = tmp_path / "run"
-    killed = start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
+    killed = start([*WINDOW_COMPARE, "--out", out], umask=0o022)
     _wait_for(killed, "study: ")
     killed.kill()  # kill -9: nothing of the run's own code runs
     killed.communicate(timeout=60)
     left = [p.name for p in tmp_path.iterdir() if p.name.startswith(".stackup-partial-")]
     assert left and not out.exists()
     assert all((tmp_path / name).stat().st_mode & 0o777 == 0o755 for name in left)  # not 0700: a colleague reads
-    again = start([*WINDOW_COMPARE, "--out", out], preexec_fn=lambda: os.umask(0o022))
+    again = start([*WINDOW_COMPARE, "--out", out], umask=0o022)
     _wait_for(again, "study: ")  # the claim is taken and the stale staging folders removed before the study
     assert not any((tmp_path / name).exists() for name in left)
     again.send_signal(signal.SIGINT)

@@ -172,17 +172,17 @@ def test_a_study_names_iso_schemes_and_gets_them_on_its_engines_drawing():
     assert example.files["schemes"]["iso13778-4"] == scheme_path("iso13778-4").read_text()
 
 
-def test_cli_shows_and_writes_the_schemes_laid_on_an_engine(tmp_path):
-    import subprocess
-    import sys
+def test_cli_shows_and_writes_the_schemes_laid_on_an_engine(tmp_path, capsys):
+    from stackup.cli import main
 
-    command = [sys.executable, "-m", "stackup.cli", "schemes", "--engine", "rozhdestvensky-4"]
-    shown = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+    command = ["schemes", "--engine", "rozhdestvensky-4"]
+    assert main(command) == 0
+    shown = capsys.readouterr().out
     assert "iso13778-6" in shown and "nominal clearance 71.3-96.0 um" in shown  # the window moved by press fit and the journal 10 K above its housing
-    subprocess.run([*command, "--out", str(tmp_path)], capture_output=True, text=True, check=True)
+    assert main([*command, "--out", str(tmp_path)]) == 0
     written = sorted(tmp_path.glob("*.toml"))
     assert [p.name for p in written] == [f"iso13778-{k}-rozhdestvensky-4.toml" for k in range(1, 7)]
     for path in written:
         assert load(path).clearance_limits() == adapt(path.name.split("-rozh")[0], "rozhdestvensky-4").clearance_limits()
-    again = subprocess.run([*command, "--out", str(tmp_path)], capture_output=True, text=True)
-    assert again.returncode == 2 and "--force" in again.stderr
+    capsys.readouterr()
+    assert main([*command, "--out", str(tmp_path)]) == 2 and "--force" in capsys.readouterr().err

@@ -268,6 +268,7 @@ def test_to_toml_is_the_engine_files_process_entry():
     assert re.search(r"^# .*gauge repeatability 0.5 um removed", text, re.M)
 
 
+@pytest.mark.integration
 def test_the_engine_file_written_from_fits_loads_strictly_and_runs_the_main_job(tmp_path):
     fit = _grouped_fit()
     out = write_engine("iso-example", tmp_path / "measured.toml", fit.entries("housing_bore"), name="measured")

@@ -7,6 +7,8 @@ import xarray as xr
 
 from stackup import Study
 
+pytestmark = pytest.mark.integration
+
 KW = dict(n_engines=2500, mechanics_engines=20, crank_angle_step=8.0, history=True, progress=False, pilot_engines=3000,
           chunk_lots=1)
 

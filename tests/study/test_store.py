@@ -131,6 +131,7 @@ def test_labels_are_coded_and_an_unknown_label_is_named():
         to_stored(ds, {"A"})
 
 
+@pytest.mark.integration
 def test_memory_of_a_study_kept_in_a_store_does_not_grow_with_n(engine_file, tmp_path):
     import tracemalloc
 

@@ -150,6 +150,7 @@ def test_bad_engine_file(engine_file, write_toml, old, new, message):
         Study(engine=str(bad), n_engines=10).run()
 
 
+@pytest.mark.integration
 def test_cli_compare_writes_dataset_and_report(tmp_path, capsys):
     assert main(["compare", "--n", "300", "--schemes", "iso13778-4", "iso13778-6", "--no-design", "--out", str(tmp_path)]) == 0
     for name in ("compare.nc", "report.md", "report.html", "clearance_histogram.png", "grade_usage.png", "sensitivity.png"):

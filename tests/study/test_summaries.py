@@ -49,6 +49,7 @@ def peak_memory(n):
     return peak
 
 
+@pytest.mark.integration
 def test_memory_of_a_streaming_study_does_not_grow_with_n():
     Study(**{**KW, "n_engines": 1000}, keep="summaries").run()  # warm caches
     small, large = peak_memory(4000), peak_memory(16000)
