@@ -63,18 +63,32 @@ def test_a_check_on_part_of_the_engines_covers_the_full_check(checked):
 
 
 def test_the_report_states_the_corrected_means_and_a_check_below_the_target(checked, tmp_path):
+    # the sentences are the report's templates filled with the numbers of the check (no prose copied here)
     from stackup.report import format as fmt
+    from stackup.report import templates as words
     from stackup.report import write_report
 
     corrected = multi_fidelity(checked).xs("iso13778-3", level="scheme")
-    life = [q[0] / 3600 for q in corrected.life_corrected]
+    life, lower, upper = (np.array([q[k] / 3600 for q in corrected.life_corrected]) for k in range(3))
+    cheap = corrected.life_cheap.to_numpy() / 3600
     text = write_report(checked, tmp_path).read_text()
-    assert f"life {fmt.significant(min(life))}–{fmt.significant(max(life))} (±" in text
+    # the corrected lives over the positions, their widest half-interval and the study tier's lives
+    assert words.CORRECTED_SPAN.format(
+        lo=fmt.significant(life.min()), hi=fmt.significant(life.max()),
+        half=fmt.significant(np.max(np.maximum(life - lower, upper - life))),
+        cheap_lo=fmt.significant(cheap.min()), cheap_hi=fmt.significant(cheap.max())) in text
     # the film tier's error the Methods quote is this engine's, as the check measured it
-    thick = 100 * max(c / q[0] - 1 for c, q in zip(corrected.h_min_mean_cheap, corrected.h_min_mean_corrected))
-    assert f"on the cycle-minimum film, {thick:.0f} % on its mean" in text
+
+    def thick(name):
+        return 100 * max(c / q[0] - 1 for c, q in zip(corrected[f"{name}_cheap"], corrected[f"{name}_corrected"]))
+
+    assert words.CHECKED_ERRORS_PART.format(h_min=thick("h_min"), h_min_mean=thick("h_min_mean")) in text
     # a target above every corrected life: the first page says where the check falls short
-    short = write_report(checked.assign(life_target=2 * max(life) * 3600), tmp_path / "short").read_text()
-    first_page = short.split("<!-- /verdict -->")[0]
-    assert "of iso13778-3's bearings live less than the" in first_page
-    assert "target (lives on the mass-conserving check's scale)" in first_page
+    target = 2 * life.max()
+    short = checked.assign(life_target=target * 3600)
+    worst = stackup.rank(short).loc["iso13778-3"]
+    first_page = write_report(short, tmp_path / "short").read_text().split("<!-- /verdict -->")[0]
+    assert words.SHORT_LIFE_NOTE.format(
+        bearing=worst.life_below_target_position, share=fmt.interval(worst.life_below_target_pct,
+                                                                     worst.life_below_target_pct_ci, 1),
+        scheme="iso13778-3", target=fmt.whole(target), checked=words.CHECKED_PART) in first_page

@@ -1,6 +1,14 @@
-"""The report is a function of saved datasets alone: no sampling, no backend change, full or summary datasets."""
+"""The report is a function of saved datasets alone: no sampling, no backend change, full or summary datasets.
+
+The report's words are :mod:`stackup.report.templates`: the tests find a sentence by its template filled with the
+numbers of the facts (:func:`sentence`), never by prose copied here, so a rewording breaks no test while a wrong
+number or a missing sentence does. The exact first page of one comparison is a snapshot
+(``test_report_snapshots.py``).
+"""
 
 import json
+import re
+import string
 import subprocess
 import sys
 import tomllib
@@ -12,7 +20,9 @@ import pytest
 import stackup
 import stackup.schemes as schemes
 from stackup.io import open_comparison, save_comparison
-from stackup.report import clearance_summary, fit_summary, write_report
+from stackup.report import SECTIONS, clearance_summary, fit_summary, write_report
+from stackup.report import format as fmt
+from stackup.report import templates as words
 
 KW = dict(schemes=("iso13778-4", "iso13778-6"), n_engines=600, seed=4, pilot_engines=3000, mechanics_engines=12,
           crank_angle_step=12.0, progress=False)
@@ -23,6 +33,45 @@ DESIGN = {"n_engines": 500, "generations": 0, "name": "designed"}
 @pytest.fixture(scope="module")
 def comparison():
     return stackup.compare(**KW, scenarios=SCENARIOS, design=DESIGN)  # and the declared model uncertainties
+
+
+def sentence(template, **fields):
+    """A pattern of the report's sentence ``template`` (a :mod:`stackup.report.templates` constant) as filled.
+
+    Each field given in ``fields`` is written as the template writes it (its format spec applied); any other
+    field matches any text within the line, captured under its name (``match["changes"]``). Templates compose:
+    ``words.EDGE_COUNTED.replace("{positions}", words.EDGE_POSITION_PART + "{positions}")`` is the sentence whose
+    positions begin with that position.
+    """
+    pattern = []
+    for literal, name, spec, _ in string.Formatter().parse(template):
+        pattern.append(re.escape(literal))
+        if name is None:
+            continue
+        if name in fields:
+            pattern.append(re.escape(format(fields[name], spec)))
+        elif f"(?P<{name}>" in "".join(pattern):  # a field the template writes twice: the same text again
+            pattern.append(f"(?P={name})")
+        else:
+            pattern.append(f"(?P<{name}>[^\\n]*?)")
+    return re.compile("".join(pattern))
+
+
+def edge_sentence(template, **fields):
+    """:func:`sentence` of an edge-contact ``template`` whose positions begin with :data:`EDGE_POSITION_PART`
+    (its fields ``bearing``, ``lo``, ``hi``, ``film``, ``load``, ``angle`` among ``fields``)."""
+    return sentence(template.replace("{positions}", words.EDGE_POSITION_PART + "{positions}"), **fields)
+
+
+def heading(title):
+    """The line of a section's heading (``title`` one of :data:`stackup.report.SECTIONS`)."""
+    assert title in SECTIONS
+    return words.SECTION.format(title=title)
+
+
+def section_text(text, title):
+    """The body of the section ``title`` of the report ``text`` (up to the next heading)."""
+    return text.split(heading(title) + "\n")[1].split("\n## ")[0]
 
 
 def _no_randomness(monkeypatch):
@@ -61,7 +110,11 @@ def test_report_draws_no_random_number_and_reads_the_saved_comparison(comparison
     text = write_report(saved.dataset, tmp_path / "saved", scenarios=saved.scenarios,
                         sensitivity=saved.sensitivity, tails=saved.tails).read_text()
     assert text == expected
-    assert "## Planning: shells per grade" in text and "misalignment ×2" in text
+    # the exact file keeps every engine: the plan is written, not asked for
+    planning = section_text(text, "Planning: shells per grade")
+    chosen = list(stackup.rank(saved).index)[0]
+    assert sentence(words.PLAN, scheme=chosen).search(planning) and words.PLAN_NEEDS_ENGINES not in planning
+    assert "| misalignment ×2 |" in section_text(text, "Scenarios")
 
 
 
@@ -83,21 +136,24 @@ def test_the_command_line_writes_the_report_of_a_saved_comparison_again(comparis
 
 
 def _verdict(ds, **ranking):
-    """The verdict of a study dataset alone (no scenarios), as one text."""
+    """The verdict of a study dataset alone (no scenarios), as one text, and the ranking it judged."""
     from stackup.facts import facts
     from stackup.rank import ranked
     from stackup.report.verdict import verdict
 
     known = facts(ds, **ranking)
-    return " ".join(verdict(known, ranked(known.ranking), {}))
+    return " ".join(verdict(known, ranked(known.ranking), {})), ranked(known.ranking)
 
 
 def test_the_verdict_says_when_no_scheme_meets_the_window(comparison):
     ds = comparison.dataset
-    text = _verdict(ds, window=(1e-6, 2e-6))
-    assert "**Check first:** No scheme meets the window 1–2 µm:" in text
-    text = _verdict(ds)
-    assert "No scheme meets" not in text
+    text, ranking = _verdict(ds, window=(1e-6, 2e-6))
+    best = fmt.ppm(np.nanmin(ranking.outside_window_ppm))
+    # the first thing to check, with the window and the best scheme's share outside it
+    assert words.CHECK_FIRST.format(notes=words.NOT_MET.format(lo=fmt.um_edge(1e-6), hi=fmt.um_edge(2e-6),
+                                                                best=best)) in text
+    text, _ = _verdict(ds)
+    assert not sentence(words.NOT_MET).search(text)
 
 
 def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_bearings_do(comparison):
@@ -107,22 +163,26 @@ def test_the_verdict_says_how_much_of_the_cycle_journal_edges_touch_where_most_b
     status = ds.film_status.values
     computed = (status != flag(ds.film_status, "not_computed")) & ds.film_valid.values
     touching = computed & (status == flag(ds.film_status, "edge_contact"))
-    text = _verdict(ds)
-    assert ("Journal edges reach the wall" in text) == (touching.sum() >= 0.5 * computed.sum())
-    # every bearing touching: said on the first page, with what α and the lives make of it
+    text, _ = _verdict(ds)
+    notes = (words.EDGE_NOTE, words.EDGE_COUNTED_NOTE, words.EDGE_SURFACE_NOTE)
+    assert bool(sentence(words.EDGE_COUNTED_NOTE).search(text)) == (touching.sum() >= 0.5 * computed.sum())
+    # every bearing touching: said on the first page, with what α and the lives make of it (they read that film)
     edged = ds.copy()
     edged["film_status"] = edged.film_status.where(~computed, flag(ds.film_status, "edge_contact"))
-    text = _verdict(edged)
-    assert "**Check first:**" in text and "Journal edges reach the wall in 100 % of the bearings" in text
-    assert "α and the lives read the film there" in text
+    text, _ = _verdict(edged)
+    assert sentence(words.CHECK_FIRST).search(text)
+    assert words.EDGE_COUNTED_NOTE.format(share=fmt.percent(1.0)) in text
     # a study saved when α and the lives read the mid-plane film: they ignore the contact, and the page says so
     midplane = edged.copy()
     midplane["h_min"] = midplane.h_min_midplane
-    assert "Journal edges touch their shells in 100 % of the bearings; the lives ignore" in _verdict(midplane)
+    text, _ = _verdict(midplane)
+    assert words.EDGE_NOTE.format(share=fmt.percent(1.0)) in text
+    assert not sentence(words.EDGE_COUNTED_NOTE).search(text)
     # none touching: nothing said
     clear = ds.copy()
     clear["film_status"] = clear.film_status.where(~computed, flag(ds.film_status, "periodic"))
-    assert "Journal edges" not in _verdict(clear)
+    text, _ = _verdict(clear)
+    assert not any(sentence(note).search(text) for note in notes)
 
 
 def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(comparison):
@@ -138,27 +198,28 @@ def test_limits_say_what_the_film_tiers_cycle_mean_error_does_to_method_1s_life(
     life = levanov_method1(np.array([h, h / (1 + error)]), h_lim_cr=wear["critical_film_m"],
                            wear_limit=wear["method1_wear_limit_m"], wear_rate=wear["wear_rate_m_per_s"]).life
     text = " ".join(limits_of_validity(facts(ds)))
-    assert f"up to {100 * error:.0f} % thicker than the transient reference" in text
-    assert f"makes a life {life[0] / life[1]:.1f} times as long" in text and f"{h * 1e6:.1f} µm" in text
     cap = wear["method1_wear_limit_m"] / wear["wear_rate_m_per_s"] / 3600
     assert wear["method1_wear_limit_m"] / wear["wear_rate_m_per_s"] == pytest.approx(1e8)  # the paper's results' scale
-    assert f"caps a life at Δh_lim/γ = {cap:,.0f} h" in text
+    assert sentence(words.LIFE_BIAS_PART, error=100 * error, film=fmt.um(h), ratio=life[0] / life[1],
+                    thinner_film=fmt.um(h / (1 + error)), cap=fmt.whole(cap)).search(text)
     # a study without the tier's measured errors says nothing of it
     bare = ds.copy()
     bare.attrs = {k: v for k, v in ds.attrs.items() if k != "film_method_errors"}
-    assert "Method 1 reads" not in " ".join(limits_of_validity(facts(bare)))
+    assert not sentence(words.LIFE_BIAS_PART).search(" ".join(limits_of_validity(facts(bare))))
 
 
 def test_the_film_section_gives_the_heat_balance_of_the_bearings(comparison, tmp_path):
+    from stackup.facts.declared import Processes
     from stackup.study.schema import flag
 
     ds = comparison.dataset
-    text = write_report(ds, tmp_path).read_text()
+    text = section_text(write_report(ds, tmp_path).read_text(), "Loads, oil film and bearing life")
     valid = (ds.film_status.values != flag(ds.film_status, "not_computed")) & ds.film_valid.values
     temperature = np.percentile(ds.film_temperature.values[valid], [5, 50, 95])
-    assert (f"The heat balance puts the films at {temperature[0]:.0f}-{temperature[2]:.0f} °C (5-95 %; median "
-            f"{temperature[1]:.0f} °C, oil supplied at") in text
-    assert "W of friction per bearing" in text and "L/min of oil." in text
+    supply = Processes.of(ds).crank.oil_supply_temperature_degC
+    assert sentence(words.HEAT, temperature=f"{temperature[0]:.0f}-{temperature[2]:.0f}",
+                    temperature_median=f"{temperature[1]:.0f}",
+                    supply=words.SUPPLY_PART.format(supply=supply)).search(text)
 
 
 def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_path):
@@ -166,9 +227,9 @@ def test_report_reads_limits_and_life_target_from_the_dataset(comparison, tmp_pa
                                    life_target=1e9 * 3600)
     text = write_report(ds, tmp_path).read_text()
     # a check no bearing fails is said in a sentence, not as a column of zeros
-    assert "p < 20 MPa [ppm]" in text or "falls below 20 MPa of contact pressure" in text
-    assert "σ > 300 MPa [ppm]" in text or "compresses its shells beyond 300 MPa" in text
-    assert "life < 1000000000 h, worst position [% of its bearings]" in text
+    assert "p < 20 MPa [ppm]" in text or words.FIT_LOW_PRESSURE.format(pressure=20) in text
+    assert "σ > 300 MPa [ppm]" in text or words.FIT_HIGH_STRESS.format(stress=300) in text
+    assert words.SHORT_COLUMN.format(target=1e9) in text
 
 
 def test_report_of_streaming_summaries_agrees_and_says_what_needs_every_engine(tmp_path):
@@ -177,8 +238,8 @@ def test_report_of_streaming_summaries_agrees_and_says_what_needs_every_engine(t
     full = stackup.Study(**KW).run()
     summary = replace(stackup.Study(**KW), keep="summaries").run()
     text = write_report(summary, tmp_path).read_text()
-    assert "run the study with `keep=\"everything\"`" in text  # planning
-    assert "none was given" in text  # contributions
+    assert section_text(text, "Planning: shells per grade").strip() == words.PLAN_NEEDS_ENGINES
+    assert section_text(text, "What drives the spread").strip() == words.NO_SENSITIVITY
     a, b = clearance_summary(full), clearance_summary(summary)
     np.testing.assert_allclose(b.mean_um, a.mean_um, rtol=1e-9)
     np.testing.assert_array_equal(b.outside_stated_ppm, a.outside_stated_ppm)  # stated ranges lie on the bin grid
@@ -230,10 +291,15 @@ def test_the_designed_scheme_is_compared_beside_the_others_and_explained(compari
         [float(v) for v in ds.clearance_limit.sel(scheme="designed").values], abs=1e-9)
     report = write_report(ds, tmp_path, scenarios=comparison.scenarios, sensitivity=comparison.sensitivity,
                           tails=comparison.tails).read_text()
-    section = report.split("## Designed scheme")[1].split("\n## ")[0]
-    assert "by `stackup.design` (" in section and f"from `{design['start']}`" in section
-    assert "| housing bore |" in section
-    assert "Its reasons are the comments of its scheme text" in section
+    section = section_text(report, "Designed scheme")
+    ranks = stackup.rank(comparison)["rank"]
+    against = (words.DESIGN_AGAINST_PART.format(outcome=words.DESIGN_OUTCOME_PART.format(rank=ranks[design["start"]]),
+                                                start=design["start"]) if design["start"] in ranks else
+               words.DESIGN_START_ABSENT_PART.format(start=design["start"]))
+    assert sentence(words.DESIGNED, name="designed", evaluations=fmt.count(design["evaluations"]),
+                    start=design["start"], outcome=words.DESIGN_OUTCOME_PART.format(rank=ranks["designed"]),
+                    against=against).search(section)
+    assert "| housing bore |" in section  # the grades of each dimension, side by side
 
 
 def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
@@ -248,7 +314,9 @@ def test_a_scheme_without_a_stated_range_shows_a_dash_not_zero_ppm(tmp_path):
     summary = clearance_summary(ds)
     assert np.isnan(summary.outside_stated_ppm["unstated"]) and np.isfinite(summary.outside_stated_ppm["iso13778-3"])
     report = write_report(ds, tmp_path / "report").read_text()
-    row = next(line for line in report.splitlines() if line.startswith("| unstated | none ("))
+    stated = words.NONE_STATED.format(worst=fmt.um_range(summary.worst_case_min_um["unstated"],
+                                                         summary.worst_case_max_um["unstated"]))
+    row = next(line for line in report.splitlines() if line.startswith(f"| unstated | {stated} |"))
     assert row.rstrip(" |").endswith("—")
 
 
@@ -258,14 +326,12 @@ def test_a_study_without_the_mechanical_chain_says_so(tmp_path):
     from stackup.study import Study
 
     ds = Study(schemes=("iso13778-4",), n_engines=200, mechanics_engines=0, progress=False, pilot_engines=1000).run()
-    notes = run_notes(Run.of(ds))
-    assert any("did not run (the study asked for none" in note for note in notes)
-    assert "did not run" in write_report(ds, tmp_path).read_text().split("<!-- /verdict -->")[0]
+    said = words.NO_MECHANICS_NOTE.format(reason=words.NONE_ASKED_PART)
+    assert said in run_notes(Run.of(ds))
+    assert said in write_report(ds, tmp_path).read_text().split("<!-- /verdict -->")[0]
 
 
 def test_numbers_are_written_one_way():
-    from stackup.report import format as fmt
-
     assert fmt.significant(26_512) == "26,500" and fmt.significant(float("inf")) == "∞" and fmt.significant(0) == "0"
     assert fmt.significant_triple((34_584.9, 33_900.2, 35_412.0)) == "34,600 [33,900, 35,400]"
     assert fmt.ppm(0.0497, (0.034, 0.065)) == "0.050 ppm [0.034, 0.065]" and fmt.ppm(2354.2) == "2,354 ppm"
@@ -286,14 +352,12 @@ def _table_rows(text, heading, first_column):
 def test_the_report_states_the_numbers_of_the_facts(comparison, tmp_path):
     from stackup.facts import facts
     from stackup.rank import ranked
-    from stackup.report import SECTIONS
-    from stackup.report import format as fmt
 
     known = facts(comparison)
     ranking = ranked(known.ranking)
     text = write_report(comparison.dataset, tmp_path, scenarios=comparison.scenarios,
                         sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
-    assert all(f"\n## {title}\n" in text for title in SECTIONS)
+    assert all(f"\n{heading(title)}\n" in text for title in SECTIONS)
     fit = _table_rows(text, "Operating clearance: press fit, housing swell and temperature", "scheme")
     assert list(fit) == list(ranking.index)
     film = _table_rows(text, "Loads, oil film and bearing life", "scheme")
@@ -317,7 +381,10 @@ def test_the_report_states_the_numbers_of_the_facts(comparison, tmp_path):
             row.outside_window_ppm, row.outside_window_ppm_ci, fmt.ppm_digits(row.outside_window_ppm)))
         assert decision[scheme]["shell grades"] == str(row.shell_grades)
         assert decision[scheme]["surplus [%]"] == f"{row.surplus_pct:.1f}"
-    assert f"**Use {ranking.index[0]}**" in first_page
+    chosen = ranking.iloc[0]
+    clearance = words.CLEARANCE_PART.format(mean=chosen.clearance_mean_um, std=chosen.clearance_std_um)
+    assert any(sentence(use, scheme=ranking.index[0], clearance=clearance).search(first_page)
+               for use in (words.USE_ONLY, words.USE_CLEARANCE, words.USE_COST))
 
 
 def _first_table(text, first_column="scheme"):
@@ -339,12 +406,13 @@ def test_the_first_page_is_a_short_verdict_and_the_decision_table(report_text):
     first_page = report_text.split("\n## ")[0]
     verdict = first_page.split("<!-- verdict -->")[1].split("<!-- /verdict -->")[0]
     assert len(verdict.split()) <= 150
-    assert "**Model uncertainty:**" in verdict and "**Process scenarios:**" in verdict
-    assert "less than 1 ppm apart count as equal (`--negligible`)" in first_page  # the threshold, stated
+    assert any(sentence(t).search(verdict) for t in (words.MODEL_HOLDS, words.MODEL_BREAKS))
+    assert any(sentence(t).search(verdict) for t in (words.PROCESS_HOLDS, words.PROCESS_BREAKS))
+    assert sentence(words.SUBTITLE, negligible=fmt.general(1.0)).search(first_page)  # the threshold, stated
     table = _first_table(first_page.split("<!-- /verdict -->")[1])
     columns = next(iter(table.values()))
     assert {"outside window [ppm]", "shell grades", "bore + journal grades", "stock-outs [ppm]", "surplus [%]",
-            "worst process scenario: outside [ppm]", "worst model uncertainty: outside [ppm]"} <= set(columns)
+            words.WORST_PROCESS, words.WORST_MODEL} <= set(columns)
     assert len(report_text.split()) <= 3500
 
 
@@ -369,14 +437,15 @@ def test_the_verdict_says_whether_the_choice_holds_under_the_model_uncertainties
 
     flips = [label for label in model if beaten(label)]
     if flips:
-        assert "the choice changes within the declared ranges" in text and "Measure " in text
-        assert f"with {flips[0]}, **" in text or any(f"with {label}, **" in text for label in flips)
+        assert sentence(words.MODEL_BREAKS).search(text)
+        assert any(sentence(words.MODEL_FLIP_PART, scenario=label).search(text) for label in flips)
     else:
-        assert "it stays first over the declared ranges of the housing stiffness" in text
+        inputs = list(dict.fromkeys(known.scenario_about[label].input for label in model))  # each declared range
+        assert sentence(words.MODEL_HOLDS, inputs=words.listed(inputs)).search(text)
     # a scenario the counts cannot resolve (the chosen scheme's share within the others' intervals) is no flip
     for label in model:
         if label not in flips:
-            assert f"with {label}, **" not in text
+            assert not sentence(words.MODEL_FLIP_PART, scenario=label).search(text)
 
 
 def test_a_difference_the_scenario_counts_cannot_resolve_does_not_break_the_choice():
@@ -438,12 +507,10 @@ def test_a_bore_process_that_scraps_blocks_reaches_the_first_page(tmp_path):
     first = write_report(ds, tmp_path / "report").read_text().split("<!-- /verdict -->")[0]
     blocks = (ds.status.values == 1).mean()
     assert blocks > 0.4  # most blocks have a bore outside its limits at C_pk 0.5
-    assert "**Check first:**" in first and f"{100 * blocks:.0f} % of the blocks are scrapped" in first
+    assert sentence(words.CHECK_FIRST).search(first) and words.BLOCKS_LOST.format(share=fmt.percent(blocks)) in first
 
 
 def test_a_share_below_the_precision_never_reads_as_zero():
-    from stackup.report import format as fmt
-
     assert fmt.ppm(2e-7, (0.0, 1e-6)) == "< 0.001 ppm [0, < 0.001]"  # not "0.000 ppm [0.000, 0.000]"
     assert fmt.ppm(0.0, (0.0, 0.0)) == "0 ppm" and fmt.ppm_interval(0.0, (0.0, 74.0)) == "0 [0, 74]"
     assert fmt.ppm(0.05, (0.034, 0.065)) == "0.050 ppm [0.034, 0.065]"
@@ -480,8 +547,13 @@ def test_doubled_misalignment_lengthens_no_life_at_any_position(comparison, tmp_
     assert all(change[0] < 0 for change in engines.engine_life_change_h)
     text = write_report(comparison.dataset, tmp_path, scenarios=comparison.scenarios,
                         sensitivity=comparison.sensitivity, tails=comparison.tails).read_text()
-    assert "**Lives** under the scenarios that ran the films (12+ paired engines)" in text
-    assert "| misalignment ×2 | " in text and " | none |" in text
+    chosen = list(stackup.rank(comparison).index)[0]
+    pairs = int(positions.xs(chosen, level="scheme").pairs.min())
+    assert pairs == KW["mechanics_engines"]
+    intro = sentence(words.SCENARIO_LIVES_INTRO, pairs=pairs, scheme=chosen).search(text)
+    assert intro
+    lives = _first_table(text[intro.end():], "scenario")  # the table under it
+    assert lives["misalignment ×2"][words.LIVES_RISE_COLUMN] == words.LIVES_NONE_RISE
 
 
 def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_the_critical_film(tmp_path):
@@ -497,15 +569,18 @@ def test_with_the_film_over_the_surface_the_report_says_where_edges_run_below_th
     assert edge.surface and edge.critical == pytest.approx(1.9e-6)
     text = write_report(ds, tmp_path).read_text()
     touching = ds.film_status.values == FILM_STATUS.index("edge_contact")
+    critical = fmt.um(edge.critical, 2)
     if edge.touching:
         b = int(edge.per_position.index[0])
         on = touching[..., b - 1]
         film = float(np.median(ds.h_min.values[..., b - 1][on]))
-        assert f"bearing {b} (" in text and f"{1e6 * film:.2f} µm at up to" in text
-        assert "α and the lives read it" in text and "do not count" not in text
+        # α and the lives read the film over the surface there (not the mid-plane's, which does not count it)
+        assert edge_sentence(words.EDGE_SURFACE, critical=critical, bearing=b,
+                             film=fmt.fixed(1e6 * film, 2)).search(text)
+        assert not sentence(words.EDGE_CYCLES).search(text)
     else:
-        assert "runs below h_lim,cr" not in text
-    assert "Minimum film over the bearing surface" in text
+        assert not sentence(words.EDGE_SURFACE).search(text)
+    assert sentence(words.FILM_INTRO, where=words.SURFACE_PART, critical=critical).search(text)
 
 
 def test_with_the_default_tilt_the_report_says_where_edges_reach_the_wall_and_the_lives_count_them(tmp_path):
@@ -526,8 +601,9 @@ def test_with_the_default_tilt_the_report_says_where_edges_reach_the_wall_and_th
     text = write_report(ds, tmp_path).read_text()
     b = int(edge.per_position.index[0])
     load = float(np.nanmedian(ds.edge_contact_load.values[..., b - 1][on[..., b - 1]]))
-    assert f"reaches the wall: bearing {b} (" in text and f"{load / 1e3:.1f} kN" in text
-    assert "α and the lives read it" in text and "do not count" not in text
+    # α and the lives read the film at the wall (not the mid-plane's, which does not count it)
+    assert edge_sentence(words.EDGE_COUNTED, bearing=b, load=fmt.fixed(load / 1e3, 1)).search(text)
+    assert not sentence(words.EDGE_CYCLES).search(text)
 
 
 def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_change_the_edge_contact(tmp_path):
@@ -545,9 +621,14 @@ def test_with_the_film_over_the_surface_the_report_says_whether_the_tolerances_c
     direct = np.median(100 * (doubled.edge_contact_share.values[0] - ds.edge_contact_share.values[0]), axis=0)
     np.testing.assert_allclose(changes, direct)
     text = write_report(ds, tmp_path, scenarios={"misalignment ×2": doubled}).read_text()
-    assert ("With coaxiality and run-out ×2 (misalignment ×2, 6 paired engines) iso13778-1's share of the cycle "
-            "with an edge below h_lim,cr changes by") in text
-    assert "`tilt_unresolved`" in text or not np.nanmax(ds.tilt_unresolved.values) > 0
+    said = sentence(words.EDGE_TOLERANCE, factor="2", label="misalignment ×2", pairs=6, scheme="iso13778-1",
+                    contact=words.BELOW_CRITICAL, first=int(ds.bearing.min()), last=int(ds.bearing.max())).search(text)
+    assert said
+    rounded = np.round(changes, 1) + 0.0
+    assert rounded.any()  # the doubled tolerances change the contact: by how much, said
+    assert said["changes"] != words.EDGE_TOLERANCE_NONE
+    assert fmt.signed(rounded.min(), 1) in said["changes"] and fmt.signed(rounded.max(), 1) in said["changes"]
+    assert sentence(words.EDGE_UNRESOLVED).search(text) or not np.nanmax(ds.tilt_unresolved.values) > 0
 
 
 def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_without_edge_contact():
@@ -569,14 +650,21 @@ def test_the_tolerance_sentence_reads_right_for_no_change_and_for_a_study_withou
         return SimpleNamespace(misalignment=("misalignment ×2", 2.0), edge=edge,
                                life_changes={"misalignment ×2": (positions, None)})
 
+    sentence_of = dict(factor="2", label="misalignment ×2", pairs=12, scheme="s", contact=words.BELOW_CRITICAL,
+                       first=1, last=3)
     none = _tolerance_text(facts_with([0.0, -0.04, 0.03]), ["s"])
-    assert "share of the cycle with an edge below h_lim,cr does not change (median per position, bearings 1–3)" in none
-    assert "−0.0" not in none and "within its 95 % interval of zero everywhere" in none
+    assert none == words.EDGE_TOLERANCE.format(**sentence_of, changes=words.EDGE_TOLERANCE_NONE,
+                                               beyond=words.EDGE_TOLERANCE_WITHIN)
+    assert "−0.0" not in none
     some = _tolerance_text(facts_with([-0.4, 2.04, 0.0]), ["s"])
-    assert "changes by −0.4 to +2.0 points" in some
+    # bearing 2's interval (+1.04, +3.04) is clear of zero
+    said = sentence(words.EDGE_TOLERANCE, **sentence_of,
+                    beyond=words.EDGE_TOLERANCE_BEYOND.format(s="", bearings=2)).fullmatch(some)
+    assert said and re.fullmatch(r"\D*−0\.4\D+\+2\.0\D*", said["changes"])  # from the least to the most, rounded
     facts = facts_with([1.0, 2.0, 3.0])
     text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 300, 0), facts.edge, _tolerance_text(facts, ["s"])))
-    assert "With coaxiality and run-out ×2" in text and "`tilt_unresolved`" in text
+    assert sentence(words.EDGE_TOLERANCE, **sentence_of).search(text)
+    assert sentence(words.EDGE_UNRESOLVED, median=fmt.percent(0.1), high=fmt.percent(0.2)).search(text)
 
 
 def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_count_them():
@@ -606,11 +694,14 @@ def test_where_edges_reach_the_wall_the_report_says_whether_alpha_and_the_lives_
 
     outcomes = FilmOutcomes(2, {}, 0, 1, 1)
     counted = " ".join(_outcomes_text(outcomes, edge_contact(study([[0.1e-6, 3e-6]]))))
-    assert "α and the lives read it" in counted and "do not count" not in counted
-    assert "`--tilt-method coupled`" in counted
-    assert "reaches the wall: bearing 1 (8.0 %–8.0 % of the cycle; 0.10 µm at up to 31.0 kN near 372°)" in counted
+    # α and the lives read the film at the wall; the position as the dataset has it
+    assert sentence(words.EDGE_COUNTED, edge=1, share="50 %", positions=words.EDGE_POSITION_PART.format(
+        bearing=1, lo="8.0 %", hi="8.0 %", film="0.10", load="31.0", angle="372"), others="").search(counted)
+    assert not sentence(words.EDGE_CYCLES).search(counted)
     midplane = " ".join(_outcomes_text(outcomes, edge_contact(study([[2e-6, 3e-6]]))))
-    assert "do not count" in midplane and "`--tilt-method coupled`" in midplane
+    # they read the mid-plane film: the contact is not counted, and the method that counts it is named
+    assert sentence(words.EDGE_CYCLES, edge=1).search(midplane)
+    assert not sentence(words.EDGE_COUNTED).search(midplane)
 
 
 def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named():
@@ -629,12 +720,17 @@ def test_lives_that_rise_with_their_film_are_counted_and_those_without_it_named(
     engines = pd.DataFrame({"engine_life_change_h": [(550.0, 300.0, 800.0), (280.0, 90.0, 470.0)]},
                            index=pd.Index(["a", "b"], name="scheme"))
     row = _life_change_row("support tilt compliance ×2", positions, engines, "a")
-    rises = row["lives that rise"]
+    rises = row[words.LIVES_RISE_COLUMN]
     # bearing 1 of a: a thicker mean, a thinner minimum (method 1's direction), said; bearing 1 of b: both thicker
-    assert rises.startswith("2 of 4 (+600 to +900 h): cycle-mean film +0.30 to +0.40 µm, cycle minimum −0.50 µm "
-                            "at 1 (method 1 reads the mean)")
-    assert "bearing 2 of b (+300 h; cycle-mean film −0.10 µm)" in rises and "bearing 1 of a" not in rises
-    assert row["per position [h]"] == "−5 (bearing 2) to +600" and row["per engine [h]"] == "+550"
+    thinner = words.LIVES_RISE_THINNER_MINIMUM.format(span="−0.50", where=words.LIVES_RISE_THINNER_AT.format(count=1))
+    assert rises.startswith(words.LIVES_RISE_WITH_FILM.format(count=2, total=4, lo="+600", hi="+900", film_lo="+0.30",
+                                                              film_hi="+0.40", minimum=thinner))
+    # bearing 2 of b rises with a thinner film: named; bearing 1 of a (with its film) is not
+    assert words.LIVES_RISE.format(where=words.LIFE_RISE_PART.format(bearing=2, scheme="b", change="+300",
+                                                                     film="−0.10")) in rises
+    assert not sentence(words.LIFE_RISE_PART, bearing=1, scheme="a").search(rises)
+    assert row[words.LIVES_POSITION_COLUMN] == words.LIVES_SPAN.format(lo="−5", bearing=2, hi="+600")
+    assert row[words.LIVES_ENGINE_COLUMN] == "+550"
 
 
 def test_where_method_1_reads_a_film_below_the_critical_film_the_report_says_its_hours_are_no_margin():
@@ -650,8 +746,9 @@ def test_where_method_1_reads_a_film_below_the_critical_film_the_report_says_its
     facts = SimpleNamespace(study=SimpleNamespace(life_film="cycle-mean"), corrected=corrected,
                             limits=SimpleNamespace(critical_film=1.9e-6), bearings=pd.DataFrame())
     text = " ".join(_method1_range_text(facts, "s"))
-    assert "At bearings 2 and 3 s's cycle-mean film, the film method 1 reads, is 1.60 / 1.85 µm, below" in text
-    assert "no film margin" in text
+    said = sentence(words.METHOD1_RANGE, s="s", bearings=words.listed([2, 3]), scheme="s", films="1.60 / 1.85",
+                    critical=fmt.um(1.9e-6, 2)).search(text)
+    assert said and "cycle-mean" in said["statistic"]  # the film method 1 reads (life_film)
     # no check: the study's own medians per position; all above h_lim,cr: nothing said
     bearings = pd.DataFrame({"h_min_mean_median_um": [(5.0, 4.0, 6.0), (2.5, 2.0, 3.0), (3.0, 2.5, 3.5)]},
                             index=index)
@@ -666,14 +763,18 @@ def test_a_metric_the_same_for_every_scheme_is_named_with_its_unit():
 
     ranking = pd.DataFrame({"alpha_over_limit_pct": [100.0, 100.0],
                             "alpha_over_limit_pct_ci": [(98.8, 100.0), (98.8, 100.0)]}, index=["a", "b"])
-    text = non_discriminating(ranking)[0]
-    assert text == ("Boundary friction over 20 % of the cycle (100 % of the bearings for every scheme) does not "
-                    "separate the schemes here.")
+    def capitalised(text):
+        return text[0].upper() + text[1:]
+
+    alpha = "alpha_over_limit_pct"
+    same = words.SAME_VALUE_PART.format(value=100.0, unit=words.METRIC_UNITS[alpha])
+    assert non_discriminating(ranking) == [words.NON_DISCRIMINATING.format(
+        metrics=capitalised(words.NON_DISCRIMINATING_NAMES[alpha] + same), verb="does")]
     # a plural name alone takes a plural verb
     ranking = pd.DataFrame({"life_below_target_pct": [0.0, 0.0],
                             "life_below_target_pct_ci": [(0.0, 1.2), (0.0, 1.2)]}, index=["a", "b"])
-    assert non_discriminating(ranking)[0] == ("Lives below the target (none in any scheme) do not separate the "
-                                              "schemes here.")
+    assert non_discriminating(ranking) == [words.NON_DISCRIMINATING.format(
+        metrics=capitalised(words.NON_DISCRIMINATING_NAMES["life_below_target_pct"] + words.NONE_PART), verb="do")]
 
 
 def test_positions_where_a_stray_bearing_reaches_the_wall_are_counted_not_described():
@@ -687,8 +788,10 @@ def test_positions_where_a_stray_bearing_reaches_the_wall_are_counted_not_descri
                          "load": [4.5e3, 2.3e3, 3e3], "angle": [76.0, 122.0, 80.0]}, index=[1, 2, 5])
     edge = EdgeContact(300, 120, [40.0], [0.08], 0.005, per_position=rows)
     text = " ".join(_outcomes_text(FilmOutcomes(300, {}, 0, 180, 120), edge))
-    assert "reaches the wall: bearing 2 (7.0 %–11 % of the cycle" in text and "bearing 1 (" not in text
-    assert "; at 2 other positions in under 5 % of the bearings. There the rigid film" in text
+    # bearing 2 described; bearings 1 and 5 (under 5 % of the bearings touching) counted after it
+    others = words.EDGE_OTHERS_PART.format(count=2, s="s", share="5 %")
+    assert edge_sentence(words.EDGE_COUNTED, bearing=2, lo="7.0 %", hi="11 %", positions="", others=others).search(text)
+    assert not sentence(words.EDGE_POSITION_PART, bearing=1).search(text)
 
 
 def test_an_edge_that_reaches_the_wall_in_few_bearings_at_every_position_is_counted_not_described():
@@ -704,6 +807,6 @@ def test_an_edge_that_reaches_the_wall_in_few_bearings_at_every_position_is_coun
     edge = EdgeContact(computed=10465, touching=32, per_scheme_pct=[0.3], per_position_share=[0.01, 0.01],
                        floor=0.005, per_position=rows)
     text = _outcomes_text(FilmOutcomes(10465, {}, 0, 10433, 32), edge)[0]
-    assert ("In 32 of them (0.3 %) a tilted journal's edge reaches the wall: at 2 positions, each in under 5 % of "
-            "the bearings. There") in text
-    assert ": ;" not in text and "bearing 2 (" not in text
+    assert sentence(words.EDGE_COUNTED, edge=32, share="0.3 %", positions=words.EDGE_FEW_PART.format(
+        count=2, s="s", share="5 %"), others="").search(text)
+    assert ": ;" not in text and not sentence(words.EDGE_POSITION_PART).search(text)

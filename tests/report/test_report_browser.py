@@ -1,12 +1,12 @@
 """The HTML report in a real browser (headless Chromium): the verdict and the decision table in the first 1,000
 pixels at 1,400 px width, every figure decoded."""
 
+import re
 import shutil
 import subprocess
 
 import pytest
 
-import stackup
 from stackup.report import write_report
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
@@ -25,11 +25,10 @@ PROBE = """<script>window.addEventListener("load", () => {
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on this machine (.ci/run installs it)")
-def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(tmp_path):
-    c = stackup.compare(schemes=("iso13778-3", "iso13778-4"), n_engines=400, seed=2, pilot_engines=3000,
-                        mechanics_engines=10, crank_angle_step=12.0, progress=False,
-                        scenarios={"bore mean +1σ": {"housing_shift": 1.0}})
-    write_report(c.dataset, tmp_path, scenarios=c.scenarios, sensitivity=c.sensitivity, tails=c.tails)
+def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(small_comparison, tmp_path):
+    c = small_comparison
+    markdown = write_report(c.dataset, tmp_path, scenarios=c.scenarios, sensitivity=c.sensitivity,
+                            tails=c.tails).read_text()
     page = (tmp_path / "report.html").read_text()
     assert "src=\"data:image/png;base64," in page and "file:" not in page  # self-contained
     probe = tmp_path / "probe.html"
@@ -43,5 +42,8 @@ def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(tmp
     assert images == 5 and decoded == images  # clearance, contributions, film twice, grades: each decoded
     bottom = int(dom.split('data-table-bottom="')[1].split('"')[0])
     assert 0 <= top < 400 and 0 < bottom <= 1000  # the verdict and the decision table on the first screen
-    assert "Use " in dom and "Model uncertainty:" in dom
+    # the verdict's paragraphs, by their bold openings (what to use; model uncertainty; process scenarios)
+    verdict = markdown.split("<!-- verdict -->")[1].split("<!-- /verdict -->")[0]
+    openings = re.findall(r"\*\*(.+?)\*\*", verdict)
+    assert len(openings) >= 3 and all(f"<strong>{opening}</strong>" in dom for opening in openings)
     assert 'id="methods-and-assumptions"' in dom and 'href="#methods-and-assumptions"' in dom  # one click away
