@@ -1,11 +1,13 @@
 """Test tiers and the fixtures every tier shares.
 
 Tiers (markers, registered in pyproject.toml): ``integration`` (studies,
-comparisons and subprocesses), ``slow`` (the long ones: wheel builds, the
-README run as scripts, coverage over hundreds of seeds); every other test is
-``unit``, marked here at collection. ``pytest`` alone runs the unit tier
-(``-m unit`` in pyproject.toml's addopts); ``pytest -m integration``,
-``pytest -m slow`` the others; the README's test command runs them all.
+comparisons and subprocesses; a test that uses the shared comparison,
+``small_comparison``, is marked so here), ``slow`` (the long ones: wheel
+builds, the README run as scripts, coverage over hundreds of seeds); every
+other test is ``unit``, marked here at collection. ``pytest`` alone runs the
+unit tier (``-m unit`` in pyproject.toml's addopts); ``pytest -m
+integration``, ``pytest -m slow`` the others; the README's test command runs
+them all.
 """
 
 import os
@@ -13,20 +15,26 @@ import textwrap
 
 import pytest
 from hypothesis import settings
+from small_runs import DESIGN, SCENARIOS, STUDY
 
 settings.register_profile("default", deadline=None, max_examples=25)
 settings.load_profile("default")
 
 #: The tiers a test can be marked with; a test marked with neither is a unit test.
 TIERS = ("integration", "slow")
+#: Fixtures that run a comparison: a test that uses one (itself or through another fixture) is an integration test.
+COMPARISONS = ("small_comparison", "snapshot_comparison")
 
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Mark every test that is not in another tier ``unit``, before ``-m`` selects (hence ``tryfirst``)."""
+    """Mark the tests that use a comparison ``integration`` and every other test that is in no tier ``unit``,
+    before ``-m`` selects (hence ``tryfirst``)."""
     for item in items:
-        if not any(item.get_closest_marker(tier) for tier in TIERS):
-            item.add_marker(pytest.mark.unit)
+        if any(item.get_closest_marker(tier) for tier in TIERS):
+            continue
+        comparisons = set(COMPARISONS) & set(getattr(item, "fixturenames", ()))
+        item.add_marker(pytest.mark.integration if comparisons else pytest.mark.unit)
 
 
 @pytest.fixture
@@ -97,30 +105,22 @@ def engine_file(tmp_path_factory):
     return make
 
 
-#: The integration tier's shared comparison: two ISO schemes and a designed one, two process scenarios and the
-#: declared model uncertainties, 600 engines of the example engine, 12 of them through the mechanics.
-SMALL_COMPARISON = dict(schemes=("iso13778-4", "iso13778-6"), n_engines=600, seed=4, pilot_engines=3000,
-                        mechanics_engines=12, crank_angle_step=12.0, progress=False,
-                        scenarios={"bore mean +1σ": {"housing_shift": 1.0},
-                                   "misalignment ×2": {"misalignment_scale": 2.0}},
-                        design={"n_engines": 500, "generations": 0, "name": "designed"})
-
-
 @pytest.fixture(scope="session")
 def small_comparison(tmp_path_factory):
-    """The main job (:func:`stackup.comparison.run`) of :data:`SMALL_COMPARISON`, written once per test session
-    into a folder every test worker reads: the first worker to ask writes it under a lock, the others open it."""
+    """The main job (:func:`stackup.comparison.run`) of tests/small_runs.py's parameters, written once per test
+    session into a folder every test worker reads: the first worker to ask writes it under a lock, the others open
+    it. ``.comparison`` is the comparison as saved and opened again, what the report reads."""
     import fcntl
 
     import stackup.comparison
     from stackup.io import open_comparison
 
     if os.environ.get("PYTEST_XDIST_WORKER") is None:  # one process: its own folder
-        return stackup.comparison.run(tmp_path_factory.mktemp("small-comparison") / "run", **SMALL_COMPARISON)
+        return stackup.comparison.run(tmp_path_factory.mktemp("small-comparison") / "run", **STUDY, scenarios=SCENARIOS, design=DESIGN)
     root = tmp_path_factory.getbasetemp().parent  # this session's, shared by its workers
     folder = root / "small-comparison"
     with open(root / "small-comparison.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if (folder / "report.md").is_file():
             return stackup.comparison.Written(folder, open_comparison(folder / "compare.nc"), 0.0)
-        return stackup.comparison.run(folder, **SMALL_COMPARISON)
+        return stackup.comparison.run(folder, **STUDY, scenarios=SCENARIOS, design=DESIGN)

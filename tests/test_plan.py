@@ -266,6 +266,7 @@ def test_the_title_names_grades_whose_order_falls_short_of_their_stock(plan4):
     assert f" {middle} (" in line and f"against {int(frame.loc[middle, 'order_up_to']):,})" in line
 
 
+@pytest.mark.integration
 def test_the_table_of_one_scheme_of_a_study_speaks_of_that_scheme_only():
     """The report plans the scheme it recommends: a frame cut to it carries no other scheme's lines."""
     from stackup.plan import planner_table

@@ -106,6 +106,7 @@ def test_summaries_rank_like_the_full_dataset():
         rank(Study(**{**kw, "mechanics_engines": 0}, keep="summaries").run(), window=(40e-6, 70e-6))
 
 
+@pytest.mark.integration
 @pytest.mark.parametrize("method", ["conditional", "splitting"])
 def test_too_few_counted_bearings_rank_on_the_tail_estimate(study, method):
     from stackup.facts import MIN_COUNTED, TAIL_SOURCES
@@ -175,6 +176,7 @@ def test_groups_are_taken_from_the_best_so_no_cycle_leaves_the_first_rank_empty(
     assert list(flipped.index) == list(r.index)
 
 
+@pytest.mark.integration
 def test_a_comparison_ranks_as_its_report_and_its_bare_study_dataset_is_refused(study, tmp_path):
     from stackup.comparison import COMPARISON_NOTE, Comparison
     from stackup.io import open_comparison, save_comparison

@@ -69,6 +69,7 @@ def test_splitting_states_its_error_on_a_ppm_tail_in_separate_regions_and_draws_
     assert abs(many.share - P_DEEP) < 3 * many.standard_error
 
 
+@pytest.mark.integration
 def test_splitting_through_the_assembly_chain_agrees_with_plain_mc_and_states_its_error():
     # about 5000 ppm above 51.6 um for scheme 3 (three shell pairs: the tail has separate regions; the journal 10 K
     # above its housing puts the clearances 5.4 um lower than the standard's isothermal ring)

@@ -44,6 +44,7 @@ def test_every_iso_scheme_reads_back_identically_from_to_toml(name, tmp_path):
     assert back.pair(50.0071e-3, 46.0118e-3) == scheme.pair(50.0071e-3, 46.0118e-3)
 
 
+@pytest.mark.integration
 def test_designed_scheme_reads_back_identically_and_explains_itself_in_comments(tmp_path):
     designed = design_mod.scheme("iso-example", **QUICK)
     path = designed.to_toml(tmp_path / "designed.toml")
@@ -110,6 +111,7 @@ surplus = 0.1
 """
 
 
+@pytest.mark.integration
 def test_uniform_bores_get_equal_probability_grades(write_toml):
     # Known optimum: bores uniform, journals all alike, exact gauges. The expected share outside a
     # window narrower than a grade's clearance range is sum_k f(w_k) over grade widths w_k with f
@@ -171,6 +173,7 @@ def test_pairing_milp_finds_the_enumerated_optimum_with_the_worst_scenario_and_s
     assert result.objective == pytest.approx(best, rel=1e-7)
 
 
+@pytest.mark.integration
 @pytest.mark.parametrize("start", ["iso13778-4", "iso13778-5"])
 def test_designed_scheme_is_never_worse_than_its_iso_start_on_an_independent_sample(start):
     start_scheme = schemes.load(start)
@@ -199,6 +202,7 @@ def test_default_design_beats_the_best_iso_scheme_nominally_and_in_the_worst_sce
     assert designed[0] < start[0] and designed[1] < start[1]
 
 
+@pytest.mark.integration
 def test_design_is_reproducible_with_its_seed(tmp_path):
     a = design_mod.scheme("iso-example", seed=4, **QUICK).to_toml(tmp_path / "a.toml").read_text()
     b = design_mod.scheme("iso-example", seed=4, **QUICK).to_toml(tmp_path / "b.toml").read_text()
@@ -218,6 +222,7 @@ def test_bad_options_are_refused_with_the_field_named(options, message):
         design_mod.design("iso-example", **{**QUICK, **options})
 
 
+@pytest.mark.integration
 def test_design_subcommand_writes_the_scheme_with_the_window_in_micrometres(tmp_path, capsys):
     import argparse
 
@@ -235,6 +240,7 @@ def test_design_subcommand_writes_the_scheme_with_the_window_in_micrometres(tmp_
     assert f"scheme: {out}" in capsys.readouterr().out
 
 
+@pytest.mark.integration
 def test_design_for_one_shell_process_sorted_into_grades(engine_file):
     # the sorted supply: landing shares follow the process, the pairing MILP balances demand against them
     result = design_mod.design(engine_file(supply="sorted"), window=(45e-6, 65e-6), **QUICK)
@@ -256,6 +262,7 @@ def test_shell_search_starts_from_a_point_on_its_bounds():
     assert lower[1] - 1e-15 <= np.diff(edges)[0] <= upper[1] + 1e-15
 
 
+@pytest.mark.integration
 def test_outside_share_states_an_error_that_matches_its_spread_over_seeds():
     from stackup.design.estimate import outside_share
 

@@ -33,6 +33,7 @@ def designed():
     return design_mod.design("iso-example", shell_grades=SHELL_GRADES, **QUICK)
 
 
+@pytest.mark.integration
 def test_more_shell_grades_are_never_worse_on_the_objective_recomputed_from_each_scheme(designed):
     problem = quick_problem(SHELL_GRADES)
     assert [step.asked for step in designed.levels] == [1, 2, 3]
@@ -47,6 +48,7 @@ def test_more_shell_grades_are_never_worse_on_the_objective_recomputed_from_each
     assert designed.objective == pytest.approx(recomputed[-1], rel=1e-9)
 
 
+@pytest.mark.integration
 def test_a_rung_that_does_worse_than_the_one_below_keeps_the_design_below(monkeypatch):
     real = ladder.rung
 
@@ -82,6 +84,7 @@ def test_nested_starts_split_each_grade_wide_enough_and_add_one_at_each_end():
                                atol=0.5 * step + 1e-12)  # the split on the shell grid
 
 
+@pytest.mark.integration
 def test_the_result_carries_the_check_on_an_independent_sample_beside_the_design_sample(designed):
     check = designed.check
     assert set(check.outside) == set(designed.outside) == {"nominal"}

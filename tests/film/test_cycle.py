@@ -162,7 +162,8 @@ def test_the_balance_kept_at_its_tolerance_is_within_it_of_the_balance_closed_ti
     np.testing.assert_allclose(film.h_min.min(axis=-1), tight_film.h_min.min(axis=-1), rtol=0.01)
 
 
-@pytest.mark.parametrize("method", FED)
+@pytest.mark.parametrize("method", [pytest.param(m, marks=pytest.mark.slow) if m == "reynolds-transient" else m
+                                    for m in FED])  # the transient reference: most of a minute
 def test_a_mass_conserving_study_tier_fills_its_film_from_the_engines_feed(method):
     # the study's film and the check's run the same tier the same way: with the engine's groove or hole
     reactions = engine_like_load()[:, ::4]

@@ -28,6 +28,7 @@ def _housing_hits(seeds, n_tests, outer=75e-3):
     return hits, float(np.mean(widths))
 
 
+@pytest.mark.integration
 def test_cpk_and_shared_intervals_hold_the_truth_on_a_few_seeds():
     results = [coverage(case, 10, resamples=300) for case in GROUPED]
     assert sum(r.cpk_hits for r in results) >= 24, results
@@ -40,6 +41,7 @@ def test_the_true_model_is_chosen_on_a_few_seeds(case):
     assert choice_rate(case, CHOICE_N, 8) >= 0.75
 
 
+@pytest.mark.integration
 def test_housing_interval_holds_the_true_diameter_on_a_few_seeds():
     hits, _ = _housing_hits(10, 10)
     assert hits >= 8

@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from small_runs import SCENARIOS, STUDY
 
 import stackup
 import stackup.schemes as schemes
@@ -24,15 +25,13 @@ from stackup.report import SECTIONS, clearance_summary, fit_summary, write_repor
 from stackup.report import format as fmt
 from stackup.report import templates as words
 
-KW = dict(schemes=("iso13778-4", "iso13778-6"), n_engines=600, seed=4, pilot_engines=3000, mechanics_engines=12,
-          crank_angle_step=12.0, progress=False)
-SCENARIOS = {"bore mean +1σ": {"housing_shift": 1.0}, "misalignment ×2": {"misalignment_scale": 2.0}}
-DESIGN = {"n_engines": 500, "generations": 0, "name": "designed"}
+KW = STUDY  # the integration tier's shared comparison (tests/small_runs.py, tests/conftest.py)
 
 
 @pytest.fixture(scope="module")
-def comparison():
-    return stackup.compare(**KW, scenarios=SCENARIOS, design=DESIGN)  # and the declared model uncertainties
+def comparison(small_comparison):
+    """The shared comparison, with the declared model uncertainties, as saved and opened again."""
+    return small_comparison.comparison
 
 
 def sentence(template, **fields):

@@ -25,8 +25,8 @@ PROBE = """<script>window.addEventListener("load", () => {
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on this machine (.ci/run installs it)")
-def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(small_comparison, tmp_path):
-    c = small_comparison
+def test_the_report_renders_with_its_verdict_first_and_every_figure_embedded(snapshot_comparison, tmp_path):
+    c = snapshot_comparison
     markdown = write_report(c.dataset, tmp_path, scenarios=c.scenarios, sensitivity=c.sensitivity,
                             tails=c.tails).read_text()
     page = (tmp_path / "report.html").read_text()

@@ -2,7 +2,7 @@
 
 The other report tests find each sentence by its template and the facts' numbers
 (``test_report.py``); these pin the whole verdict and the decision table of one small,
-deterministic comparison (``small_comparison`` in ``conftest.py``), so any change to
+deterministic comparison (``snapshot_comparison`` in ``conftest.py``), so any change to
 what the first page says, or how, shows as a diff of ``snapshots/*.md`` under review.
 The snapshots hold no wall time and no package version.
 
@@ -26,9 +26,9 @@ UPDATE = os.environ.get("STACKUP_UPDATE_SNAPSHOTS") == "1"
 
 
 @pytest.fixture(scope="module")
-def first_page(small_comparison, tmp_path_factory):
+def first_page(snapshot_comparison, tmp_path_factory):
     """The report's first page up to the contents line: the verdict block and the decision table."""
-    c = small_comparison
+    c = snapshot_comparison
     text = write_report(c.dataset, tmp_path_factory.mktemp("report"), scenarios=c.scenarios,
                         sensitivity=c.sensitivity, tails=c.tails).read_text()
     start = text.index("<!-- verdict -->")
@@ -54,4 +54,4 @@ def matches_snapshot(text, name):
 
 @pytest.mark.parametrize("part", ["verdict", "decision_table"])
 def test_the_first_page_matches_its_snapshot(first_page, part):
-    matches_snapshot(first_page[part], f"small_comparison_{part}")
+    matches_snapshot(first_page[part], f"snapshot_comparison_{part}")

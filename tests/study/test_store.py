@@ -18,6 +18,7 @@ def small(engine, **kw):
                     "chunk_lots": 1, **kw})
 
 
+@pytest.mark.integration
 def test_a_stored_study_is_identical_and_opened_lazily(engine_file, tmp_path):
     kw = dict(mechanics_engines=12, crank_angle_step=12.0, history=True)
     engine = engine_file(lot=40)
@@ -29,6 +30,7 @@ def test_a_stored_study_is_identical_and_opened_lazily(engine_file, tmp_path):
     xr.testing.assert_identical(open_study(tmp_path / "s.zarr").load(), reference)
 
 
+@pytest.mark.integration
 def test_summaries_are_stored_and_resumed_identically(engine_file, tmp_path):
     engine = engine_file(lot=40)
     reference = small(engine, keep="summaries", mechanics_engines=0).run()
@@ -52,6 +54,7 @@ def _fail_in_third_chunk(monkeypatch):
     return calls
 
 
+@pytest.mark.integration
 @pytest.mark.parametrize("keep", ["everything", "summaries"])
 def test_interrupted_study_resumes_without_losing_or_repeating_chunks(engine_file, tmp_path, monkeypatch, keep):
     engine = engine_file(lot=40)
@@ -74,6 +77,7 @@ def test_interrupted_study_resumes_without_losing_or_repeating_chunks(engine_fil
     xr.testing.assert_identical(resumed.load(), reference)
 
 
+@pytest.mark.integration
 def test_target_error_resumes_from_the_store_with_the_same_decision(tmp_path, monkeypatch):
     from importlib.resources import files
 

@@ -48,6 +48,7 @@ def test_zero_gauge_error_keeps_every_bearing_within_clearance_limits(engine_fil
     assert c.min() >= lo - 1e-12 and c.max() <= hi + 1e-12
 
 
+@pytest.mark.integration
 @given(seed=st.integers(0, 2**32), surplus=st.sampled_from([0.0, 0.02, 0.1]), supply=st.sampled_from(["to-order", "sorted"]))
 def test_parts_are_conserved(engine_file, seed, surplus, supply):
     ds = small(engine_file(surplus=surplus, supply=supply, cpk=0.8), seed=seed).run()
@@ -255,6 +256,7 @@ def test_fidelity_tier_per_stage():
         Study(fit_method="exact")
 
 
+@pytest.mark.integration
 def test_target_error_sizes_the_mechanical_chain_independently_of_chunking():
     kw = dict(n_engines=2000, schemes=("iso13778-4",), crank_angle_step=8.0, mechanics_engines=300, pilot_engines=2000,
               progress=False)
