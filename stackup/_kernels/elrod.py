@@ -643,8 +643,8 @@ def leap(phi, xi, balance, grid, tol, limit, work, damped=True):
         # Newton's step: where the film begins to carry it overshoots by orders of magnitude iteration after
         # iteration, so its search starts near the last accepted length
         alpha = min(1.0, LEAP_GROWTH * alpha)
-        accepted, lam, alpha, f0, f1 = _leap_search(phi, xi, (s00, s01, s10, s11, det), (f0, f1, size), lam, alpha,
-                                                    damped, balance, grid, tol, limit, work, trial, y)
+        accepted, lam, alpha, f0, f1 = _leap_search(phi, xi, (s00, s01, s10, s11, det), (f0, f1, size),
+                                                    (lam, alpha, damped), balance, grid, tol, limit, work, (trial, y))
         if not accepted:
             break
         phi[:, :] = trial
@@ -658,14 +658,17 @@ def leap(phi, xi, balance, grid, tol, limit, work, damped=True):
 
 
 @njit(cache=True, fastmath=FAST, inline="always")
-def _leap_search(phi, xi, jacobian, error, lam, alpha, damped, balance, grid, tol, limit, work, trial, y):
-    """One step of a leap: trial centres ``y`` (held within ``limit``), each field ``trial`` solved from ``phi`` with
-    its centre held, until the force error falls below ``error`` = (f0, f1, its size): Levenberg-Marquardt's,
-    its damping ``lam`` raised after each failure (``damped``), or Newton's S d = f of length ``alpha``, halved
-    after each. ``jacobian`` = (s00, s01, s10, s11, det) the reduced Jacobian S (:func:`_reduced_jacobian`).
-    Returns (accepted, lam, alpha, the accepted trial's force error 0, 1)."""
+def _leap_search(phi, xi, jacobian, error, search, balance, grid, tol, limit, work, out):
+    """One step of a leap: trial centres (held within ``limit``), each one's field solved from ``phi`` with the
+    centre held, until the force error falls below ``error`` = (f0, f1, its size). ``search`` = (lam, alpha,
+    damped): Levenberg-Marquardt's step, its damping lam raised after each failure (damped), or Newton's
+    S d = f of length alpha, halved after each; ``jacobian`` = (s00, s01, s10, s11, det) the reduced Jacobian S
+    (:func:`_reduced_jacobian`). The last trial's field and centre in ``out`` = (trial, y). Returns (accepted,
+    lam, alpha, the accepted trial's force error 0, 1)."""
     s00, s01, s10, s11, det = jacobian
     f0, f1, size = error
+    lam, alpha, damped = search
+    trial, y = out
     # F(xi + d) ~ F(xi) - S d = target: Levenberg-Marquardt on the centre, (S'S + lam diag S'S) d = S' f
     a00 = s00 * s00 + s10 * s10
     a01 = s00 * s01 + s10 * s11
