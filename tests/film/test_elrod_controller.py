@@ -220,3 +220,18 @@ def test_the_twin_follows_a_tighter_closure_as_the_kernel_does():
     assert cycles == twin_cycles
     film, twin_film = 1 - np.hypot(*record.T), 1 - np.hypot(*twin_record.T)
     np.testing.assert_allclose([film.min(), film.mean()], [twin_film.min(), twin_film.mean()], rtol=FILM_TOLERANCE)
+
+
+def test_a_start_on_the_periodic_orbit_still_closes_only_after_a_second_cycle():
+    """The closure compares a cycle with the one before: a journal started where the orbit closes runs two cycles
+    (the first has no cycle before it), in the kernel as in the twin."""
+    loads, tau, guide, g = case(*steady())
+    *_, record = kernel_march(loads, tau, guide, g)
+    n = len(loads)
+    on_orbit = np.ascontiguousarray(record[0])
+    out = np.empty((n, 2)), np.empty((n, 3))
+    status, cycles, *_ = kernel.march(kernel.Cycle(loads, tau, np.zeros((n, 2)), guide), on_orbit.copy(), g,
+                                      kernel.Control(NEWTON, STEPPING, ECCENTRICITY_LIMIT, tier.PERIODIC, 8),
+                                      kernel.workspace(*g.fixed.shape, g.j0, 2), out)
+    twin_status, twin_cycles, *_ = twin_march(loads, tau, guide, on_orbit, g)
+    assert STATUS[status] == twin_status == "periodic" and cycles == twin_cycles == 2
