@@ -265,19 +265,22 @@ def step(g, k, guess, before, dtau, quasi, corrections, target, layer, quadratur
     """Unknowns (B, 4) of engine ``g``'s bearings at angle ``k``: Newton on the force and the turn-back.
 
     Chord iterations on the Newton matrix ``jac`` (kept from the last step where ``fresh``), the matrix
-    differenced again where an iteration lowers the residual by less than a factor of four. Returns (z, outcome,
+    differenced again where an iteration lowers the residual by less than a factor of four. Each iteration:
+    Newton's step (:func:`_newton_step`), taken whole where it is within the tolerance on a matrix differenced
+    where it starts, else halved until the residual falls (:func:`_backtrack`). Returns (z, outcome,
     evaluations), the outcome one of FAILED_STEP, RESOLVED, UNRESOLVED.
     """
     b_n = guess.shape[0]
     z = guess.copy()
+    model = (before, dtau, quasi, corrections, layer, quadrature, rule, march.limit)  # the film loads' inputs
     loads = np.empty((b_n, UNKNOWNS))
     r = np.empty((b_n, UNKNOWNS))
-    _all_loads(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, loads)
+    _all_loads(g, k, z, *model, loads)
     _residual(g, k, z, loads, target, r)
     evaluations = 1
     differenced = False
     if not fresh:
-        _jacobian(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, target, loads, jac)
+        _jacobian(g, k, z, *model, target, loads, jac)
         evaluations += UNKNOWNS
         differenced = True
     trial = np.empty((b_n, UNKNOWNS))
@@ -285,38 +288,18 @@ def step(g, k, guess, before, dtau, quasi, corrections, target, layer, quadratur
     uphill = 0
     short = 0
     for _ in range(march.chords):
-        if not (np.isfinite(jac).all() and np.isfinite(r).all()):
-            return z, FAILED_STEP, evaluations  # a film force not a number: no Newton step (the caller's fallbacks)
+        found, delta, size = _newton_step(jac, r)
+        if not found:
+            return z, FAILED_STEP, evaluations  # no Newton step: the caller's fallbacks (the last state, sub-steps)
         scale = march.tolerance * max(abs(_thinnest(g, k, z)), FILM_FLOOR)
-        solved = True
-        try:
-            delta = np.linalg.solve(jac, -r.reshape(UNKNOWNS * b_n)).reshape(b_n, UNKNOWNS)
-        except Exception:  # noqa: BLE001 (numba catches no narrower class)
-            solved = False
-        if not solved:
-            # a singular Newton matrix (a bearing whose film neither moves nor turns with its unknowns): no Newton
-            # step; the caller's fallbacks (the last state, sub-steps) or the failed state
-            return z, FAILED_STEP, evaluations
-        size = np.abs(delta).max()
-        if not np.isfinite(size):
-            return z, FAILED_STEP, evaluations  # a nearly singular matrix: no Newton step either
         if differenced and size <= scale:
             # the full Newton step on a matrix differenced here is within the tolerance: the root is that near
             # (the residual itself stalls at the film moment's quadrature accuracy in deep asperity contact)
             z[:] = z + delta
             return z, RESOLVED, evaluations
         merit = (r * r).sum()
-        t = 1.0
-        accepted = False
-        for _ in range(HALVINGS):
-            trial[:] = z + t * delta
-            _all_loads(g, k, trial, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, loads)
-            evaluations += 1
-            _residual(g, k, trial, loads, target, r_new)
-            if (r_new * r_new).sum() <= (1.0 - 1e-4 * t) * merit or size * t <= scale:
-                accepted = True
-                break
-            t *= 0.5
+        accepted, t, used = _backtrack(g, k, z, delta, (size, scale, merit), target, model, (trial, loads, r_new))
+        evaluations += used
         if accepted:
             z[:] = trial
             r[:] = r_new
@@ -343,13 +326,54 @@ def step(g, k, guess, before, dtau, quasi, corrections, target, layer, quadratur
             z[:] = trial
             r[:] = r_new
         else:
-            _all_loads(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, loads)
+            _all_loads(g, k, z, *model, loads)
             evaluations += 1
         # Newton's matrix again, at the point reached (its loads in ``loads``)
-        _jacobian(g, k, z, before, dtau, quasi, corrections, layer, quadrature, rule, march.limit, target, loads, jac)
+        _jacobian(g, k, z, *model, target, loads, jac)
         evaluations += UNKNOWNS
         differenced = True
     return z, (UNRESOLVED if short else FAILED_STEP), evaluations
+
+
+@njit(cache=True)
+def _newton_step(jac, r):
+    """Newton's step -jac^-1 r (B, 4) for the residual r (B, 4) and its largest component: (found, step, size).
+    Not found where the matrix or the residual is not a number (a film force not a number), or the matrix is
+    singular (a bearing whose film neither moves nor turns with its unknowns) or nearly so (a step not finite)."""
+    b_n = r.shape[0]
+    if not (np.isfinite(jac).all() and np.isfinite(r).all()):
+        return False, r, 0.0
+    solved = True
+    try:
+        delta = np.linalg.solve(jac, -r.reshape(UNKNOWNS * b_n)).reshape(b_n, UNKNOWNS)
+    except Exception:  # noqa: BLE001 (numba catches no narrower class)
+        solved = False
+    if not solved:
+        return False, r, 0.0
+    size = np.abs(delta).max()
+    return np.isfinite(size), delta, size
+
+
+@njit(cache=True)
+def _backtrack(g, k, z, delta, reach, target, model, out):
+    """Newton's step ``delta`` from ``z`` halved at most :data:`HALVINGS` times until the residual's sum of squares
+    falls by Armijo's share below the merit, or the step is within the tolerance: ``reach`` = (the step's size, the
+    tolerance, the merit); ``model``: the film loads' inputs after the unknowns (:func:`_all_loads`). Writes the
+    last point tried, its loads and residual into ``out`` = (trial, loads, r_new). Returns (accepted, the step's
+    share taken, film loads computed)."""
+    size, scale, merit = reach
+    trial, loads, r_new = out
+    t = 1.0
+    used = 0
+    for _ in range(HALVINGS):
+        trial[:] = z + t * delta
+        _all_loads(g, k, trial, *model, loads)
+        used += 1
+        _residual(g, k, trial, loads, target, r_new)
+        if (r_new * r_new).sum() <= (1.0 - 1e-4 * t) * merit or size * t <= scale:
+            return True, t, used
+        t *= 0.5
+    return False, t, used
 
 
 @njit(cache=True)

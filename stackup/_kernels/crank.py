@@ -135,138 +135,200 @@ def _norm(r):
     return math.sqrt(acc)
 
 
+#: Work arrays of one sequence's Newton solve (n bearings, 2n unknowns): the beam's part of the Newton matrix and
+#: the matrix (2n, 2n), the Newton step, a trial point, the residuals there and at the iterate (2n,), the bearing
+#: forces (n, 2) and Jacobian blocks (n, 4) at the iterate and at the trial point.
+Work = namedtuple("Work", ("template", "jac", "step", "trial", "r", "r_trial", "fb", "jb", "fb_t", "jb_t"))
+
+
+@njit(cache=True, inline="always")
+def _work(kb):
+    """The :data:`Work` of a beam ``kb`` (2, n, n), the beam's part of the Newton matrix filled in."""
+    n = kb.shape[1]
+    size = 2 * n
+    template = np.zeros((size, size))
+    for c in range(2):
+        for p in range(n):
+            for q in range(n):
+                template[2 * p + c, 2 * q + c] = kb[c, p, q]
+    return Work(template, np.zeros((size, size)), np.zeros(size), np.zeros(size), np.zeros(size), np.zeros(size),
+                np.zeros((n, 2)), np.zeros((n, 4)), np.zeros((n, 2)), np.zeros((n, 4)))
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _law_constants(lw):
+    """Each bearing's constants exp(-J/dx) and softplus(-J/dx) (2, n) of its law ``lw`` (6, n) (0 where dx = 0)."""
+    n = lw.shape[1]
+    consts = np.zeros((2, n))
+    for p in range(n):
+        if lw[1, p] > 0.0:
+            consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
+            consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
+    return consts
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _support_loads(transfer, case, f_ext):
+    """The load case's pin loads ``case`` (m, 2) carried to the supports of the rigidly supported beam, into
+    ``f_ext`` (n, 2); returns the loads' scale (the sum of their components' sizes)."""
+    n, m = f_ext.shape[0], case.shape[0]
+    scale = 0.0
+    for p in range(n):
+        for c in range(2):
+            acc = 0.0
+            for i in range(m):
+                acc += transfer[c, p, i] * case[i, c]
+            f_ext[p, c] = acc
+    for i in range(m):
+        scale += abs(case[i, 0]) + abs(case[i, 1])
+    return scale
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _start(a, kb, f_ext, off, lw, solutions, x):
+    """Newton's start for load case ``a`` into ``x``: the first, the journals pushed from the offsets ``off`` along
+    the rigid-support reactions; then the last solution, extrapolated linearly from the last two, quadratically from
+    the last three (``solutions``, the last first)."""
+    x_prev, x_prev2, x_prev3 = solutions
+    n = f_ext.shape[0]
+    if a == 0:
+        for p in range(n):
+            rx = f_ext[p, 0]
+            ry = f_ext[p, 1]
+            for q in range(n):
+                rx -= kb[0, p, q] * off[q, 0]
+                ry -= kb[1, p, q] * off[q, 1]
+            mag = math.hypot(rx, ry)
+            push = 0.0 if mag == 0.0 else (lw[0, p] + mag / lw[2, p]) / mag
+            x[2 * p] = off[p, 0] + push * rx
+            x[2 * p + 1] = off[p, 1] + push * ry
+    elif a == 1:
+        for k in range(x.shape[0]):
+            x[k] = x_prev[k]
+    elif a == 2:
+        for k in range(x.shape[0]):
+            x[k] = 2.0 * x_prev[k] - x_prev2[k]
+    else:  # quadratic extrapolation along the sequence
+        for k in range(x.shape[0]):
+            x[k] = 3.0 * (x_prev[k] - x_prev2[k]) + x_prev3[k]
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _newton(x, case, bearings, newton, tol, k_ref, work):
+    """Newton on one load case's residual from ``x``, in place, until it is within ``tol``: the matrix stiffened
+    by mu (Levenberg) where it is singular (the law's rest state) or no step along it lowers the residual
+    (:func:`_backtrack`), mu dropped after a full step. ``case`` = (kb, f_ext, offsets), ``bearings`` = (law,
+    constants); ``work.fb`` ends with the bearing forces at ``x``. Returns (status code, iterations)."""
+    kb, f_ext, off = case
+    lw, consts = bearings
+    n = kb.shape[1]
+    size = 2 * n
+    r, fb, jb, jac, step = work.r, work.fb, work.jb, work.jac, work.step
+    mu = 0.0
+    code = MAX_ITERATIONS
+    it = 0
+    _residual(x, kb, f_ext, off, lw, consts, newton.rest, r, fb, jb)
+    res = _norm(r)
+    while it < newton.max_iterations:
+        if not math.isfinite(res):
+            code = NOT_FINITE
+            break
+        if res <= tol:
+            code = CONVERGED
+            break
+        it += 1
+        jac[:, :] = work.template
+        for p in range(n):
+            jac[2 * p, 2 * p] += jb[p, 0]
+            jac[2 * p, 2 * p + 1] += jb[p, 1]
+            jac[2 * p + 1, 2 * p] += jb[p, 2]
+            jac[2 * p + 1, 2 * p + 1] += jb[p, 3]
+        for i in range(size):
+            jac[i, i] += mu
+            step[i] = -r[i]
+        if not _solve_dense(jac, step):
+            # singular: the rest state of the law; stiffen the Newton matrix only
+            mu = max(10.0 * mu, 1e-9 * k_ref)
+            continue
+        accepted, t, res_t = _backtrack(x, case, bearings, newton.rest, res, work)
+        if accepted:
+            _take_trial(x, work)
+            res = res_t
+            mu = 0.0 if t == 1.0 else mu
+        else:
+            mu = max(10.0 * mu, 1e-9 * k_ref)
+    return code, it
+
+
+@njit(cache=True, fastmath=FAST, inline="always")
+def _backtrack(x, case, bearings, rest, res, work):
+    """Newton's step ``work.step`` from ``x`` halved until the residual's norm falls by Armijo's share below
+    ``res`` (down to 1e-10 of the step): the trial point, its residual and bearing forces in ``work``. Returns
+    (accepted, step length, residual norm there)."""
+    kb, f_ext, off = case
+    lw, consts = bearings
+    trial, r_trial = work.trial, work.r_trial
+    t = 1.0
+    while t > 1e-10:
+        for k in range(x.shape[0]):
+            trial[k] = x[k] + t * work.step[k]
+        _residual(trial, kb, f_ext, off, lw, consts, rest, r_trial, work.fb_t, work.jb_t)
+        res_t = _norm(r_trial)
+        if res_t < (1.0 - 1e-4 * t) * res:
+            return True, t, res_t
+        t *= 0.5
+    return False, t, 0.0
+
+
+@njit(cache=True, inline="always")
+def _take_trial(x, work):
+    """The trial point, its residual, bearing forces and Jacobian blocks become the iterate's."""
+    for k in range(x.shape[0]):
+        x[k] = work.trial[k]
+        work.r[k] = work.r_trial[k]
+    for p in range(work.fb.shape[0]):
+        work.fb[p, 0], work.fb[p, 1] = work.fb_t[p, 0], work.fb_t[p, 1]
+        for k in range(4):
+            work.jb[p, k] = work.jb_t[p, k]
+
+
 @njit(cache=True, fastmath=FAST)
 def _sequence(b, beam, loads, offsets, law, newton, out):
     """Solve sequence ``b`` along its load cases, warm-starting each from the previous ones.
 
     ``beam`` = (kb, transfer) as :func:`solve` takes them, ``newton``: :data:`Newton`; writes into
-    ``out`` = (reactions, deflections, status, iterations).
+    ``out`` = (reactions, deflections, status, iterations). Each load case: its loads on the supports
+    (:func:`_support_loads`), Newton (:func:`_newton`) from a start extrapolated along the sequence
+    (:func:`_start`).
     """
     kb, transfer = beam
-    rtol, max_iterations, rest = newton
     reactions, deflections, status, iterations = out
-    n_a, m = loads.shape[1], loads.shape[2]
     n = kb.shape[1]
     size = 2 * n
     x = np.zeros(size)
-    x_prev = np.zeros(size)
-    x_prev2 = np.zeros(size)
-    x_prev3 = np.zeros(size)
-    trial = np.zeros(size)
-    r = np.zeros(size)
-    r_trial = np.zeros(size)
-    step = np.zeros(size)
-    jac = np.zeros((size, size))
-    fb = np.zeros((n, 2))
-    jb = np.zeros((n, 4))
-    fb_t = np.zeros((n, 2))
-    jb_t = np.zeros((n, 4))
+    solutions = (np.zeros(size), np.zeros(size), np.zeros(size))  # the last three load cases', the last first
     f_ext = np.zeros((n, 2))
-    consts = np.zeros((2, n))
-    template = np.zeros((size, size))  # the beam's part of the Newton matrix
-    for c in range(2):
-        for p in range(n):
-            for q in range(n):
-                template[2 * p + c, 2 * q + c] = kb[c, p, q]
+    work = _work(kb)
     lw = law[b]
+    bearings = (lw, _law_constants(lw))
+    k_ref = 0.0
     for p in range(n):
-        if lw[1, p] > 0.0:
-            consts[0, p] = math.exp(-lw[0, p] / lw[1, p])
-            consts[1, p] = _softplus(-lw[0, p] / lw[1, p])
-    for a in range(n_a):
+        k_ref = max(k_ref, lw[2, p])
+    for a in range(loads.shape[1]):
         off = offsets[b, a]
-        scale = 0.0
-        for p in range(n):
-            for c in range(2):
-                acc = 0.0
-                for i in range(m):
-                    acc += transfer[c, p, i] * loads[b, a, i, c]
-                f_ext[p, c] = acc
-        for i in range(m):
-            scale += abs(loads[b, a, i, 0]) + abs(loads[b, a, i, 1])
-
-        k_ref = 0.0
-        for p in range(n):
-            k_ref = max(k_ref, lw[2, p])
+        scale = _support_loads(transfer, loads[b, a], f_ext)
         # residual floor: the loads' scale, or the force of a nanometre on the stiffest bearing
-        tol = rtol * max(scale, k_ref * 1e-9)
-        if a == 0:
-            # start: journals pushed from the offsets along the rigid-support reactions
-            for p in range(n):
-                rx = f_ext[p, 0]
-                ry = f_ext[p, 1]
-                for q in range(n):
-                    rx -= kb[0, p, q] * off[q, 0]
-                    ry -= kb[1, p, q] * off[q, 1]
-                mag = math.hypot(rx, ry)
-                push = 0.0 if mag == 0.0 else (lw[0, p] + mag / lw[2, p]) / mag
-                x[2 * p] = off[p, 0] + push * rx
-                x[2 * p + 1] = off[p, 1] + push * ry
-        elif a == 1:
-            for k in range(size):
-                x[k] = x_prev[k]
-        elif a == 2:
-            for k in range(size):
-                x[k] = 2.0 * x_prev[k] - x_prev2[k]
-        else:  # quadratic extrapolation along the sequence
-            for k in range(size):
-                x[k] = 3.0 * (x_prev[k] - x_prev2[k]) + x_prev3[k]
-        mu = 0.0
-        code = MAX_ITERATIONS
-        it = 0
-        _residual(x, kb, f_ext, off, lw, consts, rest, r, fb, jb)
-        res = _norm(r)
-        while it < max_iterations:
-            if not math.isfinite(res):
-                code = NOT_FINITE
-                break
-            if res <= tol:
-                code = CONVERGED
-                break
-            it += 1
-            jac[:, :] = template
-            for p in range(n):
-                jac[2 * p, 2 * p] += jb[p, 0]
-                jac[2 * p, 2 * p + 1] += jb[p, 1]
-                jac[2 * p + 1, 2 * p] += jb[p, 2]
-                jac[2 * p + 1, 2 * p + 1] += jb[p, 3]
-            for i in range(size):
-                jac[i, i] += mu
-                step[i] = -r[i]
-            if not _solve_dense(jac, step):
-                # singular: the rest state of the law; stiffen the Newton matrix only
-                mu = max(10.0 * mu, 1e-9 * k_ref)
-                continue
-            t = 1.0
-            accepted = False
-            while t > 1e-10:
-                for k in range(size):
-                    trial[k] = x[k] + t * step[k]
-                _residual(trial, kb, f_ext, off, lw, consts, rest, r_trial, fb_t, jb_t)
-                res_t = _norm(r_trial)
-                if res_t < (1.0 - 1e-4 * t) * res:
-                    accepted = True
-                    break
-                t *= 0.5
-            if accepted:
-                for k in range(size):
-                    x[k] = trial[k]
-                    r[k] = r_trial[k]
-                for p in range(n):
-                    fb[p, 0], fb[p, 1] = fb_t[p, 0], fb_t[p, 1]
-                    for k in range(4):
-                        jb[p, k] = jb_t[p, k]
-                res = res_t
-                mu = 0.0 if t == 1.0 else mu
-            else:
-                mu = max(10.0 * mu, 1e-9 * k_ref)
+        tol = newton.rtol * max(scale, k_ref * 1e-9)
+        _start(a, kb, f_ext, off, lw, solutions, x)
+        code, it = _newton(x, (kb, f_ext, off), bearings, newton, tol, k_ref, work)
+        x_prev, x_prev2, x_prev3 = solutions
         for k in range(size):
             x_prev3[k] = x_prev2[k]
             x_prev2[k] = x_prev[k]
             x_prev[k] = x[k]
         for p in range(n):
-            reactions[b, a, p, 0] = fb[p, 0]
-            reactions[b, a, p, 1] = fb[p, 1]
+            reactions[b, a, p, 0] = work.fb[p, 0]
+            reactions[b, a, p, 1] = work.fb[p, 1]
             deflections[b, a, p, 0] = x[2 * p]
             deflections[b, a, p, 1] = x[2 * p + 1]
         status[b, a] = code

@@ -370,9 +370,44 @@ def _load_at(w, tau, k, kn, t):
 
 
 @njit(cache=True)
+def _midpoint(x0, x1, k, kn, w, tau, alpha, turn_mid, limit, bearing, out):
+    """One step of the explicit midpoint rule from angle k to kn of the journal at (x0, x1).
+
+    Its rate at k under the load there (Newton on the squeeze direction from ``alpha``), whose centre, squeeze
+    velocity and direction go into ``out`` = (xi, v, alpha_out) at k, then the rate at the step's middle (the
+    direction from there turned by ``turn_mid``, the last step's turn to its middle). ``bearing``: the finite
+    correction (table, stretched, finite). Returns (x0, x1 at kn, the direction at k, its turn to the middle's,
+    whether both squeeze velocities were found).
+    """
+    table, stretched, finite = bearing
+    xi, v, alpha_out = out
+    h = tau[kn] - tau[k]
+    a0, a1, va, vb, alpha, ok1 = rate(x0, x1, w[k, 0], w[k, 1], alpha, limit, table, stretched, finite)
+    xi[k, 0] = x0
+    xi[k, 1] = x1
+    v[k, 0] = va
+    v[k, 1] = vb
+    alpha_out[k] = alpha
+    wm0, wm1 = _load_at(w, tau, k, kn, tau[k] + 0.5 * h)
+    b0, b1, _, _, alpha_mid, ok2 = rate(x0 + 0.5 * h * a0, x1 + 0.5 * h * a1, wm0, wm1, _wrap(alpha + turn_mid),
+                                        limit, table, stretched, finite)
+    return x0 + h * b0, x1 + h * b1, alpha, _wrap(alpha_mid - alpha), ok1 and ok2
+
+
+@njit(cache=True, inline="always")
+def _lap_film(film, thinnest, collapsed, limit, tolerance, thinning):
+    """At a lap's end: its thinnest film [c] from its largest eccentricity ``thinnest`` (the limit's where the
+    journal was held there), and the laps in a row whose film was thinner by ``tolerance`` than the lap's before
+    (``film``) (:data:`THINNING_LAPS` of them: a collapsing orbit)."""
+    thinner = 1.0 - (limit if collapsed else thinnest)
+    return thinner, thinning + 1 if thinner < (1.0 - tolerance) * film else 0
+
+
+@njit(cache=True)
 def _orbit(w, tau, integration, bearing, start, warm, xi, v, alpha_out):
     """One bearing's periodic orbit from the bearing centre (or from ``start`` (2,) when ``warm``), by the explicit
-    midpoint rule; ``integration``: :data:`Integration`, ``bearing``: its (table, stretched, finite) correction.
+    midpoint rule (:func:`_midpoint`); ``integration``: :data:`Integration`, ``bearing``: its (table, stretched,
+    finite) correction.
 
     Laps of the cycle at two angles per step until the journal comes back to
     within COARSE_SHARE of the thinnest film of where it was one lap before,
@@ -380,13 +415,12 @@ def _orbit(w, tau, integration, bearing, start, warm, xi, v, alpha_out):
     ``tolerance`` of the thinnest film (a contracting orbit stays there: the
     rest of the record is the last lap's). Out of ``max_cycles``, one lap at
     every angle is still run for the record; an orbit out of cycles whose film
-    still thins cycle after cycle (THINNING_LAPS) is collapsing. A warm start (a
-    position near the periodic orbit's at the first angle, e.g. from a coarser
-    or nearby orbit) skips the coarse laps. Writes xi, v (n, 2) and alpha_out (n,).
-    Returns (status, cycles integrated).
+    still thins cycle after cycle (:func:`_lap_film`) is collapsing. A warm
+    start (a position near the periodic orbit's at the first angle, e.g. from a
+    coarser or nearby orbit) skips the coarse laps. Writes xi, v (n, 2) and
+    alpha_out (n,). Returns (status, cycles integrated).
     """
     limit, tolerance, max_cycles = integration
-    table, stretched, finite = bearing
     n = w.shape[0]
     lap_of = np.full(n, -1)  # lap in which each angle was last recorded
     x0 = start[0] if warm else 0.0
@@ -420,24 +454,13 @@ def _orbit(w, tau, integration, bearing, start, warm, xi, v, alpha_out):
             elif gap <= tolerance * film:
                 return (COLLAPSED if collapsed_lap or collapsed_last else PERIODIC), advanced / n
         kn = k + stride if k + stride < n else n
-        h = tau[kn] - tau[k]
         guess = _wrap(alpha + _wrap(alpha - alpha_last))  # the squeeze direction turns smoothly: extrapolate
         alpha_last = alpha
-        a0, a1, va, vb, alpha, ok1 = rate(x0, x1, w[k, 0], w[k, 1], guess, limit, table, stretched, finite)
-        xi[k, 0] = x0
-        xi[k, 1] = x1
-        v[k, 0] = va
-        v[k, 1] = vb
-        alpha_out[k] = alpha
         lap_of[k] = lap
         thinnest = max(thinnest, math.hypot(x0, x1))
-        wm0, wm1 = _load_at(w, tau, k, kn, tau[k] + 0.5 * h)
-        b0, b1, _, _, alpha_mid, ok2 = rate(x0 + 0.5 * h * a0, x1 + 0.5 * h * a1, wm0, wm1, _wrap(alpha + turn_mid),
-                                            limit, table, stretched, finite)
-        turn_mid = _wrap(alpha_mid - alpha)
-        x0 += h * b0
-        x1 += h * b1
-        if not (ok1 and ok2 and math.isfinite(x0) and math.isfinite(x1)):
+        x0, x1, alpha, turn_mid, ok = _midpoint(x0, x1, k, kn, w, tau, guess, turn_mid, limit, bearing,
+                                                (xi, v, alpha_out))
+        if not (ok and math.isfinite(x0) and math.isfinite(x1)):
             return FAILED, advanced / n
         e = math.hypot(x0, x1)
         if e > limit:
@@ -450,9 +473,7 @@ def _orbit(w, tau, integration, bearing, start, warm, xi, v, alpha_out):
         if in_lap >= n:
             lap += 1
             in_lap -= n
-            last_film = film
-            film = 1.0 - (limit if collapsed_lap else thinnest)
-            thinning = thinning + 1 if film < (1.0 - tolerance) * last_film else 0
+            film, thinning = _lap_film(film, thinnest, collapsed_lap, limit, tolerance, thinning)
             collapsed_last = collapsed_lap
             collapsed_lap = False
             thinnest = 0.0

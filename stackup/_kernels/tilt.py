@@ -684,12 +684,13 @@ def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, eva
     Every ``stride``-th angle (a power of two) is solved in turn, from the last
     two solutions' film turn-back (free minus tilt) extrapolated (the free tilt
     carries the beam's fast changes), or along the wall from the last two
-    contacts' directions, with the last Jacobian. Then, halving the spacing down
-    to one angle, each angle midway between two known ones of the same state
-    whose turn-backs differ by less than ``interpolate`` times their thinner edge
-    film takes their turn-back interpolated (onto the wall where they are at the
-    limit); the others are solved from their neighbour's Jacobian (the one in
-    equilibrium where the states differ). Writes tilt (B, n, 2), state (B, n)
+    contacts' directions, with the last Jacobian (:func:`_solve_strided`).
+    Then, halving the spacing down to one angle, each angle midway between two
+    known ones of the same state whose turn-backs differ by less than
+    ``interpolate`` times their thinner edge film takes their turn-back
+    interpolated (onto the wall where they are at the limit); the others are
+    solved from their neighbour's Jacobian (the one in equilibrium where the
+    states differ) (:func:`_solve_between`). Writes tilt (B, n, 2), state (B, n)
     and evaluations (B, n): film moments computed at each angle.
     """
     # numba's parallel loop takes arrays and numbers, not tuples holding arrays: the packed inputs are taken apart
@@ -697,92 +698,133 @@ def equilibria(orbits, correction, solver, interpolate, stride, tilt, state, eva
     xi, v, free, kappa, ld = orbits
     tables, ld_nodes, stretched, finite = correction
     (nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance = solver
-    n_b = xi.shape[0]
     n = xi.shape[1]
-    for b in prange(n_b):
+    for b in prange(xi.shape[0]):
         cycle = Orbits(xi, v, free, kappa, ld)
         rule = Solver(Quadrature(nodes, weights, nodes_dry, weights_dry, cap), limit, tolerance)
         bearing = (bearing_table(Correction(tables, ld_nodes, stretched, finite), ld[b]), stretched, finite)
-        jac = np.eye(2)
-        slope = np.zeros(1)
-        memory = (jac, slope)
+        memory = (np.eye(2), np.zeros(1))
+        # each angle's Jacobian and wall slope, and whether they are usable, from which the angles between are solved
+        known = (np.empty((n, 2, 2)), np.zeros(n), np.zeros(n, np.bool_))
         out = (tilt, state)
-        fresh = False
-        # each angle's Jacobian and wall slope, from which the angles between are solved
-        jacs = np.empty((n, 2, 2))
-        slopes = np.zeros(n)
-        usable = np.zeros(n, np.bool_)
-        last = -1
-        before = -1
-        for k in range(0, n, stride):
-            # the film's turn-back (free minus tilt) extrapolated: the free tilt carries the beam's fast changes
-            if before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
-                g0 = free[b, k, 0] - 2.0 * (free[b, last, 0] - tilt[b, last, 0]) + (free[b, before, 0] - tilt[b, before, 0])
-                g1 = free[b, k, 1] - 2.0 * (free[b, last, 1] - tilt[b, last, 1]) + (free[b, before, 1] - tilt[b, before, 1])
-            elif before >= 0 and state[b, last] == AT_LIMIT and state[b, before] == AT_LIMIT:
-                # along the wall: the contact's direction extrapolated
-                turn = math.atan2(tilt[b, last, 1], tilt[b, last, 0])
-                turn += _wrap(turn - math.atan2(tilt[b, before, 1], tilt[b, before, 0]))
-                g0 = math.cos(turn)
-                g1 = math.sin(turn)
-            elif last >= 0:
-                g0 = free[b, k, 0] - (free[b, last, 0] - tilt[b, last, 0])
-                g1 = free[b, k, 1] - (free[b, last, 1] - tilt[b, last, 1])
-            else:
-                g0, g1 = free[b, k, 0], free[b, k, 1]
-            on_wall = last >= 0 and state[b, last] == AT_LIMIT
-            evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, fresh, cycle, bearing, rule, memory, out)
-            jacs[k] = jac
-            slopes[k] = slope[0]
-            usable[k] = fresh
-            before = last
-            last = k
+        _solve_strided(b, stride, cycle, bearing, rule, memory, known, out, evaluations)
         half = stride // 2
         while half >= 1:
             for k in range(half, n, 2 * half):
-                kp = k - half
-                kn = k + half if k + half < n else 0  # the cycle closes on its first angle
-                # its share of the way from kp to kn (a half but where n is not a multiple of the stride)
-                share = half / (min(k + half, n) - kp)
-                evaluations[b, k] = 0
-                if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
-                    # the film's turn-back is interpolated: its change between the neighbours
-                    gap = math.hypot(free[b, kn, 0] - tilt[b, kn, 0] - free[b, kp, 0] + tilt[b, kp, 0],
-                                     free[b, kn, 1] - tilt[b, kn, 1] - free[b, kp, 1] + tilt[b, kp, 1])
-                    film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
-                               _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
-                    e0, e1 = _turn_back_between(free, tilt, b, k, kp, kn, share)
-                    if state[b, kp] == AT_LIMIT:
-                        # both on the wall: the edge film is the limit's whatever the tilt, whose direction the
-                        # mean keeps within about interpolate / 2 rad
-                        film = max(film, math.hypot(e0, e1))
-                    if gap <= interpolate * film:
-                        room = wall_room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
-                        if state[b, kp] == AT_LIMIT or room < 1.0:
-                            # onto the wall, as its neighbours (the mean of two points on it lies inside the lens)
-                            e0 *= room
-                            e1 *= room
-                        tilt[b, k, 0] = e0
-                        tilt[b, k, 1] = e1
-                        state[b, k] = state[b, kp]
-                        jacs[k] = jacs[kp]
-                        slopes[k] = slopes[kp]
-                        usable[k] = usable[kp]
-                        continue
-                    near = kp
-                else:
-                    # from the neighbour in equilibrium where there is one: Newton reaches the wall from inside more
-                    # cheaply than the contact's search finds its way in
-                    near = kn if state[b, kn] == EQUILIBRIUM else kp
-                    e0 = free[b, k, 0] - free[b, near, 0] + tilt[b, near, 0]
-                    e1 = free[b, k, 1] - free[b, near, 1] + tilt[b, near, 1]
-                jac[:] = jacs[near]
-                slope[0] = slopes[kp] if state[b, kp] == AT_LIMIT else slopes[kn]
-                evaluations[b, k], usable[k] = _solve_at(b, k, e0, e1, state[b, near] == AT_LIMIT, usable[near], cycle,
-                                                         bearing, rule, memory, out)
-                jacs[k] = jac
-                slopes[k] = slope[0]
+                _solve_between(b, k, half, interpolate, cycle, bearing, rule, memory, known, out, evaluations)
             half //= 2
+
+
+@njit(cache=True)
+def _solve_strided(b, stride, cycle, bearing, solver, memory, known, out, evaluations):
+    """Tilt equilibrium of bearing b at every ``stride``-th angle in turn (:func:`_solve_at`), each from the guess of
+    :func:`_strided_guess`, with the Jacobian and wall slope of the angle before (``memory``); each angle's kept in
+    ``known`` = (Jacobians, wall slopes, usable)."""
+    jac, slope = memory
+    jacs, slopes, usable = known
+    tilt, state = out
+    fresh = False
+    last = -1
+    before = -1
+    for k in range(0, cycle.xi.shape[1], stride):
+        g0, g1 = _strided_guess(b, k, last, before, cycle.free, tilt, state)
+        on_wall = last >= 0 and state[b, last] == AT_LIMIT
+        evaluations[b, k], fresh = _solve_at(b, k, g0, g1, on_wall, fresh, cycle, bearing, solver, memory, out)
+        jacs[k] = jac
+        slopes[k] = slope[0]
+        usable[k] = fresh
+        before = last
+        last = k
+
+
+@njit(cache=True, inline="always")
+def _strided_guess(b, k, last, before, free, tilt, state):
+    """The guess at angle k from the solved angles ``last`` and ``before`` it (-1: none): the film's turn-back
+    (free minus tilt) extrapolated from both in equilibrium (the free tilt carries the beam's fast changes), the
+    contact's direction from both at the limit, the turn-back kept from the last alone, else the free tilt."""
+    if before >= 0 and state[b, last] == EQUILIBRIUM and state[b, before] == EQUILIBRIUM:
+        g0 = free[b, k, 0] - 2.0 * (free[b, last, 0] - tilt[b, last, 0]) + (free[b, before, 0] - tilt[b, before, 0])
+        g1 = free[b, k, 1] - 2.0 * (free[b, last, 1] - tilt[b, last, 1]) + (free[b, before, 1] - tilt[b, before, 1])
+    elif before >= 0 and state[b, last] == AT_LIMIT and state[b, before] == AT_LIMIT:
+        # along the wall: the contact's direction extrapolated
+        turn = math.atan2(tilt[b, last, 1], tilt[b, last, 0])
+        turn += _wrap(turn - math.atan2(tilt[b, before, 1], tilt[b, before, 0]))
+        g0 = math.cos(turn)
+        g1 = math.sin(turn)
+    elif last >= 0:
+        g0 = free[b, k, 0] - (free[b, last, 0] - tilt[b, last, 0])
+        g1 = free[b, k, 1] - (free[b, last, 1] - tilt[b, last, 1])
+    else:
+        g0, g1 = free[b, k, 0], free[b, k, 1]
+    return g0, g1
+
+
+@njit(cache=True)
+def _solve_between(b, k, half, interpolate, cycle, bearing, solver, memory, known, out, evaluations):
+    """Angle k of bearing b, ``half`` angles from the known ones either side: their turn-back interpolated where
+    that holds (:func:`_interpolated`), else solved (:func:`_solve_at`) from the neighbour's Jacobian, the one in
+    equilibrium where the states differ; its Jacobian, wall slope and usability kept in ``known``."""
+    n = cycle.xi.shape[1]
+    free = cycle.free
+    jac, slope = memory
+    jacs, slopes, usable = known
+    tilt, state = out
+    kp = k - half
+    kn = k + half if k + half < n else 0  # the cycle closes on its first angle
+    # its share of the way from kp to kn (a half but where n is not a multiple of the stride)
+    share = half / (min(k + half, n) - kp)
+    evaluations[b, k] = 0
+    if state[b, kp] == state[b, kn] and state[b, kp] != NOT_SOLVED:
+        taken, e0, e1 = _interpolated(b, k, kp, kn, share, interpolate, cycle, solver.limit, out)
+        if taken:
+            jacs[k] = jacs[kp]
+            slopes[k] = slopes[kp]
+            usable[k] = usable[kp]
+            return
+        near = kp
+    else:
+        # from the neighbour in equilibrium where there is one: Newton reaches the wall from inside more
+        # cheaply than the contact's search finds its way in
+        near = kn if state[b, kn] == EQUILIBRIUM else kp
+        e0 = free[b, k, 0] - free[b, near, 0] + tilt[b, near, 0]
+        e1 = free[b, k, 1] - free[b, near, 1] + tilt[b, near, 1]
+    jac[:] = jacs[near]
+    slope[0] = slopes[kp] if state[b, kp] == AT_LIMIT else slopes[kn]
+    evaluations[b, k], usable[k] = _solve_at(b, k, e0, e1, state[b, near] == AT_LIMIT, usable[near], cycle,
+                                             bearing, solver, memory, out)
+    jacs[k] = jac
+    slopes[k] = slope[0]
+
+
+@njit(cache=True)
+def _interpolated(b, k, kp, kn, share, interpolate, cycle, limit, out):
+    """Angle k of bearing b between kp and kn of one state: the film's turn-back (free minus tilt) interpolated
+    ``share`` of the way (:func:`_turn_back_between`), taken where it changes between them by less than
+    ``interpolate`` times their thinner edge film (onto the wall where they are at the limit or it falls outside
+    the lens): writes its tilt and state into ``out``. Returns (taken, the turn-back's edge offset e0, e1)."""
+    xi, free = cycle.xi, cycle.free
+    tilt, state = out
+    # the film's turn-back is interpolated: its change between the neighbours
+    gap = math.hypot(free[b, kn, 0] - tilt[b, kn, 0] - free[b, kp, 0] + tilt[b, kp, 0],
+                     free[b, kn, 1] - tilt[b, kn, 1] - free[b, kp, 1] + tilt[b, kp, 1])
+    film = min(_edge(xi[b, kp, 0], xi[b, kp, 1], tilt[b, kp, 0], tilt[b, kp, 1]),
+               _edge(xi[b, kn, 0], xi[b, kn, 1], tilt[b, kn, 0], tilt[b, kn, 1]))
+    e0, e1 = _turn_back_between(free, tilt, b, k, kp, kn, share)
+    if state[b, kp] == AT_LIMIT:
+        # both on the wall: the edge film is the limit's whatever the tilt, whose direction the
+        # mean keeps within about interpolate / 2 rad
+        film = max(film, math.hypot(e0, e1))
+    if not gap <= interpolate * film:
+        return False, e0, e1
+    room = wall_room(xi[b, k, 0], xi[b, k, 1], 0.0, 0.0, e0, e1, limit)
+    if state[b, kp] == AT_LIMIT or room < 1.0:
+        # onto the wall, as its neighbours (the mean of two points on it lies inside the lens)
+        e0 *= room
+        e1 *= room
+    tilt[b, k, 0] = e0
+    tilt[b, k, 1] = e1
+    state[b, k] = state[b, kp]
+    return True, e0, e1
 
 
 @njit(cache=True)

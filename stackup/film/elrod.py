@@ -239,7 +239,8 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
     out = {k: np.empty((*lead, n)) for k in ("peak", "torque", "flow")}
     status = np.empty(lead, np.int8)
     used = np.empty(lead)
-    tol = _kernel.Newton(FORCE_TOLERANCE, BALANCE_TOLERANCE, MAX_NEWTON, SMOOTHING)
+    control = _kernel.Control(_kernel.Newton(FORCE_TOLERANCE, BALANCE_TOLERANCE, MAX_NEWTON, SMOOTHING), stepping,
+                              ECCENTRICITY_LIMIT, PERIODIC, int(cycles))
     for idx in np.ndindex(lead):
         r, l, c_b, mu, w = (float(a[idx]) for a in (radius, length, c, viscosity, speed))
         unit_force = mu * w * r**4 / c_b**2
@@ -250,10 +251,10 @@ def elrod_orbit(loads, crank_angle, *, journal_radius, bearing_width, radial_cle
         slope = np.zeros((n, 2)) if tilt is None else np.ascontiguousarray(tilt[idx] * r / c_b)
         work = _kernel.workspace(g.fixed.shape[0], g.fixed.shape[1], g.j0, 2)
         record, outs = np.empty((n, 2)), np.empty((n, 3))
-        status[idx], used[idx], _, _, _ = _kernel.march(
-            np.ascontiguousarray(loads[idx] / unit_force), tau, slope, np.array(start[idx] / c_b, dtype=float),
-            np.ascontiguousarray(guide[idx] / c_b), g,
-            tol, stepping, ECCENTRICITY_LIMIT, PERIODIC, int(cycles), work, record, outs)
+        cycle = _kernel.Cycle(np.ascontiguousarray(loads[idx] / unit_force), tau, slope,
+                              np.ascontiguousarray(guide[idx] / c_b))
+        status[idx], used[idx], _, _, _ = _kernel.march(cycle, np.array(start[idx] / c_b, dtype=float), g, control,
+                                                        work, (record, outs))
         position[idx] = record * c_b
         out["peak"][idx] = outs[:, 0] * unit_pressure
         out["torque"][idx] = outs[:, 1] * mu * w * r**4 / c_b

@@ -182,7 +182,8 @@ def test_one_step_solves_the_twins_equations(half):
     work = kernel.workspace(n_t, n_z, g.j0, 2)
     tol = kernel.Newton(1e-10, 1e-10, 60, SMOOTHING)
     centre = xi * 0.5
-    done = kernel.balance_step(phi, centre, slope, history, c_time, target, 1.0, g, tol, ECCENTRICITY_LIMIT, work)
+    done = kernel.balance_step(phi, centre, kernel.Balance(slope, history, c_time, target, 1.0), g, tol,
+                               ECCENTRICITY_LIMIT, work)
     assert done >= 0
     r, f = residual_twin(phi, centre, slope, history, c_time, g)
     assert np.abs(r).max() <= 1e-9 * c_time
@@ -301,10 +302,11 @@ def march(loads, guide=None, periodic=tier.PERIODIC):
                                                                   tier.SMALLEST_STEP, tier.LEAP_STEP]))
     newton = kernel.Newton(tier.FORCE_TOLERANCE, tier.BALANCE_TOLERANCE, tier.MAX_NEWTON, SMOOTHING)
     record, outs = np.empty((ANGLE.size, 2)), np.empty((ANGLE.size, 3))
-    counts = kernel.march(loads / (mu * w * r**4 / c**2), np.radians(np.append(ANGLE, 720.0)),
-                          np.zeros((ANGLE.size, 2)), mobility[0].copy(),
-                          np.ascontiguousarray(mobility if guide is None else guide), g, newton, stepping,
-                          ECCENTRICITY_LIMIT, periodic, 8, kernel.workspace(*g.fixed.shape, g.j0, 2), record, outs)
+    cycle = kernel.Cycle(loads / (mu * w * r**4 / c**2), np.radians(np.append(ANGLE, 720.0)),
+                         np.zeros((ANGLE.size, 2)), np.ascontiguousarray(mobility if guide is None else guide))
+    control = kernel.Control(newton, stepping, ECCENTRICITY_LIMIT, periodic, 8)
+    counts = kernel.march(cycle, mobility[0].copy(), g, control, kernel.workspace(*g.fixed.shape, g.j0, 2),
+                          (record, outs))
     return counts, c * (1.0 - np.hypot(*record.T))
 
 
