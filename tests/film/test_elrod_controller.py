@@ -20,6 +20,7 @@ import pytest
 from stackup._kernels import elrod as kernel
 from stackup.film import elrod as tier
 from stackup.film.heat import OilFeed
+from stackup.film.journal import feed_patch
 from stackup.film.mobility import mobility_orbit
 from stackup.film.orbit import ECCENTRICITY_LIMIT, STATUS
 
@@ -163,7 +164,7 @@ def case(loads, angle, geometry, feed):
                            bearing_width=np.array([length]), radial_clearance=np.array([c]),
                            viscosity=np.array([mu]), speed=np.array([w])).position[0] / c
     g = tier.grid(length_over_radius=length / r, n_theta=tier.N_THETA, n_land=tier.N_LAND, half=True,
-                  **tier._feed_patch(length, r, mu * w * r**2 / c**2, feed))
+                  **feed_patch(feed, journal_radius=r, bearing_width=length, unit_pressure=mu * w * r**2 / c**2))
     tau = np.radians(np.append(angle, angle[0] + 720.0) - angle[0])
     return np.ascontiguousarray(loads / (mu * w * r**4 / c**2)), tau, np.ascontiguousarray(guide), g
 
