@@ -37,6 +37,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import special
 
+from .._kernels import mixture as _mixture
 from ..tolerances import MAX_SKEWNESS, Mixture, Normal, SkewNormal, ToolWear
 
 _LOG_SQRT_2PI = 0.5 * np.log(2.0 * np.pi)
@@ -397,32 +398,6 @@ def _mixture_starts(x, m):
     return starts
 
 
-def _em_step(x, m, p, floor):
-    """One EM step of two-normal mixtures on rows of ``x`` (mask ``m``): new parameters, log-likelihood before."""
-    w, m1, s1, m2, s2 = (p[:, k:k + 1] for k in range(5))
-    l1 = np.log(w) + _normal_logpdf(x, m1, s1)
-    l2 = np.log1p(-w) + _normal_logpdf(x, m2, s2)
-    total = np.logaddexp(l1, l2)
-    r1 = np.exp(l1 - total) * m
-    r2 = m - r1
-    n1 = np.maximum(r1.sum(axis=1, keepdims=True), 1e-12)
-    n2 = np.maximum(r2.sum(axis=1, keepdims=True), 1e-12)
-    mu1, mu2 = (r1 * x).sum(1, keepdims=True) / n1, (r2 * x).sum(1, keepdims=True) / n2
-    sd1 = np.maximum(np.sqrt((r1 * (x - mu1) ** 2).sum(1, keepdims=True) / n1), floor)
-    sd2 = np.maximum(np.sqrt((r2 * (x - mu2) ** 2).sum(1, keepdims=True) / n2), floor)
-    share = np.clip(n1 / (n1 + n2), MIXTURE_MIN_WEIGHT, 1.0 - MIXTURE_MIN_WEIGHT)
-    return np.concatenate([share, mu1, sd1, mu2, sd2], axis=1), (total * m).sum(axis=1)
-
-
-def _to_free(p):
-    """Mixture parameters in unconstrained form: logit weight, means, log spreads."""
-    return np.stack([special.logit(p[:, 0]), p[:, 1], np.log(p[:, 2]), p[:, 3], np.log(p[:, 4])], axis=-1)
-
-
-def _from_free(q):
-    return np.stack([special.expit(q[:, 0]), q[:, 1], np.exp(q[:, 2]), q[:, 3], np.exp(q[:, 4])], axis=-1)
-
-
 def _em(x, m, p, repeatability=0.0, iterations=300, tol=1e-9):
     """EM of two-normal mixtures on every row of ``x`` (mask ``m``) from ``p`` (rows, 5); returns (p, loglik).
 
@@ -433,33 +408,15 @@ def _em(x, m, p, repeatability=0.0, iterations=300, tol=1e-9):
     Accelerated by SQUAREM (Varadhan and Roland 2008, scheme S3): two EM
     steps, an extrapolation along them in the unconstrained parameters, one EM
     step from there, kept where it does not lower the likelihood below the
-    first step's (plain EM otherwise). Rows stop when the log-likelihood rises
-    by less than ``tol`` (relative); components ordered by mean.
+    second step's (plain EM otherwise). Rows stop when the log-likelihood rises
+    by less than ``tol`` (relative); components ordered by mean. The iterations
+    run row by row in :func:`stackup._kernels.mixture.em`.
     """
     n, _, dev = _row_moments(x, m)
-    floor = np.hypot(MIXTURE_MIN_SPREAD * np.sqrt((dev * dev).sum(axis=1) / n), repeatability)[:, None]
+    floor = np.hypot(MIXTURE_MIN_SPREAD * np.sqrt((dev * dev).sum(axis=1) / n), repeatability)
     p = np.array(p, dtype=float)
-    active = np.arange(x.shape[0])
-    for _ in range(iterations):
-        xa, ma, fa = x[active], m[active], floor[active]
-        p1, ll0 = _em_step(xa, ma, p[active], fa)
-        p2, ll1 = _em_step(xa, ma, p1, fa)
-        q0, q1, q2 = _to_free(p[active]), _to_free(p1), _to_free(p2)
-        r, v = q1 - q0, q2 - 2.0 * q1 + q0
-        alpha = -np.sqrt((r * r).sum(axis=1) / np.maximum((v * v).sum(axis=1), 1e-300))
-        alpha = np.minimum(alpha, -1.0)[:, None]
-        jump = _from_free(q0 - 2.0 * alpha * r + alpha * alpha * v)
-        jump[:, 0] = np.clip(jump[:, 0], MIXTURE_MIN_WEIGHT, 1.0 - MIXTURE_MIN_WEIGHT)
-        jump[:, 2], jump[:, 4] = np.maximum(jump[:, 2], fa[:, 0]), np.maximum(jump[:, 4], fa[:, 0])
-        ok = np.all(np.isfinite(jump), axis=1)
-        jump[~ok] = p2[~ok]
-        p3, ll_jump = _em_step(xa, ma, jump, fa)
-        keep = ok & np.isfinite(ll_jump) & (ll_jump >= ll1)
-        p[active] = np.where(keep[:, None], p3, p2)
-        moving = np.abs(ll1 - ll0) > tol * np.maximum(1.0, np.abs(ll1))
-        active = active[moving]
-        if active.size == 0:
-            break
+    _mixture.em(np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(m, dtype=float), p, floor,
+                MIXTURE_MIN_WEIGHT, iterations, tol)
     swap = p[:, 1] > p[:, 3]
     p[swap] = np.stack([1.0 - p[swap, 0], p[swap, 3], p[swap, 4], p[swap, 1], p[swap, 2]], axis=-1)
     return p, (_mixture_logpdf(x, p) * m).sum(axis=1)
