@@ -29,12 +29,15 @@ COMPARISONS = ("small_comparison", "snapshot_comparison")
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     """Mark the tests that use a comparison ``integration`` and every other test that is in no tier ``unit``,
-    before ``-m`` selects (hence ``tryfirst``)."""
+    before ``-m`` selects (hence ``tryfirst``); then order them slow, integration, unit, so that two workers start
+    the long tests first and end on short ones rather than one worker finishing a long test alone."""
     for item in items:
         if any(item.get_closest_marker(tier) for tier in TIERS):
             continue
         comparisons = set(COMPARISONS) & set(getattr(item, "fixturenames", ()))
         item.add_marker(pytest.mark.integration if comparisons else pytest.mark.unit)
+    items.sort(key=lambda item: next(k for k, tier in enumerate(("slow", "integration", "unit"))
+                                     if item.get_closest_marker(tier)))
 
 
 @pytest.fixture
