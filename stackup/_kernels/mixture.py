@@ -7,7 +7,7 @@ holds the numpy twin (every row at once) this kernel must match. Each row's para
 :math:`r_{1i} = w\,\phi_1(x_i) / (w\,\phi_1(x_i) + (1 - w)\,\phi_2(x_i))` and the weighted means, spreads (kept
 above ``floor``) and share (kept within ``[min_weight, 1 - min_weight]``); SQUAREM (Varadhan and Roland 2008,
 scheme S3) extrapolates two steps in the unconstrained parameters (logit weight, means, log spreads) and keeps
-the extrapolated step where it does not lower the likelihood below the second plain step's. A row stops when its
+the step from the extrapolated point where the likelihood there is not below the first plain step's. A row stops when its
 log-likelihood rises by less than ``tol`` (relative).
 """
 

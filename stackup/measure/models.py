@@ -407,8 +407,8 @@ def _em(x, m, p, repeatability=0.0, iterations=300, tol=1e-9):
 
     Accelerated by SQUAREM (Varadhan and Roland 2008, scheme S3): two EM
     steps, an extrapolation along them in the unconstrained parameters, one EM
-    step from there, kept where it does not lower the likelihood below the
-    second step's (plain EM otherwise). Rows stop when the log-likelihood rises
+    step from there, kept where the likelihood at the extrapolated point is
+    not below the first plain step's (the second plain step otherwise). Rows stop when the log-likelihood rises
     by less than ``tol`` (relative); components ordered by mean. The iterations
     run row by row in :func:`stackup._kernels.mixture.em`.
     """

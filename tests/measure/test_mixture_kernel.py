@@ -43,18 +43,7 @@ def from_free(q):
 
 
 def em_twin(x, m, p, repeatability=0.0, iterations=300, tol=1e-9):
-    """EM of two-normal mixtures on every row of ``x`` (mask ``m``) from ``p`` (rows, 5); returns (p, loglik).
-
-    A component's spread is kept above the gauge's ``repeatability`` by
-    :data:`MIXTURE_MIN_SPREAD` of the row's standard deviation (in quadrature):
-    a reading's spread cannot be less than the gauge's.
-
-    Accelerated by SQUAREM (Varadhan and Roland 2008, scheme S3): two EM
-    steps, an extrapolation along them in the unconstrained parameters, one EM
-    step from there, kept where it does not lower the likelihood below the
-    first step's (plain EM otherwise). Rows stop when the log-likelihood rises
-    by less than ``tol`` (relative); components ordered by mean.
-    """
+    """:func:`stackup.measure.models._em` in numpy, every row at once (the rows still rising stepped together)."""
     n, _, dev = row_moments(x, m)
     floor = np.hypot(MIXTURE_MIN_SPREAD * np.sqrt((dev * dev).sum(axis=1) / n), repeatability)[:, None]
     p = np.array(p, dtype=float)
