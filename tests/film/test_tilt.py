@@ -10,7 +10,7 @@ from stackup._kernels import mobility as mobility_kernel
 from stackup._kernels import tilt as kernel
 from stackup.film import reynolds
 from stackup.film.orbit import ECCENTRICITY_LIMIT, orbit
-from stackup.film.tilt import (STATES, STRETCH_CAP, axial_moments, cycle_tilt, film_moment, march_tilt, quadrature,
+from stackup.film.tilt import (STATES, axial_moments, cycle_tilt, film_moment, march_tilt, quadrature,
                                short_film)
 
 QUADRATURE = quadrature()
