@@ -325,7 +325,9 @@ def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order
     else:
         trace_angle, trace_p = pressure_trace
         pressure = np.interp(cycle, trace_angle, trace_p, period=720.0)
-    pin_angle = angle[:, None] + own[None, :]
+    # crank angle 0 is the first cylinder's firing TDC: its pin on its own axis there
+    first = int(firing_order[0]) - 1
+    pin_angle = angle[:, None] + (own - own[first])[None, :]
     loads = pin_load(pin_angle, pressure, kinematics, omega)  # each cylinder in its own bank's frame
     if cylinder_throw is None:
         return loads
