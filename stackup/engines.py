@@ -812,7 +812,8 @@ def _layout(t, cylinders):
     t.text("rods", "side-by-side", options=("side-by-side",))
     if cylinders % 2:
         raise ValueError(f"{key}.cylinders: {cylinders} is odd; a V engine has two cylinders on each throw")
-    bank = t.number("bank_angle", required=True, lo=0.0, hi=180.0, lo_open=True, unit=" deg")
+    # from the narrowest V with its banks apart (Lancia's 10-20 deg are staggered: VR) to a 180 deg V
+    bank = t.number("bank_angle", required=True, lo=10.0, hi=180.0, unit=" deg")
     numbering = t.text("numbering", required=True, options=NUMBERINGS)
     first = t.text("first_bank", required=True, options=BANKS)
     throw, axis = v_cylinders(cylinders, bank_angle=bank, numbering=numbering, first_bank=first)

@@ -214,7 +214,8 @@ def firing_offsets(throw_angles, firing_order):
     spacing = np.sort(np.mod(fire - fire[order[0]], 720.0))
     shown = [float(a) for a in throw]
     if len(set(np.round(spacing, 6))) != n:  # only placing the firings shows it, so the body checks
-        raise ValueError(f"firing_order: {list(firing_order)!r} fires two cylinders at once with throws {shown}")
+        raise ValueError(f"firing_order: {list(firing_order)!r} fires two cylinders at once with throws {shown}; "
+                         "check throw_angles (a V engine's also numbering and first_bank)")
     in_order = np.mod(fire[order] - fire[order[0]], 720.0)
     if n > 1 and np.any(np.diff(in_order) <= 0):
         # each next TDC taken, the order ran past 720 deg: the throws fire the cylinders in another order
@@ -224,7 +225,7 @@ def firing_offsets(throw_angles, firing_order):
 
 
 def v_cylinders(cylinders, *, bank_angle, numbering, first_bank):
-    """Where a V engine's cylinders sit: each one's throw (0-based) and its axis from the bisector [deg].
+    r"""Where a V engine's cylinders sit: each one's throw (0-based) and its axis from the bisector [deg].
 
     Parameters
     ----------
@@ -337,7 +338,7 @@ def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order
 
 
 def turned(force, angle):
-    """Forces (..., 2) of a cylinder's frame in the engine's frame, its axis at ``angle`` [deg] from the reference.
+    r"""Forces (..., 2) of a cylinder's frame in the engine's frame, its axis at ``angle`` [deg] from the reference.
 
     Component 0 along the axis towards the crank, 1 across it in the sense
     of rotation; the frame turned by ``angle`` in the sense of rotation,
