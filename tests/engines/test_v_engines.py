@@ -10,8 +10,15 @@ import numpy as np
 import pytest
 
 from stackup.engines import load_engine
-from stackup.loads import (ATMOSPHERE, Combustion, Kinematics, cylinder_throw_angles, firing_offsets, pin_loads,
-                           v_cylinders)
+from stackup.loads import (
+    ATMOSPHERE,
+    Combustion,
+    Kinematics,
+    cylinder_throw_angles,
+    firing_offsets,
+    pin_loads,
+    v_cylinders,
+)
 
 BORE, STROKE, ROD = 0.10325, 0.092, 0.1549
 REC, ROT, SHARE = 0.85, 0.42, 0.5
@@ -22,12 +29,12 @@ TRACE_ANGLE = np.arange(0.0, 720.0, 1.0)
 TRACE_P = ATMOSPHERE + 7.9e6 * np.exp(-(((TRACE_ANGLE + 360.0) % 720.0 - 360.0 - 12.0) / 18.0) ** 2)
 
 #: A 90 deg cross-plane V8 in GM's numbering (1-3-5-7 left bank, 2-4-6-8 right) and firing order.
-V8 = dict(cylinders=8, bank_angle=90.0, numbering="alternate", first_bank="left", throw_angles=[0, 90, 270, 180],
-          firing_order=[1, 8, 7, 2, 6, 5, 4, 3])
+V8 = {"cylinders": 8, "bank_angle": 90.0, "numbering": "alternate", "first_bank": "left",
+      "throw_angles": [0, 90, 270, 180], "firing_order": [1, 8, 7, 2, 6, 5, 4, 3]}
 #: A plain 60 deg V6 with three common pins 120 deg apart (no split pins), numbered bank by bank (1-2-3 right);
 #: it fires unevenly, 60 and 180 deg apart, as a common-pin 60 deg V6 does.
-V6 = dict(cylinders=6, bank_angle=60.0, numbering="bank-by-bank", first_bank="right", throw_angles=[0, 120, 240],
-          firing_order=[1, 4, 2, 5, 3, 6])
+V6 = {"cylinders": 6, "bank_angle": 60.0, "numbering": "bank-by-bank", "first_bank": "right",
+      "throw_angles": [0, 120, 240], "firing_order": [1, 4, 2, 5, 3, 6]}
 
 
 def kinematics(*, reciprocating=REC, rotating=ROT, conrod=ROD):
@@ -170,25 +177,25 @@ def _v8_text():
 
 
 @pytest.mark.parametrize("old, new, message", [
-    ('layout = "V"', 'layout = "boxer"', r"engine file 'v8\.toml', key crank\.layout: 'boxer' is not covered "
-                                          r"\(opposed cylinders each on its own throw\); valid: 'inline', 'V'"),
+    ('layout = "V"', 'layout = "boxer"', (r"engine file 'v8\.toml', key crank\.layout: 'boxer' is not covered "
+                                          r"\(opposed cylinders each on its own throw\); valid: 'inline', 'V'")),
     ('layout = "V"', 'layout = "W"', r"key crank\.layout: 'W' is not covered \(three or four banks\)"),
     ('layout = "V"', 'layout = "radial"', r"key crank\.layout: 'radial' is not covered"),
     ('layout = "V"', 'layout = "v"', r"key crank\.layout: 'v' is not one of 'inline', 'V'"),
-    ('rods = "side-by-side"', 'rods = "fork-and-blade"', r"key crank\.rods: 'fork-and-blade' is not covered .*"
-                                                         r"valid: 'side-by-side'"),
+    ('rods = "side-by-side"', 'rods = "fork-and-blade"', (r"key crank\.rods: 'fork-and-blade' is not covered .*"
+                                                         r"valid: 'side-by-side'")),
     ('rods = "side-by-side"', 'rods = "split-pin"', r"key crank\.rods: 'split-pin' is not covered"),
-    ("bank_angle = 90.0 ", "bank_angle = 1.5708 ", r"key crank\.bank_angle: 1\.5708 deg is outside the valid range "
-                                                    r"\[10, 180\] deg"),
+    ("bank_angle = 90.0 ", "bank_angle = 1.5708 ", (r"key crank\.bank_angle: 1\.5708 deg is outside the valid range "
+                                                    r"\[10, 180\] deg")),
     ("bank_angle = 90.0 ", "bank_angle = 200.0 ", r"key crank\.bank_angle: 200 deg is outside the valid range"),
-    ('first_bank = "left"', 'first_bank = "right"', r"key crank\.firing_order: .* check throw_angles \(a V "
-                                                     r"engine's also numbering and first_bank\)"),
-    ('\nnumbering = "alternate"', '\nnumbering = "gm"', r"key crank\.numbering: 'gm' is not one of 'alternate', "
-                                                     r"'bank-by-bank'"),
+    ('first_bank = "left"', 'first_bank = "right"', (r"key crank\.firing_order: .* check throw_angles \(a V "
+                                                     r"engine's also numbering and first_bank\)")),
+    ('\nnumbering = "alternate"', '\nnumbering = "gm"', (r"key crank\.numbering: 'gm' is not one of 'alternate', "
+                                                     r"'bank-by-bank'")),
     ('numbering = "alternate"\n', '', r"key crank\.numbering: missing"),
     ("cylinders = 8", "cylinders = 7", r"key crank\.cylinders: 7 is odd; a V engine has two cylinders on each throw"),
-    ("main_bearings = 5", "main_bearings = 9", r"key crank\.cylinders: 8 cylinders in a V \(two a throw, 4 throws\) "
-                                                r"need 5 main bearings, main_bearings is 9"),
+    ("main_bearings = 5", "main_bearings = 9", (r"key crank\.cylinders: 8 cylinders in a V \(two a throw, 4 throws\) "
+                                                r"need 5 main bearings, main_bearings is 9")),
     ('layout = "V"\n', '', r"key crank\.bank_angle: 90\.0 is for a V engine; add layout = \"V\" or remove bank_angle"),
     ("throw_angles = [0, 90, 270, 180]", "throw_angles = [0, 90, 270, 180, 0, 90, 270, 180]",
      r"key crank\.throw_angles: 8 entries; give 4, one per throw"),
@@ -211,3 +218,10 @@ def test_an_inline_engine_with_a_v_engines_bearings_is_told_about_the_v_layout(t
     with pytest.raises(ValueError, match=r"key crank\.cylinders: 6 cylinders in line \(one a throw\) need 7 main "
                                          r"bearings, main_bearings is 4; a V engine: crank\.layout = \"V\""):
         load_engine(tmp_path / "six.toml")
+
+
+def test_fords_numbering_of_the_same_crank_fires_evenly_as_the_docs_say():
+    """docs/engine-file.md: Ford's numbering (1-4 right bank, 5-8 left) with the 5.0 L HO firing order."""
+    throw, axis = v_cylinders(8, bank_angle=90.0, numbering="bank-by-bank", first_bank="right")
+    fire = firing_offsets(cylinder_throw_angles([0, 90, 270, 180], throw, axis), [1, 3, 7, 2, 6, 5, 4, 8])
+    np.testing.assert_array_equal(np.sort(fire), np.arange(0.0, 720.0, 90.0))
