@@ -13,7 +13,10 @@ interval of the housing's outer diameter measured by fitting tests
 (``housing_outer_interval``, optional) and the source of the crush height;
 ``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
 operating-clearance window (absolute, or ``relative_clearance`` C/D of the
-journal) with its source. Built-in engines ship in ``stackup/data/engines``;
+journal) with its source; ``[crank]`` the crank train and its loads, an
+inline engine or a V with two side-by-side rods on each pin
+(``layout = "V"``, ``bank_angle``, and the maker's cylinder ``numbering`` and
+``first_bank``). Built-in engines ship in ``stackup/data/engines``;
 a user's file works the same way, by path or by name from a folder named in
 the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
 ``PATH``; a user's file replaces a built-in one of the same name).
