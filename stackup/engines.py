@@ -13,7 +13,10 @@ interval of the housing's outer diameter measured by fitting tests
 (``housing_outer_interval``, optional) and the source of the crush height;
 ``[press_fit.limits]`` the design limits with their source; ``[targets]`` the
 operating-clearance window (absolute, or ``relative_clearance`` C/D of the
-journal) with its source. Built-in engines ship in ``stackup/data/engines``;
+journal) with its source; ``[crank]`` the crank train and its loads, an
+inline engine or a V with two side-by-side rods on each pin
+(``layout = "V"``, ``bank_angle``, and the maker's cylinder ``numbering`` and
+``first_bank``). Built-in engines ship in ``stackup/data/engines``;
 a user's file works the same way, by path or by name from a folder named in
 the ``STACKUP_ENGINE_PATH`` environment variable (folders separated as in
 ``PATH``; a user's file replaces a built-in one of the same name).
@@ -40,7 +43,8 @@ from .film import oil as film_oil
 from .film.heat import FEEDS, OilFeed
 from .fit import CHECK_STRESS, TEMPERATURE
 from .life import LEVANOV_2015, METHOD1_SCALE
-from .loads import Combustion, Kinematics, check_firing_order, firing_offsets, pin_loads, read_pressure_trace
+from .loads import (BANKS, NUMBERINGS, Combustion, Kinematics, check_firing_order, cylinder_throw_angles,
+                    firing_offsets, pin_loads, read_pressure_trace, v_cylinders)
 from .parts import ShellSupply
 from ._files import Table, did_you_mean, locations, parse_toml, read_toml, units_of
 from .tolerances import Dimension, form_from_spec, gauge_from_spec, process_from_spec
@@ -157,6 +161,9 @@ class CrankSpec:
     """Crank train, loads and bearing law of an engine (SI; angles in degrees where named so).
 
     ``crank_angle`` grids are in degrees, 0 = firing TDC of the first cylinder fired.
+    ``throw_angles`` are one per throw; a V engine's ``cylinder_throw`` and
+    ``cylinder_axis`` say which throw each cylinder is on and along which
+    axis it acts (:func:`stackup.loads.v_cylinders`; None: inline).
     """
 
     kinematics: Kinematics
@@ -178,12 +185,16 @@ class CrankSpec:
     #: where the section inertias come from (``section_inertia_source``; empty: not given, an assumption)
     section_inertia_source: str = ""
     crank_modulus: float = 2.1e11  # Young's modulus of the crankshaft [Pa] (``crank_material``'s)
+    layout: str = "inline"  # "inline" or "V" (the file's crank.layout)
+    cylinder_throw: tuple | None = None  # each cylinder's throw, 0-based (a V engine's)
+    cylinder_axis: tuple | None = None  # each cylinder's axis from the V's bisector, in the sense of rotation [deg]
 
     def pin_loads(self, crank_angle):
-        """Crank-pin loads (angles, cylinders, 2) [N] at crank angles [deg]."""
+        """Crank-pin loads (angles, throws, 2) [N] at crank angles [deg]."""
         return pin_loads(crank_angle, kinematics=self.kinematics, combustion=self.combustion,
                          throw_angles=self.throw_angles, firing_order=self.firing_order, speed=self.speed,
-                         pressure_trace=self.pressure_trace)
+                         pressure_trace=self.pressure_trace, cylinder_throw=self.cylinder_throw,
+                         cylinder_axis=self.cylinder_axis)
 
     def law(self, clearance):
         """Bearing law with J from each bearing's diametral operating clearance [m] (array per bearing)."""
@@ -611,15 +622,21 @@ def _crank(top, *, scale, units, bearings, extra):
     t = top.table("crank")
     key = f"{t.where}, key crank"
     length = dict(scale=scale, units=units)
-    cylinders = t.integer("cylinders", required=True, lo=1, hi=29)
-    if cylinders != bearings - 1:
-        raise ValueError(f"{key}.cylinders: {cylinders} cylinders need {cylinders + 1} main bearings, "
-                         f"the engine has {bearings} (inline engines only)")
-    throws, order = _firing(t, cylinders)
+    cylinders = t.integer("cylinders", required=True, lo=1, hi=58)
+    layout = _layout(t, cylinders)
+    n_throws = cylinders // (1 if layout["cylinder_throw"] is None else 2)
+    if n_throws != bearings - 1:
+        arrangement = ("in line (one a throw)" if layout["layout"] == "inline" else
+                       f"in a V (two a throw, {n_throws} throws)")
+        hint = ('; a V engine: crank.layout = "V" with bank_angle' if layout["layout"] == "inline" else "")
+        raise ValueError(f"{key}.cylinders: {cylinders} cylinders {arrangement} need {n_throws + 1} main bearings, "
+                         f"main_bearings is {bearings}{hint}")
+    throws, order = _firing(t, cylinders, n_throws, layout)
     inertia = t.numbers("section_inertia", required=True, rows=True)
     inertia = check.positive(f"{key}.section_inertia", inertia) * scale**4
-    if inertia.shape not in ((cylinders,), (cylinders, 2)):
-        raise ValueError(f"{key}.section_inertia: shape {inertia.shape}; give ({cylinders},) or ({cylinders}, 2)")
+    if inertia.shape not in ((n_throws,), (n_throws, 2)):
+        raise ValueError(f"{key}.section_inertia: shape {inertia.shape}; give ({n_throws},) or ({n_throws}, 2), "
+                         "one per span")
     if np.any((inertia < 1e-10) | (inertia > 1e-1)):  # a 10 mm to a 1 m steel journal
         raise ValueError(f"{key}.section_inertia: {float(inertia.min() / scale**4):g} to "
                          f"{float(inertia.max() / scale**4):g} {units}^4 is not a plausible section inertia "
@@ -632,7 +649,7 @@ def _crank(top, *, scale, units, bearings, extra):
                           peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa")),
         throw_angles=throws, firing_order=order,
         speed=t.number("speed", required=True, lo=10.0, hi=3e4, unit=" rpm") * 2 * np.pi / 60,
-        spans=np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
+        spans=np.array(t.lengths("spans", count=n_throws, required=True, **length, plausible=PLAUSIBLE["span"],
                                  what="crankshaft span")),
         ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
         bearing_width=t.length("bearing_width", required=True, **length, plausible=PLAUSIBLE["width"],
@@ -641,7 +658,7 @@ def _crank(top, *, scale, units, bearings, extra):
         journal_runout=t.length("journal_runout", 0.0, **length, plausible=PLAUSIBLE["misalignment"],
                                 what="journal run-out"),
         clearance_ratio=1.0, law_parameters={}, pressure_trace=_pressure_trace(t, extra),
-        section_inertia_source=t.text("section_inertia_source", ""), crank_modulus=modulus,
+        section_inertia_source=t.text("section_inertia_source", ""), crank_modulus=modulus, **layout,
     )
     t.close()
     ratio, params = _bearing_law(top, **length)
@@ -762,19 +779,68 @@ def _kinematics(t, *, scale, units):
         rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
 
 
-def _firing(t, cylinders):
-    """Throw angles [deg] and firing order of table [crank], one per cylinder, that fire one cylinder at a time."""
+#: Engine layouts the load model does not cover, each with why (crank.layout, crank.rods).
+NOT_COVERED = {
+    "layout": {"W": "three or four banks", "VR": "narrow-angle staggered banks on one head",
+               "boxer": "opposed cylinders each on its own throw", "flat": "opposed cylinders each on its own throw",
+               "radial": "a master rod and articulated rods", "H": "two crankshafts", "U": "two crankshafts"},
+    "rods": {"fork-and-blade": "the blade's big end runs on the fork's", "articulated": "a master rod carries "
+             "the other", "master-and-slave": "a master rod carries the other", "split-pin": "each bank's pin at "
+             "its own angle"},
+}
+
+
+def _layout(t, cylinders):
+    """The [crank] table's layout: inline, or V with its bank angle and the maker's cylinder numbering.
+
+    Returns the :class:`CrankSpec` fields ``layout``, ``cylinder_throw``, ``cylinder_axis``.
+    """
+    key = f"{t.where}, key crank"
+    value = t.get("layout", "inline")
+    if isinstance(value, str) and value in NOT_COVERED["layout"]:
+        raise ValueError(f"{key}.layout: {value!r} is not covered ({NOT_COVERED['layout'][value]}); valid: "
+                         "'inline', 'V' (two side-by-side rods on each pin, any bank angle)")
+    layout = t.text("layout", "inline", options=("inline", "V"))
+    v_keys = ("bank_angle", "numbering", "first_bank", "rods")
+    if layout == "inline":
+        given = [k for k in v_keys if k in t]
+        if given:
+            raise ValueError(f"{key}.{given[0]}: {t.get(given[0])!r} is for a V engine; add layout = \"V\" or "
+                             f"remove {given[0]}")
+        return {"layout": layout, "cylinder_throw": None, "cylinder_axis": None}
+    rods = t.get("rods", "side-by-side")
+    if isinstance(rods, str) and rods in NOT_COVERED["rods"]:
+        raise ValueError(f"{key}.rods: {rods!r} is not covered ({NOT_COVERED['rods'][rods]}); valid: "
+                         "'side-by-side' (two rods on one common pin)")
+    t.text("rods", "side-by-side", options=("side-by-side",))
+    if cylinders % 2:
+        raise ValueError(f"{key}.cylinders: {cylinders} is odd; a V engine has two cylinders on each throw")
+    # from the narrowest V with its banks apart (Lancia's 10-20 deg are staggered: VR) to a 180 deg V
+    bank = t.number("bank_angle", required=True, lo=10.0, hi=180.0, unit=" deg")
+    numbering = t.text("numbering", required=True, options=NUMBERINGS)
+    first = t.text("first_bank", required=True, options=BANKS)
+    throw, axis = v_cylinders(cylinders, bank_angle=bank, numbering=numbering, first_bank=first)
+    return {"layout": layout, "cylinder_throw": tuple(int(i) for i in throw),
+            "cylinder_axis": tuple(float(a) for a in axis)}
+
+
+def _firing(t, cylinders, n_throws, layout):
+    """Throw angles [deg] (one per throw) and firing order (one per cylinder) of table [crank], that fire one
+    cylinder at a time."""
     key = f"{t.where}, key crank"
     throws = tuple(float(a) for a in t.numbers("throw_angles", required=True))
     order = t.get("firing_order", required=True)
     if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
         raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")
     order = tuple(order)
-    if len(throws) != cylinders or len(order) != cylinders:
-        raise ValueError(f"{key}: throw_angles and firing_order need {cylinders} entries each")
+    if len(throws) != n_throws:
+        raise ValueError(f"{key}.throw_angles: {len(throws)} entries; give {n_throws}, one per throw")
+    if len(order) != cylinders:
+        raise ValueError(f"{key}.firing_order: {len(order)} entries; give {cylinders}, one per cylinder")
     # both checked here, the file's boundary, also where a caller trusts its inputs
-    _named(t, check_firing_order, throws, order)
-    _named(t, firing_offsets, throws, order)
+    own = cylinder_throw_angles(throws, layout["cylinder_throw"], layout["cylinder_axis"])
+    _named(t, check_firing_order, own, order)
+    _named(t, firing_offsets, own, order)
     return throws, order
 
 

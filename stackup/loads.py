@@ -27,11 +27,29 @@ direction of rotation at TDC):
 with :math:`u_{cw}` the counterweight unbalance of the throw [kg m], applied
 at the pin's span (a beam-model simplification).
 
+V engines (two rods side by side on one pin, :func:`v_cylinders`): each
+cylinder's axis lies at :math:`\gamma = \mp\alpha/2` from the V's bisector
+(bank angle :math:`\alpha`; the leading bank, the one a pin passes first, at
+:math:`-\alpha/2`). A cylinder's force is the expression above in its own
+bank's frame, at its own pin angle :math:`\varphi - \gamma` and firing
+angle, turned by :math:`\gamma` into the engine frame (component 0 then
+along the bisector towards the caps); the pin carries the sum over its
+cylinders, so the rotating masses of both big ends,
+
+.. math:: \mathbf F_{pin} = \sum_{c \in pin} R(\gamma_c)\,\mathbf F_c(\varphi - \gamma_c),
+          \qquad R(\gamma) = \begin{pmatrix}\cos\gamma & \sin\gamma\\ -\sin\gamma & \cos\gamma\end{pmatrix}
+
+Both rods act at the middle of the pin: the axial offset of side-by-side
+rods (about half a big end's width) is not modelled.
+
 References
 ----------
 .. [1] Heywood, J. B., *Internal Combustion Engine Fundamentals*, McGraw-Hill,
    1988, sec. 2.2 (kinematics), 9.2 (Wiebe function).
 .. [2] Bellakhdhar et al. 2013, sec. 6.1 (four-cylinder loads at 4000 rpm).
+.. [3] Taylor, C. F., *The Internal-Combustion Engine in Theory and Practice*,
+   vol. 2, rev. ed., MIT Press, 1985, ch. 8 (balance of V engines: two rods
+   on one pin, the forces of each bank along its own axis).
 """
 
 from __future__ import annotations
@@ -45,6 +63,10 @@ from . import _validate as check
 from ._validate import Finite, Positive, finite, validated
 
 ATMOSPHERE = 1.0e5  # crankcase pressure [Pa]
+#: How a V engine's maker numbers its cylinders (:func:`v_cylinders`).
+NUMBERINGS = ("alternate", "bank-by-bank")
+#: The bank of cylinder 1, seen from the flywheel end (:func:`v_cylinders`).
+BANKS = ("left", "right")
 _STEP = 0.1  # integration step of the closed cycle [deg]
 
 
@@ -171,6 +193,8 @@ def firing_offsets(throw_angles, firing_order):
 
     Cylinder ``i`` is at TDC when ``crank_angle + throw_angle_i`` is a multiple
     of 360; the firing order picks which of its two TDCs in 720 deg fires.
+    ``throw_angles`` are one per cylinder, each seen from its own cylinder's
+    axis (a V engine's: :func:`cylinder_throw_angles`).
     """
     throw = np.mod(np.asarray(throw_angles, dtype=float), 360.0)
     order = [int(c) - 1 for c in firing_order]
@@ -188,9 +212,142 @@ def firing_offsets(throw_angles, firing_order):
             fire[cyl] = candidates[np.argmin(gaps)]
         last = fire[cyl]
     spacing = np.sort(np.mod(fire - fire[order[0]], 720.0))
+    shown = [float(a) for a in throw]
     if len(set(np.round(spacing, 6))) != n:  # only placing the firings shows it, so the body checks
-        raise ValueError(f"firing_order: {list(firing_order)!r} fires two cylinders at once with throws {list(throw)}")
+        raise ValueError(f"firing_order: {list(firing_order)!r} fires two cylinders at once with throws {shown}; "
+                         "check throw_angles (a V engine's also numbering and first_bank)")
+    in_order = np.mod(fire[order] - fire[order[0]], 720.0)
+    if n > 1 and np.any(np.diff(in_order) <= 0):
+        # each next TDC taken, the order ran past 720 deg: the throws fire the cylinders in another order
+        raise ValueError(f"firing_order: {list(firing_order)!r} is not the order throws {shown} fire in within "
+                         "720 deg; check throw_angles (a V engine's also numbering and first_bank)")
     return np.mod(fire - fire[order[0]], 720.0)
+
+
+def v_cylinders(cylinders, *, bank_angle, numbering, first_bank):
+    r"""Where a V engine's cylinders sit: each one's throw (0-based) and its axis from the bisector [deg].
+
+    Parameters
+    ----------
+    cylinders : int
+        Number of cylinders, even: two side-by-side rods on each throw.
+    bank_angle : float
+        Angle between the banks' cylinder axes [deg], in (0, 180].
+    numbering : {"alternate", "bank-by-bank"}
+        The maker's numbering, throws counted from the front (timing end):
+        ``"alternate"`` puts cylinders 1, 3, 5, ... on one bank and 2, 4, 6,
+        ... on the other, cylinders 2k-1 and 2k on throw k (General Motors,
+        Chrysler); ``"bank-by-bank"`` numbers one bank front to back, then
+        the other, cylinders k and k + n/2 on throw k (Ford, Audi, BMW,
+        Mercedes-Benz, Toyota's V6).
+    first_bank : {"left", "right"}
+        The bank of cylinder 1, seen from the flywheel end looking to the
+        front (from the driver's seat of a front-engined car), the crankshaft
+        turning in the standard sense (SAE J824: counter-clockwise seen from
+        the flywheel end). A pin then passes the right bank first: the right
+        bank leads, at :math:`-\alpha/2`. For an engine turning the other way,
+        name the other bank.
+
+    Returns
+    -------
+    (numpy.ndarray of int, numpy.ndarray)
+        Each cylinder's throw (0-based) and its axis's angle from the V's
+        bisector [deg], counted in the sense of rotation, in cylinder-number
+        order: the ``cylinder_throw`` and ``cylinder_axis`` of :func:`pin_loads`.
+    """
+    number = np.arange(cylinders)
+    if numbering == "alternate":
+        throw, on_first = number // 2, number % 2 == 0
+    else:
+        half = cylinders // 2
+        throw, on_first = number % half, number < half
+    leads = on_first == (first_bank == "right")
+    return throw, np.where(leads, -bank_angle / 2, bank_angle / 2)
+
+
+def cylinder_throw_angles(throw_angles, cylinder_throw=None, cylinder_axis=None):
+    """Each cylinder's throw angle seen from its own axis [deg]: its throw's angle less its axis's angle."""
+    throws = np.asarray(throw_angles, dtype=float)
+    if cylinder_throw is None:
+        return throws
+    return throws[np.asarray(cylinder_throw, dtype=int)] - np.asarray(cylinder_axis, dtype=float)
+
+
+def _trace(field, value):
+    """A pressure trace (cycle angles [deg], pressures [Pa]): two arrays of finite numbers."""
+    if len(value) != 2:
+        raise ValueError(f"{field}: {len(value)} arrays; give (cycle angles [deg], pressures [Pa])")
+    return tuple(finite(field, v) for v in value)
+
+
+def _layout_fits(args):
+    """The cylinders' throws and axes agree with the throws and the firing order."""
+    throws, on, axis = args["throw_angles"], args["cylinder_throw"], args["cylinder_axis"]
+    if (on is None) != (axis is None):
+        raise ValueError("cylinder_throw, cylinder_axis: give both (a V engine) or neither (inline)")
+    if on is None:
+        check_firing_order(throws, args["firing_order"])
+        return
+    on = np.asarray(on)
+    n_throws = np.size(throws)
+    if on.ndim != 1 or np.asarray(axis).shape != on.shape:
+        raise ValueError(f"cylinder_axis: shape {np.asarray(axis).shape}; give one per cylinder {on.shape}")
+    counts = np.bincount(on.astype(int), minlength=n_throws) if on.size and on.min() >= 0 else None
+    if (counts is None or counts.size != n_throws or not np.all(on == on.astype(int))
+            or np.any(counts != counts[0])):
+        raise ValueError(f"cylinder_throw: {on.tolist()!r} does not put the same number of cylinders on each of "
+                         f"throws 0..{n_throws - 1}")
+    check_firing_order(on, args["firing_order"])
+
+
+@validated(relations=(_layout_fits,), crank_angle=Finite(), throw_angles=Finite(), speed=Positive(),
+           pressure_trace=_trace, cylinder_axis=Finite())
+def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order, speed, pressure_trace=None,
+              cylinder_throw=None, cylinder_axis=None):
+    """Crank-pin loads (angles, throws, 2) [N] over crank angles [deg] (0 = firing TDC of the first cylinder fired).
+
+    ``speed`` is the crankshaft speed [rad/s]. ``pressure_trace`` (cycle
+    angles [deg], pressures [Pa]) replaces the built-in pressure model.
+    ``throw_angles`` are one per throw (crank pin), ``firing_order`` names
+    every cylinder. An inline engine has one cylinder per throw, cylinder
+    ``i`` on throw ``i``; a V engine gives ``cylinder_throw`` (each
+    cylinder's throw, 0-based) and ``cylinder_axis`` (each cylinder's axis
+    from the V's bisector [deg], in the sense of rotation), from
+    :func:`v_cylinders`: each pin carries the sum of its cylinders' forces,
+    each along its own bank's axis at its own firing angle.
+    """
+    angle = np.asarray(crank_angle, dtype=float)
+    omega = float(speed)
+    own = cylinder_throw_angles(throw_angles, cylinder_throw, cylinder_axis)
+    fire = firing_offsets(own, firing_order)
+    cycle = np.mod(angle[:, None] - fire[None, :], 720.0)
+    if pressure_trace is None:
+        pressure = cylinder_pressure(cycle, kinematics, combustion)
+    else:
+        trace_angle, trace_p = pressure_trace
+        pressure = np.interp(cycle, trace_angle, trace_p, period=720.0)
+    # crank angle 0 is the first cylinder's firing TDC: its pin on its own axis there
+    first = int(firing_order[0]) - 1
+    pin_angle = angle[:, None] + (own - own[first])[None, :]
+    loads = pin_load(pin_angle, pressure, kinematics, omega)  # each cylinder in its own bank's frame
+    if cylinder_throw is None:
+        return loads
+    loads = turned(loads, cylinder_axis)
+    per_throw = np.argsort(np.asarray(cylinder_throw), kind="stable").reshape(np.size(throw_angles), -1)
+    return loads[:, per_throw].sum(axis=2)
+
+
+def turned(force, angle):
+    r"""Forces (..., 2) of a cylinder's frame in the engine's frame, its axis at ``angle`` [deg] from the reference.
+
+    Component 0 along the axis towards the crank, 1 across it in the sense
+    of rotation; the frame turned by ``angle`` in the sense of rotation,
+    :math:`R(\gamma)` of the module's notes.
+    """
+    gamma = np.radians(np.asarray(angle, dtype=float))
+    c, s = np.cos(gamma), np.sin(gamma)
+    f0, f1 = force[..., 0], force[..., 1]
+    return np.stack([c * f0 + s * f1, c * f1 - s * f0], axis=-1)
 
 
 def read_pressure_trace(path, *, name=None):
@@ -214,31 +371,3 @@ def read_pressure_trace(path, *, name=None):
     if angle.size < 2 or np.any(np.diff(angle) <= 0) or angle[-1] - angle[0] >= 720.0:
         raise ValueError(f"pressure trace {str(path)!r}: crank_angle_deg must increase and span less than 720 deg")
     return angle, pressure
-
-
-def _trace(field, value):
-    """A pressure trace (cycle angles [deg], pressures [Pa]): two arrays of finite numbers."""
-    if len(value) != 2:
-        raise ValueError(f"{field}: {len(value)} arrays; give (cycle angles [deg], pressures [Pa])")
-    return tuple(finite(field, v) for v in value)
-
-
-@validated(relations=(_cylinders_fire_once,), crank_angle=Finite(), throw_angles=Finite(), speed=Positive(),
-           pressure_trace=_trace)
-def pin_loads(crank_angle, *, kinematics, combustion, throw_angles, firing_order, speed, pressure_trace=None):
-    """Crank-pin loads (angles, cylinders, 2) [N] over crank angles [deg] (0 = firing TDC of the first cylinder fired).
-
-    ``speed`` is the crankshaft speed [rad/s]. ``pressure_trace`` (cycle
-    angles [deg], pressures [Pa]) replaces the built-in pressure model.
-    """
-    angle = np.asarray(crank_angle, dtype=float)
-    omega = float(speed)
-    fire = firing_offsets(throw_angles, firing_order)
-    cycle = np.mod(angle[:, None] - fire[None, :], 720.0)
-    if pressure_trace is None:
-        pressure = cylinder_pressure(cycle, kinematics, combustion)
-    else:
-        trace_angle, trace_p = pressure_trace
-        pressure = np.interp(cycle, trace_angle, trace_p, period=720.0)
-    pin_angle = angle[:, None] + np.asarray(throw_angles, dtype=float)[None, :]
-    return pin_load(pin_angle, pressure, kinematics, omega)

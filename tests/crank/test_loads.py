@@ -3,7 +3,15 @@
 import numpy as np
 import pytest
 
-from stackup.loads import ATMOSPHERE, Combustion, Kinematics, cylinder_pressure, firing_offsets, pin_load, pin_loads
+from stackup.loads import (
+    ATMOSPHERE,
+    Combustion,
+    Kinematics,
+    cylinder_pressure,
+    firing_offsets,
+    pin_load,
+    pin_loads,
+)
 
 K = Kinematics(cylinder_bore=0.076, stroke=0.0805, conrod=0.136, reciprocating_mass=0.75, rotating_mass=0.6,
                counterweight_unbalance=0.0)
@@ -32,7 +40,7 @@ def test_exhaust_and_intake_strokes_at_their_pressures():
 def test_piston_acceleration_matches_numerical_derivative():
     omega = 400.0
     phi = np.linspace(0, 360, 73)
-    x = lambda a: K.crank_radius * np.cos(np.radians(a)) + K.conrod * np.sqrt(1 - (K.crank_radius / K.conrod * np.sin(np.radians(a))) ** 2)  # noqa: E731
+    x = lambda a: K.crank_radius * np.cos(np.radians(a)) + K.conrod * np.sqrt(1 - (K.crank_radius / K.conrod * np.sin(np.radians(a))) ** 2)
     h = 1e-3
     numeric = (x(phi + h) - 2 * x(phi) + x(phi - h)) / np.radians(h) ** 2 * omega**2
     np.testing.assert_allclose(K.piston_acceleration(phi, omega), numeric, rtol=1e-5, atol=1e-3 * K.crank_radius * omega**2)
@@ -109,3 +117,12 @@ def test_engine_with_a_csv_pressure_trace(tmp_path):
     engine_file.write_text(text.replace("peak_pressure = 13.0e6            # [Pa]", 'pressure_trace = "bad.csv"'))
     with pytest.raises(ValueError, match="missing column"):
         load_engine(engine_file)
+
+
+def test_crank_angle_zero_is_the_first_fired_cylinders_tdc_whatever_its_throw_angle():
+    """Throws written from another reference ([180, 0, 0, 180] for [0, 180, 180, 0]) are the same crank: the same
+    loads, cylinder 1 firing at crank angle 0 (before, its pressure peaked with its pin at the bottom)."""
+    angle = np.arange(0.0, 720.0, 2.0)
+    four = {"kinematics": K, "combustion": Combustion(), "firing_order": [1, 3, 4, 2], "speed": 400.0}
+    np.testing.assert_allclose(pin_loads(angle, throw_angles=[180, 0, 0, 180], **four),
+                               pin_loads(angle, throw_angles=[0, 180, 180, 0], **four), rtol=1e-9, atol=1e-6)
