@@ -63,7 +63,7 @@ def read_toml(path, *, kind):
     if b"\x00" in raw:
         raise ValueError(f"{where}: is a binary file, not TOML text")
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # the byte-order mark some editors write first is no part of the TOML
     except UnicodeDecodeError as error:
         raise ValueError(f"{where}: is not UTF-8 text (byte {error.start}); save it as UTF-8 TOML") from None
     return parse_toml(text, where=f"{kind} file {path.name!r}"), text
@@ -71,6 +71,7 @@ def read_toml(path, *, kind):
 
 def parse_toml(text, *, where):
     """The table of a TOML text, or a ValueError naming ``where`` and the line."""
+    text = text.removeprefix("\ufeff")  # a byte-order mark, as read_toml drops it (a text stored with it)
     if not text.strip():
         raise ValueError(f"{where}: is empty")
     try:

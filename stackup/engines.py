@@ -332,6 +332,7 @@ def _dimension(top, key, *, scale, units, plausible, what, required=True):
                        increasing=True)
     field = f"{t.where}, key {t.path}"
     process = process_from_spec(t.get("process", required=True), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
+    _near_limits(f"{field}.process", process, lo, hi, scale=scale, units=units)
     gauge_table = t.get("gauge")
     gauge = gauge_from_spec(gauge_table, scale=scale, field=f"{field}.gauge")
     shared = t.number("shared", 0.0, lo=0.0, hi=1.0, hi_open=True)
@@ -348,6 +349,22 @@ def _dimension(top, key, *, scale, units, plausible, what, required=True):
     return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt, source=source)
 
 
+#: Farthest a process's median may lie outside its drawing limits, in tolerance widths: one width out, more
+#: than half the parts are scrap whatever the spread; farther, the mean is a typing or unit error, not a process.
+FARTHEST_PROCESS = 1.0
+
+
+def _near_limits(field, process, lo, hi, *, scale, units):
+    """Refuse a process whose median lies more than :data:`FARTHEST_PROCESS` tolerance widths outside [lo, hi]."""
+    median, width = float(process.ppf(0.5)), hi - lo
+    off = max(lo - median, median - hi)
+    if off > FARTHEST_PROCESS * width:
+        side = f"below the lower limit {lo / scale:g}" if median < lo else f"above the upper limit {hi / scale:g}"
+        raise ValueError(f"{field}: its median {median / scale:.6g} {units} lies {off / scale:.4g} {units} "
+                         f"({off / width:.3g} tolerance widths) {side} {units}; a process sits near its drawing "
+                         f"limits (within {FARTHEST_PROCESS:g} tolerance width): is the mean mistyped?")
+
+
 #: How much hotter than its housing a journal may run in service [K] (an engine file's
 #: ``press_fit.journal_temperature_excess``, a scenario's): journals often run 10-20 K above their bulkheads
 #: (physics.md sec. 3), a cooled or warming journal below; a plausibility bound, as :data:`PLAUSIBLE` is for
@@ -360,7 +377,15 @@ PLAUSIBLE = {"bore": (5e-3, 2.0), "crush": (5e-6, 1e-3), "wall_sigma": (1e-9, 50
              "wear": (1e-7, 1e-3), "groove": (0.0, 0.1), "window": (2e-6, 2e-3)}
 
 
+#: Top-level tables of a scheme file (:mod:`stackup.schemes`) that no engine file has.
+_SCHEME_TABLES = ("housing", "journal", "shell", "pairing")
+
+
 def _engine(top, *, name, extra):
+    scheme_tables = [k for k in _SCHEME_TABLES if k in top]
+    if scheme_tables and "main_bearings" not in top:
+        raise ValueError(f"{top.where}: is a scheme file (it has {', '.join(f'[{k}]' for k in scheme_tables)}), not "
+                         "an engine file; give it as a scheme (compare --schemes, plan --scheme)")
     units, scale = units_of(top)
     length = dict(scale=scale, units=units)
     bearings = top.integer("main_bearings", required=True, lo=1, hi=30)
@@ -387,6 +412,12 @@ def _engine(top, *, name, extra):
         raise ValueError(f"{top.where}, key journal_d.limits: the journal ({journal.lo / scale:g}-{journal.hi / scale:g} "
                          f"{units}) must be smaller than the housing bore ({bore.lo / scale:g}-{bore.hi / scale:g} {units})")
     spec = _press_fit(top, bore, **length)
+    wall = 0.5 * (bore.lo - journal.hi)  # the thickest wall the tightest bore and largest journal leave room for
+    if spec.lining_thickness >= wall:
+        raise ValueError(f"{top.where}, key press_fit.lining_thickness: {spec.lining_thickness / scale:g} {units} is not "
+                         f"below the shell wall, at most {wall / scale:.6g} {units} (half of housing bore "
+                         f"{bore.lo / scale:g} - journal {journal.hi / scale:g} {units}); the steel back needs a "
+                         "thickness")
     if "crank" not in top:
         for table in ("bearing_law", "oil"):  # read only by the mechanical chain
             if table in top:
@@ -416,7 +447,8 @@ def _press_fit(top, bore, *, scale, units):
     length = dict(scale=scale, units=units)
 
     def temperature(name, default):
-        return t.number(name, default, **asdict(TEMPERATURE))
+        value = t.number(name, default, **asdict(TEMPERATURE))
+        return value if value is None else check.PLAUSIBLE["engine_temperature"].check(t._at(name), value)
 
     lining_thickness = t.length("lining_thickness", 0.0, **length, plausible=PLAUSIBLE["lining"],
                                 what="lining thickness")
@@ -433,7 +465,8 @@ def _press_fit(top, bore, *, scale, units):
         bearing_width=t.length("length", required=True, **length, plausible=PLAUSIBLE["width"], what="shell width"),
         check_bore=t.length("check_bore", bore.lo / scale, **length, plausible=PLAUSIBLE["bore"],
                             what="checking-block bore"),
-        check_stress=t.number("check_stress", 100e6, **asdict(CHECK_STRESS)),
+        check_stress=check.PLAUSIBLE["check_stress"].check(t._at("check_stress"),
+                                                           t.number("check_stress", 100e6, **asdict(CHECK_STRESS))),
         assembly_temperature=temperature("assembly_temperature", 20.0),
         temperature=temperature("temperature", 20.0),
         lining_thickness=lining_thickness,
@@ -533,10 +566,11 @@ def _oil_feed(top, *, scale, units, bearing_width):
                        source="default: 0.3 MPa into a 180 deg groove in the upper shell, 15 % of the bearing wide")
     key = f"{t.where}, key oil_feed"
     kind = t.text("feed", required=True, options=FEEDS)
-    pressure = t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa")
+    pressure = check.PLAUSIBLE["oil_pressure"].check(
+        t._at("supply_pressure"), t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa"))
     source = t.source("source")
     if kind == "groove":
-        arc = t.numbers("groove_arc", [90.0, 270.0])
+        arc = check.degrees_not_radians(f"{key}.groove_arc", t.numbers("groove_arc", [90.0, 270.0]))
         if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
             raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
                              f"start < end <= start + 360")
@@ -635,8 +669,7 @@ def _crank(top, *, scale, units, bearings, extra):
         spans=np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
                                  what="crankshaft span")),
         ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
-        bearing_width=t.length("bearing_width", required=True, **length, plausible=PLAUSIBLE["width"],
-                               what="bearing width"),
+        bearing_width=_one_width(t, top.table("press_fit").get("length"), **length),
         coaxiality=t.length("coaxiality", 0.0, **length, plausible=PLAUSIBLE["misalignment"], what="coaxiality"),
         journal_runout=t.length("journal_runout", 0.0, **length, plausible=PLAUSIBLE["misalignment"],
                                 what="journal run-out"),
@@ -663,6 +696,23 @@ def _crank(top, *, scale, units, bearings, extra):
     oil.close()
     return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply,
                    supports=supports)
+
+
+#: How far crank.bearing_width may differ from press_fit.length [-]: the same width written twice (22 and
+#: 22.0, or rounded to the drawing's 0.1 mm on a 20 mm shell); more is two widths of one bearing.
+SAME_WIDTH = 5e-3
+
+
+def _one_width(t, shell_width, *, scale, units):
+    """crank.bearing_width [m]: the shell's width ``press_fit.length`` (file units); given again, it must agree."""
+    width = t.length("bearing_width", shell_width, scale=scale, units=units, plausible=PLAUSIBLE["width"],
+                     what="bearing width")
+    if "bearing_width" in t and isinstance(shell_width, (int, float)) and \
+            abs(width - shell_width * scale) > SAME_WIDTH * shell_width * scale:
+        raise ValueError(f"{t._at('bearing_width')}: {width / scale:g} {units} differs from press_fit.length "
+                         f"{shell_width:g} {units}; a bearing has one width (the shells'): give it once as "
+                         "press_fit.length and leave crank.bearing_width out")
+    return width
 
 
 def _per_bearing(t, name, *, bearings, required, lo=-math.inf, positive=False):
@@ -752,20 +802,28 @@ def _kinematics(t, *, scale, units):
     length = dict(scale=scale, units=units, plausible=PLAUSIBLE["crank"])
     stroke = t.length("stroke", required=True, **length, what="stroke")
     unbalance = t.number("counterweight_share", 0.0, lo=0.0, hi=2.0)
-    rotating = t.number("rotating_mass", required=True, lo=0.0, hi=1e4, unit=" kg")
+    bore = t.length("cylinder_bore", required=True, **length, what="cylinder bore")
+
+    def mass(name):  # per cylinder, against its bore (grams for kg refused)
+        value = t.number(name, required=True, lo=0.0, hi=1e4, unit=" kg")
+        return check.PLAUSIBLE["cylinder_mass"].check(t._at(name), value, scale=bore**-3,
+                                                      of=f" for a {bore / scale:g} {units} cylinder bore")
+
+    rotating = mass("rotating_mass")
     return _named(
         t, Kinematics,
-        cylinder_bore=t.length("cylinder_bore", required=True, **length, what="cylinder bore"),
+        cylinder_bore=bore,
         stroke=stroke,
         conrod=t.length("conrod", required=True, **length, what="connecting rod"),
-        reciprocating_mass=t.number("reciprocating_mass", required=True, lo=0.0, hi=1e4, unit=" kg"),
+        reciprocating_mass=mass("reciprocating_mass"),
         rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
 
 
 def _firing(t, cylinders):
     """Throw angles [deg] and firing order of table [crank], one per cylinder, that fire one cylinder at a time."""
     key = f"{t.where}, key crank"
-    throws = tuple(float(a) for a in t.numbers("throw_angles", required=True))
+    throws = tuple(float(a) for a in check.degrees_not_radians(f"{key}.throw_angles",
+                                                                t.numbers("throw_angles", required=True)))
     order = t.get("firing_order", required=True)
     if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
         raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")
