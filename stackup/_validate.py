@@ -383,8 +383,8 @@ RADIANS_TURN = 2.0 * math.pi
 
 def degrees_not_radians(field, angles):
     """Refuse ``angles`` [deg] that are radians: not all equal and all within one radian turn (|a| <= 2 pi)."""
-    arr = np.abs(np.asarray(angles, dtype=float))
-    if arr.size and np.ptp(arr) > 0 and arr.max() <= RADIANS_TURN + 1e-9:
+    arr = np.asarray(angles, dtype=float)
+    if arr.size and np.ptp(arr) > 0 and np.abs(arr).max() <= RADIANS_TURN + 1e-9:
         shown = ", ".join(f"{a:g}" for a in np.ravel(angles))
         raise ValueError(f"{field}: [{shown}] look like radians (all within 2 pi = 6.28); give angles in degrees "
                          f"(e.g. [{', '.join(f'{np.degrees(a):.4g}' for a in np.ravel(angles))}])")

@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .._files import UNITS as LENGTH_UNITS
+from .._validate import PLAUSIBLE
 
 #: Spellings of a missing reading in a CSV cell (compared in lower case).
 MISSING = ("", "nan", "na", "n/a", "null", "none", "-")
@@ -50,8 +51,8 @@ class Where:
         index = np.asarray(index)
         shown = [str(int(self.lines[i])) if self.lines is not None else str(int(i)) for i in index[:most]]
         more = f" and {index.size - most} more" if index.size > most else ""
-        return f"{'line' if self.lines is not None else 'index'}{'s' if index.size > 1 else ''} " \
-               f"{', '.join(shown)}{more}"
+        noun = ("line", "lines") if self.lines is not None else ("index", "indices")
+        return f"{noun[index.size > 1]} {', '.join(shown)}{more}"
 
     def sub(self, column):
         """The same source, another column."""
@@ -106,6 +107,17 @@ def read_csv(path, *, numeric=(), text=(), drop_missing=False):
     delimiter = _delimiter(rows[0][1])
     parsed = list(csv.reader([line for _, line in rows], delimiter=delimiter))
     header = [h.strip() for h in parsed[0]]
+    twice = sorted({h for h in header if h and header.count(h) > 1})
+    if twice:
+        raise ValueError(f"{name!r}: column {twice[0]!r} is given {header.count(twice[0])} times in the header "
+                         f"(line {rows[0][0]}); name each column once")
+    long = [(rows[i][0], len(row)) for i, row in enumerate(parsed[1:], start=1) if len(row) > len(header)]
+    if long:
+        line, cells = long[0]
+        shown = f" (and {len(long) - 1} more rows)" if len(long) > 1 else ""
+        comma = " (a decimal comma?)" if delimiter == "," else ""
+        raise ValueError(f"{name!r}, line {line}: {cells} cells, the header has {len(header)}{shown}; a cell too "
+                         f"many{comma} or a header column missing")
     wanted = list(numeric) + list(text)
     for column in wanted:
         if column not in header:
@@ -212,6 +224,21 @@ def plausible(x, lo, hi, where, units):
     raise ValueError(f"{where}: {far.size} value{'s' if far.size > 1 else ''} more than {FARTHEST:g} tolerance widths "
                      f"off the limits [{lo:g}, {hi:g}] {UNIT_NAMES.get(units, units)} ({where.rows(far)}: {shown}); "
                      "a typing error, another dimension's column, or wrong limits?")
+
+
+def tolerance_in_units(lo, hi, units):
+    """Refuse drawing limits [lo, hi] (in ``units``) whose tolerance no part is made to: a unit slip (mm readings
+    given with --units um), naming the unit that makes it one."""
+    plausible = PLAUSIBLE["tolerance_width"]
+    width = (hi - lo) * UNITS[units]
+    if plausible.lo <= width <= plausible.hi:
+        return
+    likely = [u for u, size in UNITS.items() if plausible.lo <= (hi - lo) * size <= plausible.hi]
+    hint = f"are the readings and limits in {UNIT_NAMES[likely[0]]} (units = {likely[0]!r})?" if likely else \
+        "are the limits right?"
+    raise ValueError(f"limits: [{lo:g}, {hi:g}] {UNIT_NAMES[units]} is a tolerance of {width:.3g} m; a drawing "
+                     f"tolerance is {plausible.lo * 1e6:g} um (ISO 286-1's IT01) to {plausible.hi * 1e3:g} mm wide: "
+                     f"{hint}")
 
 
 def enough(x, where, *, needed, units, model="a fit"):

@@ -1,0 +1,63 @@
+"""Measured data: a column named twice, a row with a cell too many, limits in the wrong unit and temperatures in
+kelvin are refused before any fit, naming the file, the column or line and what was expected (issue 51, item 3)."""
+
+import numpy as np
+import pytest
+
+from stackup.commands._options import refused_in
+from stackup.measure import calibrate_housing
+from stackup.measure._data import read_csv, tolerance_in_units
+from stackup.measure.coverage import synthetic_fitting_tests
+
+
+def test_a_column_named_twice_is_refused(tmp_path):
+    path = tmp_path / "bores.csv"
+    path.write_text("part,bore,bore\n1,50.009,50.010\n")
+    with pytest.raises(ValueError, match=r"'bores.csv': column 'bore' is given 2 times in the header \(line 1\)"):
+        read_csv(path, numeric=["bore"])
+
+
+def test_a_row_with_a_cell_too_many_is_refused_with_its_line(tmp_path):
+    path = tmp_path / "bores.csv"
+    path.write_text("# bores of block 7\nbore\n50.009\n50,011\n50.010\n")
+    with pytest.raises(ValueError, match=r"'bores.csv', line 4: 2 cells, the header has 1; a cell too many "
+                                         r"\(a decimal comma\?\)"):
+        read_csv(path, numeric=["bore"])
+    path.write_text("bore;block\n50,009;1\n")  # semicolons: the comma is a decimal comma, one cell
+    with pytest.raises(ValueError, match=r"decimals with a point"):
+        read_csv(path, numeric=["bore"])
+
+
+@pytest.mark.parametrize("lo, hi, units, likely", [
+    (50.000, 50.018, "um", "mm"),  # mm readings given as um: an 18 nm tolerance
+    (50000.0, 50018.0, "mm", "um"),  # um readings given as mm: an 18 mm tolerance
+    (0.050, 0.050018, "mm", "m"),
+    (0.065, 0.090, "um", "mm"),  # a crush height in mm given as um
+])
+def test_limits_in_the_wrong_unit_are_named(lo, hi, units, likely):
+    with pytest.raises(ValueError, match=rf"limits: .* is a tolerance of .*; a drawing tolerance is 0.3 um .* to "
+                                         rf"2 mm wide: are the readings and limits in .* \(units = '{likely}'\)\?"):
+        tolerance_in_units(lo, hi, units)
+
+
+@pytest.mark.parametrize("lo, hi, units", [(50.000, 50.018, "mm"), (65.0, 90.0, "um"), (1.970, 1.994, "mm"),
+                                           (0.05, 0.050018, "m")])
+def test_limits_of_real_parts_pass(lo, hi, units):
+    assert tolerance_in_units(lo, hi, units) is None
+
+
+def test_fitting_test_temperatures_in_kelvin_are_named():
+    tests = synthetic_fitting_tests(6, 75e-3, np.random.default_rng(3))
+    tests["temperature"] = np.asarray(tests["temperature"]) + 273.15
+    with pytest.raises(ValueError, match=r"tests\['temperature'\], indices 0, 1.*: 2\d\d.\d+ degC is not a plausible "
+                                         r"engine temperature \(-60 to 200 degC\); these look like kelvin"):
+        calibrate_housing(tests, "iso-example")
+
+
+def test_a_refusal_resting_on_the_default_engine_names_it():
+    for engine, named in (("iso-example", True), ("my.toml", False)):
+        with pytest.raises(ValueError) as refused, refused_in({}, engine=engine):
+            raise ValueError("'t.csv', column 'housing_bore': 8 values more than 10 tolerance widths off the limits")
+        assert ("(engine: iso-example, the default; give yours with --engine)" in str(refused.value)) is named
+    with pytest.raises(ValueError, match=r"^--out: exists$"), refused_in({}, engine="iso-example"):
+        raise ValueError("--out: exists")  # where output goes does not rest on the engine
