@@ -356,6 +356,11 @@ PLAUSIBLE = {
     # mass written in grams is 1000 times above.
     "cylinder_mass": Plausible(200.0, 20000.0, "kg", "mass of one cylinder's parts",
                                "give it in kg (grams / 1000)"),
+    # Peak cylinder pressure: 5-10 MPa in petrol engines, 15-25 MPa in diesels (Heywood, Internal Combustion
+    # Engine Fundamentals, 1988, ch. 9); 1 MPa is a motored engine's compression, 50 MPa above any engine's.
+    # Bar or MPa written as Pa fall below.
+    "peak_pressure": Plausible(1e6, 5e7, "Pa", "peak cylinder pressure",
+                               "give it in Pa (150 bar = 15 MPa is 15e6)"),
     # Gallery pressure of engine oil: 0.1-0.7 MPa hot in cars and trucks (relief valves open at 0.4-0.7 MPa),
     # a few MPa in large engines; 10 kPa is a pump barely turning. Bar or MPa written as Pa fall below.
     "oil_pressure": Plausible(1e4, 2e7, "Pa", "oil supply pressure",

@@ -355,8 +355,13 @@ FARTHEST_PROCESS = 1.0
 
 
 def _near_limits(field, process, lo, hi, *, scale, units):
-    """Refuse a process whose median lies more than :data:`FARTHEST_PROCESS` tolerance widths outside [lo, hi]."""
+    """Refuse a process wider than its tolerance, or whose median lies more than :data:`FARTHEST_PROCESS`
+    tolerance widths outside [lo, hi]."""
     median, width = float(process.ppf(0.5)), hi - lo
+    if process.std > width:
+        raise ValueError(f"{field}: its standard deviation {process.std / scale:.4g} {units} is wider than the "
+                         f"tolerance {width / scale:.4g} {units}: fewer than 40 % of its parts within the limits is "
+                         "no production process; is sigma in the file's units?")
     off = max(lo - median, median - hi)
     if off > FARTHEST_PROCESS * width:
         side = f"below the lower limit {lo / scale:g}" if median < lo else f"above the upper limit {hi / scale:g}"
@@ -446,9 +451,11 @@ def _press_fit(top, bore, *, scale, units):
     t = top.table("press_fit", required=True)
     length = dict(scale=scale, units=units)
 
-    def temperature(name, default):
-        value = t.number(name, default, **asdict(TEMPERATURE))
-        return value if value is None else check.PLAUSIBLE["engine_temperature"].check(t._at(name), value)
+    def temperature(name, default):  # the plausible range (kelvin named) inside the press fit's valid one
+        value = t.number(name, default)
+        if value is not None:
+            check.PLAUSIBLE["engine_temperature"].check(t._at(name), value)
+        return t.number(name, default, **asdict(TEMPERATURE))
 
     lining_thickness = t.length("lining_thickness", 0.0, **length, plausible=PLAUSIBLE["lining"],
                                 what="lining thickness")
@@ -663,7 +670,8 @@ def _crank(top, *, scale, units, bearings, extra):
         kinematics=_kinematics(t, **length),
         combustion=_named(t, Combustion, compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=40.0,
                                                                     lo_open=True),
-                          peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa")),
+                          peak_pressure=check.PLAUSIBLE["peak_pressure"].check(t._at("peak_pressure"),
+                                                                               t.number("peak_pressure", 13e6))),
         throw_angles=throws, firing_order=order,
         speed=t.number("speed", required=True, lo=10.0, hi=3e4, unit=" rpm") * 2 * np.pi / 60,
         spans=np.array(t.lengths("spans", count=cylinders, required=True, **length, plausible=PLAUSIBLE["span"],
@@ -692,6 +700,7 @@ def _crank(top, *, scale, units, bearings, extra):
         supports = _law_supports(params, bearings, spec.bearing_width)
     oil = top.table("oil")
     grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
+    check.PLAUSIBLE["engine_temperature"].check(oil._at("supply_temperature"), oil.number("supply_temperature", 90.0))
     supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
     oil.close()
     return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply,

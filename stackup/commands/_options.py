@@ -106,22 +106,21 @@ def in_options(error, options):
 
 #: The engine a command runs on without --engine.
 DEFAULT_ENGINE = "iso-example"
-#: Options whose refusals do not rest on the engine (where output goes).
-_OUTPUT_OPTIONS = ("--out", "--csv", "--force", "--figure")
 
 
 @contextlib.contextmanager
 def refused_in(options, *, engine=None):
     """Within the block, a ValueError of the library is raised again in the command's words (:func:`in_options`).
 
-    With ``engine`` the default engine (the command's --engine not given), a refusal that does not name it says
-    it rests on it: a user who forgot --engine learns which engine their data met.
+    With ``engine`` the default engine (the command's --engine not given), a refusal of data (a file, a key, a
+    scheme: not one that starts with the option it is about, --lot, --out) that does not name the engine says it
+    rests on it: a user who forgot --engine learns which engine their data met.
     """
     try:
         yield
     except ValueError as error:
         text = in_options(error, options)
-        if engine == DEFAULT_ENGINE and DEFAULT_ENGINE not in text and not text.startswith(_OUTPUT_OPTIONS):
+        if engine == DEFAULT_ENGINE and DEFAULT_ENGINE not in text and not text.startswith("--"):
             text += f" (engine: {DEFAULT_ENGINE}, the default; give yours with --engine)"
         raise ValueError(text) from None
 

@@ -59,5 +59,6 @@ def test_a_refusal_resting_on_the_default_engine_names_it():
         with pytest.raises(ValueError) as refused, refused_in({}, engine=engine):
             raise ValueError("'t.csv', column 'housing_bore': 8 values more than 10 tolerance widths off the limits")
         assert ("(engine: iso-example, the default; give yours with --engine)" in str(refused.value)) is named
-    with pytest.raises(ValueError, match=r"^--out: exists$"), refused_in({}, engine="iso-example"):
-        raise ValueError("--out: exists")  # where output goes does not rest on the engine
+    with pytest.raises(ValueError, match=r"^--lot: a lot larger than the volume$"), \
+            refused_in({"lot_engines": "--lot"}, engine="iso-example"):
+        raise ValueError("lot_engines: a lot larger than the volume")  # an option's refusal: not the engine's
