@@ -374,12 +374,16 @@ PLAUSIBLE = {
     # work to 0.1 um); above 1 mm no main-bearing part is machined.
     "process_sigma": Plausible(1e-9, 1e-3, "m", "process standard deviation",
                                "a typing error, or is `units` right?"),
-    # Width of the drawing tolerance of a main-bearing part: ISO 286-1's finest grade IT01 is 0.3 um (sizes to
-    # 3 mm), IT10 of a 3 m size 1.35 mm; main-bearing parts are made to 10-40 um. A tolerance written in the
-    # wrong one of mm and um is 1000 times off and falls outside.
-    "tolerance_width": Plausible(0.3e-6, 2e-3, "m", "drawing tolerance (upper - lower limit)",
+    # Width of the drawing tolerance of a main-bearing part: at least ISO 286-1's grade IT1, 0.8 um + 0.020 D
+    # (:data:`IT1_PER_SIZE`; a gauge block's grade: no machined part is made finer), at most IT10 of a 3 m size,
+    # 1.35 mm; main-bearing parts are made to 10-40 um. A tolerance written in the wrong one of mm and um is 1000
+    # times off, one in inches read as mm 25 times too fine: both fall outside.
+    "tolerance_width": Plausible(0.8e-6, 2e-3, "m", "drawing tolerance (upper - lower limit)",
                                  "are the units right?"),
 }
+#: How IT1 grows with the size D (ISO 286-1: IT1 = 0.8 um + 0.020 D) [-]: the lower end of a tolerance width is
+#: ``PLAUSIBLE["tolerance_width"].lo + IT1_PER_SIZE * D``.
+IT1_PER_SIZE = 0.020e-3
 #: Angles are degrees throughout; a list of throw angles or a groove arc that fits within one radian turn
 #: (2 pi = 6.28) is taken for radians: distinct throws of an engine of at most 29 cylinders lie at least
 #: 360/29 = 12.4 deg apart (even firing), a groove spans tens of degrees.

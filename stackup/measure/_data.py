@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .._files import UNITS as LENGTH_UNITS
-from .._validate import PLAUSIBLE
+from .._validate import IT1_PER_SIZE, PLAUSIBLE
 
 #: Spellings of a missing reading in a CSV cell (compared in lower case).
 MISSING = ("", "nan", "na", "n/a", "null", "none", "-")
@@ -33,6 +33,8 @@ MIN_DISTINCT = 4
 UNIT_NAMES = {"m": "m", "mm": "mm", "um": "µm"}
 #: Their sizes [m per unit], from the one table of length units.
 UNITS = {unit: LENGTH_UNITS[unit] for unit in UNIT_NAMES}
+#: An inch [m]: not a unit measured data may be written in, but one they are found in.
+INCH = 25.4e-3
 
 
 @dataclass(frozen=True)
@@ -221,6 +223,11 @@ def plausible(x, lo, hi, where, units):
                              f" like {UNIT_NAMES[unit]}, not {UNIT_NAMES.get(units, units)} like the limits "
                              f"[{lo:g}, {hi:g}] ({where.rows(far)}: {shown}); give every value and the limits in "
                              "one unit")
+    inches = x[far] * INCH / UNITS.get(units, 1.0)
+    if np.all((inches >= lo - FARTHEST * width) & (inches <= hi + FARTHEST * width)):
+        raise ValueError(f"{where}: {far.size} value{'s' if far.size > 1 else ''} look{'s' if far.size == 1 else ''} "
+                         f"like inches, not {UNIT_NAMES.get(units, units)} like the limits [{lo:g}, {hi:g}] "
+                         f"({where.rows(far)}: {shown}); give them in {UNIT_NAMES.get(units, units)} (inches x 25.4)")
     raise ValueError(f"{where}: {far.size} value{'s' if far.size > 1 else ''} more than {FARTHEST:g} tolerance widths "
                      f"off the limits [{lo:g}, {hi:g}] {UNIT_NAMES.get(units, units)} ({where.rows(far)}: {shown}); "
                      "a typing error, another dimension's column, or wrong limits?")
@@ -230,15 +237,24 @@ def tolerance_in_units(lo, hi, units):
     """Refuse drawing limits [lo, hi] (in ``units``) whose tolerance no part is made to: a unit slip (mm readings
     given with --units um), naming the unit that makes it one."""
     plausible = PLAUSIBLE["tolerance_width"]
-    width = (hi - lo) * UNITS[units]
-    if plausible.lo <= width <= plausible.hi:
+
+    def fits(size):  # the limits read in a unit of `size` m: a tolerance no finer than IT1 of that size
+        width, big = (hi - lo) * size, max(abs(lo), abs(hi)) * size
+        return plausible.lo + IT1_PER_SIZE * big <= width <= plausible.hi
+
+    if fits(UNITS[units]):
         return
-    likely = [u for u, size in UNITS.items() if plausible.lo <= (hi - lo) * size <= plausible.hi]
-    hint = f"are the readings and limits in {UNIT_NAMES[likely[0]]} (units = {likely[0]!r})?" if likely else \
-        "are the limits right?"
-    raise ValueError(f"limits: [{lo:g}, {hi:g}] {UNIT_NAMES[units]} is a tolerance of {width:.3g} m; a drawing "
-                     f"tolerance is {plausible.lo * 1e6:g} um (ISO 286-1's IT01) to {plausible.hi * 1e3:g} mm wide: "
-                     f"{hint}")
+    # the likelier slips first: um and mm swapped, inches, then metres (a part of metres is rare)
+    likely = [u for u in ("um", "mm", "in", "m") if u != units and fits(INCH if u == "in" else UNITS[u])]
+    hint = "are the limits right?"
+    if likely and likely[0] == "in":
+        hint = "are the readings and limits in inches? give them in mm (inches x 25.4)"
+    elif likely:
+        hint = f"are the readings and limits in {UNIT_NAMES[likely[0]]} (units = {likely[0]!r})?"
+    size = max(abs(lo), abs(hi)) * UNITS[units]
+    raise ValueError(f"limits: [{lo:g}, {hi:g}] {UNIT_NAMES[units]} is a tolerance of {(hi - lo) * UNITS[units]:.3g} "
+                     f"m; a drawing tolerance of a part of {size:.3g} m is {plausible.lo + IT1_PER_SIZE * size:.2g} m "
+                     f"(ISO 286-1's IT1) to {plausible.hi * 1e3:g} mm wide: {hint}")
 
 
 def enough(x, where, *, needed, units, model="a fit"):

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from stackup.commands._options import refused_in
-from stackup.measure import calibrate_housing
+from stackup.measure import calibrate_housing, fit_csv
 from stackup.measure._data import read_csv, tolerance_in_units
 from stackup.measure.coverage import synthetic_fitting_tests
 
@@ -33,10 +33,13 @@ def test_a_row_with_a_cell_too_many_is_refused_with_its_line(tmp_path):
     (50000.0, 50018.0, "mm", "um"),  # um readings given as mm: an 18 mm tolerance
     (0.050, 0.050018, "mm", "m"),
     (0.065, 0.090, "um", "mm"),  # a crush height in mm given as um
+    (1.9685, 1.9692, "mm", "in"),  # a 50 mm bore's limits in inches
 ])
 def test_limits_in_the_wrong_unit_are_named(lo, hi, units, likely):
-    with pytest.raises(ValueError, match=rf"limits: .* is a tolerance of .*; a drawing tolerance is 0.3 um .* to "
-                                         rf"2 mm wide: are the readings and limits in .* \(units = '{likely}'\)\?"):
+    said = "inches" if likely == "in" else rf".* \(units = '{likely}'\)"
+    with pytest.raises(ValueError, match=rf"limits: .* is a tolerance of .*; a drawing tolerance of a part of .* m is "
+                                         rf".* m \(ISO 286-1's IT1\) to 2 mm wide: are the readings and limits in "
+                                         rf"{said}"):
         tolerance_in_units(lo, hi, units)
 
 
@@ -44,6 +47,14 @@ def test_limits_in_the_wrong_unit_are_named(lo, hi, units, likely):
                                            (0.05, 0.050018, "m")])
 def test_limits_of_real_parts_pass(lo, hi, units):
     assert tolerance_in_units(lo, hi, units) is None
+
+
+def test_readings_in_inches_against_limits_in_mm_are_named(tmp_path):
+    path = tmp_path / "bores.csv"
+    path.write_text("bore\n" + "\n".join(f"{(50.009 + 0.002 * z) / 25.4:.5f}" for z in np.linspace(-2, 2, 30)))
+    with pytest.raises(ValueError, match=r"'bores.csv', column 'bore': 30 values look like inches, not mm like the "
+                                         r"limits \[50, 50.018\] .*; give them in mm \(inches x 25.4\)"):
+        fit_csv(path, "bore", limits=(50.0, 50.018), units="mm", resamples=100)
 
 
 def test_fitting_test_temperatures_in_kelvin_are_named():
