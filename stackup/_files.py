@@ -60,6 +60,8 @@ def read_toml(path, *, kind):
     if not path.is_file():
         raise ValueError(f"{where}: does not exist")
     raw = path.read_bytes()
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # what some editors save as "Unicode"
+        raise ValueError(f"{where}: is UTF-16 text (its byte-order mark says so); save it as UTF-8")
     if b"\x00" in raw:
         raise ValueError(f"{where}: is a binary file, not TOML text")
     try:

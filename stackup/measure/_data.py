@@ -98,6 +98,8 @@ def read_csv(path, *, numeric=(), text=(), drop_missing=False):
     if not path.is_file():
         raise ValueError(f"{str(path)!r}: {'is a folder' if path.is_dir() else 'does not exist'}; give a CSV file")
     raw = path.read_bytes()
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # what spreadsheets save as "Unicode text"
+        raise ValueError(f"{name!r}: is UTF-16 text (its byte-order mark says so); save it as UTF-8 CSV")
     try:
         body = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
@@ -113,7 +115,9 @@ def read_csv(path, *, numeric=(), text=(), drop_missing=False):
     if twice:
         raise ValueError(f"{name!r}: column {twice[0]!r} is given {header.count(twice[0])} times in the header "
                          f"(line {rows[0][0]}); name each column once")
-    long = [(rows[i][0], len(row)) for i, row in enumerate(parsed[1:], start=1) if len(row) > len(header)]
+    # a row's cells beyond the header's: refused unless empty (a trailing delimiter, as some exports write)
+    long = [(rows[i][0], len(row)) for i, row in enumerate(parsed[1:], start=1)
+            if any(cell.strip() for cell in row[len(header):])]
     if long:
         line, cells = long[0]
         shown = f" (and {len(long) - 1} more rows)" if len(long) > 1 else ""

@@ -23,6 +23,8 @@ def test_a_row_with_a_cell_too_many_is_refused_with_its_line(tmp_path):
     with pytest.raises(ValueError, match=r"'bores.csv', line 4: 2 cells, the header has 1; a cell too many "
                                          r"\(a decimal comma\?\)"):
         read_csv(path, numeric=["bore"])
+    path.write_text("bore,\n50.009,\n50.010\n")  # a trailing delimiter: an empty cell, no value lost
+    assert read_csv(path, numeric=["bore"]).values["bore"].tolist() == [50.009, 50.010]
     path.write_text("bore;block\n50,009;1\n")  # semicolons: the comma is a decimal comma, one cell
     with pytest.raises(ValueError, match=r"decimals with a point"):
         read_csv(path, numeric=["bore"])

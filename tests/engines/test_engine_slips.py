@@ -74,6 +74,12 @@ def test_a_utf8_byte_order_mark_is_accepted(tmp_path):
         (builtin.housing_bore, builtin.press_fit, builtin.crank.throw_angles)
 
 
+def test_a_utf16_file_is_named_as_such(tmp_path):
+    path = engine_file(tmp_path, "name = ", "name = ", encoding="utf-16")
+    with pytest.raises(ValueError, match=r"engine file '.*engine.toml': is UTF-16 text .*; save it as UTF-8"):
+        load_engine(path)
+
+
 def test_a_scheme_file_given_as_the_engine_and_back_is_named():
     with pytest.raises(ValueError, match=r"engine file 'iso13778-4.toml': is a scheme file \(it has \[housing\], "
                                          r"\[journal\], \[shell\], \[pairing\]\), not an engine file; give it as a "
