@@ -68,6 +68,8 @@ def read_toml(path, *, kind):
         text = raw.decode("utf-8-sig")  # the byte-order mark some editors write first is no part of the TOML
     except UnicodeDecodeError as error:
         raise ValueError(f"{where}: is not UTF-8 text (byte {error.start}); save it as UTF-8 TOML") from None
+    if path.suffix.lower() in (".csv", ".tsv", ".txt", ".xlsx", ".xls"):  # measured data given as a file to read
+        raise ValueError(f"{where}: is a {path.suffix} file, not a TOML {kind} file; give the {kind}'s .toml file")
     return parse_toml(text, where=f"{kind} file {path.name!r}"), text
 
 

@@ -397,6 +397,10 @@ def _engine(top, *, name, extra):
     if scheme_tables and "main_bearings" not in top:
         raise ValueError(f"{top.where}: is a scheme file (it has {', '.join(f'[{k}]' for k in scheme_tables)}), not "
                          "an engine file; give it as a scheme (compare --schemes, plan --scheme)")
+    if not any(k in top for k in ("main_bearings", "housing_bore", "journal_d")):
+        has = ", ".join(list(top.data)[:6]) + (", ..." if len(top.data) > 6 else "")
+        raise ValueError(f"{top.where}: is not an engine file (none of main_bearings, [housing_bore], [journal_d]; "
+                         f"it has {has}); an engine file is described in docs/engine-file.md")
     units, scale = units_of(top)
     length = dict(scale=scale, units=units)
     bearings = top.integer("main_bearings", required=True, lo=1, hi=30)

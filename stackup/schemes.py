@@ -604,6 +604,10 @@ def _from_dict(data, *, where, path):
     if engine_keys and not any(k in top for k in ("housing", "journal", "shell", "pairing")):
         raise ValueError(f"{where}: is an engine file (it has {', '.join(engine_keys)}), not a scheme file; give it "
                          "as the engine (--engine)")
+    if isinstance(data, dict) and not any(k in data for k in ("housing", "journal", "shell", "pairing")):
+        has = ", ".join(list(data)[:6]) + (", ..." if len(data) > 6 else "")
+        raise ValueError(f"{where}: is not a scheme file (none of [housing], [journal], [shell], [pairing]; it has "
+                         f"{has}); a scheme file is described in the docstring of stackup.schemes")
     units = top.text("units", required=True, options=_UNIT_NAMES)
     scale = UNITS[units]
     name = top.text("name", Path(path).stem)

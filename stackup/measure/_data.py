@@ -97,6 +97,8 @@ def read_csv(path, *, numeric=(), text=(), drop_missing=False):
     name = path.name
     if not path.is_file():
         raise ValueError(f"{str(path)!r}: {'is a folder' if path.is_dir() else 'does not exist'}; give a CSV file")
+    if path.suffix.lower() == ".toml":  # an engine or scheme file given where the readings go
+        raise ValueError(f"{name!r}: is a TOML file (an engine or scheme file?), not a CSV file of readings")
     raw = path.read_bytes()
     if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # what spreadsheets save as "Unicode text"
         raise ValueError(f"{name!r}: is UTF-16 text (its byte-order mark says so); save it as UTF-8 CSV")

@@ -92,6 +92,19 @@ def test_a_scheme_file_given_as_the_engine_and_back_is_named():
         load_scheme(builtin_folder() / "iso-example.toml")
 
 
+def test_a_file_of_another_kind_is_named(tmp_path):
+    materials = builtin_folder().parent / "materials.toml"
+    with pytest.raises(ValueError, match=r"engine file 'materials.toml': is not an engine file \(none of main_bearings, "
+                                         r"\[housing_bore\], \[journal_d\]; it has units, steel, steel-back"):
+        load_engine(materials)
+    with pytest.raises(ValueError, match=r"scheme file 'materials.toml': is not a scheme file \(none of \[housing\]"):
+        load_scheme(materials)
+    readings = tmp_path / "bores.csv"
+    readings.write_text("bore\n50.009\n")
+    with pytest.raises(ValueError, match=r"engine file '.*bores.csv': is a .csv file, not a TOML engine file"):
+        load_engine(readings)
+
+
 @pytest.mark.parametrize("path", [*sorted(builtin_folder().glob("*.toml")), *sorted(DATA.glob("*.toml"))],
                          ids=lambda p: p.name)
 def test_every_builtin_engine_and_test_file_passes_the_plausibility_checks(path):

@@ -30,6 +30,14 @@ def test_a_row_with_a_cell_too_many_is_refused_with_its_line(tmp_path):
         read_csv(path, numeric=["bore"])
 
 
+def test_an_engine_file_given_as_readings_is_named():
+    from stackup.engines import builtin_folder
+
+    with pytest.raises(ValueError, match=r"'iso-example.toml': is a TOML file \(an engine or scheme file\?\), not a "
+                                         r"CSV file of readings"):
+        read_csv(builtin_folder() / "iso-example.toml", numeric=["bore"])
+
+
 @pytest.mark.parametrize("lo, hi, units, likely", [
     (50.000, 50.018, "um", "mm"),  # mm readings given as um: an 18 nm tolerance
     (50000.0, 50018.0, "mm", "um"),  # um readings given as mm: an 18 mm tolerance
