@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from stackup.commands._options import refused_in
+from stackup.engines import builtin_folder
 from stackup.measure import calibrate_housing, fit_csv
 from stackup.measure._data import read_csv, tolerance_in_units
 from stackup.measure.coverage import synthetic_fitting_tests
@@ -31,8 +32,6 @@ def test_a_row_with_a_cell_too_many_is_refused_with_its_line(tmp_path):
 
 
 def test_an_engine_file_given_as_readings_is_named():
-    from stackup.engines import builtin_folder
-
     with pytest.raises(ValueError, match=r"'iso-example.toml': is a TOML file \(an engine or scheme file\?\), not a "
                                          r"CSV file of readings"):
         read_csv(builtin_folder() / "iso-example.toml", numeric=["bore"])
