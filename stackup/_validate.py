@@ -361,6 +361,14 @@ PLAUSIBLE = {
     # Bar or MPa written as Pa fall below.
     "peak_pressure": Plausible(1e6, 5e7, "Pa", "peak cylinder pressure",
                                "give it in Pa (150 bar = 15 MPa is 15e6)"),
+    # A bearing life asked for [h]: hundreds of hours (a test bed) to a few hundred thousand (a stationary
+    # diesel's life between overhauls); 1e6 h is 114 years of running. A life in seconds is 3600 times above.
+    "life_hours": Plausible(1.0, 1e6, "h", "bearing life target", "give it in hours (seconds / 3600)"),
+    # The block's compliance at a main bearing [um/kN]: 0.2-2.5 in the built-in engines (Bellakhdhar et al.'s
+    # 0.98 and 1.72 kN/um, an aluminium block's 2.4 um/kN); 0.01-100 takes any block in. A compliance in m/N or
+    # mm/N falls below, a stiffness in N/um above.
+    "support_compliance": Plausible(0.01, 100.0, "um/kN", "housing compliance",
+                                    "give it in um/kN (the inverse of a stiffness in kN/um)"),
     # Gallery pressure of engine oil: 0.1-0.7 MPa hot in cars and trucks (relief valves open at 0.4-0.7 MPa),
     # a few MPa in large engines; 10 kPa is a pump barely turning. Bar or MPa written as Pa fall below.
     "oil_pressure": Plausible(1e4, 2e7, "Pa", "oil supply pressure",

@@ -652,6 +652,7 @@ def _targets(top, *, scale, units, journal):
         out["clearance_window_source"] = source
     hours = t.number("life_hours", None, lo=0.0, hi=1e7, lo_open=True, unit=" h")
     if hours is not None:
+        check.PLAUSIBLE["life_hours"].check(t._at("life_hours"), hours)
         out["life_target"] = hours * 3600.0
     t.close()
     return out
@@ -759,6 +760,8 @@ def _supports(top, *, scale, units, bearings, block, ring):
         return None
     t = top.table("supports")
     linear = _per_bearing(t, "linear_compliance_um_per_kN", bearings=bearings, required=True, lo=0.0, positive=True)
+    for value in (linear.min(), linear.max()):
+        check.PLAUSIBLE["support_compliance"].check(t._at("linear_compliance_um_per_kN"), value)
     angular = _per_bearing(t, "angular_compliance_urad_per_Nm", bearings=bearings, required=False, lo=0.0)
     bulkhead = t.optional("bulkhead")
     where = f"{t.where}, key {t.key('angular_compliance_urad_per_Nm')}"
