@@ -339,11 +339,27 @@ class Plausible:
         return value
 
 
-#: What a physical input of an engine file or of measured data can be; lengths are the engine files' table
-#: (:data:`stackup.engines.PLAUSIBLE`). Each range is wide enough for every engine from a motorcycle to a marine
-#: diesel and narrow enough that the slips users make (grams for kg, Pa for MPa, kelvin for degC, um for mm,
-#: radians for degrees) fall outside it.
+def _length(lo, hi, what):
+    return Plausible(lo, hi, "m", what, "is `units` right?")
+
+
+#: What a physical input of an engine file or of measured data can be: the one table of plausible ranges (the
+#: lengths of engine files, [m], are :data:`stackup.engines.PLAUSIBLE` as (lo, hi) pairs). Each range is wide
+#: enough for every engine from a motorcycle to a marine diesel and narrow enough that the slips users make
+#: (grams for kg, Pa for MPa, kelvin for degC, um for mm, radians for degrees) fall outside it.
 PLAUSIBLE = {
+    # Lengths an engine file gives [m]: a part's size from a 5 mm bore to a 2 m one, a housing ring to 5 m, a
+    # shell's crush height 5 um to 1 mm, a crankshaft's spans and throws 20 mm to 2 m (5 m for its train), a
+    # bearing 2 mm to 0.5 m wide; errors of form and position (misalignment, law transition, roughness, wear) of
+    # micrometres, a window of the operating clearance 2 um to 2 mm. A length in the wrong unit is 1000 times off.
+    "bore": _length(5e-3, 2.0, "diameter"), "crush": _length(5e-6, 1e-3, "crush height"),
+    "wall_sigma": _length(1e-9, 50e-6, "shell wall process standard deviation"),
+    "ring": _length(5e-3, 5.0, "housing ring size"), "width": _length(2e-3, 0.5, "bearing width"),
+    "lining": _length(0.0, 3e-3, "lining thickness"), "crank": _length(0.02, 5.0, "crank train length"),
+    "span": _length(0.02, 2.0, "crankshaft span"), "misalignment": _length(0.0, 0.5e-3, "misalignment"),
+    "law_dx": _length(0.0, 1e-3, "law transition"), "roughness": _length(10e-9, 20e-6, "surface roughness"),
+    "wear": _length(1e-7, 1e-3, "limiting wear"), "groove": _length(0.0, 0.1, "oil feed size"),
+    "window": _length(2e-6, 2e-3, "operating clearance"),
     # Kopeliovich (Crush height of engine bearings, sec. 3): the crush check's standard load is 100 MPa on the
     # steel-equivalent section; checks are made between a few tens and a few hundreds of MPa; no shell steel
     # holds 1 GPa. 100 (MPa written as Pa) is 1e6 times below.

@@ -381,11 +381,9 @@ def _near_limits(field, process, lo, hi, *, scale, units):
 #: (physics.md sec. 3), a cooled or warming journal below; a plausibility bound, as :data:`PLAUSIBLE` is for
 #: lengths.
 JOURNAL_TEMPERATURE_EXCESS = check.InRange(-50.0, 100.0, unit=" K")
-#: Sizes a length may have [m], for the plausibility checks of engine files.
-PLAUSIBLE = {"bore": (5e-3, 2.0), "crush": (5e-6, 1e-3), "wall_sigma": (1e-9, 50e-6), "ring": (5e-3, 5.0),
-             "width": (2e-3, 0.5), "lining": (0.0, 3e-3), "crank": (0.02, 5.0), "span": (0.02, 2.0),
-             "misalignment": (0.0, 0.5e-3), "law_dx": (0.0, 1e-3), "roughness": (10e-9, 20e-6),
-             "wear": (1e-7, 1e-3), "groove": (0.0, 0.1), "window": (2e-6, 2e-3)}
+#: Sizes a length may have [m], for the plausibility checks of engine files: the lengths of the one table of
+#: plausible ranges, :data:`stackup._validate.PLAUSIBLE`, as (lo, hi).
+PLAUSIBLE = {name: (r.lo, r.hi) for name, r in check.PLAUSIBLE.items() if r.unit == "m"}
 
 
 #: Top-level tables of a scheme file (:mod:`stackup.schemes`) that no engine file has.
