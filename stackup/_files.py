@@ -60,17 +60,22 @@ def read_toml(path, *, kind):
     if not path.is_file():
         raise ValueError(f"{where}: does not exist")
     raw = path.read_bytes()
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # what some editors save as "Unicode"
+        raise ValueError(f"{where}: is UTF-16 text (its byte-order mark says so); save it as UTF-8")
     if b"\x00" in raw:
         raise ValueError(f"{where}: is a binary file, not TOML text")
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # the byte-order mark some editors write first is no part of the TOML
     except UnicodeDecodeError as error:
         raise ValueError(f"{where}: is not UTF-8 text (byte {error.start}); save it as UTF-8 TOML") from None
+    if path.suffix.lower() in (".csv", ".tsv", ".txt", ".xlsx", ".xls"):  # measured data given as a file to read
+        raise ValueError(f"{where}: is a {path.suffix} file, not a TOML {kind} file; give the {kind}'s .toml file")
     return parse_toml(text, where=f"{kind} file {path.name!r}"), text
 
 
 def parse_toml(text, *, where):
     """The table of a TOML text, or a ValueError naming ``where`` and the line."""
+    text = text.removeprefix("\ufeff")  # a byte-order mark, as read_toml drops it (a text stored with it)
     if not text.strip():
         raise ValueError(f"{where}: is empty")
     try:

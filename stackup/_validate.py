@@ -307,3 +307,118 @@ def renamed(**old_to_new):
         return call
 
     return decorate
+
+
+# --- plausible sizes of physical inputs -----------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Plausible:
+    """The range [lo, hi] a physical input can have, in ``unit``, and why; a value outside is refused as a slip.
+
+    ``hint`` says which slip a value outside most likely is (grams for kg, MPa for Pa, ...).
+    """
+
+    lo: float
+    hi: float
+    unit: str
+    what: str
+    hint: str
+
+    def check(self, field, value, *, scale=1.0, of="", unit=None):
+        """``value`` if inside, else a one-line refusal naming ``field``, the value, the range and the hint.
+
+        ``scale`` times the value is compared, in :attr:`unit` (a length in a file's ``unit``, or a ratio to
+        another input: a mass per bore cubed); ``of`` is said after the quantity's name (" for a 76 mm
+        cylinder bore").
+        """
+        number = float(value)
+        unit = unit or self.unit
+        if not self.lo <= number * scale <= self.hi:
+            raise ValueError(f"{field}: {number:g} {unit} is not a plausible {self.what}{of} "
+                             f"({self.lo / scale:.3g} to {self.hi / scale:.3g} {unit}); {self.hint}")
+        return value
+
+
+def _length(lo, hi, what):
+    return Plausible(lo, hi, "m", what, "is `units` right?")
+
+
+#: What a physical input of an engine file or of measured data can be: the one table of plausible ranges (the
+#: lengths of engine files, [m], are :data:`stackup.engines.PLAUSIBLE` as (lo, hi) pairs). Each range is wide
+#: enough for every engine from a motorcycle to a marine diesel and narrow enough that the slips users make
+#: (grams for kg, Pa for MPa, kelvin for degC, um for mm, radians for degrees) fall outside it.
+PLAUSIBLE = {
+    # Lengths an engine file gives [m]: a part's size from a 5 mm bore to a 2 m one, a housing ring to 5 m, a
+    # shell's crush height 5 um to 1 mm, a crankshaft's spans and throws 20 mm to 2 m (5 m for its train), a
+    # bearing 2 mm to 0.5 m wide; errors of form and position (misalignment, law transition, roughness, wear) of
+    # micrometres, a window of the operating clearance 2 um to 2 mm. A length in the wrong unit is 1000 times off.
+    "bore": _length(5e-3, 2.0, "diameter"), "crush": _length(5e-6, 1e-3, "crush height"),
+    "wall_sigma": _length(1e-9, 50e-6, "shell wall process standard deviation"),
+    "ring": _length(5e-3, 5.0, "housing ring size"), "width": _length(2e-3, 0.5, "bearing width"),
+    "lining": _length(0.0, 3e-3, "lining thickness"), "crank": _length(0.02, 5.0, "crank train length"),
+    "span": _length(0.02, 2.0, "crankshaft span"), "misalignment": _length(0.0, 0.5e-3, "misalignment"),
+    "law_dx": _length(0.0, 1e-3, "law transition"), "roughness": _length(10e-9, 20e-6, "surface roughness"),
+    "wear": _length(1e-7, 1e-3, "limiting wear"), "groove": _length(0.0, 0.1, "oil feed size"),
+    "window": _length(2e-6, 2e-3, "operating clearance"),
+    # Kopeliovich (Crush height of engine bearings, sec. 3): the crush check's standard load is 100 MPa on the
+    # steel-equivalent section; checks are made between a few tens and a few hundreds of MPa; no shell steel
+    # holds 1 GPa. 100 (MPa written as Pa) is 1e6 times below.
+    "check_stress": Plausible(10e6, 1e9, "Pa", "crush-check stress",
+                              "give it in Pa, not MPa (100 MPa is 100e6)"),
+    # The reciprocating (piston, pin, rings, small end) and rotating (big end) masses of one cylinder, per cubic
+    # metre of its bore cubed: a motorcycle's 67 mm piston set of 0.3 kg is 1000 kg/m^3, the example engine's
+    # 0.75 kg on 76 mm 1700, a truck diesel's 4.5 kg on 130 mm 2000, a medium-speed diesel's 150 kg on
+    # 320 mm 4600; a solid steel cylinder as long as its bore is 6200. 200-20000 takes every engine in; a
+    # mass written in grams is 1000 times above.
+    "cylinder_mass": Plausible(200.0, 20000.0, "kg", "mass of one cylinder's parts",
+                               "give it in kg (grams / 1000)"),
+    # Peak cylinder pressure: 5-10 MPa in petrol engines, 15-25 MPa in diesels (Heywood, Internal Combustion
+    # Engine Fundamentals, 1988, ch. 9); 1 MPa is a motored engine's compression, 50 MPa above any engine's.
+    # Bar or MPa written as Pa fall below.
+    "peak_pressure": Plausible(1e6, 5e7, "Pa", "peak cylinder pressure",
+                               "give it in Pa (150 bar = 15 MPa is 15e6)"),
+    # A bearing life asked for [h]: hundreds of hours (a test bed) to a few hundred thousand (a stationary
+    # diesel's life between overhauls); 1e6 h is 114 years of running. A life in seconds is 3600 times above.
+    "life_hours": Plausible(1.0, 1e6, "h", "bearing life target", "give it in hours (seconds / 3600)"),
+    # The block's compliance at a main bearing [um/kN]: 0.2-2.5 in the built-in engines (Bellakhdhar et al.'s
+    # 0.98 and 1.72 kN/um, an aluminium block's 2.4 um/kN); 0.01-100 takes any block in. A compliance in m/N or
+    # mm/N falls below, a stiffness in N/um above.
+    "support_compliance": Plausible(0.01, 100.0, "um/kN", "housing compliance",
+                                    "give it in um/kN (the inverse of a stiffness in kN/um)"),
+    # Gallery pressure of engine oil: 0.1-0.7 MPa hot in cars and trucks (relief valves open at 0.4-0.7 MPa),
+    # a few MPa in large engines; 10 kPa is a pump barely turning. Bar or MPa written as Pa fall below.
+    "oil_pressure": Plausible(1e4, 2e7, "Pa", "oil supply pressure",
+                              "give it in Pa (0.35 MPa = 3.5 bar is 0.35e6)"),
+    # Temperatures of an engine's housing, shells and journals: from a -60 degC cold start to the hottest
+    # main bearing, below 200 degC (engine oil and aluminium-tin linings are rated to about 150-180 degC). Any
+    # real temperature written in kelvin (-60 degC is 213 K) is above it.
+    "engine_temperature": Plausible(-60.0, 200.0, "degC", "engine temperature",
+                                    "give it in degC (kelvin - 273.15)"),
+    # A process's standard deviation: below 1 nm no length gauge resolves it (the finest machining and gauges
+    # work to 0.1 um); above 1 mm no main-bearing part is machined.
+    "process_sigma": Plausible(1e-9, 1e-3, "m", "process standard deviation",
+                               "a typing error, or is `units` right?"),
+    # Width of the drawing tolerance of a main-bearing part: at least ISO 286-1's grade IT1, 0.8 um + 0.020 D
+    # (:data:`IT1_PER_SIZE`; a gauge block's grade: no machined part is made finer), at most IT10 of a 3 m size,
+    # 1.35 mm; main-bearing parts are made to 10-40 um. A tolerance written in the wrong one of mm and um is 1000
+    # times off, one in inches read as mm 25 times too fine: both fall outside.
+    "tolerance_width": Plausible(0.8e-6, 2e-3, "m", "drawing tolerance (upper - lower limit)",
+                                 "are the units right?"),
+}
+#: How IT1 grows with the size D (ISO 286-1: IT1 = 0.8 um + 0.020 D) [-]: the lower end of a tolerance width is
+#: ``PLAUSIBLE["tolerance_width"].lo + IT1_PER_SIZE * D``.
+IT1_PER_SIZE = 0.020e-3
+#: Angles are degrees throughout; a list of throw angles or a groove arc that fits within one radian turn
+#: (2 pi = 6.28) is taken for radians: distinct throws of an engine of at most 29 cylinders lie at least
+#: 360/29 = 12.4 deg apart (even firing), a groove spans tens of degrees.
+RADIANS_TURN = 2.0 * math.pi
+
+
+def degrees_not_radians(field, angles):
+    """Refuse ``angles`` [deg] that are radians: not all equal and all within one radian turn (|a| <= 2 pi)."""
+    arr = np.asarray(angles, dtype=float)
+    if arr.size and np.ptp(arr) > 0 and np.abs(arr).max() <= RADIANS_TURN + 1e-9:
+        shown = ", ".join(f"{a:g}" for a in np.ravel(angles))
+        raise ValueError(f"{field}: [{shown}] look like radians (all within 2 pi = 6.28); give angles in degrees "
+                         f"(e.g. [{', '.join(f'{np.degrees(a):.4g}' for a in np.ravel(angles))}])")
+    return angles

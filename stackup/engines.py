@@ -343,6 +343,7 @@ def _dimension(top, key, *, scale, units, plausible, what, required=True):
                        increasing=True)
     field = f"{t.where}, key {t.path}"
     process = process_from_spec(t.get("process", required=True), lo=lo, hi=hi, scale=scale, field=f"{field}.process")
+    _near_limits(f"{field}.process", process, lo, hi, scale=scale, units=units)
     gauge_table = t.get("gauge")
     gauge = gauge_from_spec(gauge_table, scale=scale, field=f"{field}.gauge")
     shared = t.number("shared", 0.0, lo=0.0, hi=1.0, hi_open=True)
@@ -359,19 +360,56 @@ def _dimension(top, key, *, scale, units, plausible, what, required=True):
     return Dimension(key, lo, hi, process, gauge, shared, form=form, bolt_scatter=bolt, source=source)
 
 
+#: Largest share of the shell wall a lining may take [-]: the steel back carries the crush and is most of the wall
+#: (Kopeliovich's bimetal example: 0.3 mm of copper-lead on a 1.594 mm wall, 19 %; the built-in engines 0.3 mm on
+#: about 2 mm); a lining of half the wall or more is no steel-backed shell.
+LINING_SHARE = 0.5
+
+
+#: Farthest a process's median may lie outside its drawing limits, in tolerance widths: one width out, more
+#: than half the parts are scrap whatever the spread; farther, the mean is a typing or unit error, not a process.
+FARTHEST_PROCESS = 1.0
+
+
+def _near_limits(field, process, lo, hi, *, scale, units):
+    """Refuse a process wider than its tolerance, or whose median lies more than :data:`FARTHEST_PROCESS`
+    tolerance widths outside [lo, hi]."""
+    median, width = float(process.ppf(0.5)), hi - lo
+    if process.std > width:
+        raise ValueError(f"{field}: its standard deviation {process.std / scale:.4g} {units} is wider than the "
+                         f"tolerance {width / scale:.4g} {units}: fewer than 40 % of its parts within the limits is "
+                         "no production process; is sigma in the file's units?")
+    off = max(lo - median, median - hi)
+    if off > FARTHEST_PROCESS * width:
+        side = f"below the lower limit {lo / scale:g}" if median < lo else f"above the upper limit {hi / scale:g}"
+        raise ValueError(f"{field}: its median {median / scale:.6g} {units} lies {off / scale:.4g} {units} "
+                         f"({off / width:.3g} tolerance widths) {side} {units}; a process sits near its drawing "
+                         f"limits (within {FARTHEST_PROCESS:g} tolerance width): is the mean mistyped?")
+
+
 #: How much hotter than its housing a journal may run in service [K] (an engine file's
 #: ``press_fit.journal_temperature_excess``, a scenario's): journals often run 10-20 K above their bulkheads
 #: (physics.md sec. 3), a cooled or warming journal below; a plausibility bound, as :data:`PLAUSIBLE` is for
 #: lengths.
 JOURNAL_TEMPERATURE_EXCESS = check.InRange(-50.0, 100.0, unit=" K")
-#: Sizes a length may have [m], for the plausibility checks of engine files.
-PLAUSIBLE = {"bore": (5e-3, 2.0), "crush": (5e-6, 1e-3), "wall_sigma": (1e-9, 50e-6), "ring": (5e-3, 5.0),
-             "width": (2e-3, 0.5), "lining": (0.0, 3e-3), "crank": (0.02, 5.0), "span": (0.02, 2.0),
-             "misalignment": (0.0, 0.5e-3), "law_dx": (0.0, 1e-3), "roughness": (10e-9, 20e-6),
-             "wear": (1e-7, 1e-3), "groove": (0.0, 0.1), "window": (2e-6, 2e-3)}
+#: Sizes a length may have [m], for the plausibility checks of engine files: the lengths of the one table of
+#: plausible ranges, :data:`stackup._validate.PLAUSIBLE`, as (lo, hi).
+PLAUSIBLE = {name: (r.lo, r.hi) for name, r in check.PLAUSIBLE.items() if r.unit == "m"}
+
+
+#: Top-level tables of a scheme file (:mod:`stackup.schemes`) that no engine file has.
+_SCHEME_TABLES = ("housing", "journal", "shell", "pairing")
 
 
 def _engine(top, *, name, extra):
+    scheme_tables = [k for k in _SCHEME_TABLES if k in top]
+    if scheme_tables and "main_bearings" not in top:
+        raise ValueError(f"{top.where}: is a scheme file (it has {', '.join(f'[{k}]' for k in scheme_tables)}), not "
+                         "an engine file; give it as a scheme (compare --schemes, plan --scheme)")
+    if not any(k in top for k in ("main_bearings", "housing_bore", "journal_d")):
+        has = ", ".join(list(top.data)[:6]) + (", ..." if len(top.data) > 6 else "")
+        raise ValueError(f"{top.where}: is not an engine file (none of main_bearings, [housing_bore], [journal_d]; "
+                         f"it has {has}); an engine file is described in docs/engine-file.md")
     units, scale = units_of(top)
     length = dict(scale=scale, units=units)
     bearings = top.integer("main_bearings", required=True, lo=1, hi=30)
@@ -398,6 +436,12 @@ def _engine(top, *, name, extra):
         raise ValueError(f"{top.where}, key journal_d.limits: the journal ({journal.lo / scale:g}-{journal.hi / scale:g} "
                          f"{units}) must be smaller than the housing bore ({bore.lo / scale:g}-{bore.hi / scale:g} {units})")
     spec = _press_fit(top, bore, **length)
+    wall = 0.5 * (bore.lo - journal.hi)  # the thickest wall the tightest bore and largest journal leave room for
+    if spec.lining_thickness >= LINING_SHARE * wall:
+        raise ValueError(f"{top.where}, key press_fit.lining_thickness: {spec.lining_thickness / scale:g} {units} is not "
+                         f"below {LINING_SHARE * wall / scale:.4g} {units}, {LINING_SHARE:g} of a shell wall of at most "
+                         f"{wall / scale:.6g} {units} (half of housing bore {bore.lo / scale:g} - journal "
+                         f"{journal.hi / scale:g} {units}); the steel back carries the crush and is most of the wall")
     if "crank" not in top:
         for table in ("bearing_law", "oil"):  # read only by the mechanical chain
             if table in top:
@@ -426,7 +470,10 @@ def _press_fit(top, bore, *, scale, units):
     t = top.table("press_fit", required=True)
     length = dict(scale=scale, units=units)
 
-    def temperature(name, default):
+    def temperature(name, default):  # the plausible range (kelvin named) inside the press fit's valid one
+        value = t.number(name, default)
+        if value is not None:
+            check.PLAUSIBLE["engine_temperature"].check(t._at(name), value)
         return t.number(name, default, **asdict(TEMPERATURE))
 
     lining_thickness = t.length("lining_thickness", 0.0, **length, plausible=PLAUSIBLE["lining"],
@@ -444,7 +491,8 @@ def _press_fit(top, bore, *, scale, units):
         bearing_width=t.length("length", required=True, **length, plausible=PLAUSIBLE["width"], what="shell width"),
         check_bore=t.length("check_bore", bore.lo / scale, **length, plausible=PLAUSIBLE["bore"],
                             what="checking-block bore"),
-        check_stress=t.number("check_stress", 100e6, **asdict(CHECK_STRESS)),
+        check_stress=check.PLAUSIBLE["check_stress"].check(t._at("check_stress"),
+                                                           t.number("check_stress", 100e6, **asdict(CHECK_STRESS))),
         assembly_temperature=temperature("assembly_temperature", 20.0),
         temperature=temperature("temperature", 20.0),
         lining_thickness=lining_thickness,
@@ -544,10 +592,11 @@ def _oil_feed(top, *, scale, units, bearing_width):
                        source="default: 0.3 MPa into a 180 deg groove in the upper shell, 15 % of the bearing wide")
     key = f"{t.where}, key oil_feed"
     kind = t.text("feed", required=True, options=FEEDS)
-    pressure = t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa")
+    pressure = check.PLAUSIBLE["oil_pressure"].check(
+        t._at("supply_pressure"), t.number("supply_pressure", required=True, lo=0.0, hi=2e7, lo_open=True, unit=" Pa"))
     source = t.source("source")
     if kind == "groove":
-        arc = t.numbers("groove_arc", [90.0, 270.0])
+        arc = check.degrees_not_radians(f"{key}.groove_arc", t.numbers("groove_arc", [90.0, 270.0]))
         if arc.shape != (2,) or not 0 < arc[1] - arc[0] <= 360:
             raise ValueError(f"{key}.groove_arc: {arc.tolist()!r} deg is not valid; need [start, end], "
                              f"start < end <= start + 360")
@@ -612,6 +661,7 @@ def _targets(top, *, scale, units, journal):
         out["clearance_window_source"] = source
     hours = t.number("life_hours", None, lo=0.0, hi=1e7, lo_open=True, unit=" h")
     if hours is not None:
+        check.PLAUSIBLE["life_hours"].check(t._at("life_hours"), hours)
         out["life_target"] = hours * 3600.0
     t.close()
     return out
@@ -646,14 +696,14 @@ def _crank(top, *, scale, units, bearings, extra):
         kinematics=_kinematics(t, **length),
         combustion=_named(t, Combustion, compression_ratio=t.number("compression_ratio", 16.0, lo=1.0, hi=40.0,
                                                                     lo_open=True),
-                          peak_pressure=t.number("peak_pressure", 13e6, lo=1e5, hi=5e8, unit=" Pa")),
+                          peak_pressure=check.PLAUSIBLE["peak_pressure"].check(t._at("peak_pressure"),
+                                                                               t.number("peak_pressure", 13e6))),
         throw_angles=throws, firing_order=order,
         speed=t.number("speed", required=True, lo=10.0, hi=3e4, unit=" rpm") * 2 * np.pi / 60,
         spans=np.array(t.lengths("spans", count=n_throws, required=True, **length, plausible=PLAUSIBLE["span"],
                                  what="crankshaft span")),
         ei=modulus * (inertia if inertia.ndim == 2 else np.stack([inertia, inertia], -1)),
-        bearing_width=t.length("bearing_width", required=True, **length, plausible=PLAUSIBLE["width"],
-                               what="bearing width"),
+        bearing_width=_one_width(t, top.table("press_fit").get("length"), **length),
         coaxiality=t.length("coaxiality", 0.0, **length, plausible=PLAUSIBLE["misalignment"], what="coaxiality"),
         journal_runout=t.length("journal_runout", 0.0, **length, plausible=PLAUSIBLE["misalignment"],
                                 what="journal run-out"),
@@ -676,10 +726,28 @@ def _crank(top, *, scale, units, bearings, extra):
         supports = _law_supports(params, bearings, spec.bearing_width)
     oil = top.table("oil")
     grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
+    check.PLAUSIBLE["engine_temperature"].check(oil._at("supply_temperature"), oil.number("supply_temperature", 90.0))
     supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
     oil.close()
     return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply,
                    supports=supports)
+
+
+#: How far crank.bearing_width may differ from press_fit.length [-]: the same width written twice (22 and
+#: 22.0, or rounded to the drawing's 0.1 mm on a 20 mm shell); more is two widths of one bearing.
+SAME_WIDTH = 5e-3
+
+
+def _one_width(t, shell_width, *, scale, units):
+    """crank.bearing_width [m]: the shell's width ``press_fit.length`` (file units); given again, it must agree."""
+    width = t.length("bearing_width", shell_width, scale=scale, units=units, plausible=PLAUSIBLE["width"],
+                     what="bearing width")
+    if "bearing_width" in t and isinstance(shell_width, (int, float)) and \
+            abs(width - shell_width * scale) > SAME_WIDTH * shell_width * scale:
+        raise ValueError(f"{t._at('bearing_width')}: {width / scale:g} {units} differs from press_fit.length "
+                         f"{shell_width:g} {units}; a bearing has one width (the shells'): give it once as "
+                         "press_fit.length and leave crank.bearing_width out")
+    return width
 
 
 def _per_bearing(t, name, *, bearings, required, lo=-math.inf, positive=False):
@@ -707,6 +775,8 @@ def _supports(top, *, scale, units, bearings, block, ring):
         return None
     t = top.table("supports")
     linear = _per_bearing(t, "linear_compliance_um_per_kN", bearings=bearings, required=True, lo=0.0, positive=True)
+    for value in (linear.min(), linear.max()):
+        check.PLAUSIBLE["support_compliance"].check(t._at("linear_compliance_um_per_kN"), value)
     angular = _per_bearing(t, "angular_compliance_urad_per_Nm", bearings=bearings, required=False, lo=0.0)
     bulkhead = t.optional("bulkhead")
     where = f"{t.where}, key {t.key('angular_compliance_urad_per_Nm')}"
@@ -769,13 +839,20 @@ def _kinematics(t, *, scale, units):
     length = dict(scale=scale, units=units, plausible=PLAUSIBLE["crank"])
     stroke = t.length("stroke", required=True, **length, what="stroke")
     unbalance = t.number("counterweight_share", 0.0, lo=0.0, hi=2.0)
-    rotating = t.number("rotating_mass", required=True, lo=0.0, hi=1e4, unit=" kg")
+    bore = t.length("cylinder_bore", required=True, **length, what="cylinder bore")
+
+    def mass(name):  # per cylinder, against its bore (grams for kg refused)
+        value = t.number(name, required=True, lo=0.0, hi=1e4, unit=" kg")
+        return check.PLAUSIBLE["cylinder_mass"].check(t._at(name), value, scale=bore**-3,
+                                                      of=f" for a {bore / scale:g} {units} cylinder bore")
+
+    rotating = mass("rotating_mass")
     return _named(
         t, Kinematics,
-        cylinder_bore=t.length("cylinder_bore", required=True, **length, what="cylinder bore"),
+        cylinder_bore=bore,
         stroke=stroke,
         conrod=t.length("conrod", required=True, **length, what="connecting rod"),
-        reciprocating_mass=t.number("reciprocating_mass", required=True, lo=0.0, hi=1e4, unit=" kg"),
+        reciprocating_mass=mass("reciprocating_mass"),
         rotating_mass=rotating, counterweight_unbalance=unbalance * rotating * stroke / 2)
 
 
@@ -828,7 +905,8 @@ def _firing(t, cylinders, n_throws, layout):
     """Throw angles [deg] (one per throw) and firing order (one per cylinder) of table [crank], that fire one
     cylinder at a time."""
     key = f"{t.where}, key crank"
-    throws = tuple(float(a) for a in t.numbers("throw_angles", required=True))
+    throws = tuple(float(a) for a in check.degrees_not_radians(f"{key}.throw_angles",
+                                                                t.numbers("throw_angles", required=True)))
     order = t.get("firing_order", required=True)
     if not isinstance(order, list) or not all(isinstance(c, int) and not isinstance(c, bool) for c in order):
         raise ValueError(f"{key}.firing_order: {order!r} is not a list of cylinder numbers")

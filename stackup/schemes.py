@@ -593,9 +593,21 @@ def _toml_text(scheme):
 _LETTERS = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
 
+#: Top-level keys of an engine file (:mod:`stackup.engines`) that no scheme file has.
+_ENGINE_KEYS = ("main_bearings", "housing_bore", "journal_d", "press_fit", "shell_wall", "crush_height")
+
+
 def _from_dict(data, *, where, path):
     """The scheme of a table, every key read through :class:`stackup._files.Table` (unknown keys refused)."""
     top = Table(data, where)
+    engine_keys = [k for k in _ENGINE_KEYS if k in top]
+    if engine_keys and not any(k in top for k in ("housing", "journal", "shell", "pairing")):
+        raise ValueError(f"{where}: is an engine file (it has {', '.join(engine_keys)}), not a scheme file; give it "
+                         "as the engine (--engine)")
+    if isinstance(data, dict) and not any(k in data for k in ("housing", "journal", "shell", "pairing")):
+        has = ", ".join(list(data)[:6]) + (", ..." if len(data) > 6 else "")
+        raise ValueError(f"{where}: is not a scheme file (none of [housing], [journal], [shell], [pairing]; it has "
+                         f"{has}); a scheme file is described in the docstring of stackup.schemes")
     units = top.text("units", required=True, options=_UNIT_NAMES)
     scale = UNITS[units]
     name = top.text("name", Path(path).stem)

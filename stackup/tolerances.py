@@ -22,6 +22,7 @@ import numpy as np
 from scipy import special, stats
 
 from . import _validate as check
+from ._files import UNITS
 from ._validate import OneOf, Positive, validated
 
 #: Points of the tabulated CDF used to invert processes without a closed-form
@@ -631,9 +632,17 @@ def process_from_spec(spec, *, lo, hi, scale, field):
             if default is None:
                 raise ValueError(f"{field}: missing key '{key}' for distribution '{kind}'")
             return default
-        return (_positive_scalar if positive else _scalar)(f"{field}.{key}", spec.pop(key)) * scale
+        value = (_positive_scalar if positive else _scalar)(f"{field}.{key}", spec.pop(key))
+        if key == "sigma":
+            units = {v: k for k, v in UNITS.items()}.get(scale, f"x {scale:g} m")
+            check.PLAUSIBLE["process_sigma"].check(f"{field}.sigma", value, scale=scale, unit=units)
+        return value * scale
 
     middle = 0.5 * (lo + hi)
+    both = [k for k in ("mean", "sigma") if k in spec]
+    if kind == "normal" and "cpk" in spec and both:
+        raise ValueError(f"{field}: give either cpk (with cp, side) or mean and sigma, not both: they are two ways "
+                         f"of saying the same process (given: cpk, {', '.join(both)})")
     if kind == "normal" and "cpk" in spec:
         cpk = _positive_scalar(f"{field}.cpk", spec.pop("cpk"))
         cp = spec.pop("cp", None)

@@ -104,13 +104,26 @@ def in_options(error, options):
     return text.replace("force=True", "--force")
 
 
+#: The engine a command runs on without --engine.
+DEFAULT_ENGINE = "iso-example"
+
+
 @contextlib.contextmanager
-def refused_in(options):
-    """Within the block, a ValueError of the library is raised again in the command's words (:func:`in_options`)."""
+def refused_in(options, *, engine=None):
+    """Within the block, a ValueError of the library is raised again in the command's words (:func:`in_options`).
+
+    With ``engine`` the default engine (the command's --engine not given), a refusal of data (measured data, a
+    scheme laid on the engine: not one that starts with the option it is about, --lot, --out, nor a scheme file's
+    own) that does not name the engine says it rests on it: a user who forgot --engine learns which engine their
+    data met.
+    """
     try:
         yield
     except ValueError as error:
-        raise ValueError(in_options(error, options)) from None
+        text = in_options(error, options)
+        if engine == DEFAULT_ENGINE and DEFAULT_ENGINE not in text and not text.startswith(("--", "scheme file")):
+            text += f" (engine: {DEFAULT_ENGINE}, the default; give yours with --engine)"
+        raise ValueError(text) from None
 
 
 def window_option(window_um, engine):

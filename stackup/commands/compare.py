@@ -91,7 +91,7 @@ def run(args, state):
     out = args.out if args.out is not None else (QUICK_OUT if args.quick else COMPARE_OUT)
     state.saved = f"nothing was saved: {out} {'is as it was' if os.path.isdir(out) else 'was not created'}"
     log = Log(state)
-    with refused_in(OPTIONS):
+    with refused_in(OPTIONS, engine=args.engine):
         window = window_option(args.window, load_engine(args.engine))  # LO HI in um
         written = comparison.run(out, engine=args.engine, schemes=tuple(args.schemes or ISO_SCHEMES), n_engines=n,
                                  seed=args.seed, window=window, scenarios={} if args.no_scenarios else DECLARED,

@@ -79,7 +79,7 @@ def run(args, state):
     def log(line):
         print(f"[{time.perf_counter() - t0:5.1f} s] {line}" if not terminal else line, flush=True)
 
-    with refused_in(OPTIONS):
+    with refused_in(OPTIONS, engine=args.engine):
         result = design(args.engine, window=window, shell_grades=args.grades, housing_grades=args.housing_grades,
                         journal_grades=args.journal_grades, scenarios={} if args.no_scenarios else DECLARED,
                         seed=args.seed, n_engines=args.n, start=args.start, generations=args.generations,

@@ -64,8 +64,14 @@ def add_parser(subparsers):
 
 def run_fit(args, state):
     """Fit the process of parsed ``args``; print its summary and the engine file entry."""
+    from pathlib import Path
+
     from ..measure import fit_csv
 
+    folder = Path(args.figure).parent if args.figure else None
+    if folder is not None and not folder.is_dir():  # refused before the fit runs, not after it printed
+        raise ValueError(f"--figure: folder {str(folder)!r} of {args.figure!r} "
+                         f"{'is a file' if folder.exists() else 'does not exist'}; create it or give another path")
     with refused_in(OPTIONS):
         fit = fit_csv(args.file, args.column, limits=args.limits, units=args.units,
                       gauge_repeatability=args.gauge_repeatability, group=args.group, sequence=args.sequence,
@@ -88,7 +94,7 @@ def run_swell(args, state):
 
     if args.out and Path(args.out).exists() and not args.force:  # refused before the fit runs
         raise ValueError(f"--out: {args.out!r} exists; pass --force to replace it, or give another file name")
-    with refused_in(OPTIONS):
+    with refused_in(OPTIONS, engine=args.engine):
         result = calibrate_housing(args.file, args.engine, confidence=args.confidence)
     print(result.summary())
     if args.out:

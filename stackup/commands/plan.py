@@ -55,7 +55,7 @@ def run(args, state):
     state.stage = f"planning {args.part}s"
     if csv is not None:
         state.saved = f"nothing was saved: {csv} {'is as it was' if csv.exists() else 'was not created'}"
-    with refused_in(OPTIONS):
+    with refused_in(OPTIONS, engine=args.engine):
         frame = plan(args.scheme, args.engine, volume=args.volume, service_level=args.service_level,
                      lot_engines=args.lot, sample_engines=args.sample, seed=args.seed, part=args.part)
     table = planner_table(frame)

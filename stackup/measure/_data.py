@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .._files import UNITS as LENGTH_UNITS
+from .._validate import IT1_PER_SIZE, PLAUSIBLE
 
 #: Spellings of a missing reading in a CSV cell (compared in lower case).
 MISSING = ("", "nan", "na", "n/a", "null", "none", "-")
@@ -32,6 +33,8 @@ MIN_DISTINCT = 4
 UNIT_NAMES = {"m": "m", "mm": "mm", "um": "µm"}
 #: Their sizes [m per unit], from the one table of length units.
 UNITS = {unit: LENGTH_UNITS[unit] for unit in UNIT_NAMES}
+#: An inch [m]: not a unit measured data may be written in, but one they are found in.
+INCH = 25.4e-3
 
 
 @dataclass(frozen=True)
@@ -50,8 +53,8 @@ class Where:
         index = np.asarray(index)
         shown = [str(int(self.lines[i])) if self.lines is not None else str(int(i)) for i in index[:most]]
         more = f" and {index.size - most} more" if index.size > most else ""
-        return f"{'line' if self.lines is not None else 'index'}{'s' if index.size > 1 else ''} " \
-               f"{', '.join(shown)}{more}"
+        noun = ("line", "lines") if self.lines is not None else ("index", "indices")
+        return f"{noun[index.size > 1]} {', '.join(shown)}{more}"
 
     def sub(self, column):
         """The same source, another column."""
@@ -94,7 +97,11 @@ def read_csv(path, *, numeric=(), text=(), drop_missing=False):
     name = path.name
     if not path.is_file():
         raise ValueError(f"{str(path)!r}: {'is a folder' if path.is_dir() else 'does not exist'}; give a CSV file")
+    if path.suffix.lower() == ".toml":  # an engine or scheme file given where the readings go
+        raise ValueError(f"{name!r}: is a TOML file (an engine or scheme file?), not a CSV file of readings")
     raw = path.read_bytes()
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):  # what spreadsheets save as "Unicode text"
+        raise ValueError(f"{name!r}: is UTF-16 text (its byte-order mark says so); save it as UTF-8 CSV")
     try:
         body = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
@@ -106,6 +113,19 @@ def read_csv(path, *, numeric=(), text=(), drop_missing=False):
     delimiter = _delimiter(rows[0][1])
     parsed = list(csv.reader([line for _, line in rows], delimiter=delimiter))
     header = [h.strip() for h in parsed[0]]
+    twice = sorted({h for h in header if h and header.count(h) > 1})
+    if twice:
+        raise ValueError(f"{name!r}: column {twice[0]!r} is given {header.count(twice[0])} times in the header "
+                         f"(line {rows[0][0]}); name each column once")
+    # a row's cells beyond the header's: refused unless empty (a trailing delimiter, as some exports write)
+    long = [(rows[i][0], len(row)) for i, row in enumerate(parsed[1:], start=1)
+            if any(cell.strip() for cell in row[len(header):])]
+    if long:
+        line, cells = long[0]
+        shown = f" (and {len(long) - 1} more rows)" if len(long) > 1 else ""
+        comma = " (a decimal comma?)" if delimiter == "," else ""
+        raise ValueError(f"{name!r}, line {line}: {cells} cells, the header has {len(header)}{shown}; a cell too "
+                         f"many{comma} or a header column missing")
     wanted = list(numeric) + list(text)
     for column in wanted:
         if column not in header:
@@ -209,9 +229,38 @@ def plausible(x, lo, hi, where, units):
                              f" like {UNIT_NAMES[unit]}, not {UNIT_NAMES.get(units, units)} like the limits "
                              f"[{lo:g}, {hi:g}] ({where.rows(far)}: {shown}); give every value and the limits in "
                              "one unit")
+    inches = x[far] * INCH / UNITS.get(units, 1.0)
+    if np.all((inches >= lo - FARTHEST * width) & (inches <= hi + FARTHEST * width)):
+        raise ValueError(f"{where}: {far.size} value{'s' if far.size > 1 else ''} look{'s' if far.size == 1 else ''} "
+                         f"like inches, not {UNIT_NAMES.get(units, units)} like the limits [{lo:g}, {hi:g}] "
+                         f"({where.rows(far)}: {shown}); give them in {UNIT_NAMES.get(units, units)} (inches x 25.4)")
     raise ValueError(f"{where}: {far.size} value{'s' if far.size > 1 else ''} more than {FARTHEST:g} tolerance widths "
                      f"off the limits [{lo:g}, {hi:g}] {UNIT_NAMES.get(units, units)} ({where.rows(far)}: {shown}); "
                      "a typing error, another dimension's column, or wrong limits?")
+
+
+def tolerance_in_units(lo, hi, units):
+    """Refuse drawing limits [lo, hi] (in ``units``) whose tolerance no part is made to: a unit slip (mm readings
+    given with --units um), naming the unit that makes it one."""
+    plausible = PLAUSIBLE["tolerance_width"]
+
+    def fits(size):  # the limits read in a unit of `size` m: a tolerance no finer than IT1 of that size
+        width, big = (hi - lo) * size, max(abs(lo), abs(hi)) * size
+        return plausible.lo + IT1_PER_SIZE * big <= width <= plausible.hi
+
+    if fits(UNITS[units]):
+        return
+    # the likelier slips first: um and mm swapped, inches, then metres (a part of metres is rare)
+    likely = [u for u in ("um", "mm", "in", "m") if u != units and fits(INCH if u == "in" else UNITS[u])]
+    hint = "are the limits right?"
+    if likely and likely[0] == "in":
+        hint = "are the readings and limits in inches? give them in mm (inches x 25.4)"
+    elif likely:
+        hint = f"are the readings and limits in {UNIT_NAMES[likely[0]]} (units = {likely[0]!r})?"
+    size = max(abs(lo), abs(hi)) * UNITS[units]
+    raise ValueError(f"limits: [{lo:g}, {hi:g}] {UNIT_NAMES[units]} is a tolerance of {(hi - lo) * UNITS[units]:.3g} "
+                     f"m; a drawing tolerance of a part of {size:.3g} m is {plausible.lo + IT1_PER_SIZE * size:.2g} m "
+                     f"(ISO 286-1's IT1) to {plausible.hi * 1e3:g} mm wide: {hint}")
 
 
 def enough(x, where, *, needed, units, model="a fit"):

@@ -54,7 +54,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from .. import materials
-from .._validate import InRange, validated
+from .._validate import PLAUSIBLE, InRange, validated
 from ..engines import engine_path, load_engine
 from ..fit import press_fit
 from . import _data
@@ -290,7 +290,11 @@ def _plausible(columns, where, engine):
                          f"shells: housing_bore - both walls is {expected[i]:.6g} m there, and the swell is "
                          f"micrometres (valid: within {ASSEMBLED_OFF * 1e3:g} mm of it)")
     t = columns["temperature"]
-    bad = np.flatnonzero((t < -60.0) | (t > 300.0))
+    valid = PLAUSIBLE["engine_temperature"]
+    bad = np.flatnonzero((t < valid.lo) | (t > valid.hi))
     if bad.size:
         w = where("temperature")
-        raise ValueError(f"{w}, {w.rows(bad)}: {t[bad[0]]:g} degC is outside the valid range [-60, 300] degC")
+        kelvin = np.all((t - 273.15 >= valid.lo) & (t - 273.15 <= valid.hi))
+        hint = "; these look like kelvin: give degC (kelvin - 273.15)" if kelvin else ""
+        raise ValueError(f"{w}, {w.rows(bad)}: {t[bad[0]]:g} degC is not a plausible {valid.what} ({valid.lo:g} to "
+                         f"{valid.hi:g} degC){hint}")

@@ -278,6 +278,7 @@ def fit_csv(path, column, *, limits, units="mm", gauge_repeatability=None, group
     numeric = [column] + ([sequence] if sequence else [])
     table = _data.read_csv(path, numeric=numeric, text=[group] if group else [], drop_missing=drop_missing)
     lo, hi = _data.drawing_limits(limits, field="limits", units=_data.UNIT_NAMES[units])
+    _data.tolerance_in_units(lo, hi, units)
     r = None if gauge_repeatability is None else _length("gauge_repeatability", gauge_repeatability) * scale
     fit = _fit(table.values[column] * scale, limits=(lo * scale, hi * scale), gauge_repeatability=r,
                groups=table.values[group] if group else None, sequence=table.values[sequence] if sequence else None,
