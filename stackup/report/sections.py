@@ -302,12 +302,24 @@ def _stated_and_worst(stated_lo, stated_hi, worst_lo, worst_hi):
     return stated if same else f"{stated} ({worst})"
 
 
-def _fit_table(facts, order):
+def _soaked_columns(ranking, order):
+    """The clearance at assembly and at the cold start per scheme [µm] (none for a dataset without them)."""
+    if "clearance_cold_mean_um" not in ranking:
+        return {}
+    rows = ranking.loc[list(order)]
+    return {words.ASSEMBLY_COLUMN: [fmt.mean_std(m, v) for m, v in zip(rows.clearance_assembly_mean_um,
+                                                                      rows.clearance_assembly_std_um)],
+            words.COLD_COLUMN: [fmt.mean_std(m, v) for m, v in zip(rows.clearance_cold_mean_um,
+                                                                  rows.clearance_cold_std_um)]}
+
+
+def _fit_table(facts, order, ranking):
     fit, limits = in_order(facts.fit, order), facts.limits
     return pd.DataFrame({
         "scheme": fit.index,
         "operating mean ± std [µm]": [fmt.mean_std(m, v)
                                       for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
+        **_soaked_columns(ranking, fit.index),
         "operating P0.135–P99.865 % [µm]": [fmt.um_range(a, b) for a, b in zip(fit.operating_p00135_um,
                                                                                fit.operating_p99865_um)],
         "swell [µm]": [fmt.fixed(v, 2) for v in fit.swell_mean_um],
@@ -352,7 +364,12 @@ def fit_section(facts, ranking):
              words.JOURNAL_SOURCE.format(excess=press.journal_temperature_excess, source=journal),
              _window_source(window, sources.clearance_window)]
     temperatures = ", ".join(fmt.fixed(t, 0) for t in limits.press_fit_temperatures)
-    table = _fit_table(facts, ranking.index)
+    if np.isfinite(limits.minimum_clearance):
+        lines.insert(3, words.MINIMUM_SOURCE.format(
+            minimum=fmt.general(limits.minimum_clearance * fmt.UM), assembly=fmt.general(press.assembly_temperature),
+            cold=fmt.general(limits.cold_start_temperature), source=_source(sources.minimum_clearance),
+            cold_source=_source(sources.cold_start)))
+    table = _fit_table(facts, ranking.index, ranking)
     checks = {f"p < {limits.contact_pressure_min / 1e6:.0f} MPa [ppm]": words.FIT_LOW_PRESSURE,
               f"σ > {limits.shell_stress_max / 1e6:.0f} MPa [ppm]": words.FIT_HIGH_STRESS,
               "loss of fit [ppm]": words.FIT_LOST}
