@@ -77,13 +77,13 @@ KOPELIOVICH_LIMITS = PressFitLimits(
 
 #: Cold start of an engine file without ``press_fit.cold_temperature`` [degC], and its source.
 COLD_START = -25.0
-COLD_START_SOURCE = ("assumed: SAE J300's cold-cranking temperature of a 10W engine oil, -25 degC (5W: -30, "
-                     "0W: -35); set press_fit.cold_temperature for the engine's climate")
+COLD_START_SOURCE = ("assumed: SAE J300's cold-cranking temperature of a 10W engine oil (5W: -30 degC, 0W: "
+                     "-35 degC); press_fit.cold_temperature sets the engine's own")
 #: Least diametral clearance a bearing may have at assembly or a cold start [m], and its source: the smallest
 #: standard main-bearing oil clearance found in a maker's service data, for a light-alloy block.
 MINIMUM_CLEARANCE = 1e-6
-MINIMUM_CLEARANCE_SOURCE = ("Nissan VK45DE (aluminium block) service data, main bearing oil clearance measured "
-                            "at assembly: standard 0.001-0.011 mm at journals 1 and 5, 0.007-0.017 mm at 2-4 "
+MINIMUM_CLEARANCE_SOURCE = ("Nissan VK45DE (aluminium block) service data: main bearing oil clearance measured "
+                            "at assembly, standard 0.001-0.011 mm at journals 1 and 5, 0.007-0.017 mm at 2-4 "
                             "(Ford 3.4 L SHO V8: 0.010-0.031 mm; Toyota 2ZR-FE: 0.016-0.039 mm): the smallest "
                             "clearance a maker accepts; applied at the cold start too (assumed)")
 
@@ -165,8 +165,7 @@ class PressFitSpec:
     @property
     def cold_start_source(self):
         """Where :attr:`cold_start_temperature` comes from: the engine file, or :data:`COLD_START_SOURCE`."""
-        return "the engine file's press_fit.cold_temperature" if self.cold_temperature is not None else \
-            COLD_START_SOURCE
+        return "press_fit.cold_temperature" if self.cold_temperature is not None else COLD_START_SOURCE
 
     def soaked_kwargs(self, temperature):
         """Keyword arguments of :func:`stackup.fit.press_fit` with housing, shells and journal all at

@@ -17,6 +17,7 @@ from ..assembly import STATUS
 from ..facts import MIN_COUNTED, PLAN_SERVICE_LEVEL, TAIL_SOURCES, separates
 from ..plan import planner_table
 from ..rank import RULE
+from ..scenarios import is_assumed
 from ..stats import proportion_ci
 from . import format as fmt
 from . import templates as words
@@ -302,15 +303,16 @@ def _stated_and_worst(stated_lo, stated_hi, worst_lo, worst_hi):
     return stated if same else f"{stated} ({worst})"
 
 
-def _soaked_columns(ranking, order):
-    """The clearance at assembly and at the cold start per scheme [µm] (none for a dataset without them)."""
+def _soaked_columns(facts, ranking, order):
+    """The mean clearance at assembly and at the cold start per scheme [µm] (their spread is the operating one's
+    within a few hundredths; none for a dataset without them)."""
     if "clearance_cold_mean_um" not in ranking:
         return {}
     rows = ranking.loc[list(order)]
-    return {words.ASSEMBLY_COLUMN: [fmt.mean_std(m, v) for m, v in zip(rows.clearance_assembly_mean_um,
-                                                                      rows.clearance_assembly_std_um)],
-            words.COLD_COLUMN: [fmt.mean_std(m, v) for m, v in zip(rows.clearance_cold_mean_um,
-                                                                  rows.clearance_cold_std_um)]}
+    title = words.SOAKED_COLUMN.format(assembly=fmt.general(facts.press_fit.assembly_temperature),
+                                       cold=fmt.general(facts.limits.cold_start_temperature))
+    return {title: [f"{fmt.fixed(a)} / {fmt.fixed(c)}" for a, c in zip(rows.clearance_assembly_mean_um,
+                                                                       rows.clearance_cold_mean_um)]}
 
 
 def _fit_table(facts, order, ranking):
@@ -319,7 +321,7 @@ def _fit_table(facts, order, ranking):
         "scheme": fit.index,
         "operating mean ± std [µm]": [fmt.mean_std(m, v)
                                       for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
-        **_soaked_columns(ranking, fit.index),
+        **_soaked_columns(facts, ranking, fit.index),
         "operating P0.135–P99.865 % [µm]": [fmt.um_range(a, b) for a, b in zip(fit.operating_p00135_um,
                                                                                fit.operating_p99865_um)],
         "swell [µm]": [fmt.fixed(v, 2) for v in fit.swell_mean_um],
@@ -368,7 +370,8 @@ def fit_section(facts, ranking):
         lines.insert(3, words.MINIMUM_SOURCE.format(
             minimum=fmt.general(limits.minimum_clearance * fmt.UM), assembly=fmt.general(press.assembly_temperature),
             cold=fmt.general(limits.cold_start_temperature), source=_source(sources.minimum_clearance),
-            cold_source=_source(sources.cold_start)))
+            cold_source=words.COLD_SOURCE_PART.format(source=_source(sources.cold_start))
+            if is_assumed(sources.cold_start) else ""))
     table = _fit_table(facts, ranking.index, ranking)
     checks = {f"p < {limits.contact_pressure_min / 1e6:.0f} MPa [ppm]": words.FIT_LOW_PRESSURE,
               f"σ > {limits.shell_stress_max / 1e6:.0f} MPa [ppm]": words.FIT_HIGH_STRESS,

@@ -85,7 +85,7 @@ INTERFERENCE_NONE_PART = "{scheme} none"
 #: The operating window moved to the cold start by the chosen scheme's mean change, where its lower edge falls
 #: below the minimum clearance there.
 WINDOW_COLD = ("**Window:** {lo}–{hi} µm in service is {cold_lo}–{cold_hi} µm at {cold} °C in this {material} "
-               "housing: not a window for this block; check its source.")
+               "housing: not this block's window.")
 SCUFFING_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings spend over 20 % of the cycle in boundary "
                  "friction (scuffing risk).")
 SHORT_LIFE_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings live less than the {target} h "
@@ -116,7 +116,7 @@ WORST_CELL = "{share} ({scenario})"
 
 # --- ranking --------------------------------------------------------------------------------------------------
 #: The ranking's metrics in words.
-METRICS = {"below_minimum_ppm": "share below the minimum clearance at assembly or cold start",
+METRICS = {"below_minimum_ppm": "share below the minimum clearance cold",
            "outside_window_ppm": "share outside the window",
            "alpha_over_limit_pct": "scuffing risk (α > 20 %) at the worst position",
            "life_below_target_pct": "lives below the target at the worst position",
@@ -180,8 +180,8 @@ SOBOL_EXPLAINED = ("S_1: the share of the output's variance an input explains al
 
 # --- clearance, press fit -------------------------------------------------------------------------------------
 CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature, as the standard states ranges) against "
-                   "each scheme's stated range and, where it differs, its worst case over the allowed pairs; a fitted "
-                   "bearing's clearance at assembly, swell included, is in the press-fit section.")
+                   "each scheme's stated range and, where it differs, its worst case over the allowed pairs (fitted, "
+                   "swell included: Press fit).")
 NONE_STATED = "none ({worst})"
 READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to half a step outside its class is paired "
             "as inside it: its worst case, {worst_lo:.1f}–{worst_hi:.1f} µm, reaches beyond the stated "
@@ -211,10 +211,10 @@ FIT_LOST = "loses its fit"
 PRESS_FIT_LIMITS_SOURCE = ("- contact pressure at least {pressure:.0f} MPa, shell compression at most {stress:.0f} "
                            "MPa: {source};")
 CRUSH_SOURCE = "- crush height {lo:.3f}–{hi:.3f} mm: {source};"
-MINIMUM_SOURCE = ("- minimum clearance {minimum} µm at assembly ({assembly} °C) and at the cold start ({cold} °C), "
-                  "housing, shells and journal at one temperature: {source}; the cold start: {cold_source};")
-ASSEMBLY_COLUMN = "at assembly [µm]"
-COLD_COLUMN = "cold start [µm]"
+MINIMUM_SOURCE = "- minimum clearance {minimum} µm at {assembly} and {cold} °C{cold_source}: {source};"
+#: The cold start's source where it is not the engine file's own temperature.
+COLD_SOURCE_PART = " ({source})"
+SOAKED_COLUMN = "at {assembly} / {cold} °C [µm]"
 JOURNAL_SOURCE = "- journal {excess:g} K hotter than its housing ({source});"
 WINDOW_SOURCE = "- operating-clearance window {lo:.1f}–{hi:.1f} µm: {source}{end}"
 NO_SOURCE = "no source given"

@@ -295,8 +295,9 @@ def decision_table(facts, ranking):
     table = pd.DataFrame({
         "rank": ranking["rank"],
         "scheme": ranking.index,
-        **({words.BELOW_MINIMUM_COLUMN: [fmt.ppm_interval(v, ci) for v, ci in
-                                         zip(ranking.below_minimum_ppm, ranking.below_minimum_ppm_ci)]}
+        **({words.BELOW_MINIMUM_COLUMN: ["0" if n == 0 else fmt.ppm_interval(v, ci) for v, ci, n in
+                                         zip(ranking.below_minimum_ppm, ranking.below_minimum_ppm_ci,
+                                             ranking.below_minimum_counted)]}
            if "below_minimum_ppm" in ranking else {}),
         "outside window [ppm]": [fmt.ppm_interval(v, ci) + ("" if s == "counted" else " †")
                                  for v, ci, s in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,

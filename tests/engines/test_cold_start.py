@@ -19,7 +19,7 @@ def test_the_minimum_clearance_and_the_cold_start_default_to_sourced_values():
     assert e.minimum_clearance == MINIMUM_CLEARANCE and e.minimum_clearance_source == MINIMUM_CLEARANCE_SOURCE
     assert "0.001-0.011 mm" in MINIMUM_CLEARANCE_SOURCE and COLD_START_SOURCE.startswith("assumed")
     assert e.press_fit.cold_start_temperature == -25.0  # the file's own cold_temperature
-    assert "engine file" in e.press_fit.cold_start_source
+    assert e.press_fit.cold_start_source == "press_fit.cold_temperature"
     rozhdestvensky = load_engine("rozhdestvensky-4")  # no cold_temperature: the default, said to be assumed
     assert rozhdestvensky.press_fit.cold_start_temperature == COLD_START
     assert rozhdestvensky.press_fit.cold_start_source == COLD_START_SOURCE
