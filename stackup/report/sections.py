@@ -21,7 +21,7 @@ from ..scenarios import is_assumed
 from ..stats import proportion_ci
 from . import format as fmt
 from . import templates as words
-from .verdict import clearance_level, scenario_groups
+from .verdict import clearance_level, more_below_minimum, scenario_groups
 
 
 def markdown_table(frame):
@@ -100,6 +100,8 @@ def centring(facts, ranking):
     narrowest = ranking.clearance_std_um.idxmin()
     if narrowest == chosen or narrowest not in facts.centred.index:  # no window to centre in
         return []
+    if more_below_minimum(ranking, narrowest, chosen, ranking.attrs["negligible_ppm"]):
+        return []  # centring it in the window leaves its bearings below the minimum clearance cold: no case for it
     shift, outside, bearings = facts.centred.loc[narrowest, ["shift", "outside", "bearings"]]
     share, _, upper = proportion_ci(outside, bearings)
     if outside and 1e6 * share > ranking.loc[chosen].outside_window_ppm_ci[1]:

@@ -159,7 +159,7 @@ def clearance_level(other, negligible):
     return {s for s in other.index if not differs(best, other.loc[s], "outside_window_ppm", "lower", negligible)}
 
 
-def _more_below_minimum(ranking, scheme, chosen, negligible):
+def more_below_minimum(ranking, scheme, chosen, negligible):
     """``scheme`` puts more bearings below the minimum clearance than ``chosen`` (by the ranking's rule): fewer
     outside the window does not make it better."""
     return "below_minimum_ppm" in ranking and differs(ranking.loc[chosen], ranking.loc[scheme], "below_minimum_ppm",
@@ -177,7 +177,7 @@ def _flips(labels, scenario_rankings, chosen, negligible):
             continue
         better = [s for s in other.index if s != chosen and differs(other.loc[s], other.loc[chosen],
                                                                    "outside_window_ppm", "lower", negligible)
-                  and not _more_below_minimum(other, s, chosen, negligible)]
+                  and not more_below_minimum(other, s, chosen, negligible)]
         if better:
             first = other.loc[better, "rank"].min()
             out.append((label, [s for s in better if other.loc[s, "rank"] == first]))

@@ -101,3 +101,21 @@ def test_a_ranking_without_the_cold_start_counts_reads_as_before():
     assert list(ranking.index) == ["a", "b"] and "below_minimum_ppm" not in ranking
     assert interference(FACTS, ranking) is None and window_at_cold_start(FACTS, ranking, WINDOW) is None
     assert not np.isnan(ranking.loc["a", "clearance_mean_um"])
+
+
+def test_no_centring_advice_for_a_scheme_whose_bearings_fall_below_the_minimum_clearance_cold():
+    import pandas as pd
+
+    from stackup.report.sections import centring
+
+    ranking = _ranking(tight=(0.5, (0.1, 0.9), 44.6, 140, 5.1), loose=(1e6, (999_000.0, 1e6), 93.8, 0, 54.0))
+    ranking.loc["tight", "clearance_std_um"] = 1.0  # the narrowest, below the window's middle
+    facts = SimpleNamespace(centred=pd.DataFrame({"shift": [1.4e-6], "outside": [0], "bearings": [2000]},
+                                                 index=["tight"]))
+    assert ranking.index[0] == "loose" and centring(facts, ranking) == []
+    # the same scheme without bearings below the minimum would be the chosen one: nothing to centre either way, so
+    # the advice is tested where the narrowest is the runner on the window alone
+    level = _ranking(tight=(900.0, (800.0, 1000.0), 44.6, 0, 5.1), wide=(0.5, (0.1, 0.9), 46.0, 0, 6.0))
+    level.loc["tight", "clearance_std_um"] = 1.0
+    advice = centring(facts, level)
+    assert advice and advice[0].startswith("**Centring:** tight has the narrowest operating clearance")
