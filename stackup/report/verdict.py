@@ -104,7 +104,8 @@ def interference(facts, ranking):
     chosen = ranking.index[0]
     below = ranking[ranking.below_minimum_counted.fillna(0) > 0]
     schemes = [words.INTERFERENCE_SCHEME_PART.format(
-        scheme=name, share=fmt.percent(row.below_minimum_ppm / 1e6),
+        scheme=name, share=(fmt.percent(row.below_minimum_ppm / 1e6) if row.below_minimum_ppm >= 1000 else
+                            fmt.ppm(row.below_minimum_ppm)),
         cold=fmt.mean_std(row.clearance_cold_mean_um, row.clearance_cold_std_um, 1).replace("-", "−"))
         for name, row in below.iterrows()]
     limits = facts.limits

@@ -119,3 +119,8 @@ def test_no_centring_advice_for_a_scheme_whose_bearings_fall_below_the_minimum_c
     level.loc["tight", "clearance_std_um"] = 1.0
     advice = centring(facts, level)
     assert advice and advice[0].startswith("**Centring:** tight has the narrowest operating clearance")
+
+
+def test_a_few_bearings_below_the_minimum_are_counted_in_ppm_not_rounded_to_zero_per_cent():
+    ranking = _ranking(a=(0.5, (0.1, 0.9), 46.0, 0, 20.0), b=(1e6, (999_000.0, 1e6), 46.0, 1, 9.0))
+    assert "500 ppm of b's bearings" in interference(FACTS, ranking)
