@@ -116,7 +116,7 @@ WORST_CELL = "{share} ({scenario})"
 
 # --- ranking --------------------------------------------------------------------------------------------------
 #: The ranking's metrics in words.
-METRICS = {"below_minimum_ppm": "share below the minimum clearance cold",
+METRICS = {"below_minimum_ppm": "share below the minimum clearance (assembly, cold start)",
            "outside_window_ppm": "share outside the window",
            "alpha_over_limit_pct": "scuffing risk (α > 20 %) at the worst position",
            "life_below_target_pct": "lives below the target at the worst position",

@@ -3,13 +3,17 @@ fit's model gives there (physics.md sec. 4b; issue 51, item 2)."""
 
 import numpy as np
 import pytest
+from test_engines import _engine_file
 
-from stackup.engines import (COLD_START, COLD_START_SOURCE, MINIMUM_CLEARANCE, MINIMUM_CLEARANCE_SOURCE,
-                             load_engine)
+from stackup.engines import (
+    COLD_START,
+    COLD_START_SOURCE,
+    MINIMUM_CLEARANCE,
+    MINIMUM_CLEARANCE_SOURCE,
+    load_engine,
+)
 from stackup.materials import get as material
 from stackup.study.clearance import operating_clearance, soaked_clearances
-
-from test_engines import _engine_file
 
 WINDOW = "relative_clearance = [0.00075, 0.00125]"
 
@@ -44,9 +48,9 @@ def test_a_bad_minimum_clearance_is_named_with_its_file_and_key(tmp_path, change
 def _bearing(engine, wall=1.98e-3):
     """One bearing at the middle of the engine's drawing limits (both shells alike)."""
     crush = 0.5 * (engine.shell_wall.crush.lo + engine.shell_wall.crush.hi)
-    return dict(housing_bore=0.5 * (engine.housing_bore.lo + engine.housing_bore.hi),
-                journal_d=0.5 * (engine.journal_d.lo + engine.journal_d.hi), upper_wall=wall, lower_wall=wall,
-                upper_crush=crush, lower_crush=crush)
+    return {"housing_bore": 0.5 * (engine.housing_bore.lo + engine.housing_bore.hi),
+            "journal_d": 0.5 * (engine.journal_d.lo + engine.journal_d.hi), "upper_wall": wall, "lower_wall": wall,
+            "upper_crush": crush, "lower_crush": crush}
 
 
 def test_an_aluminium_housing_closes_its_bearings_cold_an_iron_one_hardly_moves():

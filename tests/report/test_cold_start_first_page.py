@@ -8,14 +8,13 @@ drawing; no scenarios and no mechanical chain, so it stays small.
 """
 
 import pytest
+from small_runs import DESIGN
 
 import stackup
 import stackup.comparison
 from stackup.io import open_comparison
 from stackup.report import format as fmt
 from stackup.report import templates as words
-
-from small_runs import DESIGN
 
 
 @pytest.fixture(scope="module")

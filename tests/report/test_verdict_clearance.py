@@ -15,7 +15,12 @@ import pytest
 from stackup.facts import RankingRows
 from stackup.rank import ranked
 from stackup.report import templates as words
-from stackup.report.verdict import _use, decision_table, interference, window_at_cold_start
+from stackup.report.verdict import (
+    _use,
+    decision_table,
+    interference,
+    window_at_cold_start,
+)
 
 WINDOW = (34.5e-6, 57.5e-6)
 
