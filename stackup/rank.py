@@ -34,11 +34,14 @@ import pandas as pd
 from ._module import callable_module
 from .facts import ranking_rows
 
-#: (column, better, practical threshold) in order of precedence. The threshold is the least difference that
+#: (column, better, practical threshold) in order of precedence: bearings below the minimum clearance at assembly
+#: or the cold start first (a bearing in interference is worse than one outside the operating window), then the
+#: window. The threshold is the least difference that
 #: separates two schemes (beyond their 95 % intervals, where the column has them): "negligible" is the
 #: ranking's share of bearings outside the window that does not matter [ppm]; the surplus [% of the shells made]
 #: moves by about a percentage point with the rounding of lots.
-RULE = (("outside_window_ppm", "lower", "negligible"),
+RULE = (("below_minimum_ppm", "lower", "negligible"),
+        ("outside_window_ppm", "lower", "negligible"),
         ("alpha_over_limit_pct", "lower", 0.0),
         ("life_below_target_pct", "lower", 0.0),
         ("shell_grades", "lower", 0.0),

@@ -108,7 +108,8 @@ def run(args, state):
     for name, row in clearance_summary(ds).iterrows():
         stated = (f"{row.outside_stated_ppm:9.0f} ppm" if np.isfinite(row.outside_stated_ppm) else
                   "        — (no stated range)")
-        print(f"  {name:<20} mean {row.mean_um:6.2f} µm  std {row.std_um:5.2f} µm  outside stated {stated}")
+        print(f"  {name:<20} nominal (no swell) mean {row.mean_um:6.2f} µm  std {row.std_um:5.2f} µm  "
+              f"outside stated {stated}")
     for note in run_notes(Run.of(ds)):  # stages that failed on some engines, or did not run: said here too
         print(f"note: {note}")
     print(f"dataset: {written.dataset}\nreport:  {written.report} (and report.html)")

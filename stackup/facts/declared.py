@@ -230,6 +230,8 @@ class Sources:
     crush_height: str
     clearance_window: str
     schemes: dict
+    minimum_clearance: str = ""
+    cold_start: str = ""
 
     @classmethod
     def of(cls, ds):
@@ -237,7 +239,7 @@ class Sources:
             return " ".join(str(ds.attrs.get(name, "")).split())
 
         return cls(text("press_fit_limits_source"), text("crush_height_source"), text("clearance_window_source"),
-                   parsed(ds, "scheme_sources"))
+                   parsed(ds, "scheme_sources"), text("minimum_clearance_source"), text("cold_start_source"))
 
 
 @dataclass(frozen=True)

@@ -62,12 +62,19 @@ class Limits:
     crush_height: tuple
     life_target: float
     critical_film: float
+    #: Least clearance at assembly or cold start [m] and the cold start [degC]; NaN in a dataset without them.
+    minimum_clearance: float = np.nan
+    cold_start_temperature: float = np.nan
 
     @classmethod
     def of(cls, ds):
+        def optional(name):
+            return float(ds[name]) if name in ds else np.nan
+
         return cls(tuple(ds.clearance_window.values), float(ds.design_contact_pressure_min),
                    float(ds.design_shell_stress_max), tuple(ds.press_fit_temperatures.values),
-                   tuple(ds.crush_height_limits.values), float(ds.life_target), float(ds.critical_film.max()))
+                   tuple(ds.crush_height_limits.values), float(ds.life_target), float(ds.critical_film.max()),
+                   optional("minimum_clearance"), optional("cold_start_temperature"))
 
 
 @dataclass(frozen=True)

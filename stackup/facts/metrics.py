@@ -1,7 +1,8 @@
 """What the ranking ranks: one row of metrics per scheme, with their 95 % intervals.
 
 Operating clearance (mean, spread, share outside the design window with
-where it comes from), film and life (:func:`stackup.facts.tables.film_numbers`:
+where it comes from), the clearance at assembly and at the cold start (mean,
+spread, share of bearings below the engine's minimum clearance at either), film and life (:func:`stackup.facts.tables.film_numbers`:
 share of bearings below h_lim,cr; Levanov's operability criteria at the worst
 bearing position, the share of its bearings with alpha above 20 % and the
 share living less than the target; the engines' life, their weakest
@@ -21,7 +22,7 @@ from ..stats import proportion_ci
 from ..tail import share_interval
 from ..study.inputs import load_inputs
 from .declared import StudyParameters, parsed
-from .tables import assembled, film_numbers, kept_summaries, operating_moments
+from .tables import assembled, film_numbers, kept_summaries, operating_moments, soaked
 
 #: Fewest bearings counted outside the window for the count to decide; below it a tail estimate does, if given.
 MIN_COUNTED = 20
@@ -135,6 +136,14 @@ def scheme_metrics(d, window, h_lim_cr, tail=None, part_grades=np.nan):
         "part_grades": part_grades,
         "surplus_pct": 100.0 * float(d.shells_left.sum()) / max(float(d.shells_made.sum()), 1.0),
     }
+    cold = soaked(d)
+    if cold is not None:
+        below = proportion_ci(cold.below_minimum, cold.assembled)
+        row.update({"below_minimum_ppm": 1e6 * below[0], "below_minimum_ppm_ci": (1e6 * below[1], 1e6 * below[2]),
+                    "below_minimum_counted": cold.below_minimum,
+                    "clearance_assembly_mean_um": cold.assembly_mean * 1e6,
+                    "clearance_assembly_std_um": cold.assembly_std * 1e6,
+                    "clearance_cold_mean_um": cold.cold_mean * 1e6, "clearance_cold_std_um": cold.cold_std * 1e6})
     film = film_numbers(d, h_lim_cr)
     if film is not None:
         below, scuff, short = film.below_critical, film.alpha_over_limit, film.life_below_target

@@ -43,6 +43,33 @@ def operating_moments(d):
     return float(c.mean()), float(c.std(ddof=1))
 
 
+@dataclass(frozen=True)
+class Soaked:
+    """One scheme's clearance with housing, shells and journal at one temperature: at assembly and at the cold
+    start [m] (means and standard deviations), and its bearings below the engine's minimum clearance at either."""
+
+    assembly_mean: float
+    assembly_std: float
+    cold_mean: float
+    cold_std: float
+    below_minimum: int
+    assembled: int
+
+
+def soaked(d):
+    """The :class:`Soaked` numbers of one scheme (full dataset or summaries); None for a dataset without them (a
+    study saved before the clearance at assembly and cold start was computed)."""
+    if "minimum_clearance" not in d:
+        return None
+    if kept_summaries(d):
+        return Soaked(*(float(d[f"clearance_{t}_{s}"]) for t in ("assembly", "cold") for s in ("mean", "std")),
+                      int(d.below_minimum_clearance_count), int(d.status_count.sel(status="assembled")))
+    at_assembly, cold = assembled(d, "clearance_assembly"), assembled(d, "clearance_cold")
+    below = np.count_nonzero(np.fmin(at_assembly, cold) < float(d.minimum_clearance))
+    moments = [f(c) if c.size > 1 else np.nan for c in (at_assembly, cold) for f in (np.mean, lambda x: x.std(ddof=1))]
+    return Soaked(*map(float, moments), int(below), int(cold.size))
+
+
 def fit_summary(ds):
     """One row per scheme: nominal against operating clearance [um], press-fit limits as shares with 95 % intervals.
 

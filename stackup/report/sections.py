@@ -17,10 +17,11 @@ from ..assembly import STATUS
 from ..facts import MIN_COUNTED, PLAN_SERVICE_LEVEL, TAIL_SOURCES, separates
 from ..plan import planner_table
 from ..rank import RULE
+from ..scenarios import is_assumed
 from ..stats import proportion_ci
 from . import format as fmt
 from . import templates as words
-from .verdict import clearance_level, scenario_groups
+from .verdict import clearance_level, more_below_minimum, scenario_groups
 
 
 def markdown_table(frame):
@@ -99,6 +100,8 @@ def centring(facts, ranking):
     narrowest = ranking.clearance_std_um.idxmin()
     if narrowest == chosen or narrowest not in facts.centred.index:  # no window to centre in
         return []
+    if more_below_minimum(ranking, narrowest, chosen, ranking.attrs["negligible_ppm"]):
+        return []  # centring it in the window leaves its bearings below the minimum clearance cold: no case for it
     shift, outside, bearings = facts.centred.loc[narrowest, ["shift", "outside", "bearings"]]
     share, _, upper = proportion_ci(outside, bearings)
     if outside and 1e6 * share > ranking.loc[chosen].outside_window_ppm_ci[1]:
@@ -302,12 +305,25 @@ def _stated_and_worst(stated_lo, stated_hi, worst_lo, worst_hi):
     return stated if same else f"{stated} ({worst})"
 
 
-def _fit_table(facts, order):
+def _soaked_columns(facts, ranking, order):
+    """The mean clearance at assembly and at the cold start per scheme [µm] (their spread is the operating one's
+    within a few hundredths; none for a dataset without them)."""
+    if "clearance_cold_mean_um" not in ranking:
+        return {}
+    rows = ranking.loc[list(order)]
+    title = words.SOAKED_COLUMN.format(assembly=fmt.general(facts.press_fit.assembly_temperature),
+                                       cold=fmt.general(facts.limits.cold_start_temperature))
+    return {title: [f"{fmt.fixed(a)} / {fmt.fixed(c)}" for a, c in zip(rows.clearance_assembly_mean_um,
+                                                                       rows.clearance_cold_mean_um)]}
+
+
+def _fit_table(facts, order, ranking):
     fit, limits = in_order(facts.fit, order), facts.limits
     return pd.DataFrame({
         "scheme": fit.index,
         "operating mean ± std [µm]": [fmt.mean_std(m, v)
                                       for m, v in zip(fit.operating_mean_um, fit.operating_std_um)],
+        **_soaked_columns(facts, ranking, fit.index),
         "operating P0.135–P99.865 % [µm]": [fmt.um_range(a, b) for a, b in zip(fit.operating_p00135_um,
                                                                                fit.operating_p99865_um)],
         "swell [µm]": [fmt.fixed(v, 2) for v in fit.swell_mean_um],
@@ -352,7 +368,13 @@ def fit_section(facts, ranking):
              words.JOURNAL_SOURCE.format(excess=press.journal_temperature_excess, source=journal),
              _window_source(window, sources.clearance_window)]
     temperatures = ", ".join(fmt.fixed(t, 0) for t in limits.press_fit_temperatures)
-    table = _fit_table(facts, ranking.index)
+    if np.isfinite(limits.minimum_clearance):
+        lines.insert(3, words.MINIMUM_SOURCE.format(
+            minimum=fmt.general(limits.minimum_clearance * fmt.UM), assembly=fmt.general(press.assembly_temperature),
+            cold=fmt.general(limits.cold_start_temperature), source=_source(sources.minimum_clearance),
+            cold_source=words.COLD_SOURCE_PART.format(source=_source(sources.cold_start))
+            if is_assumed(sources.cold_start) else ""))
+    table = _fit_table(facts, ranking.index, ranking)
     checks = {f"p < {limits.contact_pressure_min / 1e6:.0f} MPa [ppm]": words.FIT_LOW_PRESSURE,
               f"σ > {limits.shell_stress_max / 1e6:.0f} MPa [ppm]": words.FIT_HIGH_STRESS,
               "loss of fit [ppm]": words.FIT_LOST}

@@ -34,11 +34,18 @@ PARAMETERS_DEFAULTS = "Parameters not listed are at their defaults (`stackup.stu
 # --- verdict --------------------------------------------------------------------------------------------------
 WINDOW_PART = "the operating-clearance window {lo}–{hi} µm"
 CLEARANCE_PART = "operating clearance {mean:.1f} ± {std:.1f} µm"
-USE_ONLY = "**Use {scheme}**: {share} of its bearings fall outside {window} ({clearance})."
-USE_CLEARANCE = "**Use {scheme}**: {share} outside {window} against {runner_share} for {runner} ({clearance}).{price}"
+#: Each figure stands beside the scheme it belongs to: the chosen scheme's clearance after its name, the next
+#: one's after the next one's name.
+USE_ONLY = "**Use {scheme}** ({clearance}): {share} of its bearings fall outside {window}."
+USE_CLEARANCE = ("**Use {scheme}** ({clearance}): {share} outside {window} against {runner_share} for {runner} "
+                 "({runner_clearance}).{price}")
+#: Where the bearings below the minimum clearance at assembly or cold start decided.
+USE_INTERFERENCE = ("**Use {scheme}** ({clearance}): {share} of its bearings below the minimum clearance at assembly "
+                    "or cold start against {runner_share} for {runner} ({runner_clearance}); {window_share} outside "
+                    "{window}.")
 #: What the chosen scheme costs more than the next, where the clearance chose it.
 PRICE_PART = " It costs {costs}."
-USE_COST = "**Use {scheme}**: {reason}, so {decides}: {costs} ({clearance})."
+USE_COST = "**Use {scheme}** ({clearance}): {reason}, so {decides}: {costs}."
 LEVEL_PART = ("it and {runner} put {share} and {runner_share} of their bearings outside {window}, less than "
               "{negligible} ppm apart")
 LEVEL_NO_WINDOW_PART = "with no window to judge the clearance by"
@@ -70,6 +77,15 @@ PROCESS_WORST_PART = "; the worst, {scenario}, puts {share} outside"
 UNDER_PART = "under {scenario}, {names} put{s} fewer outside"
 MORE_PART = "; likewise under {count} more"
 CHECK_FIRST = "**Check first:** {notes}"
+INTERFERENCE = "**Interference:** {schemes} below the {minimum} µm minimum clearance at assembly or {cold} °C; {chosen}."
+INTERFERENCE_SCHEME_PART = "{share} of {scheme}'s bearings (cold: {cold} µm)"
+#: Said where the recommended scheme has bearings below the minimum clearance, or where it has none.
+INTERFERENCE_CHOSEN_PART = "no scheme compared has fewer than {scheme}"
+INTERFERENCE_NONE_PART = "{scheme} none"
+#: The operating window moved to the cold start by the chosen scheme's mean change, where its lower edge falls
+#: below the minimum clearance there.
+WINDOW_COLD = ("**Window:** {lo}–{hi} µm in service is {cold_lo}–{cold_hi} µm at {cold} °C in this {material} "
+               "housing: not this block's window.")
 SCUFFING_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings spend over 20 % of the cycle in boundary "
                  "friction (scuffing risk).")
 SHORT_LIFE_NOTE = ("At bearing {bearing}, {share} % of {scheme}'s bearings live less than the {target} h "
@@ -93,13 +109,15 @@ FAILURES_NOTE = "Stages failed on some engines (left out of the statistics): {li
 NO_MECHANICS_NOTE = "The crankshaft, film and life stages did not run ({reason}): the ranking uses the clearance only."
 NONE_ASKED_PART = "the study asked for none, `mechanics_engines=0`"
 NO_CRANK_PART = "the engine file has no `[crank]` section"
+BELOW_MINIMUM_COLUMN = "below min. clearance [ppm]"
 WORST_PROCESS = "worst process scenario: outside [ppm]"
 WORST_MODEL = "worst model uncertainty: outside [ppm]"
 WORST_CELL = "{share} ({scenario})"
 
 # --- ranking --------------------------------------------------------------------------------------------------
 #: The ranking's metrics in words.
-METRICS = {"outside_window_ppm": "share outside the window",
+METRICS = {"below_minimum_ppm": "share below the minimum clearance (assembly, cold start)",
+           "outside_window_ppm": "share outside the window",
            "alpha_over_limit_pct": "scuffing risk (α > 20 %) at the worst position",
            "life_below_target_pct": "lives below the target at the worst position",
            "shell_grades": "shell grades", "part_grades": "bore and journal grades", "stockout_ppm": "stock-outs",
@@ -162,7 +180,8 @@ SOBOL_EXPLAINED = ("S_1: the share of the output's variance an input explains al
 
 # --- clearance, press fit -------------------------------------------------------------------------------------
 CLEARANCE_INTRO = ("Nominal diametral clearance (no swell, one temperature, as the standard states ranges) against "
-                   "each scheme's stated range and, where it differs, its worst case over the allowed pairs.")
+                   "each scheme's stated range and, where it differs, its worst case over the allowed pairs (fitted, "
+                   "swell included: Press fit).")
 NONE_STATED = "none ({worst})"
 READ_OUT = ("{scheme} reads bores and journals to {step} µm, so a part up to half a step outside its class is paired "
             "as inside it: its worst case, {worst_lo:.1f}–{worst_hi:.1f} µm, reaches beyond the stated "
@@ -192,6 +211,10 @@ FIT_LOST = "loses its fit"
 PRESS_FIT_LIMITS_SOURCE = ("- contact pressure at least {pressure:.0f} MPa, shell compression at most {stress:.0f} "
                            "MPa: {source};")
 CRUSH_SOURCE = "- crush height {lo:.3f}–{hi:.3f} mm: {source};"
+MINIMUM_SOURCE = "- minimum clearance {minimum} µm at {assembly} and {cold} °C{cold_source}: {source};"
+#: The cold start's source where it is not the engine file's own temperature.
+COLD_SOURCE_PART = " ({source})"
+SOAKED_COLUMN = "at {assembly} / {cold} °C [µm]"
 JOURNAL_SOURCE = "- journal {excess:g} K hotter than its housing ({source});"
 WINDOW_SOURCE = "- operating-clearance window {lo:.1f}–{hi:.1f} µm: {source}{end}"
 NO_SOURCE = "no source given"

@@ -51,12 +51,22 @@ def _cost_parts(ranking, chosen, runner, decider):
     return [words.COST_PARTS[c].format(a=a[c], b=b[c], runner=runner) for c in columns if c in words.COST_PARTS]
 
 
+def _clearance(row):
+    """A scheme's operating clearance as the verdict writes it beside the scheme's name."""
+    return words.CLEARANCE_PART.format(mean=row.clearance_mean_um, std=row.clearance_std_um)
+
+
+def _below(row):
+    """A scheme's share of bearings below the minimum clearance at assembly or cold start, as the verdict writes it."""
+    return fmt.ppm(row.below_minimum_ppm, row.below_minimum_ppm_ci)
+
+
 def _use(facts, ranking, window):
     """The first paragraph: which scheme, and why (the clearance, or cost among schemes level on it)."""
     chosen = ranking.index[0]
     first = ranking.loc[chosen]
     window_text = words.WINDOW_PART.format(lo=fmt.um_edge(window[0]), hi=fmt.um_edge(window[1]))
-    clearance = words.CLEARANCE_PART.format(mean=first.clearance_mean_um, std=first.clearance_std_um)
+    clearance = _clearance(first)
     if len(ranking) == 1:
         return words.USE_ONLY.format(scheme=chosen, share=_share(first), window=window_text, clearance=clearance)
     runner = ranking.index[1]
@@ -65,13 +75,17 @@ def _use(facts, ranking, window):
     if decider is None:
         tied = list(ranking.index[ranking["rank"] == first["rank"]])
         return words.TIE.format(names=words.bold_listed(tied), window=window_text)
+    if decider == "below_minimum_ppm":
+        return words.USE_INTERFERENCE.format(scheme=chosen, clearance=clearance, share=_below(first), runner=runner,
+                                             runner_share=_below(second), runner_clearance=_clearance(second),
+                                             window_share=_share(first), window=window_text)
     if decider == "outside_window_ppm":
         dearer = [words.COST_PARTS[c].format(a=first[c], b=second[c]) for c in COST[:3]
                   if float(first[c]) > float(second[c])]
         price = words.PRICE_PART.format(costs=words.listed(dearer)) if dearer else ""
         return words.USE_CLEARANCE.format(scheme=chosen, share=_share(first), window=window_text,
                                           runner=runner, runner_share=_share(second), clearance=clearance,
-                                          price=price)
+                                          runner_clearance=_clearance(second), price=price)
     reason = (words.LEVEL_NO_WINDOW_PART if not np.isfinite(window[1]) else
               words.LEVEL_PART.format(share=_share(first), runner=runner, runner_share=_share(second),
                                       window=window_text, negligible=fmt.general(ranking.attrs["negligible_ppm"])))
@@ -79,6 +93,50 @@ def _use(facts, ranking, window):
                words.METRIC_DECIDES_PART.format(metric=words.METRICS.get(decider, decider)))
     return words.USE_COST.format(scheme=chosen, reason=reason, decides=decides,
                                  costs=", ".join(_cost_parts(ranking, chosen, runner, decider)), clearance=clearance)
+
+
+def interference(facts, ranking):
+    """The schemes with bearings below the minimum clearance at assembly or cold start, each with its share and its
+    cold-start clearance, and whether the recommended scheme is among them; None where no scheme has any (or the
+    dataset has no such count)."""
+    if "below_minimum_ppm" not in ranking or not (ranking.below_minimum_counted.fillna(0) > 0).any():
+        return None
+    chosen = ranking.index[0]
+    below = ranking[ranking.below_minimum_counted.fillna(0) > 0]
+    schemes = [words.INTERFERENCE_SCHEME_PART.format(
+        scheme=name, share=(fmt.percent(row.below_minimum_ppm / 1e6) if row.below_minimum_ppm >= 1000 else
+                            fmt.ppm(row.below_minimum_ppm)),
+        cold=fmt.mean_std(row.clearance_cold_mean_um, row.clearance_cold_std_um, 1).replace("-", "−"))
+        for name, row in below.iterrows()]
+    limits = facts.limits
+    chosen_text = (words.INTERFERENCE_CHOSEN_PART if chosen in below.index else
+                   words.INTERFERENCE_NONE_PART).format(scheme=chosen)
+    return words.INTERFERENCE.format(minimum=fmt.general(limits.minimum_clearance * fmt.UM),
+                                     cold=_degrees(limits.cold_start_temperature), schemes=words.listed(schemes),
+                                     chosen=chosen_text)
+
+
+def window_at_cold_start(facts, ranking, window):
+    """The operating window moved to the cold start by the recommended scheme's mean change of clearance, where its
+    lower edge falls below the minimum clearance there (a window that does not suit the housing's material); else
+    None."""
+    first = ranking.loc[ranking.index[0]]
+    minimum = facts.limits.minimum_clearance
+    if "clearance_cold_mean_um" not in ranking or not np.isfinite(window[1]) or not np.isfinite(minimum):
+        return None
+    shift = float(first.clearance_mean_um - first.clearance_cold_mean_um) / fmt.UM  # operating less cold [m]
+    if not window[0] - shift < minimum:
+        return None
+    return words.WINDOW_COLD.format(material=facts.press_fit.housing_material, lo=fmt.um_edge(window[0]),
+                                    hi=fmt.um_edge(window[1]),
+                                    cold_lo=fmt.fixed((window[0] - shift) * fmt.UM).replace("-", "−"),
+                                    cold_hi=fmt.fixed((window[1] - shift) * fmt.UM).replace("-", "−"),
+                                    cold=_degrees(facts.limits.cold_start_temperature))
+
+
+def _degrees(value):
+    """A temperature [degC] as the verdict writes it, with a true minus sign."""
+    return fmt.general(value).replace("-", "−")
 
 
 def scenario_groups(facts):
@@ -102,6 +160,13 @@ def clearance_level(other, negligible):
     return {s for s in other.index if not differs(best, other.loc[s], "outside_window_ppm", "lower", negligible)}
 
 
+def more_below_minimum(ranking, scheme, chosen, negligible):
+    """``scheme`` puts more bearings below the minimum clearance than ``chosen`` (by the ranking's rule): fewer
+    outside the window does not make it better."""
+    return "below_minimum_ppm" in ranking and differs(ranking.loc[chosen], ranking.loc[scheme], "below_minimum_ppm",
+                                                      "lower", negligible)
+
+
 def _flips(labels, scenario_rankings, chosen, negligible):
     """(label, schemes) of the scenarios among ``labels`` under which other schemes put fewer bearings outside the
     window than ``chosen`` by the ranking's rule (a difference the scenario's counts cannot resolve is no flip:
@@ -112,7 +177,8 @@ def _flips(labels, scenario_rankings, chosen, negligible):
         if chosen not in other.index:
             continue
         better = [s for s in other.index if s != chosen and differs(other.loc[s], other.loc[chosen],
-                                                                   "outside_window_ppm", "lower", negligible)]
+                                                                   "outside_window_ppm", "lower", negligible)
+                  and not more_below_minimum(other, s, chosen, negligible)]
         if better:
             first = other.loc[better, "rank"].min()
             out.append((label, [s for s in better if other.loc[s, "rank"] == first]))
@@ -214,7 +280,8 @@ def verdict(facts, ranking, scenario_rankings):
     window = ranking.attrs["window_m"]
     chosen = ranking.index[0]
     negligible = ranking.attrs["negligible_ppm"]
-    paragraphs = [_use(facts, ranking, window), _model(facts, scenario_rankings, chosen, negligible),
+    paragraphs = [_use(facts, ranking, window), interference(facts, ranking),
+                  window_at_cold_start(facts, ranking, window), _model(facts, scenario_rankings, chosen, negligible),
                   _process(facts, ranking, scenario_rankings, chosen, negligible)]
     notes = check_first(facts, ranking, window)
     if notes:
@@ -229,6 +296,10 @@ def decision_table(facts, ranking):
     table = pd.DataFrame({
         "rank": ranking["rank"],
         "scheme": ranking.index,
+        **({words.BELOW_MINIMUM_COLUMN: ["0" if n == 0 else fmt.ppm_interval(v, ci) for v, ci, n in
+                                         zip(ranking.below_minimum_ppm, ranking.below_minimum_ppm_ci,
+                                             ranking.below_minimum_counted)]}
+           if "below_minimum_ppm" in ranking else {}),
         "outside window [ppm]": [fmt.ppm_interval(v, ci) + ("" if s == "counted" else " †")
                                  for v, ci, s in zip(ranking.outside_window_ppm, ranking.outside_window_ppm_ci,
                                                      ranking.outside_window_source)],

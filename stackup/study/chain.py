@@ -35,7 +35,7 @@ from ..parts import BlockParts, draw_lot
 from ..stats import mean_half_width
 from .._random import lot_generator
 from . import schema
-from .clearance import operating_clearance, press_fit_checks
+from .clearance import operating_clearance, press_fit_checks, soaked_clearances
 
 #: Engines per step of the mechanical chain when it runs to a target error.
 MECHANICS_BATCH = 25
@@ -238,6 +238,18 @@ EXTREME_FIELDS = {
 }
 
 
+#: The clearance with housing, shells and journal at one temperature: dataset name -> SoakedClearance field.
+SOAKED_FIELDS = {"clearance_assembly": "assembly", "clearance_cold": "cold"}
+
+
+@dataclass(frozen=True)
+class SoakedClearance:
+    """Diametral clearance at the assembly temperature and at the cold start [m]."""
+
+    assembly: np.ndarray
+    cold: np.ndarray
+
+
 def _press_fit(engine, parts, assembly, method):
     """Press fit of the assembled bearings at the operating temperature and its checks over the declared ones.
 
@@ -250,9 +262,12 @@ def _press_fit(engine, parts, assembly, method):
     # the design checks over every declared temperature: the stress bites cold for a light-alloy housing,
     # the pressure hot (cold for cast iron)
     extremes = press_fit_checks(engine, housing_bore=parts.housing_bore[ok], **shells)
+    soaked = SoakedClearance(*soaked_clearances(engine, housing_bore=parts.housing_bore[ok],
+                                                journal_d=parts.journal_d[ok], **shells))
     out = {}
     for result, fields in ((fit, {**FIT_FIELDS, "loss_of_fit": "loss_of_fit"}),
-                           (extremes, {**EXTREME_FIELDS, "loss_of_fit_any_temperature": "loss_of_fit"})):
+                           (extremes, {**EXTREME_FIELDS, "loss_of_fit_any_temperature": "loss_of_fit"}),
+                           (soaked, SOAKED_FIELDS)):
         for name, field in fields.items():
             value = getattr(result, field)
             full = np.zeros(ok.shape, bool) if value.dtype == bool else np.full(ok.shape, np.nan)

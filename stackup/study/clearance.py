@@ -61,6 +61,23 @@ def operating_clearance(engine, *, housing_bore, journal_d, upper_wall, lower_wa
                      **engine.press_fit.kwargs())
 
 
+def soaked_clearances(engine, *, housing_bore, journal_d, upper_wall, lower_wall, upper_crush, lower_crush,
+                      method="lame"):
+    """Diametral clearance of the same bearings at assembly and at the cold start (parameters as
+    :func:`operating_clearance`), housing, shells and journal all at one temperature [m].
+
+    The press fit's model at the engine's ``assembly_temperature`` and its
+    :attr:`~stackup.engines.PressFitSpec.cold_start_temperature`: an
+    aluminium housing shrinks about twice as much as the steel journal, so its
+    bearings close cold (physics.md sec. 4b). Returns ``(assembly, cold)``.
+    """
+    spec = engine.press_fit
+    shells = _shell_pair(upper_wall, lower_wall, upper_crush, lower_crush)
+    return tuple(press_fit(housing_bore=housing_bore, journal_d=journal_d, **shells, method=method,
+                           **spec.soaked_kwargs(t)).clearance
+                 for t in (spec.assembly_temperature, spec.cold_start_temperature))
+
+
 def press_fit_checks(engine, *, housing_bore, upper_wall, lower_wall, upper_crush, lower_crush, method="lame"):
     """The press fit of the same bearings over every temperature ``engine`` declares (parameters as
     :func:`operating_clearance`): a :class:`stackup.fit.PressFitExtremes`."""
@@ -69,4 +86,4 @@ def press_fit_checks(engine, *, housing_bore, upper_wall, lower_wall, upper_crus
                               **engine.press_fit.extremes_kwargs())
 
 
-__all__ = ["operating_clearance", "preferred_pairs", "press_fit_checks"]
+__all__ = ["operating_clearance", "preferred_pairs", "press_fit_checks", "soaked_clearances"]

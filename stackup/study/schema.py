@@ -152,6 +152,10 @@ FIT = {
     "housing_swell": Var(SED, "m", "elastic growth of the housing bore diameter from the shell press fit"),
     "clearance_operating": Var(SED, "m", "diametral operating clearance: press fit, swell and temperature "
                                          "(NaN where status is not assembled)"),
+    "clearance_assembly": Var(SED, "m", "diametral clearance at the assembly temperature, housing, shells and "
+                                        "journal at it, swell included (NaN where status is not assembled)"),
+    "clearance_cold": Var(SED, "m", "diametral clearance at the cold start (cold_start_temperature), housing, "
+                                    "shells and journal at it, swell included (NaN where status is not assembled)"),
     "contact_pressure_lowest": Var(SED, "Pa", "lowest contact pressure between shell backs and housing bore over "
                                               "the temperatures checked (press_fit_temperatures; 0: fit lost)"),
     "shell_stress_highest": Var(SED, "Pa", "highest compressive hoop stress of the shell wall over the temperatures "
@@ -249,6 +253,11 @@ SUMMARY = {
                                                    "temperatures checked"),
     "shell_stress_max": Var(("scheme",), "Pa", "highest shell stress of an assembled bearing over the temperatures "
                                                "checked"),
+    **{f"clearance_{label}_{stat}": Var(("scheme",), "m", f"{what} diametral clearance at {when}")
+       for label, when in (("assembly", "assembly"), ("cold", "the cold start"))
+       for stat, what in (("mean", "mean"), ("std", "standard deviation of the"))},
+    "below_minimum_clearance_count": Var(("scheme",), "1", "assembled bearings whose clearance at assembly or at the "
+                                                           "cold start is below minimum_clearance"),
     "housing_swell_mean": Var(("scheme",), "m", "mean elastic growth of the housing bore from the press fit"),
     "housing_swell_std": Var(("scheme",), "m", "standard deviation of the growth of the housing bore from the press fit"),
     "clearance_operating_sampled": Var(SMB, "m", "diametral operating clearance of the bearings of the mechanical chain"),
@@ -346,6 +355,8 @@ DESIGN = {
     "design_shell_stress_max": Var((), "Pa", "largest compressive hoop stress of the shell wall"),
     "press_fit_temperatures": Var(("press_fit_check",), "degC", "temperatures the press fit is checked at (cold "
                                                                 "start, assembly, operating, hot)"),
+    "minimum_clearance": Var((), "m", "least diametral clearance a bearing may have at assembly or the cold start"),
+    "cold_start_temperature": Var((), "degC", "coldest temperature the bearings are assembled or started at"),
     "critical_film": Var((), "m", "critical film thickness h_lim,cr = Rz journal + Rz shell (Levanov et al. 2015, "
                                   "eq. 3): below it, boundary friction"),
 }
@@ -359,6 +370,8 @@ def design_variables(engine):
               "design_contact_pressure_min": limits.contact_pressure_min,
               "design_shell_stress_max": limits.shell_stress_max,
               "press_fit_temperatures": engine.press_fit.temperatures,
+              "minimum_clearance": engine.minimum_clearance,
+              "cold_start_temperature": engine.press_fit.cold_start_temperature,
               "critical_film": engine.wear.critical_film}
     return {name: var(np.asarray(values[name], dtype=float)) for name, var in DESIGN.items()}
 

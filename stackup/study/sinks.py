@@ -126,6 +126,8 @@ def attributes(study, ctx, mechanics_used):
         "input_files": json.dumps(study.files),
         "crush_height_source": engine.press_fit.crush_source,
         "clearance_window_source": engine.clearance_window_source,
+        "minimum_clearance_source": engine.minimum_clearance_source,
+        "cold_start_source": engine.press_fit.cold_start_source,
         "engine_processes": json.dumps(processes(engine)),
         "wear": json.dumps({"journal_rz_m": engine.wear.journal_rz, "shell_rz_m": engine.wear.shell_rz,
                             "journal_rq_m": engine.wear.journal_rq, "shell_rq_m": engine.wear.shell_rq,

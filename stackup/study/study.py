@@ -279,7 +279,8 @@ class Study:
         failed = FailureCount.of_chunk(result)
         if self.keep == "summaries":
             result = summaries.reduce_chunk(result, lot_engines=ctx.lot, window=ctx.engine.clearance_window,
-                                            limits=ctx.engine.press_fit_limits)
+                                            limits=ctx.engine.press_fit_limits,
+                                            minimum_clearance=ctx.engine.minimum_clearance)
         result.failures = failed
         return result
 

@@ -39,7 +39,9 @@ from .schema import BIN_START, BIN_WIDTH, BINS, WORST
 from .chain import MechanicsProgress, ShellCounts
 
 CLEARANCES = ("clearance_nominal", "clearance_operating")
-MOMENTS = (*CLEARANCES, "housing_swell")
+#: The clearances at one temperature (assembly, cold start), counted against the engine's minimum clearance.
+SOAKED = ("clearance_assembly", "clearance_cold")
+MOMENTS = (*CLEARANCES, *SOAKED, "housing_swell")
 INPUTS = ("housing_bore", "journal_d", "shell_upper_wall", "shell_lower_wall")
 #: What the summaries keep of each engine the mechanical chain ran on.
 SAMPLED = (*schema.MECHANICS, "clearance_operating")
@@ -110,7 +112,7 @@ class ChunkSummary:
     failures: object = None  # the chunk's FailureCount, set by Study.chunk
 
 
-def reduce_chunk(result, *, lot_engines, window, limits):
+def reduce_chunk(result, *, lot_engines, window, limits, minimum_clearance):
     """Summary of a :class:`~stackup.study.chain.ChunkResult`, one per production lot.
 
     Lots are fixed units, so the sums do not depend on the chunking. The
@@ -121,7 +123,8 @@ def reduce_chunk(result, *, lot_engines, window, limits):
     for j, start in enumerate(range(e0, result.engines.stop, lot_engines)):
         rows = slice(start - e0, min(start + lot_engines, result.engines.stop) - e0)
         shells = result.shells if j == 0 else ShellCounts.zeros(*result.shells.made.shape)
-        lots.append(_reduce(result.take(rows), shells, e0=start, window=window, limits=limits))
+        lots.append(_reduce(result.take(rows), shells, e0=start, window=window, limits=limits,
+                            minimum_clearance=minimum_clearance))
     mechanical = result.h_min_head.shape[1]
     # a copy: a view would keep the whole chunk's arrays alive for as long as the sample is kept
     sample = {**{name: result.per_mech[name] for name in schema.MECHANICS},
@@ -129,7 +132,7 @@ def reduce_chunk(result, *, lot_engines, window, limits):
     return ChunkSummary(result.first, lots, sample, result.progress, result.h_min_head)
 
 
-def _reduce(v, shells, *, e0, window, limits):
+def _reduce(v, shells, *, e0, window, limits, minimum_clearance):
     """Summary of one lot's per-engine variables ``v`` and its shell counters."""
     status = v["status"]  # (schemes, engines, bearings)
     n_schemes = status.shape[0]
@@ -148,6 +151,8 @@ def _reduce(v, shells, *, e0, window, limits):
         counts[f"{name}_histogram"] = hist
     c = v["clearance_operating"]
     counts["outside_window"] = np.sum(ok & ((c < window[0]) | (c > window[1])), axis=(1, 2))
+    counts["below_minimum_clearance"] = np.sum(ok & (np.fmin(*(v[name] for name in SOAKED)) < minimum_clearance),
+                                               axis=(1, 2))
     pressure, stress = v["contact_pressure_lowest"], v["shell_stress_highest"]
     counts["loss_of_fit"] = np.sum(ok & v["loss_of_fit_any_temperature"], axis=(1, 2))
     counts["low_contact_pressure"] = np.sum(ok & (pressure < limits.contact_pressure_min), axis=(1, 2))
@@ -211,8 +216,11 @@ def dataset(total, sample, *, schemes, grade_labels, attrs):
         data[f"{name}_histogram"] = summary[f"{name}_histogram"](counts[f"{name}_histogram"])
         data[f"{name}_mean"], data[f"{name}_std"] = (summary[f"{name}_{k}"](v)
                                                      for k, v in zip(("mean", "std"), mean_std(total, name, n)))
-    data["housing_swell_mean"], data["housing_swell_std"] = (summary[f"housing_swell_{k}"](v) for k, v in
-                                                             zip(("mean", "std"), mean_std(total, "housing_swell", n)))
+    for name in ("housing_swell", *SOAKED):
+        data[f"{name}_mean"], data[f"{name}_std"] = (summary[f"{name}_{k}"](v) for k, v in
+                                                     zip(("mean", "std"), mean_std(total, name, n)))
+    data["below_minimum_clearance_count"] = summary["below_minimum_clearance_count"](
+        counts["below_minimum_clearance"])
     for name, var in schema.MECHANICS.items():
         data[name] = var(sample[name])
     data["clearance_operating_sampled"] = summary["clearance_operating_sampled"](sample["clearance_operating"])

@@ -383,7 +383,7 @@ def test_the_report_states_the_numbers_of_the_facts(comparison, tmp_path):
     chosen = ranking.iloc[0]
     clearance = words.CLEARANCE_PART.format(mean=chosen.clearance_mean_um, std=chosen.clearance_std_um)
     assert any(sentence(use, scheme=ranking.index[0], clearance=clearance).search(first_page)
-               for use in (words.USE_ONLY, words.USE_CLEARANCE, words.USE_COST))
+               for use in (words.USE_ONLY, words.USE_CLEARANCE, words.USE_COST, words.USE_INTERFERENCE))
 
 
 def _first_table(text, first_column="scheme"):

@@ -77,3 +77,26 @@ def test_summaries_cover_the_press_fit_and_the_mechanical_chain():
         assert int(s.loss_of_fit_count) == np.count_nonzero(d.loss_of_fit_any_temperature.values[ok])
         assert float(s.housing_swell_mean) == pytest.approx(d.housing_swell.values[ok].mean(), rel=1e-12)
     xr.testing.assert_equal(Study(**{**kw, "chunk_lots": 3}, keep="summaries").run(), summary)
+
+
+def test_summaries_count_the_bearings_below_the_minimum_clearance_as_the_full_dataset(tmp_path):
+    from stackup.engines import builtin_folder
+    from stackup.facts.tables import soaked
+
+    # the aluminium block with a minimum clearance its ISO 13778 schemes straddle at the -30 degC cold start
+    text = (builtin_folder() / "iso-example-aluminium.toml").read_text()
+    window = "relative_clearance = [0.00075, 0.00125]"
+    engine = tmp_path / "alu.toml"
+    engine.write_text(text.replace(window, window + '\nminimum_clearance = 0.047\nminimum_clearance_source = "test"'))
+    kw = dict(KW, n_engines=1000, engine=engine, schemes=("iso13778-4",))
+    full, summary = Study(**kw).run(), Study(**kw, keep="summaries").run()
+    d, s = full.sel(scheme="iso13778-4"), summary.sel(scheme="iso13778-4")
+    ok = d.status.values == 0
+    at_assembly, cold = d.clearance_assembly.values[ok], d.clearance_cold.values[ok]
+    below = np.count_nonzero(np.fmin(at_assembly, cold) < 47e-6)
+    assert 0 < below < ok.sum() and np.all(cold < at_assembly)  # aluminium: closed cold
+    assert int(s.below_minimum_clearance_count) == below
+    for counted in (soaked(d), soaked(s)):
+        assert counted.below_minimum == below and counted.assembled == ok.sum()
+        assert counted.cold_mean == pytest.approx(cold.mean(), rel=1e-12)
+        assert counted.assembly_std == pytest.approx(at_assembly.std(ddof=1), rel=1e-9)
