@@ -47,7 +47,8 @@ On the standard's own drawing every scale is 1 and the shift is zero, so the
 adapted schemes are the standard's tables exactly. The adapted scheme is data:
 :func:`adapt` returns a :class:`~stackup.schemes.Scheme` whose
 :meth:`~stackup.schemes.Scheme.to_toml` a user can read, keep and edit
-(``stackup schemes --engine NAME --out DIR``).
+(``stackup schemes --engine NAME --out DIR``). :func:`laid_on` decides, for every job, which schemes
+are laid on the drawing: the standard's named by their names.
 
 References
 ----------
@@ -286,3 +287,16 @@ def _notes(reference, engine, how):
 def iso_schemes(engine):
     """The six ISO 13778 schemes laid on ``engine``'s drawing (:func:`adapt`), in the standard's order."""
     return [adapt(name, engine) for name in ISO_SCHEMES]
+
+
+def laid_on(scheme, engine):
+    """``scheme`` as every job runs it on ``engine``: the one place that decides which schemes are adapted.
+
+    One of :data:`ISO_SCHEMES` named by its name is the standard's pattern laid on the engine's drawing
+    (:func:`adapt`); a scheme given by a file path or as a :class:`~stackup.schemes.Scheme` is the user's
+    own, already written for a drawing, and is taken as it is. ``stackup compare`` (through the study's
+    stored scheme texts), ``stackup plan`` and ``stackup schemes --engine`` all lay schemes through here.
+    """
+    if isinstance(scheme, str) and scheme in ISO_SCHEMES:
+        return adapt(scheme, engine)
+    return load_scheme(scheme)
