@@ -543,7 +543,7 @@ def _estimated_from(a):
     if a.get("source") == "study dataset":
         return f"Estimated from the {a['engines']:,} engines of the study dataset"
     laid = (f"; scheme {a['scheme']} is ISO 13778's pattern laid on {a['laid_on']}'s drawing as `stackup compare` "
-            f"runs it (`stackup schemes --engine {a['laid_on']}` shows its grades)" if a.get("laid_on") else "")
+            "runs it (`stackup schemes --engine` with this engine shows its grades)" if a.get("laid_on") else "")
     return f"Estimated from {a['sample_engines']:,} sampled engines (seed {a['seed']}){laid}"
 
 
