@@ -189,9 +189,9 @@ def _number(run, scheme, column):
 
 
 def between(a, b):
-    """What differs between the saved comparisons ``a`` and ``b`` (folders or ``compare.nc`` files): a
-    :class:`Difference`."""
-    first, second = read(a), read(b)
+    """What differs between the saved comparisons ``a`` and ``b`` (folders or ``compare.nc`` files, or runs
+    :func:`read` already read): a :class:`Difference`."""
+    first, second = (run if isinstance(run, Run) else read(run) for run in (a, b))
     schemes = [*first.ranking.index, *(s for s in second.ranking.index if s not in first.ranking.index)]
     rows = []
     for scheme in schemes:
