@@ -7,7 +7,8 @@ The package is built in layers; each imports only the layers below it
 application
     :mod:`~stackup.cli` over its subcommands (:mod:`~stackup.commands`, a
     module each), :mod:`~stackup.comparison` (the main job into a folder,
-    :func:`stackup.comparison.run`), :mod:`~stackup.report`,
+    :func:`stackup.comparison.run`), :mod:`~stackup.difference` (two saved
+    comparisons compared), :mod:`~stackup.report`,
     :mod:`~stackup.io` and :mod:`~stackup.output`, and the comparison in
     memory (:func:`compare`, ``stackup._comparison``).
 analysis

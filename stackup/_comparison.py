@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
+from tqdm.auto import tqdm
 
 from . import _validate as check
 from .design import design as design_scheme
@@ -197,9 +198,10 @@ def compare_checked(runs_asked, *, engine, schemes, n_engines, seed, scenarios, 
     log(f"tails: shares beyond the design window with the shells integrated out ({len(few)} schemes with fewer than "
         f"{MIN_COUNTED} bearings counted outside it)")
     tails = tails_dataset(engine_used, few, window=study_options.get("window"), seed=seed,
-                          pilot_engines=study.pilot_engines)
+                          pilot_engines=study.pilot_engines, progress=progress)
     log("sensitivity: Sobol indices of the root inputs")
-    sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails)
+    sensitivity = sensitivity_dataset(ds, scenario=study_options.get("scenario"), seed=seed, tails=tails,
+                                      progress=progress)
     ds.attrs["comparison"] = COMPARISON_NOTE
     return Comparison(ds, runs, sensitivity, tails)
 
@@ -278,15 +280,23 @@ def design_record(designed):
             "start_text": scheme_text(designed.start)}
 
 
+def bar(steps, desc, unit, progress):
+    """A progress bar over a stage's ``steps`` (an iterable, or how many), as the study's (tqdm: on a terminal
+    where ``progress`` is None, always with True, never with False)."""
+    iterable, total = (None, steps) if isinstance(steps, int) else (steps, None)
+    return tqdm(iterable, total=total, desc=desc, unit=unit, disable=None if progress is None else not progress)
+
+
 def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1024, n_film=64,
-                        tails=None):
+                        tails=None, progress=None):
     """Sobol indices of the root inputs (:func:`stackup.sensitivity.sobol`) for the comparison's schemes.
 
     The operating clearance (bearing 1; every position is alike) for every
     scheme; the engine's smallest mid-plane film and its life for the scheme the
     ranking puts first (one run of the mechanical chain gives both). Variables
     on (output, scheme, input): ``S1``, ``ST`` and their 95 % bootstrap
-    bounds ``*_lo``, ``*_hi``; NaN where an output was not analysed.
+    bounds ``*_lo``, ``*_hi``; NaN where an output was not analysed. ``progress``: a bar over the Sobol runs
+    (:func:`bar`).
     """
     params = StudyParameters.of(ds)
     stored_engine, loaded = load_inputs(parsed(ds, "input_files"), params.schemes)
@@ -294,16 +304,20 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
     by_name = {s.name: s for s in loaded}
     schemes = [str(s) for s in ds.scheme.values]
     frames = {}
-    for scheme in schemes:
-        frames[("clearance_operating", scheme)] = sobol(engine, by_name[scheme], n=n_clearance, seed=seed, scenario=scenario,
-                                                        pilot_engines=params.pilot_engines)
-    if int(ds.attrs.get("mechanics_engines_used", 0)) and n_film:
-        best = rank(ds, tails=tails).index[0]
-        both = sobol(engine, by_name[best], output="h_min", n=n_film, seed=seed, scenario=scenario, return_all=True,
-                     crank_angle_step=max(params.crank_angle_step, SOBOL_CRANK_ANGLE_STEP),
-                     crank_method=params.crank_method, film_method=plain(ds, "film_method_used"),
-                     pilot_engines=params.pilot_engines)
-        frames.update({(output, best): frame for output, frame in both.items()})
+    film = bool(int(ds.attrs.get("mechanics_engines_used", 0)) and n_film)
+    with bar(len(schemes) + film, "sensitivity", "run", progress) as runs:
+        for scheme in schemes:
+            frames[("clearance_operating", scheme)] = sobol(engine, by_name[scheme], n=n_clearance, seed=seed,
+                                                            scenario=scenario, pilot_engines=params.pilot_engines)
+            runs.update(1)
+        if film:
+            best = rank(ds, tails=tails).index[0]
+            both = sobol(engine, by_name[best], output="h_min", n=n_film, seed=seed, scenario=scenario,
+                         return_all=True, crank_angle_step=max(params.crank_angle_step, SOBOL_CRANK_ANGLE_STEP),
+                         crank_method=params.crank_method, film_method=plain(ds, "film_method_used"),
+                         pilot_engines=params.pilot_engines)
+            frames.update({(output, best): frame for output, frame in both.items()})
+            runs.update(1)
     outputs = list(dict.fromkeys(output for output, _ in frames))
     inputs = list(dict.fromkeys(i for frame in frames.values() for i in frame.index))
     values = {c: np.full((len(outputs), len(schemes), len(inputs)), np.nan) for c in schema.SOBOL_INDICES}
@@ -322,7 +336,7 @@ def sensitivity_dataset(ds, *, engine=None, scenario=None, seed=0, n_clearance=1
 
 @check.validated(method=check.OneOf(("conditional", "splitting")), window=check.Window())
 def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000, n_level=TAIL_ROOTS,
-                  method="conditional"):
+                  method="conditional", progress=None):
     """Share of bearings below and above the design window per scheme, for the ranking's small shares.
 
     ``method="conditional"`` (default): the designer's conditional tier, the
@@ -337,7 +351,8 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     each estimate cost (``tail_bearings``); splitting adds the independent
     root bearings it rests on (``tail_roots_in_tail``), the conditional tier
     the share outside the window and its interval (``tail_outside_share``,
-    ``tail_outside_interval``: the two edges from the same samples).
+    ``tail_outside_interval``: the two edges from the same samples). ``progress``: a bar over the schemes
+    (:func:`bar`).
     """
     engine = load_engine(engine)
     window = engine.clearance_window if window is None else window
@@ -345,7 +360,7 @@ def tails_dataset(engine, schemes, *, window=None, seed=0, pilot_engines=20_000,
     shares, errors, cost, roots = (np.full((len(loaded), 2), np.nan) for _ in range(4))
     interval = np.full((len(loaded), 2, 2), np.nan)
     outside, outside_interval = np.full(len(loaded), np.nan), np.full((len(loaded), 2), np.nan)
-    for i, scheme in enumerate(loaded):
+    for i, scheme in enumerate(bar(loaded, "tails", "scheme", progress)):
         if method == "conditional":
             r = outside_share(engine, scheme, window=window, seed=seed, samples=TAIL_SAMPLES, n_engines=TAIL_ENGINES)
             shares[i], errors[i] = (r.below, r.above), (r.below_error, r.above_error)

@@ -211,7 +211,7 @@ class CrankSpec:
     clearance_ratio: float  # law clearance J per radial operating clearance [-]
     law_parameters: dict  # dx, k_lv, k_hv, theta0, dtheta in SI
     pressure_trace: tuple | None = None  # measured (cycle angles [deg], pressures [Pa]) replacing the model
-    oil: str = "SAE-5W-30"  # stackup.film.oil grade
+    oil: str | film_oil.Oil = "SAE-5W-30"  # a built-in grade's name (stackup.film.oil), or the user's file's Oil
     oil_supply_temperature: float = 90.0  # [degC]
     supports: Supports | None = None  # the block's compliance at each main bearing (from the law without [supports])
     #: where the section inertias come from (``section_inertia_source``; empty: not given, an assumption)
@@ -346,13 +346,14 @@ def engine_files(name_or_path):
     path = engine_path(name_or_path)
     data, text = read_toml(path, kind="engine")
     extra = {}
-    trace = data.get("crank", {}).get("pressure_trace") if isinstance(data.get("crank"), dict) else None
-    if isinstance(trace, str):
-        trace_path = path.parent / trace
-        if not trace_path.is_file():
-            raise ValueError(f"engine file {path.name!r}, key crank.pressure_trace: {trace!r} does not exist "
-                             f"(looked in {str(path.parent)!r})")
-        extra[trace] = trace_path.read_text()
+    for table, key in (("crank", "pressure_trace"), ("oil", "file")):  # the files an engine file names
+        named = data.get(table, {}).get(key) if isinstance(data.get(table), dict) else None
+        if isinstance(named, str):
+            named_path = path.parent / named
+            if not named_path.is_file():
+                raise ValueError(f"engine file {path.name!r}, key {table}.{key}: {named!r} does not exist "
+                                 f"(looked in {str(path.parent)!r})")
+            extra[named] = named_path.read_text(encoding="utf-8")
     return {"name": path.stem, "text": text, "extra": extra}
 
 
@@ -769,12 +770,16 @@ def _crank(top, *, scale, units, bearings, extra):
     else:
         supports = _law_supports(params, bearings, spec.bearing_width)
     oil = top.table("oil")
-    grade = oil.text("grade", "SAE-5W-30", options=tuple(film_oil.available()))
+    oils_file = oil.text("file")  # a user's oils file beside the engine file, read by engine_files
+    if oils_file is not None and oils_file not in extra:
+        raise ValueError(f"{oil.where}, key oil.file: {oils_file!r} was not read with the engine file")
+    known = film_oil.user_oils(extra[oils_file], name=oils_file) if oils_file is not None else {}
+    grade = oil.text("grade", "SAE-5W-30", options=(*film_oil.available(), *known))
     check.PLAUSIBLE["engine_temperature"].check(oil._at("supply_temperature"), oil.number("supply_temperature", 90.0))
     supply = oil.number("supply_temperature", 90.0, lo=-30.0, hi=200.0, unit=" degC")
     oil.close()
-    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=grade, oil_supply_temperature=supply,
-                   supports=supports)
+    return replace(spec, clearance_ratio=ratio, law_parameters=params, oil=known.get(grade, grade),
+                   oil_supply_temperature=supply, supports=supports)
 
 
 #: How far crank.bearing_width may differ from press_fit.length [-]: the same width written twice (22 and

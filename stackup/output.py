@@ -35,7 +35,7 @@ except ImportError:  # pragma: no cover (Windows: the claim falls back to creati
 #: The dataset of a comparison; a folder holding it (or a report) holds a run.
 DATASET = "compare.nc"
 #: Files a comparison writes (globs), replaced together when a run replaces another.
-RUN_FILES = (DATASET, "report.md", "report.html", "*.png")
+RUN_FILES = (DATASET, "report.md", "report.html", "*.png", "*.csv")
 #: Study parameters that tell two comparisons apart.
 IDENTITY = ("engine", "schemes", "n_engines", "seed", "window", "tilt_method")
 _STAGING = ".stackup-partial-"

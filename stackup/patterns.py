@@ -47,7 +47,8 @@ On the standard's own drawing every scale is 1 and the shift is zero, so the
 adapted schemes are the standard's tables exactly. The adapted scheme is data:
 :func:`adapt` returns a :class:`~stackup.schemes.Scheme` whose
 :meth:`~stackup.schemes.Scheme.to_toml` a user can read, keep and edit
-(``stackup schemes --engine NAME --out DIR``).
+(``stackup schemes --engine NAME --out DIR``). :func:`laid_on` decides, for every job, which schemes
+are laid on the drawing: the standard's named by their names.
 
 References
 ----------
@@ -286,3 +287,151 @@ def _notes(reference, engine, how):
 def iso_schemes(engine):
     """The six ISO 13778 schemes laid on ``engine``'s drawing (:func:`adapt`), in the standard's order."""
     return [adapt(name, engine) for name in ISO_SCHEMES]
+
+
+def laid_on(scheme, engine):
+    """``scheme`` as every job runs it on ``engine``: the one place that decides which schemes are adapted.
+
+    One of :data:`ISO_SCHEMES` named by its name is the standard's pattern laid on the engine's drawing
+    (:func:`adapt`); a scheme given by a file path or as a :class:`~stackup.schemes.Scheme` is the user's
+    own, already written for a drawing, and is taken as it is. ``stackup compare`` (through the study's
+    stored scheme texts), ``stackup plan`` and ``stackup schemes --engine`` all lay schemes through here.
+    """
+    if isinstance(scheme, str) and scheme in ISO_SCHEMES:
+        return adapt(scheme, engine)
+    return load_scheme(scheme)
+
+
+#: Grades narrower than this many standard deviations of the gauge that reads them (or of the process that makes
+#: shells into them) are flagged: within a grade of 3 sigma a part near a limit is read (or made) into the
+#: neighbouring grade about one time in seven at the limit (ISO 13778 does not tabulate its own gauge).
+NARROW_SIGMAS = 3.0
+
+
+@dataclass(frozen=True)
+class NarrowGrade:
+    """A dimension whose narrowest grade (or fine class) is under :data:`NARROW_SIGMAS` of a spread.
+
+    Attributes
+    ----------
+    part : str
+        "housing", "journal" or "shell".
+    width : float
+        The narrowest grade or class [m].
+    sigma : float
+        The spread it is compared with [m].
+    of : str
+        "gauge" (the repeatability of the gauge that reads the part into its grade) or "process" (the shell
+        wall process that makes shells into a grade, for shells made to order).
+    """
+
+    part: str
+    width: float
+    sigma: float
+    of: str
+
+
+@dataclass(frozen=True)
+class Caveats:
+    """What the user should know of a scheme of the standard on an engine: :func:`caveats`.
+
+    Attributes
+    ----------
+    scheme : str
+    narrow : tuple of NarrowGrade
+        Dimensions graded finer than :data:`NARROW_SIGMAS` of their gauge or shell process.
+    adapted : bool
+        The pattern was laid on the drawing with other grades or shells than the standard's tables.
+    held : bool
+        The engine's window asked for a smallest nominal clearance below the standard's in proportion to the
+        journal, so the shells were held there and the window moved nothing (:func:`target_clearance_min`); on
+        the standard's drawing the tables then stay the standard's.
+    window_target, floor : float
+        The smallest nominal clearance the window asked for and the floor that held it [m].
+    """
+
+    scheme: str
+    narrow: tuple
+    adapted: bool
+    held: bool
+    window_target: float
+    floor: float
+
+
+@dataclass(frozen=True)
+class Anchor:
+    """The standard's side of the re-centring (module docstring): where every adapted scheme's shells are placed from.
+
+    Attributes
+    ----------
+    engine : str
+        :data:`REFERENCE_ENGINE`.
+    window : (float, float)
+        Its operating-clearance window [m] (a rule of thumb, the engine file's ``clearance_window_source``).
+    housing_outer : float
+        Its housing's equivalent outer diameter [m], which sets its swell (assumed in the engine file).
+    clearance_min : float
+        The standard's smallest nominal clearance [m] (26 um for all six schemes).
+    operating_min : float
+        That clearance in operation on the reference engine (swell and thermal change added) [m].
+    place : float
+        Its place in the reference window, (operating_min - lo) / (hi - lo) [-], which adapted schemes keep.
+    """
+
+    engine: str
+    window: tuple
+    housing_outer: float
+    clearance_min: float
+    operating_min: float
+    place: float
+
+
+def anchor():
+    """The :class:`Anchor` of the re-centring (the same for every scheme of the standard)."""
+    (lo, hi), _, offset = _reference_offset()
+    c_min = load_scheme(ISO_SCHEMES[0]).clearance_limits()[0]
+    operating = c_min + offset
+    return Anchor(REFERENCE_ENGINE, (lo, hi), load_engine(REFERENCE_ENGINE).press_fit.housing_outer, c_min, operating,
+                  (operating - lo) / (hi - lo))
+
+
+def _narrowest(gradeset):
+    """The narrowest grade (or fine class step) of a graded dimension [m]; None where it is not graded."""
+    if gradeset.fine:
+        return float(gradeset._edges[1] - gradeset._edges[0]) * 1e-9
+    if not gradeset.graded:
+        return None
+    return float(np.min(gradeset.hi - gradeset.lo))
+
+
+def caveats(scheme, engine):
+    """:class:`Caveats` of one of :data:`ISO_SCHEMES` (by name) laid on ``engine``'s drawing (:func:`laid_on`).
+
+    A grade is flagged where it is narrower than :data:`NARROW_SIGMAS` of the gauge that reads parts into it
+    (housing, journal, shells) or, for shells made to order, of the wall process that makes them into it; a
+    window is flagged where the floor of :func:`target_clearance_min` held the shells (it moved nothing).
+    """
+    engine = load_engine(engine)
+    laid = laid_on(scheme, engine)
+    narrow = []
+    for part, gradeset, dimension in (("housing", laid.housing, engine.housing_bore),
+                                      ("journal", laid.journal, engine.journal_d),
+                                      ("shell", laid.shell, engine.shell_wall)):
+        width = _narrowest(gradeset)
+        if width is None:
+            continue
+        spreads = [("gauge", dimension.gauge.repeatability)]
+        if part == "shell" and engine.shell_wall.mode == "to-order":
+            spreads.append(("process", engine.shell_wall.sigma))
+        # a tenth of a nanometre below: a 3 um grade is not flagged against a 1 um sigma for its float noise
+        narrow += [NarrowGrade(part, width, sigma, of) for of, sigma in spreads
+                   if width < NARROW_SIGMAS * sigma - 1e-10]
+    reference = load_scheme(scheme)
+    (lo0, hi0), journal0, offset0 = _reference_offset()
+    reference_min = reference.clearance_limits()[0]
+    floor = reference_min / journal0 * engine.journal_d.lo
+    lo, hi = engine.clearance_window
+    operating = (lo + (reference_min + offset0 - lo0) / (hi0 - lo0) * (hi - lo) if np.isfinite(hi) else
+                 (reference_min + offset0) / journal0 * engine.journal_d.lo)
+    target = operating - clearance_offset(engine)
+    return Caveats(laid.name, tuple(narrow), bool(laid.notes), bool(target < floor), float(target), float(floor))

@@ -51,7 +51,7 @@ from ._random import lot_generator, seed_sequence
 from .assembly import shell_demand_per_engine
 from .engines import load_engine
 from .parts import draw_lot
-from .schemes import load as load_scheme
+from .patterns import laid_on
 from .stats import mean_half_width
 from .study.inputs import load_inputs
 from .study.pilot import pilot_parts, shell_plan
@@ -98,6 +98,9 @@ def plan(scheme, engine="iso-example", *, volume, service_level=None, lot_engine
     Parameters
     ----------
     scheme : str, path, Scheme or xarray.Dataset
+        One of ISO 13778's schemes named by its name is laid on ``engine``'s
+        drawing as a comparison lays it (:func:`stackup.patterns.laid_on`); a
+        scheme file or Scheme is planned as it is.
     engine : str, path or Engine
         The engine whose part processes, gauges and shell supply are planned
         for (``processes=``, its old name, is deprecated).
@@ -151,15 +154,18 @@ def plan(scheme, engine="iso-example", *, volume, service_level=None, lot_engine
             raise ValueError(f"part: a study dataset plans shells only, not {part}s")
         return _from_dataset(scheme, volume=volume, service_level=service_level, lot_engines=lot_engines)
     engine = load_engine(engine)
-    scheme = load_scheme(scheme)
+    scheme = laid_on(scheme, engine)  # ISO 13778's by name on the engine's drawing, as a comparison runs them
     parts = pilot_parts(engine, seed, sample_engines)
+    laid = {"laid_on": engine.name if scheme.notes else None}  # adapt() notes how a pattern was laid, a file has none
     if part != "shell":
-        return _graded_parts(scheme, engine, parts, part, volume, sample_engines, seed)
+        frame = _graded_parts(scheme, engine, parts, part, volume, sample_engines, seed)
+        frame.attrs.update(laid)
+        return frame
     lot, note = _lot(volume, lot_engines, engine.shell_wall.lot_engines)
     frame = _shell_plan(scheme, engine, parts, volume=volume, lot=lot, service_level=service_level)
     frame.attrs = {"part": "shell", "scheme": scheme.name, "engine": engine.name, "volume": volume,
                    "service_level": service_level, "lot_engines": lot, "lot_note": note,
-                   "sample_engines": sample_engines, "seed": seed, **frame.attrs}
+                   "sample_engines": sample_engines, "seed": seed, **laid, **frame.attrs}
     return frame
 
 
@@ -536,7 +542,9 @@ def _short_line(scheme, rows, a):
 def _estimated_from(a):
     if a.get("source") == "study dataset":
         return f"Estimated from the {a['engines']:,} engines of the study dataset"
-    return f"Estimated from {a['sample_engines']:,} sampled engines (seed {a['seed']})"
+    laid = (f"; scheme {a['scheme']} is ISO 13778's pattern laid on {a['laid_on']}'s drawing as `stackup compare` "
+            "runs it (`stackup schemes --engine` with this engine shows its grades)" if a.get("laid_on") else "")
+    return f"Estimated from {a['sample_engines']:,} sampled engines (seed {a['seed']}){laid}"
 
 
 def _lots(volume, lot):
@@ -628,7 +636,7 @@ def simulate_lot_coverage(scheme, engine="iso-example", *, order_up_to, lot_engi
     ``engine`` (``processes=``, its old name, is deprecated) is a built-in name, a file or an Engine.
     """
     engine = load_engine(engine)
-    scheme = load_scheme(scheme)
+    scheme = laid_on(scheme, engine)
     root = seed_sequence(seed)
     covered = np.zeros(len(scheme.shell.labels))
     for k in range(lots):
@@ -699,7 +707,7 @@ def optimise_supply(scheme, engine="iso-example", *, volume, shortage_cost=10.0,
     from scipy.optimize import minimize_scalar
 
     engine = load_engine(engine)
-    scheme = load_scheme(scheme)
+    scheme = laid_on(scheme, engine)  # ISO 13778's by name on the engine's drawing, as a comparison runs them
     parts = pilot_parts(engine, seed, sample_engines)
     demand = _preferred_pair_demand(scheme, parts) * volume / parts.housing_bore.shape[0]
     supply_spec = engine.shell_wall

@@ -60,3 +60,16 @@ def test_an_output_that_is_a_file_or_holds_another_run_is_refused_in_the_library
     (tmp_path / "notes" / "mine.txt").write_text("mine")
     with pytest.raises(ValueError, match=r"is not empty and holds no stackup run \(it holds 'mine.txt'\)"):
         stackup.comparison.run(tmp_path / "notes", **SMALLEST)
+
+
+def test_the_tail_and_sensitivity_stages_show_progress_as_the_study_does(capsys):
+    from stackup._comparison import bar, tails_dataset
+
+    tails_dataset("iso-example", ["iso13778-4"], progress=True)
+    assert "tails: 100%" in capsys.readouterr().err
+    with bar(3, "sensitivity", "run", False) as quiet:
+        quiet.update(3)
+    with bar(2, "sensitivity", "run", True) as shown:
+        shown.update(2)
+    err = capsys.readouterr().err
+    assert err.count("sensitivity") >= 1 and "2/2" in err and "3/3" not in err

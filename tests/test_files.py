@@ -62,21 +62,19 @@ def test_materials_files_are_read_strictly(tmp_path):
         materials.load(tmp_path)
 
 
-def test_oils_file_is_read_strictly(tmp_path):
+def test_oils_file_is_read_strictly():
     from stackup.film import oil
 
     good = ("[o]\nkv40 = 62e-6\nkv100 = 10.8e-6\nhths150 = 3.1e-3\ndensity15 = 852.0\nmultigrade = true\n"
             "pressure_coefficient = 1.1e-8\nsource = 's'\n")
-    (tmp_path / "oils.toml").write_text(good)
-    assert oil._read(tmp_path / "oils.toml")["o"] == oil.get("SAE-5W-30").__class__(
-        **{**oil.get("SAE-5W-30").__dict__, "name": "o", "source": "s"})
+    assert oil.read_oils(good, name="oils.toml")["o"] == oil.get("SAE-5W-30").__class__(
+        **{**oil.get("SAE-5W-30").__dict__, "name": "o", "source": "s", "assumed": False})
     cases = {("kv40 = 62e-6", "kv40 = 62"): r"oils file 'oils.toml', key o.kv40: 62 m\^2/s is outside",
              ("multigrade = true", "multigrade = 'yes'"): r"key o.multigrade: 'yes' is text, not true/false",
              ("source = 's'", "sorce = 's'"): r"key o.source: missing \(is 'sorce' a misspelling of it\?\)"}
     for (old, new), message in cases.items():
-        (tmp_path / "oils.toml").write_text(good.replace(old, new))
         with pytest.raises(ValueError, match=message):
-            oil._read(tmp_path / "oils.toml")
+            oil.read_oils(good.replace(old, new), name="oils.toml")
 
 
 def test_a_scheme_needs_no_stated_clearance_and_refuses_wrong_types(tmp_path):

@@ -279,3 +279,22 @@ def test_the_table_of_one_scheme_of_a_study_speaks_of_that_scheme_only():
     title = " ".join(planner_table(one).attrs["title"])
     assert "iso13778-2" not in title.split("?", 1)[1]  # past the heading's question
     assert "Scheme iso13778-2" in " ".join(planner_table(frame).attrs["title"])  # A and C of scheme 2, unasked
+
+
+def test_an_iso_scheme_by_name_is_planned_on_the_engines_drawing_as_a_comparison_lays_it(capsys):
+    from stackup.engines import load_engine
+    from stackup.patterns import laid_on
+    from stackup.schemes import scheme_path
+    from stackup.study.inputs import scheme_text
+
+    engine = load_engine("nef-6")
+    laid = laid_on("iso13778-5", engine)
+    assert scheme_text("iso13778-5", engine) == laid.to_toml_text()  # the study's scheme is this one
+    by_name = plan("iso13778-5", engine, volume=1000, sample_engines=500)
+    pd.testing.assert_frame_equal(by_name, plan(laid, engine, volume=1000, sample_engines=500), check_like=True)
+    assert by_name.demand_per_1000.sum() == pytest.approx(2 * 7 * 1000, rel=0.002)
+    assert by_name.attrs["laid_on"] == "nef-6"
+    with pytest.raises(ValueError, match="no bearing of the pilot sample could be graded"):
+        plan(scheme_path("iso13778-5"), engine, volume=1000, sample_engines=500)  # a file is the user's drawing
+    assert main(["plan", "--scheme", "iso13778-5", "--engine", "nef-6", "--volume", "1000", "--sample", "500"]) == 0
+    assert "iso13778-5 is ISO 13778's pattern laid on nef-6's drawing" in capsys.readouterr().out

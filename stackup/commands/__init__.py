@@ -11,9 +11,9 @@ shows them; :mod:`stackup.cli` builds its parser from it, so a new
 subcommand is one module and one entry here.
 """
 
-from . import compare, design, engines, measure, plan, report, schemes, store
+from . import compare, design, diff, engines, measure, plan, report, schemes, store
 
 #: The subcommands in the order of ``stackup --help``.
-COMMANDS = (compare, report, plan, engines, schemes, design, measure, store)
+COMMANDS = (compare, report, diff, plan, engines, schemes, design, measure, store)
 
 __all__ = ["COMMANDS"]

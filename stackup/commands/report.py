@@ -16,7 +16,8 @@ def add_parser(subparsers):
                               description="Write the report (report.md, report.html and its figures) from a dataset "
                               "`stackup compare` saved, and from nothing else: after an update of stackup's report, "
                               "or to look at a dataset someone sent.",
-                              epilog="example:\n  stackup report reports/compare/compare.nc")
+                              epilog="examples:\n  stackup report reports/compare/compare.nc\n"
+                                     "  stackup report reports/compare/compare.nc --csv")
     p.add_argument("dataset", metavar="DATASET", help="compare.nc written by `stackup compare`")
     p.add_argument("--out", metavar="FOLDER", help="folder for the report (default: the dataset's folder)")
     p.add_argument("--negligible", type=share_ppm, metavar="PPM",
@@ -24,6 +25,9 @@ def add_parser(subparsers):
                         "comparison's)")
     p.add_argument("--volume", type=count(1, "engines"), default=10_000, metavar="ENGINES",
                    help="production volume the shell plan is for (default: 10000)")
+    p.add_argument("--csv", action="store_true",
+                   help="also write the ranking, film and life tables as CSV files beside the report (ranking.csv, "
+                        "film_life.csv, film_life_per_bearing.csv; units in the column names)")
     p.set_defaults(func=run)
     return p
 
@@ -55,11 +59,15 @@ def run(args, state):
         with refused_in(OPTIONS):
             write_report(saved.dataset, staged.staging, scenarios=saved.scenarios, sensitivity=saved.sensitivity,
                          tails=saved.tails, dataset_file=path.name if same else str(path.resolve()),
-                         negligible=args.negligible, volume=args.volume)
+                         negligible=args.negligible, volume=args.volume, tables=args.csv)
         staged.commit()
     except BaseException:
         staged.discard()
         raise
     state.stage, state.saved = "", f"{out / 'report.md'} was written"
     print(f"report:  {out / 'report.md'} (and report.html)")
+    if args.csv:
+        from ..report.spreadsheets import FILES
+
+        print(f"tables:  {', '.join(str(out / name) for name in FILES)} (CSV, units in the column names)")
     return 0

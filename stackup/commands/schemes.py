@@ -44,19 +44,26 @@ def _on_engine(args):
     """``stackup schemes --engine NAME [--out DIR]``: ISO 13778's schemes laid on the engine's drawing."""
     from ..engines import load_engine
     from ..output import prepare_file, write_file
-    from ..patterns import iso_schemes
+    from ..patterns import ISO_SCHEMES, anchor, caveats, iso_schemes
+    from ..report.methods import iso_parts
 
     engine = load_engine(args.engine)
     schemes = iso_schemes(engine)
+    found = tuple(caveats(name, engine) for name in ISO_SCHEMES)
+    where, _ = iso_parts(found, anchor() if any(c.adapted for c in found) else None)
     print(f"ISO 13778 schemes 1-6 laid on {engine.name}'s drawing (housing bore "
           f"{engine.housing_bore.lo * 1e3:.3f}-{engine.housing_bore.hi * 1e3:.3f} mm, journal "
           f"{engine.journal_d.lo * 1e3:.3f}-{engine.journal_d.hi * 1e3:.3f} mm); `stackup compare --engine "
           f"{args.engine}` uses these:")
-    for scheme in schemes:
+    for scheme, said in zip(schemes, found):
         lo, hi = scheme.clearance_limits()
         grades = "/".join(str(len(getattr(scheme, d).labels)) for d in ("housing", "journal", "shell"))
         print(f"  {scheme.name:<12} {scheme.title}; nominal clearance {lo * 1e6:.1f}-{hi * 1e6:.1f} um; "
               f"grades housing/journal/shell {grades}")
+        for item in iso_parts((said,), None)[1]:
+            print(f"    warning: {item}")
+    print(f"Laid on the drawing: {where}." if where else "On the standard's own drawing and window: the standard's "
+          "tables, not re-centred.")
     if args.out is None:
         print("Write them as scheme files to read, keep and edit with --out DIR.")
         return 0

@@ -13,7 +13,8 @@ in one place (:mod:`~stackup.facts.declared`). Nothing is sampled.
 - :mod:`~stackup.facts.declared`: the dataset attributes, with the keys they must hold;
 - :mod:`~stackup.facts.tables`: numbers per scheme (and bearing position), with intervals;
 - :mod:`~stackup.facts.metrics`: the ranking's metrics per scheme;
-- :mod:`~stackup.facts.mechanics`: loads, film, heat balance, edge contact and life of the mechanical chain.
+- :mod:`~stackup.facts.mechanics`: loads, film, heat balance, edge contact and life of the mechanical chain;
+- :mod:`~stackup.facts.iso`: the standard's schemes laid on the engine's drawing, their caveats and anchor.
 """
 
 from .declared import (DesignRecord, FilmErrors, PressFit, Processes, ScenarioAbout, Sources, StudyParameters, Wear,

@@ -19,6 +19,7 @@ from ..study.failures import FailureCount
 from ..study.inputs import load_inputs
 from .declared import (DesignRecord, FilmErrors, PressFit, Processes, ScenarioAbout, Sources, StudyParameters, Wear,
                        parsed, plain)
+from .iso import iso_caveats
 from .mechanics import (ClearanceTrends, EdgeContact, FilmOutcomes, HeatBalance, LifeBias, Positions,
                         clearance_trends, edge_contact, film_detail, film_outcomes, heat_balance, life_bias, positions)
 from .metrics import RankingRows, ranking_rows
@@ -212,6 +213,7 @@ class Facts:
     corrected: pd.DataFrame      # multi_fidelity: film and life means corrected by the check tier (empty: no check)
     misalignment: tuple = None   # (label, factor) of the first scenario that scales the drawing's misalignment
                                  # and ran the mechanical chain (its paired changes in life_changes), or None
+    iso: tuple = ((), None)      # iso_caveats: the standard's schemes on this drawing (caveats, re-centring anchor)
 
 
 def _centred(ds, window):
@@ -276,7 +278,7 @@ def facts(source, *, scenarios=None, sensitivity=None, tails=None, window=None, 
         **_film_facts(ds), life_bias=life_bias(ds), drivers=drivers(sensitivity),
         design=designed(ds), life_changes=(changes := _life_changes(ds, scenarios)),
         trends=clearance_trends(ds) if about.mechanics_engines else None, corrected=multi_fidelity(ds),
-        misalignment=_misalignment(scenarios, changes))
+        misalignment=_misalignment(scenarios, changes), iso=iso_caveats(ds))
 
 
 def _misalignment(scenarios, changes):

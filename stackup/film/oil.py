@@ -53,14 +53,13 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
-from pathlib import Path
 
 import numpy as np
 from scipy import optimize
 
-from .._files import Table, read_toml
+from .._files import Table, parse_toml
 from .._validate import Finite, InRange, Positive, validated
 
 #: Specific heat of engine oil at film temperatures (80-150 degC) [J/(kg K)] (mineral oils 2.0-2.3 kJ/(kg K)).
@@ -128,6 +127,8 @@ class Oil:
         :math:`\\dot\\gamma_c` at 150 degC [1/s].
     thinning_exponent : float
         Cross exponent :math:`m` [-].
+    assumed : bool
+        The numbers are typical of the grade, not one oil's data sheet.
     """
 
     name: str
@@ -140,6 +141,7 @@ class Oil:
     second_newtonian: float = 1.0
     critical_shear_rate: float = CROSS_VII.critical_shear_rate
     thinning_exponent: float = CROSS_VII.exponent
+    assumed: bool = False
 
     @validated(temperature=InRange(*TEMPERATURE_RANGE, unit=" degC"))
     def low_shear_viscosity(self, temperature):
@@ -215,17 +217,25 @@ def walther_kinematic_viscosity(kv40, kv100, temperature):
     return (10 ** 10 ** (a - b * np.log10(np.asarray(temperature, dtype=float) + 273.15)) - 0.7) * 1e-6
 
 
+def _si(t, key, lo, hi, unit, data_sheet):
+    """A required number of an oil's table in SI; the message says how a data sheet's unit converts."""
+    try:
+        return t.number(key, required=True, lo=lo, hi=hi, unit=f" {unit}")
+    except ValueError as error:
+        raise ValueError(f"{error}; oils files are in SI: give {unit}, a data sheet's {data_sheet}") from None
+
+
 def _from_table(t):
     """An :class:`Oil` from its table of an oils file (SI: m^2/s, Pa s, kg/m^3, 1/Pa); every key checked."""
     name = t.path
     # cSt (62) or mPa s (3.1) instead of SI fall outside these ranges.
-    e = {"kv40": t.number("kv40", required=True, lo=1e-6, hi=1e-2, unit=" m^2/s"),
-         "kv100": t.number("kv100", required=True, lo=1e-6, hi=1e-3, unit=" m^2/s"),
-         "hths150": t.number("hths150", required=True, lo=5e-4, hi=0.1, unit=" Pa s"),
+    e = {"kv40": _si(t, "kv40", 1e-6, 1e-2, "m^2/s", "cSt (mm^2/s) times 1e-6"),
+         "kv100": _si(t, "kv100", 1e-6, 1e-3, "m^2/s", "cSt (mm^2/s) times 1e-6"),
+         "hths150": _si(t, "hths150", 5e-4, 0.1, "Pa s", "mPa s (cP) times 1e-3"),
          "density15": t.number("density15", required=True, lo=600.0, hi=1200.0, unit=" kg/m^3"),
          "multigrade": t.flag("multigrade", required=True),
          "pressure_coefficient": t.number("pressure_coefficient", 0.0, lo=0.0, hi=1e-7, unit=" 1/Pa"),
-         "source": t.text("source", required=True)}
+         "source": t.text("source", required=True), "assumed": bool(t.flag("assumed"))}
     t.close()
     if e["kv100"] >= e["kv40"]:
         raise ValueError(f"{t.where}, key {name}.kv100: {e['kv100']!r} m^2/s is not below kv40 {e['kv40']!r} m^2/s")
@@ -233,7 +243,7 @@ def _from_table(t):
     points = np.array([40.0, 100.0, CROSS_VII.hths_temperature])
     nu = [e["kv40"], e["kv100"], walther_kinematic_viscosity(e["kv40"], e["kv100"], points[2])]
     c1, c2, c3 = fit_vogel(points, np.array(nu) * rho(points))
-    oil = Oil(name, c1, c2, c3, e["density15"], e["pressure_coefficient"], e["source"])
+    oil = Oil(name, c1, c2, c3, e["density15"], e["pressure_coefficient"], e["source"], assumed=e["assumed"])
     if not e["multigrade"]:
         return oil
     # r_inf from HTHS: mu(150, 1e6) = mu0(150) (r + (1 - r) s), s = 1 / (1 + (1e6 / rate_c)^m)
@@ -243,18 +253,35 @@ def _from_table(t):
     if not 0 < r < 1:
         raise ValueError(f"{t.where}, key {name}.hths150: HTHS {e['hths150']!r} Pa s over the low-shear viscosity at "
                          f"150 degC gives a second-Newtonian share {r:.3g}, outside (0, 1)")
-    return Oil(name, c1, c2, c3, e["density15"], e["pressure_coefficient"], e["source"], second_newtonian=float(r))
+    return replace(oil, second_newtonian=float(r))
 
 
-def _read(path):
-    """The oils of an oils file, one table per oil (see ``stackup/data/oils.toml``)."""
-    data, _ = read_toml(path, kind="oils")
-    top = Table(data, f"oils file {Path(str(path)).name!r}")
-    return {name: _from_table(top.table(name)) for name in data}
+def read_oils(text, *, name):
+    """The oils of an oils file's ``text`` (``name``: the file's name in messages), by oil name.
+
+    The format of ``stackup/data/oils.toml``: one table per oil, SI units
+    (kv40, kv100 [m^2/s], hths150 [Pa s], density15 [kg/m^3], multigrade,
+    optional pressure_coefficient [1/Pa] and assumed, a source). Every key is
+    checked.
+    """
+    where = f"oils file {name!r}"
+    top = Table(parse_toml(text, where=where), where)
+    return {oil: _from_table(top.table(oil)) for oil in top.data}
+
+
+def user_oils(text, *, name):
+    """The oils of a user's oils file (:func:`read_oils`); a built-in oil's name is refused (one name, one oil)."""
+    oils = read_oils(text, name=name)
+    taken = sorted(set(oils) & set(_OILS))
+    if taken:
+        raise ValueError(f"oils file {name!r}, key {taken[0]}: is the name of a built-in oil; give the oil of this "
+                         "file a name of its own (the built-in ones: " + ", ".join(available()) + ")")
+    return oils
 
 
 def _builtin():
-    return _read(resources.files("stackup") / "data" / "oils.toml")
+    path = resources.files("stackup") / "data" / "oils.toml"
+    return read_oils(path.read_text(encoding="utf-8"), name="oils.toml (built-in)")
 
 
 _OILS = _builtin()

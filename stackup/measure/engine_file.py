@@ -78,6 +78,11 @@ def set_key(text, table, key, value, comment):
     return "\n".join(lines) + "\n"
 
 
+def file_units(engine):
+    """The length unit an engine file (a built-in name or a path) declares ("mm", "um" or "m")."""
+    return tomllib.loads(Path(engine_path(engine)).read_text(encoding="utf-8")).get("units", "m")
+
+
 def write_engine(engine, out, changes, *, name=None, force=False):
     """Write a copy of ``engine``'s file to ``out`` with ``changes`` set; return the path written.
 

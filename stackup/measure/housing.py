@@ -46,7 +46,6 @@ References
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -54,13 +53,13 @@ import numpy as np
 from scipy import optimize, stats
 
 from .. import materials
-from .._validate import PLAUSIBLE, InRange, validated
+from .._validate import PLAUSIBLE, InRange, OneOf, validated
 from ..engines import engine_path, load_engine
 from ..fit import press_fit
 from . import _data
-from .engine_file import write_engine
+from .engine_file import file_units, write_engine
 
-#: Columns of a fitting-test table: lengths in m, temperature in degC.
+#: Columns of a fitting-test table: lengths (in the table's unit, m by default), temperature in degC.
 TEST_COLUMNS = ("housing_bore", "shell_upper_wall", "shell_lower_wall", "shell_upper_crush", "shell_lower_crush",
                 "assembled_bore", "temperature")
 #: Fewest tests: one parameter and the noise, with a degree of freedom left for the interval.
@@ -157,27 +156,25 @@ class HousingCalibration:
         if self.engine_file is None:
             raise ValueError("engine: calibrated on an Engine object; give calibrate_housing the engine's name or "
                              "file to write a copy of it")
-        units = _file_units(self.engine_file)
+        units = file_units(self.engine_file)
         return write_engine(self.engine_file, out, [self.entry(which, units)], name=name, force=force)
 
 
-def _file_units(path):
-    """The length unit an engine file declares ("mm", "um" or "m")."""
-    return tomllib.loads(Path(path).read_text()).get("units", "m")
-
-
-@validated(confidence=InRange(0.5, 1.0, lo_open=True, hi_open=True))
-def calibrate_housing(tests, engine, *, confidence=0.95):
+@validated(confidence=InRange(0.5, 1.0, lo_open=True, hi_open=True), units=OneOf(tuple(_data.UNITS)))
+def calibrate_housing(tests, engine, *, units="m", confidence=0.95):
     """The housing's equivalent outer diameter from fitting tests, by least squares through the press fit.
 
     Parameters
     ----------
     tests : str, path, mapping or pandas.DataFrame
         A CSV file or a table with the columns :data:`TEST_COLUMNS` (lengths
-        in m, ``temperature`` in degC), one row per fitting test.
+        in ``units``, ``temperature`` in degC), one row per fitting test.
     engine : str, path or Engine
         The engine whose press fit is calibrated (its materials, shell width,
         lining, checking block, assembly temperature).
+    units : {"m", "mm", "um"}
+        The lengths' unit (``stackup measure swell --units``: mm, the engine
+        file's, by default).
     confidence : float
         Level of the interval.
 
@@ -190,7 +187,7 @@ def calibrate_housing(tests, engine, *, confidence=0.95):
     Model and interval in the module docstring of :mod:`stackup.measure.housing`.
     """
     eng = load_engine(engine)
-    columns, source = _tests(tests, eng)
+    columns, source = _tests(tests, eng, units)
     model = _Model(eng, columns)
     ods, ssr = model.profile()
     best = int(np.argmin(ssr))
@@ -250,8 +247,9 @@ class _Model:
         return ods, np.sum((self.measured - fit.shell_bore) ** 2, axis=1)
 
 
-def _tests(tests, engine):
-    """The test table's columns as float arrays [m, degC], checked; and its name for messages."""
+def _tests(tests, engine, units):
+    """The test table's columns as float arrays [m, degC] (lengths read in ``units``), checked; and its name for
+    messages."""
     if isinstance(tests, (str, Path)):
         table = _data.read_csv(tests, numeric=TEST_COLUMNS)
         columns, where, source = table.values, table.where, table.file
@@ -259,7 +257,7 @@ def _tests(tests, engine):
         missing = [c for c in TEST_COLUMNS if c not in tests]
         if missing:
             raise ValueError(f"tests: no column {', '.join(map(repr, missing))}; a fitting-test table has "
-                             f"{', '.join(TEST_COLUMNS)} (lengths in m, temperature in degC)")
+                             f"{', '.join(TEST_COLUMNS)} (lengths in {units}, temperature in degC)")
         where = lambda c: _data.Where(None, f"tests[{c!r}]")  # noqa: E731
         columns = {c: _data.finite_values(np.asarray(tests[c]).ravel(), where(c)) for c in TEST_COLUMNS}
         source = ""
@@ -267,27 +265,29 @@ def _tests(tests, engine):
     if n < MIN_TESTS:
         raise ValueError(f"{source or 'tests'}: {n} fitting test{'s' if n != 1 else ''}; the calibration needs at "
                          f"least {MIN_TESTS}")
-    _plausible(columns, where, engine)
-    return columns, source
+    _plausible(columns, where, engine, units)
+    scale = _data.UNITS[units]
+    return {c: v if c == "temperature" else v * scale for c, v in columns.items()}, source
 
 
-def _plausible(columns, where, engine):
-    """Lengths in m near the engine's drawing (a unit slip named), temperatures in the press fit's range."""
+def _plausible(columns, where, engine, units):
+    """Lengths in ``units`` near the engine's drawing (a unit slip named), temperatures in the press fit's range."""
+    k, unit = _data.UNITS[units], _data.UNIT_NAMES[units]  # the drawing in the tests' unit
     bore = engine.housing_bore
-    _data.plausible(columns["housing_bore"], bore.lo, bore.hi, where("housing_bore"), "m")
+    _data.plausible(columns["housing_bore"], bore.lo / k, bore.hi / k, where("housing_bore"), units)
     crush = engine.shell_wall.crush
     for name in ("shell_upper_crush", "shell_lower_crush"):
-        _data.plausible(columns[name], crush.lo, crush.hi, where(name), "m")
-    wall_guess = 0.5 * (bore.lo - engine.journal_d.hi)
+        _data.plausible(columns[name], crush.lo / k, crush.hi / k, where(name), units)
+    wall_guess = 0.5 * (bore.lo - engine.journal_d.hi) / k
     for name in ("shell_upper_wall", "shell_lower_wall"):
-        _data.plausible(columns[name], 0.9 * wall_guess, 1.1 * wall_guess, where(name), "m")
-    _data.plausible(columns["assembled_bore"], engine.journal_d.lo, bore.hi, where("assembled_bore"), "m")
+        _data.plausible(columns[name], 0.9 * wall_guess, 1.1 * wall_guess, where(name), units)
+    _data.plausible(columns["assembled_bore"], engine.journal_d.lo / k, bore.hi / k, where("assembled_bore"), units)
     expected = columns["housing_bore"] - columns["shell_upper_wall"] - columns["shell_lower_wall"]
-    off = np.flatnonzero(np.abs(columns["assembled_bore"] - expected) > ASSEMBLED_OFF)
+    off = np.flatnonzero(np.abs(columns["assembled_bore"] - expected) > ASSEMBLED_OFF / k)
     if off.size:
         w, i = where("assembled_bore"), off[0]
-        raise ValueError(f"{w}, {w.rows(off)}: {columns['assembled_bore'][i]:.6g} m is not the bore inside the "
-                         f"shells: housing_bore - both walls is {expected[i]:.6g} m there, and the swell is "
+        raise ValueError(f"{w}, {w.rows(off)}: {columns['assembled_bore'][i]:.6g} {unit} is not the bore inside the "
+                         f"shells: housing_bore - both walls is {expected[i]:.6g} {unit} there, and the swell is "
                          f"micrometres (valid: within {ASSEMBLED_OFF * 1e3:g} mm of it)")
     t = columns["temperature"]
     valid = PLAUSIBLE["engine_temperature"]

@@ -77,13 +77,48 @@ def _mechanics_side(facts):
 
 def methods(facts):
     """Methods and assumptions, in one place: processes, gauges, press fit, temperatures, tiers, sample sizes."""
-    lines = _clearance_side(facts)
+    lines = _clearance_side(facts) + iso_lines(*facts.iso)
     if facts.about.mechanics_engines:
         lines += _mechanics_side(facts)
     lines.append(words.STATISTICS)
     if facts.about.summaries:
         lines.append(words.SUMMARIES)
     return lines
+
+
+def iso_parts(caveats, anchor):
+    """The anchor of the re-centring (None where no scheme was re-centred) and the caveats of the standard's
+    schemes on this drawing, as sentence parts (the report's bullets, and `stackup schemes --engine`)."""
+    where = None if anchor is None else words.ISO_ANCHOR_PART.format(
+        clearance=fmt.um(anchor.clearance_min, 1), operating=fmt.um(anchor.operating_min, 1), engine=anchor.engine,
+        outer=anchor.housing_outer * 1e3, place=_place(anchor.place), lo=fmt.um_edge(anchor.window[0]),
+        hi=fmt.um_edge(anchor.window[1]))
+    narrow = {}  # parts of one scheme alike (fine housing and journal classes) in one item
+    for c in caveats:
+        for n in c.narrow:
+            narrow.setdefault((c.scheme, n.of, fmt.um(n.width, 1), fmt.um(n.sigma, 1)), []).append(n.part)
+    items = [words.ISO_NARROW_PART.format(scheme=scheme, parts=" and ".join(parts), width=width, of=of, sigma=sigma)
+             for (scheme, of, width, sigma), parts in narrow.items()]
+    held = [c for c in caveats if c.held]
+    if held:  # the same floor for every scheme of the standard (its one smallest clearance)
+        items.append(words.ISO_HELD_PART.format(schemes=", ".join(c.scheme for c in held),
+                                                target=fmt.um(held[0].window_target, 1),
+                                                floor=fmt.um(held[0].floor, 1)))
+    return where, items
+
+
+def _place(share):
+    """Where in a window a share of its width lies from its lower edge, in words."""
+    side = "below" if share < 0 else "above" if share > 1 else "in"
+    return words.ISO_PLACE[side].format(share=100 * (-share if side == "below" else share - 1 if side == "above"
+                                                     else share))
+
+
+def iso_lines(caveats, anchor):
+    """The methods' bullets on the standard's schemes laid on this drawing (none where the study has none)."""
+    where, items = iso_parts(caveats, anchor)
+    return ([words.ISO_ANCHOR.format(anchor=where)] if where else []) + (
+        [words.ISO_CAVEATS.format(items="; ".join(items))] if items else [])
 
 
 def _film_method(facts):

@@ -321,6 +321,19 @@ PRESS_FIT = ("- **Press fit:** {housing} housing (equivalent outer diameter {out
              "mm wide, crush checked in a {bore:.3f} mm block at {stress:.0f} MPa; {tier} (reports/press_fit_tiers.md).")
 TEMPERATURES = ("- **Temperatures:** assembled at {assembly:.0f} °C; housing and shells at {running:.0f} °C, the "
                 "journal at {journal:.0f} °C{oil}")
+#: ISO 13778's schemes laid on the engine's drawing (stackup.patterns): where their shells are re-centred from, and
+#: their caveats (also what `stackup schemes --engine` prints under each scheme).
+ISO_ANCHOR_PART = ("grades scaled, shells re-centred from {engine}: the standard's smallest clearance ({clearance} µm, "
+                   "{operating} µm running with {engine}'s assumed housing_outer {outer:.0f} mm) sits {place} "
+                   "{engine}'s window {lo}–{hi} µm and keeps that place in this engine's window")
+#: Where in a window a clearance sits (share of the window's width).
+ISO_PLACE = {"below": "{share:.0f} % of its width below", "in": "{share:.0f} % across",
+             "above": "{share:.0f} % of its width above"}
+ISO_ANCHOR = "- **ISO schemes on this drawing:** {anchor}."
+ISO_CAVEATS = "- **ISO scheme caveats:** {items}."
+ISO_NARROW_PART = "{scheme} {parts} grades {width} µm < 3 {of} σ ({sigma} µm)"
+ISO_HELD_PART = ("{schemes}: the window asks for a smallest clearance of {target} µm, below the standard's {floor} µm "
+                 "scaled to the journal, so the shells stay there: the window moves nothing")
 OIL_PART = "; oil {oil} supplied at {supply:.0f} °C, film temperature from each bearing's heat balance."
 CLEARANCE = ("- **Clearance:** nominal C = D_H − (s_upper + s_lower + D_J) from true sizes, graded by readings; "
              "operating clearance on all {n_engines} engines × {bearings} bearings.")

@@ -18,6 +18,7 @@ from .mechanics import film_section
 from .methods import limits_of_validity, methods, parameters_table, parameters_text
 from .sections import (assembly_section, clearance_section, design_section, fit_section, markdown_table,
                        plan_section, ranking_section, scenarios_section, section, sensitivity_section)
+from .spreadsheets import write_tables
 from .verdict import decision_table, verdict
 
 #: Sections in report order (their headings; the verdict and the decision table come before them).
@@ -28,7 +29,7 @@ SECTIONS = ("Ranking", "Scenarios", "Designed scheme", "What drives the spread",
 
 
 def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, dataset_file=None, negligible=None,
-                 volume=PLAN_VOLUME):
+                 volume=PLAN_VOLUME, tables=False):
     """Write ``report.md``, its self-contained twin ``report.html`` and the figures into ``out_dir``.
 
     Parameters
@@ -50,6 +51,9 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
         schemes [ppm]; default the comparison's (:func:`stackup.rank.rank`).
     volume : int
         Engines the shell plan is for.
+    tables : bool
+        Also write the ranking, film and life tables as CSV files beside the
+        report (:mod:`~stackup.report.spreadsheets`).
 
     Returns
     -------
@@ -66,6 +70,8 @@ def write_report(ds, out_dir, *, scenarios=None, sensitivity=None, tails=None, d
     path = out / "report.md"
     path.write_text(text)
     (out / "report.html").write_text(markdown_to_html(text, out))
+    if tables:
+        write_tables(known, out)
     return path
 
 

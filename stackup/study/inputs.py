@@ -17,7 +17,7 @@ import json
 import tomllib
 
 from ..engines import engine_files, load_engine
-from ..patterns import ISO_SCHEMES, adapt
+from ..patterns import laid_on
 from ..schemes import Scheme, from_dict, scheme_path
 from ..schemes import load as load_scheme_file
 
@@ -26,16 +26,16 @@ def scheme_text(name_or_path, engine=None):
     """The TOML text of a scheme given by name, path or :class:`~stackup.schemes.Scheme`.
 
     An ISO 13778 scheme named by its name (``"iso13778-4"``) is the standard's pattern laid on ``engine``'s
-    drawing (:func:`stackup.patterns.adapt`; on the standard's own drawing, its file as it is).
+    drawing (:func:`stackup.patterns.laid_on`; on the standard's own drawing, its file as it is).
     """
     if isinstance(name_or_path, Scheme):
         return name_or_path.to_toml_text()
     path = scheme_path(name_or_path)
     standard = load_scheme_file(path)  # its errors name the file, the key and the value
-    if engine is not None and str(name_or_path) in ISO_SCHEMES:
-        adapted = adapt(standard, engine)
-        if adapted.to_toml_text() != standard.to_toml_text():
-            return adapted.to_toml_text()
+    if engine is not None:
+        laid = laid_on(str(name_or_path), engine)
+        if laid.to_toml_text() != standard.to_toml_text():
+            return laid.to_toml_text()
     return path.read_text()
 
 

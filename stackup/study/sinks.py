@@ -100,7 +100,7 @@ def processes(engine):
     if crank is not None:
         out["crank"] = {"speed_rpm": crank.speed * 30 / np.pi, "bearing_width_m": crank.bearing_width,
                         "coaxiality_m": crank.coaxiality, "journal_runout_m": crank.journal_runout,
-                        "oil": crank.oil, "oil_supply_temperature_degC": crank.oil_supply_temperature}
+                        "oil": getattr(crank.oil, "name", crank.oil), "oil_supply_temperature_degC": crank.oil_supply_temperature}
     return out
 
 

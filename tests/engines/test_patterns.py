@@ -186,3 +186,51 @@ def test_cli_shows_and_writes_the_schemes_laid_on_an_engine(tmp_path, capsys):
         assert load(path).clearance_limits() == adapt(path.name.split("-rozh")[0], "rozhdestvensky-4").clearance_limits()
     capsys.readouterr()
     assert main([*command, "--out", str(tmp_path)]) == 2 and "--force" in capsys.readouterr().err
+
+
+def test_caveats_flag_grades_under_three_gauge_or_shell_process_sigmas():
+    from stackup.patterns import caveats
+
+    fine = caveats("iso13778-6", "iso-example")  # 1 um classes read by a 0.5 um gauge: under 1.5 um
+    assert {(n.part, n.of) for n in fine.narrow} == {("housing", "gauge"), ("journal", "gauge")}
+    assert caveats("iso13778-4", "iso-example").narrow == ()  # 3 um shell grades, shell sigma 1 um: not under
+    engine = load_engine("iso-example")
+    coarse = replace(engine, housing_bore=replace(engine.housing_bore,
+                                                  gauge=replace(engine.housing_bore.gauge, repeatability=2.5e-6)))
+    flagged = caveats("iso13778-4", coarse).narrow  # 6 um housing grades, 3 x 2.5 um = 7.5 um
+    assert [(n.part, n.of) for n in flagged] == [("housing", "gauge")]
+    assert flagged[0].width == pytest.approx(6e-6, abs=1e-10)
+    heavy = caveats("iso13778-4", "rozhdestvensky-4").narrow  # shells made to order: 3.6 um grades, sigma 1.5 um
+    assert [(n.part, n.of) for n in heavy] == [("shell", "process")]
+
+
+def test_caveats_say_where_the_window_moved_nothing_and_the_anchor_is_the_example_engines():
+    from stackup.patterns import anchor, caveats
+
+    held = caveats("iso13778-4", "iso-example-aluminium")  # its swell puts the window's target below the floor
+    assert held.held and held.window_target < held.floor and not held.adapted
+    followed = caveats("iso13778-4", "nef-6")
+    assert not followed.held and followed.adapted and followed.window_target >= followed.floor
+    where = anchor()
+    engine = load_engine("iso-example")
+    assert where.engine == "iso-example" and where.window == engine.clearance_window
+    assert where.operating_min == pytest.approx(26e-6 + clearance_offset(engine), abs=1e-12)
+    lo, hi = engine.clearance_window
+    assert where.place == pytest.approx((where.operating_min - lo) / (hi - lo))
+    # the anchor is what target_clearance_min keeps: nef-6's operating target sits at the same place in its window
+    six = load_engine("nef-6")
+    operating = target_clearance_min(six, 26e-6) + clearance_offset(six)
+    assert (operating - six.clearance_window[0]) / np.subtract(*six.clearance_window[::-1]) == pytest.approx(
+        where.place, abs=1e-9)
+
+
+def test_schemes_command_prints_the_caveats_and_the_anchor(capsys):
+    from stackup.cli import main
+
+    assert main(["schemes", "--engine", "nef-6"]) == 0
+    out = capsys.readouterr().out
+    assert "warning: iso13778-6 housing and journal grades 1.0 µm < 3 gauge σ (0.8 µm)" in out
+    assert "re-centred from iso-example" in out and "assumed housing_outer 90 mm" in out
+    assert main(["schemes", "--engine", "iso-example-aluminium"]) == 0
+    out = capsys.readouterr().out
+    assert out.count("the window moves nothing") == 6 and "not re-centred" in out

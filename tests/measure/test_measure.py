@@ -374,7 +374,7 @@ def test_stackup_measure_is_a_subcommand_of_stackup(tmp_path, capsys):
     table = synthetic_fitting_tests(6, 75e-3, np.random.default_rng(6))
     path = _csv(tmp_path, "t.csv", [",".join(table)] + [",".join(f"{table[c][i]:.9g}" for c in table)
                                                          for i in range(6)])
-    assert cli.main(["measure", "swell", str(path)]) == 0
+    assert cli.main(["measure", "swell", str(path), "--units", "m"]) == 0
     assert re.search(r"housing_outer = \d+\.\d mm", capsys.readouterr().out)
     assert cli.main(["measure", "fit", str(path), "--column", "nothing", "--limits", "50", "50.018"]) == 2
     assert "no column 'nothing'" in capsys.readouterr().err
@@ -385,8 +385,51 @@ def test_measure_swell_command_writes_a_copy(tmp_path, capsys):
     path = _csv(tmp_path, "t.csv", [",".join(table)] + [",".join(f"{table[c][i]:.9g}" for c in table)
                                                          for i in range(8)])
     out = tmp_path / "eng.toml"
-    assert cli.main(["measure", "swell", str(path), "--engine", "iso-example", "--out", str(out)]) == 0
+    assert cli.main(["measure", "swell", str(path), "--units", "m", "--engine", "iso-example", "--out",
+                     str(out)]) == 0
     assert "housing_outer = " in capsys.readouterr().out
     assert load_engine(out).name == "eng"
-    assert cli.main(["measure", "swell", str(path), "--out", str(out)]) == 2
+    assert cli.main(["measure", "swell", str(path), "--units", "m", "--out", str(out)]) == 2
     assert "--out: " in capsys.readouterr().err
+
+
+# --- one unit convention for both measure commands, and fit --out -------------------------------------------------
+
+
+def _fitting_tests_csv(tmp_path, name, scale):
+    """Eight synthetic fitting tests as a CSV file, lengths in m times ``scale``."""
+    table = synthetic_fitting_tests(8, 75e-3, np.random.default_rng(4))
+    rows = [",".join(f"{table[c][i] * (1 if c == 'temperature' else scale):.9g}" for c in table) for i in range(8)]
+    return _csv(tmp_path, name, [",".join(table), *rows])
+
+
+def test_measure_swell_reads_the_tests_in_mm_like_the_engine_file_and_names_a_metre_file(tmp_path, capsys):
+    in_mm, in_m = _fitting_tests_csv(tmp_path, "mm.csv", 1e3), _fitting_tests_csv(tmp_path, "m.csv", 1.0)
+    assert calibrate_housing(in_mm, "iso-example", units="mm").housing_outer == pytest.approx(
+        calibrate_housing(in_m, "iso-example").housing_outer, rel=1e-6)
+    assert cli.main(["measure", "swell", str(in_mm)]) == 0  # mm by default, as the engine file and `measure fit`
+    assert re.search(r"housing_outer = \d+\.\d mm", capsys.readouterr().out)
+    assert cli.main(["measure", "swell", str(in_m)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "look like m, not mm" in err
+
+
+def test_measure_fit_out_writes_the_fitted_process_into_a_copy_of_the_engine_file(tmp_path, capsys):
+    rng = np.random.default_rng(3)
+    values = 50.009 + 0.002 * rng.standard_normal(120)
+    path = _csv(tmp_path, "bores.csv", ["housing_bore", *(f"{v:.4f}" for v in values)])
+    out = tmp_path / "fitted.toml"
+    fit = ["measure", "fit", str(path), "--column", "housing_bore", "--limits", "50.000", "50.018", "--resamples",
+           "100"]
+    assert cli.main([*fit, "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    engine = load_engine(out)
+    mean = re.search(r"mean = ([\d.]+)", printed).group(1)
+    assert engine.name == "fitted" and engine.housing_bore.process.mean == pytest.approx(float(mean) * 1e-3)
+    assert engine.journal_d.process == load_engine("iso-example").journal_d.process  # nothing else changed
+    assert "process fitted by stackup.measure" in out.read_text()
+    assert cli.main([*fit, "--out", str(out)]) == 2 and "--force" in capsys.readouterr().err
+    bores = _csv(tmp_path, "b.csv", ["bore", *(f"{v:.4f}" for v in values)])
+    assert cli.main(["measure", "fit", str(bores), "--column", "bore", "--limits", "50.000", "50.018", "--out",
+                     str(tmp_path / "other.toml")]) == 2
+    assert "--dimension" in capsys.readouterr().err and not (tmp_path / "other.toml").exists()

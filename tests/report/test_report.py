@@ -809,3 +809,11 @@ def test_an_edge_that_reaches_the_wall_in_few_bearings_at_every_position_is_coun
     assert sentence(words.EDGE_COUNTED, edge=32, share="0.3 %", positions=words.EDGE_FEW_PART.format(
         count=2, s="s", share="5 %"), others="").search(text)
     assert ": ;" not in text and not sentence(words.EDGE_POSITION_PART).search(text)
+
+
+def test_methods_name_the_caveats_of_the_standards_schemes_and_no_anchor_on_its_own_drawing(small_comparison):
+    methods = section_text((small_comparison.folder / "report.md").read_text(), "Methods and assumptions")
+    fine = words.ISO_NARROW_PART.format(scheme="iso13778-6", parts="housing and journal", width="1.0", of="gauge",
+                                        sigma="0.5")  # the example engine's 0.5 um gauge on 1 um classes
+    assert words.ISO_CAVEATS.format(items=fine) in methods
+    assert "ISO schemes on this drawing" not in methods  # iso-example is the standard's drawing: nothing re-centred
