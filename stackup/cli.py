@@ -5,18 +5,24 @@ Each subcommand parses its options and calls what a study script calls
 :func:`stackup.design.design`, ...). Every output location is checked
 before anything is computed, and written whole or not at all
 (:mod:`stackup.output`). Exit codes: 0 done, 1 a store check found damage,
-2 refused (bad input or output location), 130 interrupted (Ctrl-C).
+2 refused (bad input or output location), 130 interrupted (Ctrl-C), 141 the
+reader of its output stopped reading (``stackup plan | head``), as a shell
+reports a tool ended by SIGPIPE.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from ._interrupt import held_during_imports
 from ._version import __version__
 from .commands import COMMANDS
 from .commands._options import EXIT_INTERRUPTED, EXIT_REFUSED, Formatter, State
+
+#: Exit code when the output's reader closed the pipe: 128 + SIGPIPE, what a shell reports for a tool it ended.
+EXIT_PIPE_CLOSED = 141
 
 
 def parser():
@@ -40,7 +46,12 @@ def main(argv=None):
                 args = parser().parse_args(argv)
             except SystemExit as done:  # --help, --version, or a usage error argparse has already printed
                 return done.code
-            return args.func(args, state)
+            code = args.func(args, state)
+            sys.stdout.flush()  # a pipe closed by its reader is met here, inside the handlers, not at exit
+            return code
+    except BrokenPipeError:  # `stackup plan | head`: the reader had what it wanted
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # Python's own flush at exit writes nowhere
+        return EXIT_PIPE_CLOSED
     except KeyboardInterrupt:
         print(state.interrupted(), file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -187,3 +187,14 @@ def test_ctrl_c_while_the_command_starts_exits_130_with_one_line(after):
     _, err = process.communicate(timeout=120)
     assert process.returncode == 130 and err.startswith("stackup: interrupted") and err.count("\n") == 1, err
 
+
+
+def test_a_reader_that_closes_the_pipe_ends_the_command_without_a_traceback():
+    """`stackup schemes | head`: the reader gone before the output is written; exit 141, as a shell reports
+    SIGPIPE, and nothing on stderr."""
+    process = subprocess.Popen([sys.executable, "-m", "stackup.cli", "schemes"], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    process.stdout.close()  # before the command writes: its first write meets a closed pipe
+    stderr = process.stderr.read()
+    assert process.wait(timeout=120) == 141, stderr
+    assert stderr == ""
