@@ -217,6 +217,9 @@ ENGINE_DEFAULTS = {
     ("crank", "crank_material"): "steel", ("crank", "coaxiality"): 0.0, ("crank", "journal_runout"): 0.0,
     # no source for the section inertias: assumed (a declared model uncertainty of the comparison)
     ("crank", "section_inertia_source"): "",
+    # one width per bearing: the shells' (press_fit.length); a V's two rods side by side on each pin
+    ("crank", "bearing_width"): lambda e, d: e.crank.bearing_width == e.press_fit.bearing_width,
+    ("crank", "rods"): "side-by-side",
     ("bearing_law", "dx"): 0.00965, ("bearing_law", "k_lv"): 0.98e9, ("bearing_law", "k_hv"): 1.72e9,
     ("bearing_law", "theta0"): 97.0, ("bearing_law", "dtheta"): 15.0, ("bearing_law", "clearance_ratio"): 37.0 / 30.0,
     ("oil", "grade"): "SAE-5W-30", ("oil", "supply_temperature"): 90.0,

@@ -182,7 +182,8 @@ def test_the_library_example_runs_as_a_script(tmp_path):
     page = "docs/library.md"
     code = shrunk(page, block(page, "import stackup.schemes as schemes"), [
         ('n_engines=10_000, seed=1', 'n_engines=500, seed=1'),
-        ('stackup.compare(n_engines=20_000, design={})', 'stackup.compare(n_engines=200, design={"n_engines": 500, "generations": 0}, scenarios={})'),
+        ('stackup.compare(n_engines=20_000, design={})',
+         'stackup.compare(n_engines=200, design={"n_engines": 500, "generations": 0}, scenarios={}, uncertainties=None)'),
     ])
     checks = """
 assert s4.pair(50.0075e-3, 46.0031e-3) == ('D', 'D')

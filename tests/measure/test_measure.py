@@ -289,18 +289,18 @@ def test_the_engine_file_written_from_fits_loads_strictly_and_runs_the_main_job(
 
 
 @pytest.mark.slow
-def test_the_engine_file_written_from_measurements_runs_stackup_compare_quick(tmp_path):
-    """The user's route end to end: fits and fitting tests -> engine file -> `stackup compare --engine FILE --quick`
-    (without the designer, whose own tests run it on engine files: here it would be three quarters of the time)."""
+def test_the_engine_file_written_from_measurements_runs_stackup_compare(tmp_path):
+    """The user's route end to end: fits and fitting tests -> engine file -> `stackup compare --engine FILE` (1,000
+    engines, one scheme, without the designer and the scenarios, which have their own tests on engine files)."""
     housing = calibrate_housing(synthetic_fitting_tests(12, 75e-3, np.random.default_rng(5)), "iso-example")
     written = write_engine("iso-example", tmp_path / "written.toml",
                            [*_grouped_fit().entries("housing_bore"), housing.entry()], name="written")
-    result = subprocess.run([sys.executable, "-m", "stackup.cli", "compare", "--engine", str(written), "--quick",
-                             "--no-design"],
-                            cwd=tmp_path, capture_output=True, text=True, timeout=3600, env=dict(os.environ))
+    result = subprocess.run([sys.executable, "-m", "stackup.cli", "compare", "--engine", str(written), "--n", "1000",
+                             "--schemes", "iso13778-4", "--no-design", "--no-scenarios"], cwd=tmp_path, capture_output=True, text=True, timeout=3600,
+                            env=dict(os.environ))
     assert result.returncode == 0, result.stderr[-2000:]
     assert "Traceback" not in result.stderr
-    report = (tmp_path / "reports" / "compare-quick" / "report.md").read_text()
+    report = (tmp_path / "reports" / "compare" / "report.md").read_text()
     assert "written" in report
 
 

@@ -1,10 +1,14 @@
 """Coverage of the measured-data intervals on synthetic data from known processes (issue 35, "Done when").
 
-The slow tests are the claims (200 seeds each; ``pytest -m slow``), measured
-also by ``studies/measured_data.py`` into ``reports/measured_data.md``; the fast
-ones run a few seeds with a looser bound that a broken interval still fails
-(a 70 % interval passes the pooled 24-of-30 bound with probability 0.16, a
-60 % one with 0.01).
+The slow tests are the claims (``pytest -m slow``), measured also by
+``studies/measured_data.py`` on 200 seeds into ``reports/measured_data.md``.
+The Cpk and shared-share intervals are tested on 100 seeds (each seed's fit
+bootstraps every candidate model a thousand times: 200 seeds of the five
+cases would be half of CI's budget): at least 90 of 100 hold the truth, which
+a 95 % interval misses with probability 0.01 and an 85 % one passes with 0.10.
+The fast ones run a few seeds with a looser bound that a broken interval still
+fails (a 70 % interval passes the pooled 24-of-30 bound with probability 0.16,
+a 60 % one with 0.01).
 """
 
 import numpy as np
@@ -50,11 +54,11 @@ def test_housing_interval_holds_the_true_diameter_on_a_few_seeds():
 @pytest.mark.slow
 @pytest.mark.parametrize("case, grouped", [("normal", True), ("normal", False), ("skew-normal", True),
                                            ("mixture", True), ("drift", False)])
-def test_cpk_and_shared_intervals_hold_the_truth_in_90_percent_of_200_seeds(case, grouped):
-    result = coverage(case, 200, grouped=grouped)
-    assert result.cpk_hits >= 180, result
+def test_cpk_and_shared_intervals_hold_the_truth_in_90_percent_of_100_seeds(case, grouped):
+    result = coverage(case, 100, grouped=grouped)
+    assert result.cpk_hits >= 90, result
     if grouped:
-        assert result.shared_hits >= 180, result
+        assert result.shared_hits >= 90, result
 
 
 @pytest.mark.slow
