@@ -37,11 +37,13 @@ def readings(header, rows, *options):
 
 
 def fitting_tests(*, kelvin=False, scale=1.0):
-    """Fitting tests of the example engine (temperatures in kelvin if asked), or of a bore ``scale`` times it."""
+    """Fitting tests of the example engine in mm, the command's default (temperatures in kelvin if asked), or of a
+    bore ``scale`` times it."""
     def write(folder):
         table = synthetic_fitting_tests(6, 75e-3, np.random.default_rng(3))
-        table = {k: np.asarray(v) * (scale if k not in ("temperature", "shell_upper_crush", "shell_lower_crush")
-                                     else 1.0) for k, v in table.items()}
+        table = {k: np.asarray(v) * (1.0 if k == "temperature" else 1e3)
+                 * (scale if k not in ("temperature", "shell_upper_crush", "shell_lower_crush") else 1.0)
+                 for k, v in table.items()}
         table["temperature"] = table["temperature"] + (273.15 if kelvin else 0.0)
         lines = [",".join(table)] + [",".join(f"{table[k][i]:.9g}" for k in table) for i in range(6)]
         (folder / "tests.csv").write_text("\n".join(lines) + "\n")

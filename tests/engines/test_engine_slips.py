@@ -6,11 +6,12 @@ import pytest
 
 from stackup import _validate as check
 from stackup.engines import builtin_folder, load_engine
+from stackup.schemes import builtin_folder as scheme_folder
 from stackup.schemes import load as load_scheme
 from stackup.tolerances import process_from_spec
 
 DATA = builtin_folder().parent.parent.parent / "tests" / "data"
-ISO4 = builtin_folder().parents[2] / "schemes" / "iso13778-4.toml"
+ISO4 = scheme_folder() / "iso13778-4.toml"
 BORE = "process = { distribution = \"normal\", cpk = 1.33 }\n# Share of the bore"
 
 
