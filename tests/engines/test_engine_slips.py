@@ -1,6 +1,8 @@
 """Engine and scheme files: a value in the wrong unit, or given twice, is refused naming the file, the key, the
 value and what was expected (issue 51, item 3); the built-in engines and the test data pass every check."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -10,7 +12,7 @@ from stackup.schemes import builtin_folder as scheme_folder
 from stackup.schemes import load as load_scheme
 from stackup.tolerances import process_from_spec
 
-DATA = builtin_folder().parent.parent.parent / "tests" / "data"
+DATA = Path(__file__).parents[1] / "data"  # the tests' own files, wherever the package is installed
 ISO4 = scheme_folder() / "iso13778-4.toml"
 BORE = "process = { distribution = \"normal\", cpk = 1.33 }\n# Share of the bore"
 
